@@ -1,0 +1,119 @@
+# iacsg -- interval-arithmetic ray tracer for CSG of implicit surfaces.
+#
+#   make            build build/iacsg (and build/libiacsg.a)
+#   make test       install missing Debian packages, build, run every test (ends "N passed, N failed")
+#   make demo       render the README's first example
+#   make deps       install the Debian packages the project needs (apt-get; sudo when not root)
+#   make bench-ia   nanoseconds per interval operation, host and device, rigorous and fast
+#
+# BUILD=dir SAN=1 builds everything under AddressSanitizer and UndefinedBehaviorSanitizer in another directory.
+
+BUILD ?= build
+CC ?= gcc
+CXX ?= g++
+SAN ?=
+
+WARN = -Wall -Wextra -pedantic -Werror
+OPT = -O2 -g
+ifeq ($(SAN),1)
+OPT = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+endif
+CFLAGS_ALL = -std=c11 $(WARN) $(OPT) -I. -Isrc -I$(BUILD) -D_POSIX_C_SOURCE=200809L $(CFLAGS)
+CXXFLAGS_ALL = -std=c++17 -Wall -Wextra -Werror $(OPT) -I. -Isrc $(CXXFLAGS)
+LIBS = -lOpenCL -lOpenImageIO -lOpenImageIO_Util -lmpfr -lgmp -lm -lstdc++
+LDFLAGS_ALL = $(OPT) $(LDFLAGS)
+
+DEB_PACKAGES = gcc g++ make pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev
+
+# OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
+IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h
+KERNEL_SOURCES ?=
+TEST_CL_SOURCES = $(sort $(wildcard tests/*.cl))
+
+LIB_C = $(filter-out src/cli%.c,$(wildcard ia/*.c implicits/*.c src/*.c))
+LIB_CXX = $(wildcard src/*.cpp)
+CLI_C = $(wildcard src/cli*.c)
+TEST_C = $(filter-out %_fp.c,$(wildcard tests/*.c))
+TEST_FP_C = $(wildcard tests/*_fp.c)
+
+LIB_OBJ = $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o) $(BUILD)/embedded_ia.o \
+          $(if $(KERNEL_SOURCES),$(BUILD)/embedded_kernels.o)
+CLI_OBJ = $(CLI_C:%.c=$(BUILD)/%.o)
+TEST_OBJ = $(TEST_C:%.c=$(BUILD)/%.o) $(TEST_FP_C:%.c=$(BUILD)/%.f32.o) $(TEST_FP_C:%.c=$(BUILD)/%.f64.o) \
+           $(if $(TEST_CL_SOURCES),$(BUILD)/embedded_tests.o)
+
+.PHONY: all deps test check demo bench-ia clean
+all: $(BUILD)/iacsg
+
+deps:
+	@missing=$$(for p in $(DEB_PACKAGES); do \
+	    dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	    echo "make deps: installing" $$missing; \
+	    if [ "$$(id -u)" = 0 ]; then sudo=; else sudo=sudo; fi; \
+	    $$sudo apt-get update -q && DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -q $$missing; \
+	fi
+
+$(BUILD)/libiacsg.a: $(LIB_OBJ)
+	ar rcs $@ $^
+
+$(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a
+	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(LIBS)
+
+$(BUILD)/iacsg-tests: $(TEST_OBJ) $(BUILD)/libiacsg.a
+	$(CC) $(LDFLAGS_ALL) -o $@ $(TEST_OBJ) $(BUILD)/libiacsg.a $(LIBS)
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -MMD -MP -c $< -o $@
+$(BUILD)/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS_ALL) -MMD -MP -c $< -o $@
+$(BUILD)/%.o: $(BUILD)/%.c
+	$(CC) $(CFLAGS_ALL) -c $< -o $@
+
+# tests/*_fp.c are compiled twice, for float and for double intervals; TEST_FP(name) becomes name_f32/_f64.
+$(BUILD)/tests/%.f32.o: tests/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -MMD -MP -c $< -o $@
+$(BUILD)/tests/%.f64.o: tests/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -DIA_FP64 -MMD -MP -c $< -o $@
+
+$(BUILD)/tests/main.o: $(BUILD)/tests.inc
+$(BUILD)/tests/main.o: CFLAGS += -DIACSG_SOURCE_DIR_DEFAULT='"$(CURDIR)"'
+$(BUILD)/tests.inc: $(TEST_C) $(TEST_FP_C)
+	@mkdir -p $(dir $@)
+	sed -n 's/^TEST(\([a-zA-Z0-9_]*\)).*/X(\1)/p' $(TEST_C) > $@.tmp
+	sed -n 's/^TEST_FP(\([a-zA-Z0-9_]*\)).*/X(\1_f32)\nX(\1_f64)/p' $(TEST_FP_C) >> $@.tmp
+	mv $@.tmp $@
+
+$(BUILD)/embed: src/tools/embed.c
+	@mkdir -p $(dir $@)
+	$(CC) -std=c11 $(WARN) -O1 -o $@ $<
+$(BUILD)/embedded_ia.c: $(IA_CL_HEADERS) $(BUILD)/embed
+	$(BUILD)/embed iacsg_cl_ia $(IA_CL_HEADERS) > $@
+$(BUILD)/embedded_kernels.c: $(KERNEL_SOURCES) $(BUILD)/embed
+	$(BUILD)/embed iacsg_cl_kernels $(KERNEL_SOURCES) > $@
+$(BUILD)/embedded_tests.c: $(TEST_CL_SOURCES) $(BUILD)/embed
+	$(BUILD)/embed iacsg_cl_tests $(TEST_CL_SOURCES) > $@
+
+# The user-facing targets install what is missing first, then build in a fresh make (so the new headers count).
+test: deps
+	@$(MAKE) --no-print-directory check
+
+check: $(BUILD)/iacsg-tests $(BUILD)/iacsg
+	$(BUILD)/iacsg-tests
+
+demo: deps
+	@$(MAKE) --no-print-directory $(BUILD)/iacsg
+	$(BUILD)/iacsg "min(sphere,torus)" -eps 1e-5
+
+bench-ia: deps
+	@$(MAKE) --no-print-directory $(BUILD)/iacsg-tests
+	$(BUILD)/iacsg-tests bench_ia
+
+clean:
+	rm -rf build build-asan
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

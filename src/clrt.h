@@ -1,0 +1,61 @@
+/* src/clrt.h -- the OpenCL runtime: device choice, context and queue, program builds with the ia/ options,
+ * error names. Every OpenCL call in the library goes through CLRT_CHECK, which records the error name, the
+ * statement, the function and the line into an iacsg_error. */
+#ifndef IACSG_CLRT_H
+#define IACSG_CLRT_H
+#define CL_TARGET_OPENCL_VERSION 120
+#include "error.h"
+#include <CL/cl.h>
+#include <stddef.h>
+
+typedef struct {
+    cl_platform_id platform;
+    cl_device_id device;
+    cl_context context;
+    cl_command_queue queue;
+    char device_name[256];
+    char platform_name[256];
+    int has_fp64;         /* cl_khr_fp64 */
+    int float_denorms;    /* CL_FP_DENORM in the single-precision config; if 0, ia/ is built with IA_FTZ */
+    int cr_divide_sqrt;   /* CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT: build with -cl-fp32-correctly-rounded-... */
+    cl_uint compute_units;
+} clrt;
+
+/* Calls an OpenCL function returning cl_int (or checks the cl_int a create call returned through its last
+ * argument: CLRT_CHECK(err, rc)); on failure records it in `err` and jumps to the label `fail`. */
+#define CLRT_CHECK(err, call)                                                                                 \
+    do {                                                                                                      \
+        cl_int clrt_rc_ = (call);                                                                             \
+        if (clrt_rc_ != CL_SUCCESS) {                                                                         \
+            clrt_record((err), clrt_rc_, #call, __func__, __LINE__);                                          \
+            goto fail;                                                                                        \
+        }                                                                                                     \
+    } while (0)
+
+/* Records a failed OpenCL call as IACSG_ERR_OPENCL: "clFoo(...) failed: CL_OUT_OF_RESOURCES (in f, line n)". */
+iacsg_status clrt_record(iacsg_error *err, cl_int rc, const char *call, const char *func, int line);
+
+/* "CL_OUT_OF_RESOURCES" and so on; "CL_UNKNOWN_ERROR(-n)" for codes it does not know (static buffer). */
+const char *clrt_error_name(cl_int rc);
+
+/* Calls fn(index, platform name, device name, ctx) for each device of each platform, in the order that
+ * `device_index` counts them. Returns the number of devices (0 with err set when there is no platform). */
+int clrt_list_devices(void (*fn)(int index, const char *platform, const char *device, void *ctx), void *ctx,
+                      iacsg_error *err);
+
+/* Opens device number `device_index` (see clrt_list_devices): context, in-order queue, capabilities.
+ * On failure nothing stays allocated. */
+iacsg_status clrt_open(clrt *rt, int device_index, iacsg_error *err);
+void clrt_close(clrt *rt);
+
+/* The build options that make ia/ rigorous on this device: never fast-math; -D IA_FP64 when fp64, -D IA_FAST
+ * for the fast mode, -D IA_FTZ when the device flushes float subnormals, and correctly rounded divide/sqrt
+ * when the device offers it. Writes into buf (at least 256 bytes). */
+iacsg_status clrt_ia_options(const clrt *rt, int fp64, int fast, char *buf, size_t size, iacsg_error *err);
+
+/* Builds a program from the concatenation of `count` source strings. On a build failure the log is saved to a
+ * temporary file whose path is named in the message (IACSG_ERR_BUILD). */
+iacsg_status clrt_build(clrt *rt, const char *const *sources, size_t count, const char *options,
+                        cl_program *program, iacsg_error *err);
+
+#endif

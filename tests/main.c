@@ -1,0 +1,127 @@
+/* tests/main.c -- the runner: runs every TEST in build/tests.inc but the bench_* ones, or those whose names
+ * start with one of the arguments, and ends with the line "N passed, N failed". Exit status 0 only if nothing failed. */
+#include "test.h"
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define X(name) void test_##name(void);
+#include "tests.inc"
+#undef X
+
+static const struct {
+    const char *name;
+    void (*fn)(void);
+} tests[] = {
+#define X(name) {#name, test_##name},
+#include "tests.inc"
+#undef X
+};
+
+static jmp_buf on_fail;
+static test_rng_t rng;
+static char notes[8192];
+
+void test_fail_at(const char *file, int line, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stdout, "    %s:%d: ", file, line);
+    vfprintf(stdout, fmt, ap);
+    fputc('\n', stdout);
+    va_end(ap);
+    longjmp(on_fail, 1);
+}
+
+void test_note(const char *fmt, ...) {
+    size_t len = strlen(notes);
+    va_list ap;
+    va_start(ap, fmt);
+    int n = snprintf(notes + len, sizeof notes - len, "    ");
+    if (n > 0 && (size_t)n < sizeof notes - len)
+        len += (size_t)n;
+    n = vsnprintf(notes + len, sizeof notes - len, fmt, ap);
+    va_end(ap);
+    len = strlen(notes);
+    if (len + 1 < sizeof notes)
+        strcat(notes, "\n");
+}
+
+long test_iters(long base) {
+    const char *m = getenv("IACSG_TEST_MULT");
+    double mult = m ? atof(m) : 1.0;
+    long n = (long)(base * (mult > 0 ? mult : 1.0));
+    return n > 0 ? n : 1;
+}
+
+static uint64_t splitmix(uint64_t *x) {
+    uint64_t z = (*x += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+static void seed_rng(const char *name) {
+    const char *s = getenv("IACSG_TEST_SEED");
+    uint64_t x = s ? strtoull(s, NULL, 0) : 0x1acc5eedull;
+    for (const char *p = name; *p; p++)
+        x = x * 31 + (unsigned char)*p;
+    for (int i = 0; i < 4; i++)
+        rng.s[i] = splitmix(&x);
+}
+
+test_rng_t *test_rng(void) { return &rng; }
+
+static uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+
+uint64_t test_rand_u64(test_rng_t *r) {
+    uint64_t *s = r->s, result = rotl(s[1] * 5, 7) * 9, t = s[1] << 17;
+    s[2] ^= s[0];
+    s[3] ^= s[1];
+    s[1] ^= s[2];
+    s[0] ^= s[3];
+    s[2] ^= t;
+    s[3] = rotl(s[3], 45);
+    return result;
+}
+
+double test_rand_unit(test_rng_t *r) { return (double)(test_rand_u64(r) >> 11) * 0x1p-53; }
+
+const char *test_source_dir(void) {
+    const char *d = getenv("IACSG_SOURCE_DIR");
+    return d && *d ? d : IACSG_SOURCE_DIR_DEFAULT;
+}
+
+/* With no arguments every test runs except the benchmarks (bench_*), which run only when named. */
+static int selected(const char *name, int argc, char **argv) {
+    if (argc < 2)
+        return strncmp(name, "bench_", 6) != 0;
+    for (int i = 1; i < argc; i++)
+        if (strncmp(name, argv[i], strlen(argv[i])) == 0)
+            return 1;
+    return 0;
+}
+
+int main(int argc, char **argv) {
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    int passed = 0, failed = 0;
+    for (size_t i = 0; i < sizeof tests / sizeof tests[0]; i++) {
+        if (!selected(tests[i].name, argc, argv))
+            continue;
+        notes[0] = '\0';
+        seed_rng(tests[i].name);
+        struct timespec t0, t1;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
+        int ok = setjmp(on_fail) == 0;
+        if (ok)
+            tests[i].fn();
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        double ms = (t1.tv_sec - t0.tv_sec) * 1e3 + (t1.tv_nsec - t0.tv_nsec) * 1e-6;
+        printf("%s %s (%.0f ms)\n%s", ok ? "ok  " : "FAIL", tests[i].name, ms, notes);
+        ok ? passed++ : failed++;
+    }
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}

@@ -1,0 +1,46 @@
+/* tests/test.h -- the test harness. A test is `TEST(name) { ... }` in any tests/*.c file; the Makefile collects
+ * the names, and build/iacsg-tests runs them all, or those whose names start with an argument.
+ *
+ *   CHECK(cond, fmt, ...)   on failure prints the place and the message and ends this test (others go on).
+ *   test_iters(n)           n scaled by IACSG_TEST_MULT (default 1), for property tests.
+ *   test_rng()              a per-test random state seeded from IACSG_TEST_SEED (default fixed), so failures
+ *                           reproduce.
+ *   test_note(fmt, ...)     one line of summary (counts, measured bounds) printed under the test's result.
+ */
+#ifndef IACSG_TEST_H
+#define IACSG_TEST_H
+#include <stdint.h>
+
+#define TEST(name) void test_##name(void)
+
+void test_fail_at(const char *file, int line, const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 3, 4), noreturn))
+#endif
+    ;
+void test_note(const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+#define CHECK(cond, ...)                                                                                      \
+    do {                                                                                                      \
+        if (!(cond))                                                                                          \
+            test_fail_at(__FILE__, __LINE__, __VA_ARGS__);                                                    \
+    } while (0)
+
+long test_iters(long base);
+
+/* xoshiro256** state, seeded per test. */
+typedef struct {
+    uint64_t s[4];
+} test_rng_t;
+test_rng_t *test_rng(void);
+uint64_t test_rand_u64(test_rng_t *r);
+double test_rand_unit(test_rng_t *r); /* uniform in [0, 1) */
+
+/* The repository root (where tests/data lives): IACSG_SOURCE_DIR, else the compiled-in default. */
+const char *test_source_dir(void);
+
+#endif
