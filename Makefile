@@ -27,7 +27,8 @@ DEB_PACKAGES = gcc g++ make pocl-opencl-icd ocl-icd-opencl-dev opencl-headers li
 
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h
-KERNEL_SOURCES ?=
+KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h kernels/bisect.h \
+                  kernels/shade.h kernels/render.cl
 TEST_CL_SOURCES = $(sort $(wildcard tests/*.cl))
 
 LIB_C = $(filter-out src/cli%.c,$(wildcard ia/*.c implicits/*.c src/*.c))

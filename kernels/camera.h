@@ -1,0 +1,55 @@
+/* kernels/camera.h -- the primary ray of a pixel, and its clipping to the bounds.
+ *
+ * The convention (README): f, r, u are the camera's forward, right and up unit vectors (params.h). Pixel
+ * (i, j), i = 0..W-1 left to right and j = 0..H-1 top to bottom, has
+ *     s = (2(i + 1/2)/W - 1) * SCALE_S,   v = (1 - 2(j + 1/2)/H) * SCALE_V,
+ * direction normalize(f + s*r + v*u) from the eye; orthographic: origin eye + s*r + v*u, direction f.
+ * Every operation here is +, -, *, / or sqrt, written in a fixed order, so the host computes the same float
+ * ray bit for bit when the device rounds / and sqrt correctly (fp64 always; float with IA_CR_DIVSQRT). The
+ * rendered ray IS this float ray: the bisection encloses its points rigorously (traverse.h), so rounding here
+ * only moves the ray by an ulp, it never makes the renderer miss a surface the float ray crosses.
+ */
+#ifndef KERNELS_CAMERA_H
+#define KERNELS_CAMERA_H
+#include "params.h"
+
+IA_FN void camera_ray(const KERNEL_CONSTANT ia_real *p, int ortho, int i, int j, int width, int height,
+                      ia_real o[3], ia_real d[3]) {
+    ia_real s = ((ia_real)(2 * i + 1) / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];
+    ia_real v = ((ia_real)1 - (ia_real)(2 * j + 1) / (ia_real)height) * p[PARAM_SCALE_V];
+    for (int k = 0; k < 3; k++) {
+        ia_real offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
+        o[k] = ortho ? p[PARAM_EYE + k] + offset : p[PARAM_EYE + k];
+        d[k] = ortho ? p[PARAM_FORWARD + k] : p[PARAM_FORWARD + k] + offset;
+    }
+    if (!ortho) {
+        ia_real len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int k = 0; k < 3; k++)
+            d[k] = d[k] / len;
+    }
+}
+
+/* The part t >= 0 of the ray o + t*d inside the box (params.h, PARAM_BOX), widened outward: every t >= 0
+ * whose exact point o + t*d lies in the box is in [*t_near, *t_far]. Returns 0 when the ray misses the box. */
+IA_FN int camera_clip(const KERNEL_CONSTANT ia_real *p, const ia_real o[3], const ia_real d[3], ia_real *t_near,
+                      ia_real *t_far) {
+    ia_real tn = 0, tf = IA_INF;
+    for (int k = 0; k < 3; k++) {
+        ia_real lo = p[PARAM_BOX + k], hi = p[PARAM_BOX + 3 + k];
+        if (d[k] == 0) {
+            if (o[k] < lo || o[k] > hi)
+                return 0;
+            continue;
+        }
+        /* The exact crossings (lo - o)/d and (hi - o)/d, each enclosed. */
+        ia_interval a = ia_div(ia_sub(ia_point(lo), ia_point(o[k])), ia_point(d[k]));
+        ia_interval b = ia_div(ia_sub(ia_point(hi), ia_point(o[k])), ia_point(d[k]));
+        tn = fmax(tn, fmin(a.lo, b.lo));
+        tf = fmin(tf, fmax(a.hi, b.hi));
+    }
+    *t_near = tn;
+    *t_far = tf;
+    return tn <= tf;
+}
+
+#endif

@@ -1,0 +1,27 @@
+/* kernels/params.h -- the parameter block of a render, shared by the host and the device.
+ *
+ * The host fills an array of PARAM_COUNT reals of the working precision (float, or double with IA_FP64) and
+ * the device reads it from __constant memory. An array indexed by this enum, rather than a struct, keeps the
+ * layout identical on both sides whatever the precision: no padding, no float3, no size_t.
+ */
+#ifndef KERNELS_PARAMS_H
+#define KERNELS_PARAMS_H
+#include "compat.h"
+
+enum {
+    PARAM_EYE = 0,       /* 3: the eye (perspective) or the centre of the image plane (orthographic) */
+    PARAM_FORWARD = 3,   /* 3: f = normalize(at - eye) */
+    PARAM_RIGHT = 6,     /* 3: r = normalize(f x up) */
+    PARAM_UP = 9,        /* 3: u = r x f */
+    PARAM_SCALE_S = 12,  /* tan(fov/2) * W/H, or HEIGHT/2 * W/H when orthographic */
+    PARAM_SCALE_V = 13,  /* tan(fov/2), or HEIGHT/2 */
+    PARAM_BOX = 14,      /* 6: x0, y0, z0, x1, y1, z1, the bounds every ray is clipped to */
+    PARAM_EPS = 20,      /* the width of a leaf of the bisection, in units of t (the distance along the ray) */
+    PARAM_TIME = 21,     /* the value of the variable t of the expression */
+    PARAM_COUNT = 22
+};
+
+/* Flags, an int argument of the render kernel. */
+#define RENDER_ORTHO 1
+
+#endif

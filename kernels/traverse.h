@@ -1,0 +1,45 @@
+/* kernels/traverse.h -- the stackless walk over the implicit binary tree of a ray's parameter interval.
+ *
+ * The root covers [t0, t0 + w]. A node is a level k and an index i in [0, 2^k); its ends are
+ *     node_bound(k, i) = t0 + w * (i * 2^-k)     and     node_bound(k, i + 1).
+ * i * 2^-k is exact (the index has fewer bits than the mantissa: BISECT_MAX_LEVEL), so every end is a function
+ * of one dyadic number u = i * 2^-k, rounded the same way wherever it is computed. A parent's ends are therefore
+ * bit-identical to its outer children's ends, and a node's end bit-identical to its right neighbour's start:
+ * the leaves tile [t0, t0 + w] with no gap (recomputing hi = lo + width instead leaves one-ulp gaps). And since
+ * rounding is monotone in u, the ends never cross.
+ *
+ * The walk needs no stack: descending goes to (k + 1, 2i); leaving a rejected node goes to (k, i + 1), then up
+ * while that is a left child's position, i.e. while i is even. The walk is over when it climbs to the root's end.
+ */
+#ifndef KERNELS_TRAVERSE_H
+#define KERNELS_TRAVERSE_H
+#include "compat.h"
+
+#ifdef IA_FP64
+typedef kernel_u64 bisect_index;
+#define BISECT_MAX_LEVEL 53
+#else
+typedef kernel_u32 bisect_index;
+#define BISECT_MAX_LEVEL 24
+#endif
+
+/* The end point of the dyadic fraction i * 2^-level of [t0, t0 + w]. */
+IA_FN ia_real node_bound(ia_real t0, ia_real w, int level, bisect_index i) {
+    return t0 + w * ldexp((ia_real)i, -level);
+}
+
+/* Moves from a node to the next node in ray order that is not inside it. Returns 0 when there is none. */
+IA_FN int node_next(int *level, bisect_index *i) {
+    *i += 1;
+    while (*level > 0 && (*i & 1) == 0) {
+        *i >>= 1;
+        *level -= 1;
+    }
+    return *level > 0;
+}
+
+/* The box of the ray o + t*d over the node's t range, outward-rounded: it contains every point of the float ray
+ * (the exact value o + t*d, t in [lo, hi]), so a root of f on that ray segment is never excluded. */
+IA_FN ia_interval ray_extent(ia_real o, ia_real d, ia_interval t) { return ia_add_r(ia_mul_r(t, d), o); }
+
+#endif

@@ -1,0 +1,230 @@
+/* src/render.c -- see render.h. One program per expression: the ia/ headers, the expression's emitted source
+ * and the kernels, concatenated (all three embedded or generated, so nothing is read from disk). A frame is
+ * traced in bands of rows, so that progress can be reported and no single launch runs for long. */
+#include "render.h"
+#include "clrt.h"
+#include "kernels/params.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+extern const char iacsg_cl_ia[];      /* the flattened ia/ headers (Makefile: IA_CL_HEADERS) */
+extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNEL_SOURCES) */
+
+/* The work-group is a tile of pixels: neighbouring rays take similar paths through the bisection. */
+enum { TILE_W = 8, TILE_H = 8, BAND_ROWS = 64 };
+
+struct iacsg_renderer {
+    clrt rt;
+    cl_program program;
+    cl_kernel kernel;
+    iacsg_render_config config;
+    double build_seconds;
+};
+
+static double now_seconds(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,
+                                   iacsg_error *err) {
+    *out = NULL;
+    iacsg_renderer *r = calloc(1, sizeof *r);
+    if (!r)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    r->config = *config;
+    iacsg_status st = clrt_open(&r->rt, config->device, err);
+    if (st != IACSG_OK) {
+        free(r);
+        return st;
+    }
+    char options[512];
+    st = clrt_ia_options(&r->rt, config->fp64, config->fast, options, sizeof options - 32, err);
+    if (st == IACSG_OK) {
+        if (config->stats)
+            strcat(options, " -D KERNEL_STATS");
+        const char *sources[] = {iacsg_cl_ia, expr_cl, iacsg_cl_kernels};
+        double t0 = now_seconds();
+        st = clrt_build(&r->rt, sources, 3, options, &r->program, err);
+        r->build_seconds = now_seconds() - t0;
+    }
+    if (st == IACSG_OK) {
+        cl_int rc = CL_SUCCESS;
+        r->kernel = clCreateKernel(r->program, "iacsg_render", &rc);
+        CLRT_CHECK(err, rc);
+    }
+    if (st != IACSG_OK) {
+        iacsg_renderer_destroy(r);
+        return st;
+    }
+    *out = r;
+    return IACSG_OK;
+fail:
+    iacsg_renderer_destroy(r);
+    return IACSG_ERR_OPENCL;
+}
+
+void iacsg_renderer_destroy(iacsg_renderer *r) {
+    if (!r)
+        return;
+    if (r->kernel)
+        clReleaseKernel(r->kernel);
+    if (r->program)
+        clReleaseProgram(r->program);
+    clrt_close(&r->rt);
+    free(r);
+}
+
+double iacsg_renderer_build_seconds(const iacsg_renderer *r) { return r->build_seconds; }
+const char *iacsg_renderer_device_name(const iacsg_renderer *r) { return r->rt.device_name; }
+
+/* The parameter block in the working precision. The box is rounded outward to float, so it only grows. */
+static iacsg_status fill_params(const iacsg_view *v, int fp64, void *block, iacsg_error *err) {
+    double p[PARAM_COUNT];
+    iacsg_status st = iacsg_camera_params(&v->camera, v->width, v->height, p, err);
+    if (st != IACSG_OK)
+        return st;
+    for (int k = 0; k < 6; k++)
+        p[PARAM_BOX + k] = v->bounds[k];
+    p[PARAM_EPS] = v->eps;
+    p[PARAM_TIME] = v->time;
+    for (int k = 0; k < PARAM_COUNT; k++) {
+        if (fp64) {
+            ((double *)block)[k] = p[k];
+            continue;
+        }
+        float f = (float)p[k];
+        if (k >= PARAM_BOX && k < PARAM_BOX + 3 && (double)f > p[k])
+            f = nextafterf(f, -INFINITY);
+        if (k >= PARAM_BOX + 3 && k < PARAM_BOX + 6 && (double)f < p[k])
+            f = nextafterf(f, INFINITY);
+        ((float *)block)[k] = f;
+    }
+    return IACSG_OK;
+}
+
+static iacsg_status check_view(const iacsg_view *v, iacsg_error *err) {
+    if (v->width < 1 || v->height < 1 || (long long)v->width * v->height > (1LL << 28))
+        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "image size %dx%d is out of range", v->width, v->height);
+    if (!(v->eps > 0) || !isfinite(v->eps))
+        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "eps must be positive (got %g)", v->eps);
+    for (int k = 0; k < 3; k++)
+        if (!(v->bounds[k] < v->bounds[k + 3]) || !isfinite(v->bounds[k]) || !isfinite(v->bounds[k + 3]))
+            return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the bounds are empty or not finite");
+    if (!isfinite(v->time))
+        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the time is not finite");
+    return IACSG_OK;
+}
+
+static void summarize_evals(const cl_uint *evals, size_t n, iacsg_frame *f) {
+    double sum = 0;
+    for (size_t k = 0; k < n; k++) {
+        sum += evals[k];
+        if (evals[k] > f->evals_max)
+            f->evals_max = evals[k];
+    }
+    f->evals_mean = n ? sum / (double)n : 0;
+}
+
+iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err) {
+    memset(frame, 0, sizeof *frame);
+    double params[PARAM_COUNT]; /* room for either precision */
+    iacsg_status st = check_view(view, err);
+    if (st == IACSG_OK)
+        st = fill_params(view, r->config.fp64, params, err);
+    if (st != IACSG_OK)
+        return st;
+    size_t n = (size_t)view->width * (size_t)view->height;
+    size_t real_size = r->config.fp64 ? sizeof(double) : sizeof(float);
+    cl_mem params_buf = NULL, rgb_buf = NULL, depth_buf = NULL, normal_buf = NULL, evals_buf = NULL;
+    cl_uint *evals = NULL;
+    frame->width = view->width;
+    frame->height = view->height;
+    frame->rgb = malloc(3 * n * sizeof(float));
+    frame->depth = malloc(n * sizeof(float));
+    frame->normal = malloc(3 * n * sizeof(float));
+    if (r->config.stats)
+        evals = malloc(n * sizeof(cl_uint));
+    if (!frame->rgb || !frame->depth || !frame->normal || (r->config.stats && !evals)) {
+        st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
+                             view->height);
+        goto done;
+    }
+    cl_context ctx = r->rt.context;
+    cl_command_queue q = r->rt.queue;
+    cl_int rc = CL_SUCCESS;
+    params_buf = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * real_size, params, &rc);
+    CLRT_CHECK(err, rc);
+    rgb_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), NULL, &rc);
+    CLRT_CHECK(err, rc);
+    depth_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(float), NULL, &rc);
+    CLRT_CHECK(err, rc);
+    normal_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), NULL, &rc);
+    CLRT_CHECK(err, rc);
+    if (evals) {
+        evals_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint), NULL, &rc);
+        CLRT_CHECK(err, rc);
+    }
+    cl_int flags = view->camera.ortho_height > 0 ? RENDER_ORTHO : 0;
+    cl_int width = view->width, height = view->height;
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 0, sizeof(cl_mem), &params_buf));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 1, sizeof(cl_int), &flags));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 2, sizeof(cl_int), &width));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 3, sizeof(cl_int), &height));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 5, sizeof(cl_mem), &rgb_buf));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 6, sizeof(cl_mem), &depth_buf));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 7, sizeof(cl_mem), &normal_buf));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 8, sizeof(cl_mem), evals_buf ? &evals_buf : NULL));
+    double t0 = now_seconds();
+    for (cl_int row0 = 0; row0 < height; row0 += BAND_ROWS) {
+        int rows = height - row0 < BAND_ROWS ? height - row0 : BAND_ROWS;
+        size_t local[2] = {TILE_W, TILE_H};
+        size_t global[2] = {(size_t)(width + TILE_W - 1) / TILE_W * TILE_W,
+                            (size_t)(rows + TILE_H - 1) / TILE_H * TILE_H};
+        CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &row0));
+        CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
+        if (view->progress) {
+            CLRT_CHECK(err, clFinish(q));
+            view->progress((double)(row0 + rows) / height, view->progress_ctx);
+        }
+    }
+    CLRT_CHECK(err, clEnqueueReadBuffer(q, rgb_buf, CL_FALSE, 0, 3 * n * sizeof(float), frame->rgb, 0, NULL, NULL));
+    CLRT_CHECK(err, clEnqueueReadBuffer(q, depth_buf, CL_FALSE, 0, n * sizeof(float), frame->depth, 0, NULL, NULL));
+    CLRT_CHECK(err,
+               clEnqueueReadBuffer(q, normal_buf, CL_FALSE, 0, 3 * n * sizeof(float), frame->normal, 0, NULL, NULL));
+    if (evals)
+        CLRT_CHECK(err, clEnqueueReadBuffer(q, evals_buf, CL_FALSE, 0, n * sizeof(cl_uint), evals, 0, NULL, NULL));
+    CLRT_CHECK(err, clFinish(q));
+    frame->render_seconds = now_seconds() - t0;
+    frame->rays = (long long)n;
+    if (evals)
+        summarize_evals(evals, n, frame);
+    goto done;
+fail:
+    st = IACSG_ERR_OPENCL;
+done:
+    if (params_buf)
+        clReleaseMemObject(params_buf);
+    if (rgb_buf)
+        clReleaseMemObject(rgb_buf);
+    if (depth_buf)
+        clReleaseMemObject(depth_buf);
+    if (normal_buf)
+        clReleaseMemObject(normal_buf);
+    if (evals_buf)
+        clReleaseMemObject(evals_buf);
+    free(evals);
+    if (st != IACSG_OK)
+        iacsg_frame_free(frame);
+    return st;
+}
+
+void iacsg_frame_free(iacsg_frame *frame) {
+    free(frame->rgb);
+    free(frame->depth);
+    free(frame->normal);
+    frame->rgb = frame->depth = frame->normal = NULL;
+}

@@ -1,0 +1,60 @@
+/* src/render.h -- rendering an expression: a renderer holds an OpenCL device and the program built for one
+ * expression; each call of iacsg_render traces one frame of it (a view, a time) into host images.
+ *
+ * Guarantees of a frame (README; tests/t_render*.c check them): a surface that the pixel's float ray crosses
+ * inside the bounds is never missed; the depth is never after the ray's first root in the bounds; the leaves of
+ * the bisection share their end points bit for bit. They hold for rigorous builds (fast = 0).
+ */
+#ifndef IACSG_RENDER_H
+#define IACSG_RENDER_H
+#include "camera.h"
+#include "error.h"
+
+typedef struct iacsg_renderer iacsg_renderer;
+
+typedef struct {
+    int device; /* index as `iacsg devices` lists them */
+    int fp64;   /* double intervals and rays instead of float */
+    int fast;   /* no outward rounding (IA_FAST): NOT rigorous, for measuring what rigor costs */
+    int stats;  /* count the interval evaluations of each ray (a kernel built with -D KERNEL_STATS) */
+} iacsg_render_config;
+
+/* Builds the render program for `expr_cl`, the OpenCL C source of iacsg_F, iacsg_f and iacsg_f_grad (as
+ * iacsg_expr_emit_cl writes it with the prefix "iacsg"). The source is copied. Destroy with
+ * iacsg_renderer_destroy. */
+iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,
+                                   iacsg_error *err);
+void iacsg_renderer_destroy(iacsg_renderer *r);
+
+/* Seconds spent in clBuildProgram, and the device's name (owned by the renderer). */
+double iacsg_renderer_build_seconds(const iacsg_renderer *r);
+const char *iacsg_renderer_device_name(const iacsg_renderer *r);
+
+typedef struct {
+    int width, height;
+    iacsg_camera camera;
+    double bounds[6]; /* x0, y0, z0, x1, y1, z1: rays are clipped to this box */
+    double eps;       /* leaf width of the bisection along the ray (world units) */
+    double time;      /* the value of t in the expression */
+    /* Called after each band of rows with the fraction done, when not NULL. */
+    void (*progress)(double done, void *ctx);
+    void *progress_ctx;
+} iacsg_view;
+
+typedef struct {
+    int width, height;
+    float *rgb;    /* 3 floats a pixel, display-encoded in [0, 1], row 0 at the top */
+    float *depth;  /* 1 float a pixel: distance from the eye (ray parameter) at the hit, +inf on a miss */
+    float *normal; /* 3 floats a pixel: the unit normal facing the eye, 0 on a miss */
+    /* Statistics: rays traced, and with config.stats interval evaluations per ray (mean over all rays, max). */
+    long long rays;
+    double evals_mean;
+    unsigned evals_max;
+    double render_seconds; /* from the first kernel launch to the images in host memory */
+} iacsg_frame;
+
+/* Renders one frame into *frame (its images are allocated here; free them with iacsg_frame_free). */
+iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
+void iacsg_frame_free(iacsg_frame *frame);
+
+#endif
