@@ -1,0 +1,83 @@
+// src/image_oiio.cpp -- the C interface of image.h over OpenImageIO. No exception or OIIO type crosses it.
+extern "C" {
+#include "error.h"
+}
+#include "image.h"
+#include <OpenImageIO/imageio.h>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <unistd.h>
+
+using OIIO::ImageInput;
+using OIIO::ImageOutput;
+using OIIO::ImageSpec;
+using OIIO::TypeDesc;
+
+// "dir/name.ext" -> "dir/.name.tmp-PID.ext": same directory (so rename is atomic), same extension (so the
+// format plugin is the same), hidden, and distinct between concurrent processes.
+static std::string temporary_name(const std::string &path) {
+    size_t slash = path.find_last_of('/');
+    size_t base = slash == std::string::npos ? 0 : slash + 1;
+    size_t dot = path.find_last_of('.');
+    std::string ext = dot != std::string::npos && dot > base ? path.substr(dot) : "";
+    std::string stem = path.substr(base, path.size() - base - ext.size());
+    return path.substr(0, base) + "." + stem + ".tmp-" + std::to_string(static_cast<long>(getpid())) + ext;
+}
+
+extern "C" iacsg_status iacsg_image_write(const char *path, int width, int height, int channels,
+                                          const float *pixels, int as_float, iacsg_error *err) {
+    try {
+        auto out = ImageOutput::create(path);
+        if (!out)
+            return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: no image format for this file name (%s)", path,
+                                   OIIO::geterror().c_str());
+        ImageSpec spec(width, height, channels, as_float ? TypeDesc::FLOAT : TypeDesc::UINT8);
+        std::string tmp = temporary_name(path);
+        bool ok = out->open(tmp, spec) && out->write_image(TypeDesc::FLOAT, pixels) && out->close();
+        if (!ok) {
+            std::string msg = out->geterror();
+            out.reset();
+            std::remove(tmp.c_str());
+            return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: cannot write: %s", path, msg.c_str());
+        }
+        out.reset();
+        if (std::rename(tmp.c_str(), path) != 0) {
+            int e = errno;
+            std::remove(tmp.c_str());
+            return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: cannot rename the finished image: %s", path,
+                                   std::strerror(e));
+        }
+        return IACSG_OK;
+    } catch (const std::exception &e) {
+        return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: %s", path, e.what());
+    }
+}
+
+extern "C" iacsg_status iacsg_image_read(const char *path, int *width, int *height, int *channels, float **pixels,
+                                         iacsg_error *err) {
+    *pixels = nullptr;
+    try {
+        auto in = ImageInput::open(path);
+        if (!in)
+            return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: cannot read: %s", path, OIIO::geterror().c_str());
+        const ImageSpec &spec = in->spec();
+        size_t count = static_cast<size_t>(spec.width) * spec.height * spec.nchannels;
+        float *data = static_cast<float *>(std::malloc(count * sizeof(float)));
+        if (!data)
+            return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "%s: out of memory", path);
+        if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, data)) {
+            std::free(data);
+            return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: cannot read: %s", path, in->geterror().c_str());
+        }
+        *width = spec.width;
+        *height = spec.height;
+        *channels = spec.nchannels;
+        *pixels = data;
+        return IACSG_OK;
+    } catch (const std::exception &e) {
+        return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: %s", path, e.what());
+    }
+}
