@@ -11,7 +11,7 @@
  *     sum |n_i d_i| / |n.d| eps further from the surface along the ray than the segment is).
  * The expressions are written by hand in OpenCL C, so these tests need nothing from the compiler.
  */
-#include "kernels/camera.h"
+#include "t_render_util.h"
 #include "render.h"
 #include "test.h"
 #include <math.h>
@@ -25,66 +25,11 @@
 #define FP64 0
 #endif
 
-typedef struct {
-    double c[3], r; /* dyadic values, exact in float and double */
-} sphere;
-
-typedef enum { SOLID_A, SOLID_UNION, SOLID_INTER, SOLID_DIFF } solid_op;
-
-/* OpenCL C for the CSG of spheres a and b: F, f and its gradient, as the compiler would emit them. */
-static char *spheres_cl(sphere a, sphere b, solid_op op) {
-    static const char *ops_F[] = {"a", "ia_min(a, b)", "ia_max(a, b)", "ia_max(a, ia_neg(b))"};
-    static const char *ops_f[] = {"a", "fmin(a, b)", "fmax(a, b)", "fmax(a, -b)"};
-    /* The gradient of the branch that min/max selects; for the difference, -grad b when -b wins. */
-    static const char *ops_g[] = {"1", "a <= b", "a >= b", "a >= -b"};
-    static const char *ops_gs[] = {"1", "1", "1", "-1"};
-    char *s = malloc(8192);
-    snprintf(s, 8192,
-             "IA_FN ia_interval sph_F(ia_interval x, ia_interval y, ia_interval z, ia_real cx, ia_real cy, ia_real cz,"
-             " ia_real r) {\n"
-             "  return ia_add_r(ia_add(ia_add(ia_sqr(ia_add_r(x, -cx)), ia_sqr(ia_add_r(y, -cy))),"
-             " ia_sqr(ia_add_r(z, -cz))), -r * r);\n}\n"
-             "IA_FN ia_real sph_f(ia_real x, ia_real y, ia_real z, ia_real cx, ia_real cy, ia_real cz, ia_real r) {\n"
-             "  return (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) - r * r;\n}\n"
-             "#define SA %a, %a, %a, %a\n#define SB %a, %a, %a, %a\n"
-             "IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n"
-             "  ia_interval a = sph_F(x, y, z, SA), b = sph_F(x, y, z, SB); (void)t; (void)b; return %s;\n}\n"
-             "IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {\n"
-             "  ia_real a = sph_f(x, y, z, SA), b = sph_f(x, y, z, SB); (void)t; (void)b; return %s;\n}\n"
-             "IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy,"
-             " ia_real *gz) {\n"
-             "  ia_real a = sph_f(x, y, z, SA), b = sph_f(x, y, z, SB); (void)t;\n"
-             "  ia_real ca[4] = {SA}, cb[4] = {SB}; int use_a = %s; ia_real sg = use_a ? 1 : %s;\n"
-             "  *gx = sg * 2 * (x - (use_a ? ca[0] : cb[0]));\n"
-             "  *gy = sg * 2 * (y - (use_a ? ca[1] : cb[1]));\n"
-             "  *gz = sg * 2 * (z - (use_a ? ca[2] : cb[2]));\n"
-             "  return iacsg_f(x, y, z, t);\n}\n",
-             a.c[0], a.c[1], a.c[2], a.r, b.c[0], b.c[1], b.c[2], b.r, ops_F[op], ops_f[op], ops_g[op], ops_gs[op]);
-    return s;
-}
-
-/* The exact solutions of |o + t d - c| = r for the double values of the float ray: the inside interval
- * [*t1, *t2]; returns 0 if the ray misses. *margin is the discriminant's square root (how far from tangent). */
-static int sphere_span(sphere s, const double o[3], const double d[3], double *t1, double *t2) {
-    double oc[3] = {o[0] - s.c[0], o[1] - s.c[1], o[2] - s.c[2]};
-    double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
-    double c = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - s.r * s.r;
-    double disc = b * b - a * c;
-    if (disc < 0)
-        return 0;
-    double q = -(b + copysign(sqrt(disc), b)); /* no cancellation */
-    double r1 = q / a, r2 = c / q;
-    *t1 = fmin(r1, r2);
-    *t2 = fmax(r1, r2);
-    return 1;
-}
-
 /* The first boundary point of the solid along the ray, and the length of the inside piece it starts (how
  * robustly the ray is inside). Returns 0 when the ray meets no inside piece in front of the eye. */
 static int solid_first_root(sphere A, sphere B, solid_op op, const double o[3], const double d[3], double *t,
                             double *piece, int *which) {
-    double a1, a2, b1, b2, s1 = 0, s2 = -1;
+    double a1 = 0, a2 = 0, b1 = 0, b2 = 0, s1 = 0, s2 = -1;
     int ha = sphere_span(A, o, d, &a1, &a2), hb = sphere_span(B, o, d, &b1, &b2);
     *which = 0;
     switch (op) {
@@ -122,25 +67,16 @@ typedef struct {
 } depth_report;
 
 /* Renders the solid and compares every pixel with the analytic first root. */
-static depth_report check_spheres(sphere A, sphere B, solid_op op, const iacsg_view *view, int fast) {
+static depth_report check_spheres(sphere A, sphere B, solid_op op, const iacsg_view *view) {
     depth_report rep = {0};
-    iacsg_error err = {0};
-    iacsg_render_config config = {.device = 0, .fp64 = FP64, .fast = fast};
-    iacsg_renderer *r = NULL;
+    iacsg_render_config config = {.device = 0, .fp64 = FP64};
     char *cl = spheres_cl(A, B, op);
-    iacsg_status st = iacsg_renderer_create(cl, &config, &r, &err);
-    free(cl);
-    CHECK(st == IACSG_OK, "renderer: %s", err.message);
     iacsg_frame fr;
-    st = iacsg_render(r, view, &fr, &err);
-    iacsg_renderer_destroy(r);
-    CHECK(st == IACSG_OK, "render: %s", err.message);
+    render_cl(cl, &config, view, &fr);
+    free(cl);
 
-    double pd[PARAM_COUNT];
     ia_real p[PARAM_COUNT];
-    CHECK(iacsg_camera_params(&view->camera, view->width, view->height, pd, &err) == IACSG_OK, "%s", err.message);
-    for (int k = 0; k < PARAM_COUNT; k++)
-        p[k] = (ia_real)pd[k];
+    view_params(view, p);
     int ortho = view->camera.ortho_height > 0;
     for (int j = 0; j < view->height; j++)
         for (int i = 0; i < view->width; i++) {
@@ -202,18 +138,18 @@ static const sphere sphere_a = {{-0.375, 0, 0}, 0.75}, sphere_b = {{0.25, 0.125,
 
 TEST_FP(render_sphere_depth) {
     iacsg_view v = small_view(128, 0x1p-16);
-    expect_exact(check_spheres(unit_sphere, unit_sphere, SOLID_A, &v, 0), "sphere");
+    expect_exact(check_spheres(unit_sphere, unit_sphere, SOLID_A, &v), "sphere");
 }
 
 TEST_FP(render_sphere_ortho_depth) {
     iacsg_view v = small_view(128, 1e-5);
     v.camera.ortho_height = 2.5;
-    expect_exact(check_spheres(unit_sphere, unit_sphere, SOLID_A, &v, 0), "sphere, orthographic");
+    expect_exact(check_spheres(unit_sphere, unit_sphere, SOLID_A, &v), "sphere, orthographic");
 }
 
 TEST_FP(render_spheres_csg_depth) {
     iacsg_view v = small_view(128, 1e-5);
-    expect_exact(check_spheres(sphere_a, sphere_b, SOLID_UNION, &v, 0), "union");
-    expect_exact(check_spheres(sphere_a, sphere_b, SOLID_INTER, &v, 0), "intersection");
-    expect_exact(check_spheres(sphere_a, sphere_b, SOLID_DIFF, &v, 0), "difference");
+    expect_exact(check_spheres(sphere_a, sphere_b, SOLID_UNION, &v), "union");
+    expect_exact(check_spheres(sphere_a, sphere_b, SOLID_INTER, &v), "intersection");
+    expect_exact(check_spheres(sphere_a, sphere_b, SOLID_DIFF, &v), "difference");
 }

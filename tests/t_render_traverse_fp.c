@@ -1,0 +1,84 @@
+/* tests/t_render_traverse_fp.c -- the kernel's traversal (kernels/traverse.h), compiled here as host C with the
+ * same precision: node ends from one formula are bit-identical between parent, children and neighbours; the
+ * stackless walk visits the leaves in ray order and covers the root interval with no gap; and the gap-prone
+ * alternative hi = lo + width does leave gaps (so the first property is not vacuous). */
+#include "kernels/traverse.h"
+#include "test.h"
+#include <math.h>
+
+#ifdef IA_FP64
+#define TRAVERSE_LEVELS 52
+#else
+#define TRAVERSE_LEVELS 24
+#endif
+
+/* A random root interval like a clipped ray's: t0 in [0, 8), w in (0, 8). */
+static void random_root(test_rng_t *rng, ia_real *t0, ia_real *w) {
+    *t0 = (ia_real)(8 * test_rand_unit(rng));
+    *w = (ia_real)(8 * test_rand_unit(rng)) + (ia_real)1e-3;
+}
+
+TEST_FP(render_traverse_siblings_share_ends) {
+    test_rng_t *rng = test_rng();
+    long gaps_naive = 0, n = test_iters(200000);
+    for (long it = 0; it < n; it++) {
+        ia_real t0, w;
+        random_root(rng, &t0, &w);
+        int k = (int)(test_rand_u64(rng) % TRAVERSE_LEVELS);
+        bisect_index i = (bisect_index)(test_rand_u64(rng) & (((bisect_index)1 << k) - 1));
+        ia_real lo = node_bound(t0, w, k, i), hi = node_bound(t0, w, k, i + 1);
+        ia_real left_lo = node_bound(t0, w, k + 1, 2 * i), mid = node_bound(t0, w, k + 1, 2 * i + 1);
+        ia_real right_hi = node_bound(t0, w, k + 1, 2 * i + 2);
+        CHECK(left_lo == lo && right_hi == hi, "level %d index %llu: children's ends differ from the parent's", k,
+              (unsigned long long)i);
+        CHECK(lo <= mid && mid <= hi, "level %d index %llu: the midpoint is outside the node", k,
+              (unsigned long long)i);
+        /* The gap-prone way: hi recomputed from lo and the width of the level. */
+        ia_real naive_hi = lo + w * ldexp((ia_real)1, -k);
+        gaps_naive += naive_hi < hi;
+    }
+    test_note("%ld nodes checked; hi = lo + width would leave a gap after %ld of them", n, gaps_naive);
+    CHECK(gaps_naive > 0, "the naive end never differed: the test does not exercise rounding");
+}
+
+/* Walks the whole tree down to `depth`, descending at every node above it: the leaves must come in order,
+ * each starting exactly where the previous ended, from t0 to the root's end. */
+TEST_FP(render_traverse_walk_covers_root) {
+    test_rng_t *rng = test_rng();
+    for (long it = 0; it < test_iters(50); it++) {
+        ia_real t0, w;
+        random_root(rng, &t0, &w);
+        int depth = 1 + (int)(test_rand_u64(rng) % 12), level = 0;
+        bisect_index i = 0;
+        ia_real prev_hi = t0;
+        long leaves = 0;
+        do {
+            while (level < depth) {
+                level += 1;
+                i <<= 1;
+            }
+            ia_real lo = node_bound(t0, w, level, i), hi = node_bound(t0, w, level, i + 1);
+            CHECK(lo == prev_hi, "leaf %ld starts at %a, the previous ended at %a", leaves, (double)lo,
+                  (double)prev_hi);
+            prev_hi = hi;
+            leaves++;
+        } while (node_next(&level, &i));
+        CHECK(leaves == 1L << depth, "depth %d: %ld leaves visited", depth, leaves);
+        CHECK(prev_hi == node_bound(t0, w, 0, 1), "the walk ended at %a, not at the root's end", (double)prev_hi);
+    }
+}
+
+/* The box of a ray segment contains the exact points o + t*d, t in the segment, at its end points (the extremes
+ * of a linear function), checked in long double arithmetic which holds float and double products exactly
+ * enough: the products of two floats are exact in double, and of two doubles within 2^-64 in long double. */
+TEST_FP(render_traverse_ray_extent_contains_ray) {
+    test_rng_t *rng = test_rng();
+    for (long it = 0; it < test_iters(100000); it++) {
+        ia_real o = (ia_real)(8 * test_rand_unit(rng) - 4), d = (ia_real)(2 * test_rand_unit(rng) - 1);
+        ia_real a = (ia_real)(8 * test_rand_unit(rng)), b = a + (ia_real)(test_rand_unit(rng) * 1e-3);
+        ia_interval x = ray_extent(o, d, ia_make(a, b));
+        long double ea = (long double)o + (long double)d * a, eb = (long double)o + (long double)d * b;
+        CHECK(x.lo <= fminl(ea, eb) && fmaxl(ea, eb) <= x.hi, "o=%a d=%a t=[%a,%a]: box [%a,%a] misses the ray",
+              (double)o, (double)d, (double)a, (double)b, (double)x.lo, (double)x.hi);
+    }
+}

@@ -1,0 +1,90 @@
+/* tests/t_render_util.h -- what the render tests share: the analytic sphere, and the kernel's parameter block
+ * rebuilt on the host so that kernels/camera.h, compiled here as C, gives the very float rays the device traced.
+ * For tests/t_render*_fp.c (ia_real follows IA_FP64). */
+#ifndef T_RENDER_UTIL_H
+#define T_RENDER_UTIL_H
+#include "kernels/camera.h"
+#include "render.h"
+#include "test.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+typedef struct {
+    double c[3], r; /* dyadic values, exact in float and double */
+} sphere;
+
+/* What the hand-written expressions of the tests build from two spheres. */
+typedef enum { SOLID_A, SOLID_UNION, SOLID_INTER, SOLID_DIFF } solid_op;
+
+/* OpenCL C for the CSG of spheres a and b: F, f and its gradient, as the compiler would emit them. */
+static inline char *spheres_cl(sphere a, sphere b, solid_op op) {
+    static const char *ops_F[] = {"a", "ia_min(a, b)", "ia_max(a, b)", "ia_max(a, ia_neg(b))"};
+    static const char *ops_f[] = {"a", "fmin(a, b)", "fmax(a, b)", "fmax(a, -b)"};
+    /* The gradient of the branch that min/max selects; for the difference, -grad b when -b wins. */
+    static const char *ops_g[] = {"1", "a <= b", "a >= b", "a >= -b"};
+    static const char *ops_gs[] = {"1", "1", "1", "-1"};
+    char *s = malloc(8192);
+    snprintf(s, 8192,
+             "IA_FN ia_interval sph_F(ia_interval x, ia_interval y, ia_interval z, ia_real cx, ia_real cy, ia_real cz,"
+             " ia_real r) {\n"
+             "  return ia_add_r(ia_add(ia_add(ia_sqr(ia_add_r(x, -cx)), ia_sqr(ia_add_r(y, -cy))),"
+             " ia_sqr(ia_add_r(z, -cz))), -r * r);\n}\n"
+             "IA_FN ia_real sph_f(ia_real x, ia_real y, ia_real z, ia_real cx, ia_real cy, ia_real cz, ia_real r) {\n"
+             "  return (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) - r * r;\n}\n"
+             "#define SA %a, %a, %a, %a\n#define SB %a, %a, %a, %a\n"
+             "IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n"
+             "  ia_interval a = sph_F(x, y, z, SA), b = sph_F(x, y, z, SB); (void)t; (void)b; return %s;\n}\n"
+             "IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {\n"
+             "  ia_real a = sph_f(x, y, z, SA), b = sph_f(x, y, z, SB); (void)t; (void)b; return %s;\n}\n"
+             "IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy,"
+             " ia_real *gz) {\n"
+             "  ia_real a = sph_f(x, y, z, SA), b = sph_f(x, y, z, SB); (void)t;\n"
+             "  ia_real ca[4] = {SA}, cb[4] = {SB}; int use_a = %s; ia_real sg = use_a ? 1 : %s;\n"
+             "  *gx = sg * 2 * (x - (use_a ? ca[0] : cb[0]));\n"
+             "  *gy = sg * 2 * (y - (use_a ? ca[1] : cb[1]));\n"
+             "  *gz = sg * 2 * (z - (use_a ? ca[2] : cb[2]));\n"
+             "  return iacsg_f(x, y, z, t);\n}\n",
+             a.c[0], a.c[1], a.c[2], a.r, b.c[0], b.c[1], b.c[2], b.r, ops_F[op], ops_f[op], ops_g[op], ops_gs[op]);
+    return s;
+}
+
+/* The exact solutions of |o + t d - c| = r for the double values of the float ray: the inside interval
+ * [*t1, *t2]; returns 0 if the ray misses. */
+static inline int sphere_span(sphere s, const double o[3], const double d[3], double *t1, double *t2) {
+    double oc[3] = {o[0] - s.c[0], o[1] - s.c[1], o[2] - s.c[2]};
+    double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    double c = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - s.r * s.r;
+    double disc = b * b - a * c;
+    if (disc < 0)
+        return 0;
+    double q = -(b + copysign(sqrt(disc), b)); /* no cancellation */
+    double r1 = q / a, r2 = c / q;
+    *t1 = fmin(r1, r2);
+    *t2 = fmax(r1, r2);
+    return 1;
+}
+
+/* The camera part of the parameter block, in the working precision, as src/render.c fills it. */
+static inline void view_params(const iacsg_view *view, ia_real p[PARAM_COUNT]) {
+    double pd[PARAM_COUNT] = {0};
+    iacsg_error err = {0};
+    CHECK(iacsg_camera_params(&view->camera, view->width, view->height, pd, &err) == IACSG_OK, "%s", err.message);
+    for (int k = 0; k < PARAM_COUNT; k++)
+        p[k] = (ia_real)pd[k];
+}
+
+/* Builds the hand-written expression `cl` and renders it; failures end the test. */
+static inline void render_cl(const char *cl, const iacsg_render_config *config, const iacsg_view *view,
+                             iacsg_frame *frame) {
+    iacsg_error err = {0};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create(cl, config, &r, &err);
+    CHECK(st == IACSG_OK, "renderer: %s", err.message);
+    st = iacsg_render(r, view, frame, &err);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK, "render: %s", err.message);
+}
+
+#endif
