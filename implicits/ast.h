@@ -1,0 +1,55 @@
+/* implicits/ast.h -- stage 2: the syntax tree. Nodes live in an array in the order the parser finishes them,
+ * so every node's children come before it: later stages walk the array with a loop, never a recursion, and a
+ * scene's statements appear in source order. */
+#ifndef IACSG_AST_H
+#define IACSG_AST_H
+#include "lex.h"
+
+typedef enum {
+    AST_NUM,  /* tok: the number */
+    AST_NAME, /* tok: the name (a variable, constant, binding, parameter or bare primitive) */
+    AST_CALL, /* tok: the callee's name; args[first .. first + nargs) */
+    AST_NEG,  /* a: the operand; tok: the '-' */
+    AST_BIN,  /* a op b, op one of + - * / ^ | & \ ; tok: the operator */
+    AST_BIND  /* tok: the name; a: the value ("name = value" in a scene) */
+} ast_kind;
+
+typedef struct {
+    ast_kind kind;
+    long tok;
+    char op;
+    int a, b;
+    int first, nargs;
+} ast_node;
+
+typedef struct {
+    int value;    /* ast node */
+    long keyword; /* token of "keyword =", or -1 for a positional argument */
+} ast_arg;
+
+typedef struct {
+    const char *text;
+    token *toks;
+    long ntoks;
+    ast_node *nodes;
+    int count, cap;
+    ast_arg *args;
+    int nargs, capargs;
+    int root; /* the final expression */
+} ast;
+
+#define PARSE_MAX_DEPTH 200 /* nesting of parentheses, calls and exponents */
+
+/* Lexes and parses text: a scene (statements separated by line breaks or ';', each "name = expression" or, for
+ * the last one only, an expression). On failure returns the status with err set (line and column of the
+ * offending token) and frees everything. */
+iacsg_status parse(const char *text, ast *out, iacsg_error *err);
+void ast_free(ast *a);
+
+/* The source text of a token, copied into buf (truncated to size). */
+const char *ast_token_text(const ast *a, long tok, char *buf, size_t size);
+
+/* One line per node in array order, e.g. "n4 = call sphere(n2, r=n3)". NULL on out of memory. */
+char *ast_dump(const ast *a);
+
+#endif

@@ -1,0 +1,10 @@
+/* implicits/emit.h -- stage 5: OpenCL C from a simplified DAG (the functions P_F, P_f, P_f_grad of expr.h). */
+#ifndef IACSG_EMIT_H
+#define IACSG_EMIT_H
+#include "dag.h"
+
+/* The source for the sub-DAG of root with name prefix `prefix` (checked to be a C identifier). The caller
+ * free()s *source. */
+iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, iacsg_error *err);
+
+#endif

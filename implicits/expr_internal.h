@@ -1,0 +1,22 @@
+/* implicits/expr_internal.h -- the inside of iacsg_expr, for the stage dumps, the device evaluator and the
+ * tests (which evaluate the unsimplified DAG with MPFR). Not part of the public API. */
+#ifndef IACSG_EXPR_INTERNAL_H
+#define IACSG_EXPR_INTERNAL_H
+#include "dag.h"
+#include "expr.h"
+
+struct iacsg_expr {
+    char *name;
+    dag raw;    /* as lowered: literal constants keep their decimal text, pi and e are leaves */
+    int raw_root;
+    dag simple; /* after simplify: what is emitted and evaluated */
+    int root;
+    int *order; /* the reachable nodes of simple, in index order (the evaluation tape) */
+    int count;
+};
+
+/* The dump of one stage: "tokens", "ast", "dag" (raw) or "simple". NULL with err for an unknown stage. The
+ * text is re-lexed and re-parsed for the first two. */
+char *iacsg_expr_dump(const char *text, const char *stage, iacsg_error *err);
+
+#endif
