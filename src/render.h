@@ -9,6 +9,7 @@
 #define IACSG_RENDER_H
 #include "camera.h"
 #include "error.h"
+#include "implicits/expr.h"
 
 typedef struct iacsg_renderer iacsg_renderer;
 
@@ -25,6 +26,10 @@ typedef struct {
 iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,
                                    iacsg_error *err);
 void iacsg_renderer_destroy(iacsg_renderer *r);
+
+/* The same for a compiled expression (src/render_expr.c): emits its OpenCL C and builds the program. */
+iacsg_status iacsg_renderer_create_expr(const iacsg_expr *e, const iacsg_render_config *config,
+                                        iacsg_renderer **out, iacsg_error *err);
 
 /* Seconds spent in clBuildProgram, and the device's name (owned by the renderer). */
 double iacsg_renderer_build_seconds(const iacsg_renderer *r);

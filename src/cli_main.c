@@ -1,0 +1,69 @@
+/* src/cli_main.c -- the `iacsg` command: dispatches to a subcommand (src/cli.h), or renders. */
+#include "cli.h"
+#include "iacsg.h"
+#include <stdio.h>
+#include <string.h>
+
+static const char usage[] =
+    "usage: iacsg EXPR|SCENE [options]    render an implicit solid (f < 0 inside) to an image\n"
+    "       iacsg eval EXPR [options]     evaluate the expression's enclosure over a box on the host\n"
+    "       iacsg compile EXPR            print the OpenCL C the compiler emits for it\n"
+    "       iacsg devices                 list the OpenCL devices (numbers for -device)\n"
+    "       iacsg --help | --version\n"
+    "\n"
+    "EXPR is an expression in x, y, z (and t), e.g. \"min(sphere, torus)\"; SCENE is the name of a scene file.\n"
+    "\n"
+    "Render options (defaults in brackets):\n"
+    "  -o FILE            output image; the format follows the extension: png, exr, tif, jpg, ... [iacsg.png]\n"
+    "  -size WxH          image size in pixels [1024x1024]\n"
+    "  -eps E             width of the bisection's leaves along the ray, in world units [2^-16]\n"
+    "  -bounds X0,Y0,Z0,X1,Y1,Z1\n"
+    "                     the box rays are clipped to [a box proven to enclose the surface when the compiler\n"
+    "                     finds one, else -2,-2,-2,2,2,2; the command says which]\n"
+    "  -eye X,Y,Z         eye position [placed by -az/-el]\n"
+    "  -at X,Y,Z          point looked at [centre of the bounds]\n"
+    "  -up X,Y,Z          up direction [0,0,1]\n"
+    "  -fov DEG           vertical field of view [40]\n"
+    "  -az DEG -el DEG    place the eye the BRL-CAD way, azimuth from +x towards +y and elevation above the\n"
+    "                     xy plane, far enough to see the whole bounds [35, 25]\n"
+    "  -ortho HEIGHT      orthographic view, HEIGHT world units high [perspective]\n"
+    "  -depth FILE        also write the depth: float32, one channel, distance from the eye along the ray,\n"
+    "                     +inf where the ray misses\n"
+    "  -normals FILE      also write the unit normals: float32, three channels, 0 where the ray misses\n"
+    "  -time T            value of the variable t [0]\n"
+    "  -frames N          render N frames for t = 0, 1/N, ..., (N-1)/N into numbered files (name_0000.png)\n"
+    "  -fp64              double precision intervals and rays [float]\n"
+    "  -fast              no outward rounding: NOT rigorous, may miss surfaces; for measuring the cost of rigor\n"
+    "  -device N          OpenCL device number, see `iacsg devices` [0]\n"
+    "  -stats             print rays, interval evaluations per ray (mean, max), kernel build and render time\n"
+    "\n"
+    "Camera: f = normalize(at - eye), r = normalize(f x up), u = r x f. Pixel (i, j), i left to right and j top\n"
+    "to bottom, looks along normalize(f + s r + v u) with s = (2(i+1/2)/W - 1) tan(fov/2) W/H and\n"
+    "v = (1 - 2(j+1/2)/H) tan(fov/2). With -ortho the ray starts at eye + s r + v u (tan(fov/2) replaced by\n"
+    "HEIGHT/2) and goes along f. Only t >= 0 is traced.\n"
+    "\n"
+    "Guarantees (without -fast): a surface that a pixel's ray crosses inside the bounds is never missed, and the\n"
+    "depth is never after the ray's first root there.\n";
+
+int main(int argc, char **argv) {
+    if (argc < 2) {
+        fputs(usage, stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "-help") == 0) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "--version") == 0) {
+        printf("iacsg %s\n", IACSG_VERSION);
+        return 0;
+    }
+    if (strcmp(cmd, "eval") == 0)
+        return cli_eval(argc - 1, argv + 1);
+    if (strcmp(cmd, "compile") == 0)
+        return cli_compile(argc - 1, argv + 1);
+    if (strcmp(cmd, "devices") == 0)
+        return cli_devices(argc - 1, argv + 1);
+    return cli_render(argc, argv);
+}

@@ -1,0 +1,366 @@
+/* src/cli_render.c -- `iacsg EXPR|SCENE [options]`: render to image files; and `iacsg devices`. The options
+ * are documented in cli_main.c's usage text and the README. */
+#include "cli.h"
+#include "clrt.h"
+#include "iacsg.h"
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+typedef struct {
+    const char *input, *output, *depth_file, *normals_file;
+    iacsg_view view;
+    iacsg_render_config config;
+    int have_bounds, have_eye, have_at, have_azel, have_time, frames;
+    double az, el;
+} render_options;
+
+static double now_seconds(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Parses `count` comma-separated finite numbers; returns 0 unless the whole text is exactly that. */
+static int parse_numbers(const char *text, double *out, int count) {
+    const char *p = text;
+    for (int k = 0; k < count; k++) {
+        char *end;
+        errno = 0;
+        out[k] = strtod(p, &end);
+        if (end == p || errno == ERANGE || !isfinite(out[k]))
+            return 0;
+        if (k + 1 < count && *end != ',')
+            return 0;
+        p = end + (k + 1 < count);
+    }
+    return *p == '\0';
+}
+
+static int parse_size(const char *text, int *width, int *height) {
+    char *end;
+    long w = strtol(text, &end, 10);
+    if (end == text || (*end != 'x' && *end != 'X'))
+        return 0;
+    const char *h_text = end + 1;
+    long h = strtol(h_text, &end, 10);
+    if (end == h_text || *end != '\0' || w < 1 || h < 1 || w > 32768 || h > 32768)
+        return 0;
+    *width = (int)w;
+    *height = (int)h;
+    return 1;
+}
+
+static int bad_value(const char *option, const char *value, const char *expected) {
+    fprintf(stderr, "iacsg: %s %s: expected %s\n", option, value, expected);
+    return 2;
+}
+
+/* Fills *o from the command line; returns 0, or the exit status after printing the problem. */
+static int parse_options(int argc, char **argv, render_options *o) {
+    memset(o, 0, sizeof *o);
+    o->output = "iacsg.png";
+    o->view.width = o->view.height = 1024;
+    o->view.eps = 0x1p-16;
+    o->view.camera.fov = 40;
+    o->view.camera.up[2] = 1;
+    o->az = 35;
+    o->el = 25;
+    for (int k = 1; k < argc; k++) {
+        const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
+        double num[6];
+        if (a[0] != '-' || a[1] == '\0' || (a[1] >= '0' && a[1] <= '9') || a[1] == '.') {
+            if (o->input) {
+                fprintf(stderr, "iacsg: more than one expression: '%s' and '%s' (quote the expression)\n",
+                        o->input, a);
+                return 2;
+            }
+            o->input = a;
+            continue;
+        }
+        if (strcmp(a, "-fp64") == 0) {
+            o->config.fp64 = 1;
+            continue;
+        }
+        if (strcmp(a, "-fast") == 0) {
+            o->config.fast = 1;
+            continue;
+        }
+        if (strcmp(a, "-stats") == 0) {
+            o->config.stats = 1;
+            continue;
+        }
+        if (!v) {
+            fprintf(stderr, "iacsg: unknown option or missing value: %s (see iacsg --help)\n", a);
+            return 2;
+        }
+        k++;
+        if (strcmp(a, "-o") == 0) {
+            o->output = v;
+        } else if (strcmp(a, "-depth") == 0) {
+            o->depth_file = v;
+        } else if (strcmp(a, "-normals") == 0) {
+            o->normals_file = v;
+        } else if (strcmp(a, "-size") == 0) {
+            if (!parse_size(v, &o->view.width, &o->view.height))
+                return bad_value(a, v, "WxH, e.g. 1024x768");
+        } else if (strcmp(a, "-eps") == 0) {
+            if (!parse_numbers(v, &o->view.eps, 1) || !(o->view.eps > 0))
+                return bad_value(a, v, "a positive number");
+        } else if (strcmp(a, "-bounds") == 0) {
+            if (!parse_numbers(v, o->view.bounds, 6) || !(o->view.bounds[0] < o->view.bounds[3]) ||
+                !(o->view.bounds[1] < o->view.bounds[4]) || !(o->view.bounds[2] < o->view.bounds[5]))
+                return bad_value(a, v, "X0,Y0,Z0,X1,Y1,Z1 with X0 < X1, Y0 < Y1, Z0 < Z1");
+            o->have_bounds = 1;
+        } else if (strcmp(a, "-eye") == 0 || strcmp(a, "-at") == 0 || strcmp(a, "-up") == 0) {
+            if (!parse_numbers(v, num, 3))
+                return bad_value(a, v, "X,Y,Z");
+            double *dst = a[1] == 'e' ? o->view.camera.eye : a[1] == 'a' ? o->view.camera.at : o->view.camera.up;
+            memcpy(dst, num, 3 * sizeof(double));
+            o->have_eye |= a[1] == 'e';
+            o->have_at |= a[1] == 'a';
+        } else if (strcmp(a, "-fov") == 0) {
+            if (!parse_numbers(v, &o->view.camera.fov, 1) || !(o->view.camera.fov > 0 && o->view.camera.fov < 180))
+                return bad_value(a, v, "degrees in (0, 180)");
+        } else if (strcmp(a, "-az") == 0 || strcmp(a, "-el") == 0) {
+            if (!parse_numbers(v, a[1] == 'a' ? &o->az : &o->el, 1))
+                return bad_value(a, v, "degrees");
+            o->have_azel = 1;
+        } else if (strcmp(a, "-ortho") == 0) {
+            if (!parse_numbers(v, &o->view.camera.ortho_height, 1) || !(o->view.camera.ortho_height > 0))
+                return bad_value(a, v, "a positive height");
+        } else if (strcmp(a, "-time") == 0) {
+            if (!parse_numbers(v, &o->view.time, 1))
+                return bad_value(a, v, "a number");
+            o->have_time = 1;
+        } else if (strcmp(a, "-frames") == 0) {
+            char *end;
+            long n = strtol(v, &end, 10);
+            if (end == v || *end || n < 1 || n > 100000)
+                return bad_value(a, v, "a frame count from 1 to 100000");
+            o->frames = (int)n;
+        } else if (strcmp(a, "-device") == 0) {
+            char *end;
+            long n = strtol(v, &end, 10);
+            if (end == v || *end || n < 0 || n > 1000)
+                return bad_value(a, v, "a device number (see iacsg devices)");
+            o->config.device = (int)n;
+        } else {
+            fprintf(stderr, "iacsg: unknown option %s (see iacsg --help)\n", a);
+            return 2;
+        }
+    }
+    if (!o->input) {
+        fprintf(stderr, "iacsg: no expression or scene given (see iacsg --help)\n");
+        return 2;
+    }
+    if (o->have_eye && o->have_azel) {
+        fprintf(stderr, "iacsg: -eye and -az/-el both place the eye; give one of them\n");
+        return 2;
+    }
+    if (o->have_time && o->frames) {
+        fprintf(stderr, "iacsg: -time and -frames both set the time; give one of them\n");
+        return 2;
+    }
+    return 0;
+}
+
+/* The text of a scene file when `input` names a regular file, else the input itself as an expression. The
+ * result is malloc'ed; NULL (after a message) when the file cannot be read. */
+static char *read_input(const char *input, const char **name) {
+    FILE *f = fopen(input, "rb");
+    if (!f) {
+        *name = "<expr>";
+        return strdup(input);
+    }
+    *name = input;
+    char *text = NULL;
+    size_t len = 0, cap = 0, n;
+    char buf[65536];
+    while ((n = fread(buf, 1, sizeof buf, f)) > 0) {
+        if (len + n + 1 > cap) {
+            cap = 2 * (len + n + 1);
+            char *grown = realloc(text, cap);
+            if (!grown)
+                break;
+            text = grown;
+        }
+        memcpy(text + len, buf, n);
+        len += n;
+    }
+    int bad = ferror(f) || n > 0;
+    fclose(f);
+    if (bad || !text) {
+        free(text);
+        fprintf(stderr, "iacsg: %s: cannot read the scene file\n", input);
+        return NULL;
+    }
+    text[len] = '\0';
+    return text;
+}
+
+/* The bounds (given, found by the compiler, or the default) and a phrase saying which. */
+static const char *choose_bounds(render_options *o, const iacsg_expr *e) {
+    if (o->have_bounds)
+        return "given";
+    if (iacsg_expr_bounds(e, o->view.bounds))
+        return "proven to enclose the surface";
+    static const double fallback[6] = {-2, -2, -2, 2, 2, 2};
+    memcpy(o->view.bounds, fallback, sizeof fallback);
+    return "the default: no enclosing box could be found";
+}
+
+/* -at defaults to the centre of the bounds; without -eye, the eye is placed by -az/-el far enough that the
+ * bounds' circumscribed sphere fits in the view (perspective), or outside it (orthographic). */
+static void place_camera(render_options *o) {
+    iacsg_camera *c = &o->view.camera;
+    const double *b = o->view.bounds;
+    double radius = 0.5 * sqrt((b[3] - b[0]) * (b[3] - b[0]) + (b[4] - b[1]) * (b[4] - b[1]) +
+                               (b[5] - b[2]) * (b[5] - b[2]));
+    if (!o->have_at)
+        for (int k = 0; k < 3; k++)
+            c->at[k] = 0.5 * (b[k] + b[k + 3]);
+    if (o->have_eye)
+        return;
+    double half_fov = c->fov * 3.14159265358979323846 / 360;
+    double distance = c->ortho_height > 0 ? 2 * radius : 1.05 * radius / sin(half_fov);
+    double at[3] = {c->at[0], c->at[1], c->at[2]};
+    iacsg_camera_set_azel(c, at, o->az, o->el, distance);
+}
+
+/* "dir/name.png", 7 -> "dir/name_0007.png" (malloc'ed). */
+static char *numbered(const char *path, int frame) {
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - path) : strlen(path);
+    size_t size = strlen(path) + 16;
+    char *out = malloc(size);
+    if (out)
+        snprintf(out, size, "%.*s_%04d%s", (int)stem, path, frame, path + stem);
+    return out;
+}
+
+typedef struct {
+    double start;
+    int shown;
+} progress_bar;
+
+/* Draws a bar on stderr once the frame has taken more than a second (installed only when stderr is a tty). */
+static void show_progress(double done, void *ctx) {
+    progress_bar *bar = ctx;
+    if (now_seconds() - bar->start < 1.0)
+        return;
+    int filled = (int)(done * 40 + 0.5);
+    fprintf(stderr, "\r[%.*s%*s] %3.0f%%", filled, "########################################", 40 - filled, "",
+            100 * done);
+    fflush(stderr);
+    bar->shown = 1;
+}
+
+static iacsg_status write_frame(const render_options *o, const iacsg_frame *fr, int frame, iacsg_error *err) {
+    const char *paths[3] = {o->output, o->depth_file, o->normals_file};
+    const float *data[3] = {fr->rgb, fr->depth, fr->normal};
+    const int channels[3] = {3, 1, 3};
+    for (int k = 0; k < 3; k++) {
+        if (!paths[k])
+            continue;
+        char *path = o->frames ? numbered(paths[k], frame) : strdup(paths[k]);
+        if (!path)
+            return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+        iacsg_status st = iacsg_image_write(path, fr->width, fr->height, channels[k], data[k], k > 0, err);
+        if (st == IACSG_OK)
+            printf("wrote %s\n", path);
+        free(path);
+        if (st != IACSG_OK)
+            return st;
+    }
+    return IACSG_OK;
+}
+
+static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr) {
+    printf("device: %s\n", iacsg_renderer_device_name(r));
+    printf("rays: %lld\n", fr->rays);
+    printf("interval evaluations per ray: mean %.2f, max %u\n", fr->evals_mean, fr->evals_max);
+    printf("kernel build: %.3f s\n", iacsg_renderer_build_seconds(r));
+    printf("render: %.3f s\n", fr->render_seconds);
+}
+
+static void print_error(const iacsg_error *err, const char *name) {
+    if (err->line > 0)
+        fprintf(stderr, "iacsg: %s:%d:%d: %s\n", name, err->line, err->column, err->message);
+    else
+        fprintf(stderr, "iacsg: %s\n", err->message);
+}
+
+int cli_render(int argc, char **argv) {
+    render_options o;
+    int rc = parse_options(argc, argv, &o);
+    if (rc)
+        return rc;
+    const char *name;
+    char *text = read_input(o.input, &name);
+    if (!text)
+        return 1;
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_expr_parse(text, name, &e, &err);
+    if (st == IACSG_OK) {
+        const char *which = choose_bounds(&o, e);
+        const double *b = o.view.bounds;
+        printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
+        place_camera(&o);
+        st = iacsg_renderer_create_expr(e, &o.config, &r, &err);
+    }
+    progress_bar bar = {0, 0};
+    if (isatty(STDERR_FILENO)) {
+        o.view.progress = show_progress;
+        o.view.progress_ctx = &bar;
+    }
+    int frames = o.frames ? o.frames : 1;
+    for (int k = 0; k < frames && st == IACSG_OK; k++) {
+        if (o.frames)
+            o.view.time = (double)k / o.frames;
+        iacsg_frame fr;
+        bar.start = now_seconds();
+        st = iacsg_render(r, &o.view, &fr, &err);
+        if (bar.shown) {
+            fprintf(stderr, "\r%50s\r", "");
+            bar.shown = 0;
+        }
+        if (st != IACSG_OK)
+            break;
+        st = write_frame(&o, &fr, k, &err);
+        if (st == IACSG_OK && o.config.stats)
+            print_stats(r, &fr);
+        iacsg_frame_free(&fr);
+    }
+    if (st != IACSG_OK)
+        print_error(&err, name);
+    iacsg_renderer_destroy(r);
+    iacsg_expr_destroy(e);
+    free(text);
+    return st == IACSG_OK ? 0 : 1;
+}
+
+static void print_device(int index, const char *platform, const char *device, void *ctx) {
+    (void)ctx;
+    printf("%d: %s (%s)\n", index, device, platform);
+}
+
+int cli_devices(int argc, char **argv) {
+    (void)argv;
+    if (argc > 1) {
+        fprintf(stderr, "iacsg devices: takes no arguments\n");
+        return 2;
+    }
+    iacsg_error err = {0};
+    if (clrt_list_devices(print_device, NULL, &err) == 0) {
+        fprintf(stderr, "iacsg: %s\n", err.message[0] ? err.message : "no OpenCL device found");
+        return 1;
+    }
+    return 0;
+}
