@@ -106,8 +106,10 @@ static int selected(const char *name, int argc, char **argv) {
 
 int main(int argc, char **argv) {
     setvbuf(stdout, NULL, _IOLBF, 0);
-    int passed = 0, failed = 0;
-    for (size_t i = 0; i < sizeof tests / sizeof tests[0]; i++) {
+    /* static: setjmp/longjmp may not restore locals the compiler kept in registers */
+    static int passed, failed;
+    static size_t i;
+    for (i = 0; i < sizeof tests / sizeof tests[0]; i++) {
         if (!selected(tests[i].name, argc, argv))
             continue;
         notes[0] = '\0';

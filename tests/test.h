@@ -1,4 +1,4 @@
-/* tests/test.h -- the test harness. A test is `TEST(name) { ... }` in any tests/*.c file; the Makefile collects
+/* tests/test.h -- the test harness. A test is `TEST(name) { ... }` in any tests/ .c file; the Makefile collects
  * the names, and build/iacsg-tests runs them all, or those whose names start with an argument.
  *
  *   CHECK(cond, fmt, ...)   on failure prints the place and the message and ends this test (others go on).
@@ -12,6 +12,13 @@
 #include <stdint.h>
 
 #define TEST(name) void test_##name(void)
+/* In tests/ *_fp.c, compiled once for float and once for double intervals (-DIA_FP64): TEST_FP(name) defines
+ * name_f32 or name_f64. */
+#ifdef IA_FP64
+#define TEST_FP(name) void test_##name##_f64(void)
+#else
+#define TEST_FP(name) void test_##name##_f32(void)
+#endif
 
 void test_fail_at(const char *file, int line, const char *fmt, ...)
 #ifdef __GNUC__
