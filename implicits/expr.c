@@ -65,6 +65,11 @@ int iacsg_expr_uses_time(const iacsg_expr *e) {
 iacsg_status iacsg_expr_eval_box(const iacsg_expr *e, int fp64, const double lo[3], const double hi[3], double t,
                                  double out[2], iacsg_error *err) {
     double vars[8] = {lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], t, t};
+    return iacsg_expr_eval_vars(e, fp64, vars, out, err);
+}
+
+iacsg_status iacsg_expr_eval_vars(const iacsg_expr *e, int fp64, const double vars[8], double out[2],
+                                  iacsg_error *err) {
     void *scratch = malloc(eval_scratch_size(e->root));
     if (!scratch)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");

@@ -15,6 +15,10 @@ struct iacsg_expr {
     int count;
 };
 
+/* The enclosure over vars = {x0, x1, y0, y1, z0, z1, t0, t1} (exact doubles; see eval.h). */
+iacsg_status iacsg_expr_eval_vars(const iacsg_expr *e, int fp64, const double vars[8], double out[2],
+                                  iacsg_error *err);
+
 /* The dump of one stage: "tokens", "ast", "dag" (raw) or "simple". NULL with err for an unknown stage. The
  * text is re-lexed and re-parsed for the first two. */
 char *iacsg_expr_dump(const char *text, const char *stage, iacsg_error *err);
