@@ -5,6 +5,7 @@
 #   make demo       render the README's first example
 #   make deps       install the Debian packages the project needs (apt-get; sudo when not root)
 #   make bench-ia   nanoseconds per interval operation, host and device, rigorous and fast
+#   make fuzz       libFuzzer on the expression compiler for FUZZ_SECONDS (default 60)
 #
 # BUILD=dir SAN=1 builds everything under AddressSanitizer and UndefinedBehaviorSanitizer in another directory.
 
@@ -23,7 +24,7 @@ CXXFLAGS_ALL = -std=c++17 -Wall -Wextra -Werror $(OPT) -I. -Isrc $(CXXFLAGS)
 LIBS = -lOpenCL -lOpenImageIO -lOpenImageIO_Util -lmpfr -lgmp -lm -lstdc++
 LDFLAGS_ALL = $(OPT) $(LDFLAGS)
 
-DEB_PACKAGES = gcc g++ make pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev
+DEB_PACKAGES = gcc g++ make clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev
 
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h
@@ -43,7 +44,7 @@ CLI_OBJ = $(CLI_C:%.c=$(BUILD)/%.o)
 TEST_OBJ = $(TEST_C:%.c=$(BUILD)/%.o) $(TEST_FP_C:%.c=$(BUILD)/%.f32.o) $(TEST_FP_C:%.c=$(BUILD)/%.f64.o) \
            $(if $(TEST_CL_SOURCES),$(BUILD)/embedded_tests.o)
 
-.PHONY: all deps test check demo bench-ia clean
+.PHONY: all deps test check demo bench-ia fuzz clean
 all: $(BUILD)/iacsg
 
 deps:
@@ -114,7 +115,22 @@ bench-ia: deps
 	@$(MAKE) --no-print-directory $(BUILD)/iacsg-tests
 	$(BUILD)/iacsg-tests bench_ia
 
+# libFuzzer over the lexer, parser and compiler, seeded from examples/ and tests/data/fuzz/. New crashes land in
+# build-fuzz/crash-*: copy each into tests/data/fuzz/ so that every `make test` replays it.
+FUZZ_SECONDS ?= 60
+FUZZ_SRC = tests/fuzz/fuzz_expr.c tests/expr_exercise.c $(wildcard implicits/*.c) ia/decimal.c src/error.c src/clrt.c
+build-fuzz/fuzz_expr: $(FUZZ_SRC) $(BUILD)/embedded_ia.c
+	@mkdir -p $(dir $@)
+	clang -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -I. -Isrc \
+	    -D_POSIX_C_SOURCE=200809L $^ -lOpenCL -lm -o $@
+
+fuzz: deps
+	@$(MAKE) --no-print-directory build-fuzz/fuzz_expr
+	@mkdir -p build-fuzz/corpus
+	build-fuzz/fuzz_expr -max_total_time=$(FUZZ_SECONDS) -timeout=20 -rss_limit_mb=4096 -max_len=8192 \
+	    -print_final_stats=1 -artifact_prefix=build-fuzz/ build-fuzz/corpus examples tests/data/fuzz
+
 clean:
-	rm -rf build build-asan
+	rm -rf build build-asan build-fuzz
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,0 +1,60 @@
+/* tests/t_fuzz_regressions.c -- replays every input saved in tests/data/fuzz/ (crashes the fuzzer found, and
+ * hostile inputs kept as seeds) through the compiler: each must compile or be rejected with a message. */
+#include "expr_exercise.h"
+#include "test.h"
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char *read_all(const char *path, size_t *size) {
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = NULL;
+    size_t cap = 0, len = 0, n;
+    char chunk[65536];
+    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0) {
+        if (len + n > cap) {
+            cap = (len + n) * 2;
+            char *grown = realloc(buf, cap);
+            if (!grown) {
+                free(buf);
+                fclose(f);
+                return NULL;
+            }
+            buf = grown;
+        }
+        memcpy(buf + len, chunk, n);
+        len += n;
+    }
+    fclose(f);
+    *size = len;
+    return buf ? buf : calloc(1, 1);
+}
+
+TEST(fuzz_regressions) {
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s/tests/data/fuzz", test_source_dir());
+    DIR *d = opendir(dir);
+    CHECK(d, "cannot open %s", dir);
+    int replayed = 0, compiled = 0;
+    struct dirent *ent;
+    while ((ent = readdir(d))) {
+        if (ent->d_name[0] == '.')
+            continue;
+        char path[8192];
+        snprintf(path, sizeof path, "%s/%s", dir, ent->d_name);
+        size_t size = 0;
+        char *data = read_all(path, &size);
+        CHECK(data, "cannot read %s", path);
+        int r = expr_exercise(data, size);
+        free(data);
+        CHECK(r >= 0, "%s: rejected without a message", ent->d_name);
+        replayed++;
+        compiled += r;
+    }
+    closedir(d);
+    CHECK(replayed > 0, "no inputs in %s", dir);
+    test_note("%d inputs replayed, %d compiled, %d rejected with a message", replayed, compiled, replayed - compiled);
+}
