@@ -1,0 +1,237 @@
+/* tests/t_render_csg_fp.c -- expressions compiled by the real compiler (implicits/), rendered, and compared pixel
+ * by pixel with exact ray intersections computed on the host in double: CSG of a sphere and a torus, and thin
+ * features that point sampling misses (a slab 1e-4 thick, a rod of radius 0.004).
+ *
+ * Along a ray each primitive's inside is a union of t intervals, found from the roots of its polynomial in t
+ * (quadratic for the sphere, slab and rod, quartic for the torus); the CSG of the insides is decided at the
+ * midpoints between consecutive roots. Checked: no ray that passes through the solid (by more than 1e-6) is
+ * missed, and no depth is after the first root. */
+#include "t_render_util.h"
+#include "implicits/expr.h"
+#include <string.h>
+
+#ifdef IA_FP64
+#define FP64 1
+#else
+#define FP64 0
+#endif
+
+enum { MAX_ROOTS = 16 };
+
+static double poly_eval(const double *c, int n, double t) {
+    double v = c[n];
+    for (int k = n - 1; k >= 0; k--)
+        v = v * t + c[k];
+    return v;
+}
+
+/* The real roots of sum c[k] t^k (degree n <= 4) in [lo, hi] where the sign changes, sorted: between
+ * consecutive roots of the derivative the polynomial is monotone, so bisection finds each root. */
+static int poly_roots(const double *c, int n, double lo, double hi, double *roots) {
+    while (n > 0 && c[n] == 0)
+        n--;
+    if (n == 0)
+        return 0;
+    double dc[4], crit[MAX_ROOTS], pts[MAX_ROOTS + 2];
+    for (int k = 0; k < n; k++)
+        dc[k] = (k + 1) * c[k + 1];
+    int nc = n > 1 ? poly_roots(dc, n - 1, lo, hi, crit) : 0, np = 0, count = 0;
+    pts[np++] = lo;
+    for (int k = 0; k < nc; k++)
+        pts[np++] = crit[k];
+    pts[np++] = hi;
+    for (int k = 0; k + 1 < np; k++) {
+        double a = pts[k], b = pts[k + 1], fa = poly_eval(c, n, a), fb = poly_eval(c, n, b);
+        if (fa == 0 || (fa < 0) == (fb < 0))
+            continue;
+        for (int it = 0; it < 200 && a < b; it++) {
+            double m = 0.5 * (a + b);
+            if (m <= a || m >= b)
+                break;
+            if ((poly_eval(c, n, m) < 0) == (fa < 0))
+                a = m;
+            else
+                b = m;
+        }
+        roots[count++] = b;
+    }
+    return count;
+}
+
+/* A primitive along the ray: a polynomial in t, negative inside. */
+typedef struct {
+    double c[5];
+    int degree;
+} ray_poly;
+
+static ray_poly sphere_poly(const double ctr[3], double r, const double o[3], const double d[3]) {
+    double oc[3] = {o[0] - ctr[0], o[1] - ctr[1], o[2] - ctr[2]};
+    ray_poly p = {{0}, 2};
+    for (int k = 0; k < 3; k++) {
+        p.c[2] += d[k] * d[k];
+        p.c[1] += 2 * oc[k] * d[k];
+        p.c[0] += oc[k] * oc[k];
+    }
+    p.c[0] -= r * r;
+    return p;
+}
+
+/* Torus around the z axis, radii R and r: (|p|^2 + R^2 - r^2)^2 - 4 R^2 (px^2 + py^2), negative inside. */
+static ray_poly torus_poly(double R, double r, const double o[3], const double d[3]) {
+    double A = 0, B = 0, C = R * R - r * r;
+    for (int k = 0; k < 3; k++) {
+        A += d[k] * d[k];
+        B += 2 * o[k] * d[k];
+        C += o[k] * o[k];
+    }
+    double q2 = d[0] * d[0] + d[1] * d[1], q1 = 2 * (o[0] * d[0] + o[1] * d[1]), q0 = o[0] * o[0] + o[1] * o[1];
+    ray_poly p = {{C * C - 4 * R * R * q0, 2 * B * C - 4 * R * R * q1, B * B + 2 * A * C - 4 * R * R * q2, 2 * A * B,
+                   A * A},
+                  4};
+    return p;
+}
+
+/* The rod x^2 + y^2 < r^2 and the slab z^2 < h^2: quadratics in t. */
+static ray_poly rod_poly(double r, const double o[3], const double d[3]) {
+    ray_poly p = {{o[0] * o[0] + o[1] * o[1] - r * r, 2 * (o[0] * d[0] + o[1] * d[1]), d[0] * d[0] + d[1] * d[1]}, 2};
+    return p;
+}
+static ray_poly slab_poly(double h, const double o[3], const double d[3]) {
+    ray_poly p = {{o[2] * o[2] - h * h, 2 * o[2] * d[2], d[2] * d[2]}, 2};
+    return p;
+}
+
+typedef enum { CSG_ONLY_A, CSG_UNION, CSG_DIFF } csg_op;
+
+static int csg_inside(csg_op op, int a, int b) {
+    return op == CSG_ONLY_A ? a : op == CSG_UNION ? (a || b) : (a && !b);
+}
+
+/* The first t in [tn, tf] where the ray enters the solid, and the length of the inside piece it starts.
+ * Returns 0 if there is none (a ray starting inside the solid is not used by these scenes). */
+static int csg_first_entry(ray_poly pa, ray_poly pb, csg_op op, double tn, double tf, double *t, double *piece) {
+    double pts[2 * MAX_ROOTS + 2];
+    int n = 0;
+    pts[n++] = tn;
+    n += poly_roots(pa.c, pa.degree, tn, tf, pts + n);
+    if (op != CSG_ONLY_A)
+        n += poly_roots(pb.c, pb.degree, tn, tf, pts + n);
+    pts[n++] = tf;
+    for (int k = 1; k < n; k++) /* insertion sort: a handful of points */
+        for (int m = k; m > 0 && pts[m] < pts[m - 1]; m--) {
+            double tmp = pts[m];
+            pts[m] = pts[m - 1];
+            pts[m - 1] = tmp;
+        }
+    for (int k = 0; k + 1 < n; k++) {
+        double m = 0.5 * (pts[k] + pts[k + 1]);
+        if (csg_inside(op, poly_eval(pa.c, pa.degree, m) < 0, poly_eval(pb.c, pb.degree, m) < 0)) {
+            if (k == 0)
+                return 0;
+            *t = pts[k];
+            *piece = pts[k + 1] - pts[k];
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The exact (double) part of the ray inside the bounds, t >= 0. */
+static int box_span(const double b[6], const double o[3], const double d[3], double *tn, double *tf) {
+    *tn = 0;
+    *tf = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        if (d[k] == 0) {
+            if (o[k] < b[k] || o[k] > b[k + 3])
+                return 0;
+            continue;
+        }
+        double t1 = (b[k] - o[k]) / d[k], t2 = (b[k + 3] - o[k]) / d[k];
+        *tn = fmax(*tn, fmin(t1, t2));
+        *tf = fmin(*tf, fmax(t1, t2));
+    }
+    return *tn < *tf;
+}
+
+typedef ray_poly (*make_poly)(const double o[3], const double d[3]);
+
+typedef struct {
+    long through, misses, late;
+} csg_report;
+
+/* Compiles `expr`, renders it, and checks each pixel against the exact first entry. */
+static csg_report check_expr(const char *expr, make_poly fa, make_poly fb, csg_op op, const iacsg_view *view) {
+    csg_report rep = {0, 0, 0};
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s: %s", expr, err.message);
+    iacsg_render_config config = {.fp64 = FP64};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
+    iacsg_frame fr;
+    st = iacsg_render(r, view, &fr, &err);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
+    ia_real p[PARAM_COUNT];
+    view_params(view, p);
+    int ortho = view->camera.ortho_height > 0;
+    for (int j = 0; j < view->height; j++)
+        for (int i = 0; i < view->width; i++) {
+            ia_real of[3], df[3];
+            camera_ray(p, ortho, i, j, view->width, view->height, of, df);
+            double o[3] = {of[0], of[1], of[2]}, d[3] = {df[0], df[1], df[2]}, tn, tf, t, piece;
+            if (!box_span(view->bounds, o, d, &tn, &tf) ||
+                !csg_first_entry(fa(o, d), fb(o, d), op, tn, tf, &t, &piece) || piece < 1e-6)
+                continue;
+            rep.through++;
+            double depth = fr.depth[(size_t)j * view->width + i];
+            if (!isfinite(depth)) {
+                if (rep.misses++ < 5)
+                    test_note("%s: missed pixel (%d, %d), entry at t = %.9g", expr, i, j, t);
+            } else if (depth > t * (1 + 1e-12) && rep.late++ < 5) {
+                test_note("%s: pixel (%d, %d) depth %.9g after the entry %.9g", expr, i, j, depth, t);
+            }
+        }
+    iacsg_frame_free(&fr);
+    test_note("%s: %ld rays through the solid, %ld missed, %ld late", expr, rep.through, rep.misses, rep.late);
+    CHECK(rep.through > 100, "%s: too few rays through the solid (%ld)", expr, rep.through);
+    CHECK(rep.misses == 0 && rep.late == 0, "%s: %ld missed and %ld late pixels", expr, rep.misses, rep.late);
+    return rep;
+}
+
+static iacsg_view view_of(int w, int h, double eps) {
+    iacsg_view v = {.width = w, .height = h, .eps = eps, .bounds = {-2, -2, -2, 2, 2, 2},
+                    .camera = {.eye = {0.3, -4, 2.5}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 40}};
+    return v;
+}
+
+static ray_poly ball(const double o[3], const double d[3]) {
+    static const double c[3] = {0.5, 0, 0};
+    return sphere_poly(c, 1, o, d);
+}
+static ray_poly small_ball(const double o[3], const double d[3]) {
+    static const double c[3] = {0.5, 0, 0.25};
+    return sphere_poly(c, 0.5, o, d);
+}
+static ray_poly ring(const double o[3], const double d[3]) { return torus_poly(1, 0.375, o, d); }
+static ray_poly rod(const double o[3], const double d[3]) { return rod_poly(0.004, o, d); }
+static ray_poly slab(const double o[3], const double d[3]) { return slab_poly(5e-5, o, d); }
+
+TEST_FP(render_csg_sphere_torus) {
+    iacsg_view v = view_of(128, 128, 1e-5);
+    check_expr("min((x-0.5)^2+y^2+z^2-1, (1-sqrt(x^2+y^2))^2+z^2-0.140625)", ball, ring, CSG_UNION, &v);
+    check_expr("max((1-sqrt(x^2+y^2))^2+z^2-0.140625, -((x-0.5)^2+y^2+(z-0.25)^2-0.25))", ring, small_ball, CSG_DIFF,
+               &v);
+}
+
+/* A slab 1e-4 thick seen at a slant, and a rod of radius 0.004 across a view in which it is half a pixel wide
+ * (only the middle column of the odd-width image passes through it): every ray through either must hit. */
+TEST_FP(render_thin_features) {
+    iacsg_view v = view_of(96, 96, 1e-5);
+    check_expr("abs(z) - 0.00005", slab, slab, CSG_ONLY_A, &v);
+    iacsg_view side = {.width = 63, .height = 127, .eps = 1e-5, .bounds = {-1, -1, -1, 1, 1, 1},
+                       .camera = {.eye = {3, 0.001, 0.1}, .at = {0, 0.001, 0.1}, .up = {0, 0, 1}, .fov = 20}};
+    check_expr("sqrt(x^2 + y^2) - 0.004", rod, rod, CSG_ONLY_A, &side);
+}
