@@ -1,0 +1,167 @@
+/* tests/t_expr_oracle.c -- see t_expr_oracle.h. */
+#include "t_expr_oracle.h"
+#include "implicits/library.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define RN MPFR_RNDN
+
+/* pow on the domain of IEEE 1788 (and ia_pow): x > 0, or x = 0 with y > 0. */
+static int oracle_pow(mpfr_ptr r, mpfr_srcptr a, mpfr_srcptr b, mpfr_rnd_t rnd) {
+    if (mpfr_sgn(a) < 0 || (mpfr_zero_p(a) && mpfr_sgn(b) <= 0)) {
+        mpfr_set_nan(r);
+        return 0;
+    }
+    return mpfr_pow(r, a, b, rnd);
+}
+
+static void apply(int op, mpfr_ptr R, mpfr_srcptr A, mpfr_srcptr B, long N) {
+    (void)B, (void)N;
+    switch (op) {
+#define OP(id, name, arity, nary, iv, pt, d, oracle)                                                          \
+    case OP_##id: oracle; break;
+#include "implicits/ops.def"
+#undef OP
+    default: mpfr_set_nan(R);
+    }
+}
+
+int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y) {
+    const dag *d = &e->raw;
+    int *order;
+    int count = dag_reachable(d, e->raw_root, &order);
+    CHECK(count > 0, "out of memory");
+    mpfr_t *v = malloc(((size_t)e->raw_root + 1) * sizeof *v);
+    CHECK(v != NULL, "out of memory");
+    int ok = 1;
+    for (int k = 0; k < count; k++) {
+        int i = order[k];
+        const dag_node *n = &d->nodes[i];
+        mpfr_init2(v[i], EXPR_ORACLE_PREC);
+        if (n->op <= OP_T)
+            mpfr_set_d(v[i], p[n->op], RN);
+        else if (n->op == OP_CONST && n->n >= 0)
+            mpfr_set_str(v[i], d->texts[n->n], 10, RN);
+        else if (n->op == OP_CONST) /* exact values without text (lo == hi) */
+            mpfr_set_d(v[i], n->lo, RN);
+        else if (n->op == OP_PI)
+            mpfr_const_pi(v[i], RN);
+        else if (n->op == OP_E)
+            mpfr_set_ui(v[i], 1, RN), mpfr_exp(v[i], v[i], RN);
+        else if (!mpfr_number_p(v[n->a]) || (n->b >= 0 && !mpfr_number_p(v[n->b])))
+            mpfr_set_nan(v[i]); /* undefined operands make the whole expression undefined at p */
+        else
+            apply(n->op, v[i], v[n->a], n->b >= 0 ? v[n->b] : v[n->a], n->n);
+    }
+    ok = mpfr_number_p(v[e->raw_root]);
+    mpfr_set(y, v[e->raw_root], RN);
+    for (int k = 0; k < count; k++)
+        mpfr_clear(v[order[k]]);
+    free(v);
+    free(order);
+    return ok;
+}
+
+static double unit(test_rng_t *r) { return test_rand_unit(r); }
+static int below(test_rng_t *r, int n) { return (int)(test_rand_u64(r) % (uint64_t)n); }
+
+static const char *const constants[] = {"0.1", "3", "2.5e-1", "0.7", "1.5", "pi", "e", "1e-3", "0.3333", "2"};
+
+/* Appends a random expression of depth <= depth. The buffer is big enough for depth <= 5 at any branching. */
+static void gen(test_rng_t *r, int depth, char *buf, size_t size) {
+    size_t len = strlen(buf);
+    char *out = buf + len;
+    size_t room = size - len;
+    if (room < 64)
+        return;
+    if (depth <= 0 || below(r, 5) == 0) {
+        static const char *const vars[] = {"x", "y", "z", "t", "x", "y"};
+        if (below(r, 3) == 0)
+            snprintf(out, room, "%s", constants[below(r, 10)]);
+        else
+            snprintf(out, room, "%s", vars[below(r, 6)]);
+        return;
+    }
+    int kind = below(r, 10);
+    if (kind <= 3) { /* binary operator */
+        static const char ops[] = "+-*/|&\\";
+        strcat(buf, "(");
+        gen(r, depth - 1, buf, size);
+        size_t l = strlen(buf);
+        snprintf(buf + l, size - l, " %c ", ops[below(r, 7)]);
+        gen(r, depth - 1, buf, size);
+        strcat(buf, ")");
+    } else if (kind == 4) { /* powers: integer (pown, sqr) or real (pow) */
+        static const char *const exps[] = {"2", "3", "4", "-1", "-2", "0.5", "1.5", "5"};
+        strcat(buf, "(");
+        gen(r, depth - 1, buf, size);
+        size_t l = strlen(buf);
+        snprintf(buf + l, size - l, ")^%s", exps[below(r, 8)]);
+    } else if (kind <= 7) { /* a function of ops.def */
+        int op;
+        do
+            op = below(r, OP_COUNT);
+        while (!dag_ops[op].name[0]);
+        snprintf(out, room, "%s(", dag_ops[op].name);
+        for (int k = 0; k < dag_ops[op].arity + (dag_ops[op].nary && below(r, 2)); k++) {
+            if (k)
+                strcat(buf, ", ");
+            gen(r, depth - 1, buf, size);
+        }
+        strcat(buf, ")");
+    } else if (kind == 8) { /* a transform of a subexpression */
+        static const char *const forms[] = {"move(%s, 0.5, -0.25, 0.1)", "scale(%s, 1.5)", "scale(%s, 0.5, 2, 1)",
+                                            "rotatex(%s, 0.3)", "rotatey(%s, pi/3)", "rotatez(%s, -1)",
+                                            "rotate(%s, 0.7, 1, 2, 3)"};
+        char sub[4096] = "";
+        gen(r, depth - 1, sub, sizeof sub < room ? sizeof sub : room);
+        snprintf(out, room, forms[below(r, 7)], sub);
+    } else { /* a primitive or blend */
+        static const char *const forms[] = {"sphere", "torus(R=0.8, r=0.3)", "tangle", "decocube", "heart",
+                                            "box(0.5, 1)", "cone", "capsule", "gyroid(k=2)", "citrus",
+                                            "smooth_union(sphere, box, 0.1)", "sigmoid_blend(decocube, sphere)",
+                                            "product(x, y - 0.5)", "morph(sphere, box, 0.3)"};
+        snprintf(out, room, "%s", forms[below(r, 14)]);
+    }
+}
+
+void expr_random_text(test_rng_t *r, int depth, char *buf, size_t size) {
+    buf[0] = '\0';
+    gen(r, depth, buf, size);
+}
+
+void expr_random_box(test_rng_t *r, double v[8]) {
+    for (int k = 0; k < 4; k++) {
+        double c = k < 3 ? 4 * unit(r) - 2 : unit(r);
+        double w = below(r, 8) == 0 ? 0 : ldexp(unit(r), -below(r, 31)) * 4;
+        v[2 * k] = c - w / 2;
+        v[2 * k + 1] = c + w / 2;
+    }
+}
+
+void expr_random_point(test_rng_t *r, const double v[8], double p[4]) {
+    int corner = below(r, 3) == 0;
+    for (int k = 0; k < 4; k++) {
+        double u = corner ? (double)below(r, 2) : unit(r);
+        p[k] = v[2 * k] + u * (v[2 * k + 1] - v[2 * k]);
+        if (p[k] < v[2 * k] || p[k] > v[2 * k + 1])
+            p[k] = v[2 * k];
+    }
+}
+
+const char *const expr_every_op_texts[] = {
+    "-x",      "x + y",     "x - y",      "x * y",       "x / y",      "x + 0.5",     "x * 0.5",
+    "x^3",     "sqr(x)",    "recip(x)",   "sqrt(x)",     "exp(x)",     "log(x)",      "sin(x)",
+    "cos(x)",  "tan(x)",    "atan(x)",    "abs(x)",      "min(x, y)",  "max(x, y)",   "pow(x, y)",
+};
+const int expr_every_op_count = (int)(sizeof expr_every_op_texts / sizeof expr_every_op_texts[0]);
+
+int expr_primitive_names(const char **names, int max) {
+    int n = 0;
+    for (int i = 0; i < lib_count && n < max; i++)
+        if (lib_entries[i].kind == LIB_PRIMITIVE)
+            names[n++] = lib_entries[i].name;
+    return n;
+}

@@ -1,0 +1,33 @@
+/* tests/t_expr_oracle.h -- helpers for the compiler's property tests: the MPFR value of an expression's
+ * unsimplified DAG (driven by the oracle column of implicits/ops.def), random expression texts, random boxes,
+ * and the every-op list. */
+#ifndef IACSG_T_EXPR_ORACLE_H
+#define IACSG_T_EXPR_ORACLE_H
+#include "implicits/expr_internal.h"
+#include "test.h"
+#include <mpfr.h>
+
+#define EXPR_ORACLE_PREC 256
+
+/* The value at (x, y, z, t) of the expression as written (its unsimplified DAG, decimal constants read exactly
+ * to EXPR_ORACLE_PREC bits), into y (initialised by the caller). Returns 0 where some subexpression is
+ * undefined or infinite (the point is outside the expression's domain), else 1. */
+int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y);
+
+/* A random expression text of at most `depth` levels into buf (size >= 4096): variables, decimal constants,
+ * pi and e, + - * / ^, every named function of ops.def, CSG, primitives, blends and transforms. */
+void expr_random_text(test_rng_t *r, int depth, char *buf, size_t size);
+
+/* A random box {x0, x1, y0, y1, z0, z1, t0, t1} around [-2, 2]^3 x [0, 1], of widths from 2^-30 to 4 (some
+ * degenerate), and a random point in it (a corner, or uniform). */
+void expr_random_box(test_rng_t *r, double vars[8]);
+void expr_random_point(test_rng_t *r, const double vars[8], double p[4]);
+
+/* Texts that, compiled, use every op of ops.def between them (tests check they do). */
+extern const char *const expr_every_op_texts[];
+extern const int expr_every_op_count;
+
+/* The primitives of the library (every LIB_PRIMITIVE, called bare), for the per-primitive tests. */
+int expr_primitive_names(const char **names, int max);
+
+#endif
