@@ -1,0 +1,78 @@
+/* tests/t_render_reference.c -- shaded images of a few scenes against reference images in
+ * tests/data/reference/, with a tolerance: the kernel may change the order of its arithmetic or a device may
+ * round a shading function differently, but the silhouettes and the shading must not move. Run with
+ * IACSG_UPDATE_REFERENCE=1 to rewrite the references after an intended change (and look at them). */
+#include "iacsg.h"
+#include "test.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+typedef struct {
+    const char *name, *expr;
+    iacsg_camera camera;
+    double eps;
+} reference_scene;
+
+static const reference_scene scenes[] = {
+    {"sphere_torus", "min((x-0.5)^2+y^2+z^2-1, (1-sqrt(x^2+y^2))^2+z^2-0.125)",
+     {.eye = {0, -4, 2.5}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 40}, 1e-5},
+    {"cube_minus_sphere", "max(x^500+y^500+z^500-1, -(x^2+y^2+z^2-1.5))",
+     {.eye = {3, -4, 3}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 35}, 1e-5},
+    {"heightmap_ortho", "min((x-0.5)^2+y^2+z^2-1, (1-sqrt(x^2+y^2))^2+z^2-0.125)",
+     {.eye = {0, 0, 3}, .at = {0, 0, 0}, .up = {0, 1, 0}, .ortho_height = 4}, 4.0 / 128},
+};
+
+/* Renders a scene at 128x128 in float. */
+static void render_scene(const reference_scene *s, iacsg_frame *fr) {
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse(s->expr, s->name, &e, &err) == IACSG_OK, "%s: %s", s->name, err.message);
+    iacsg_render_config config = {0};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s: %s", s->name, err.message);
+    iacsg_view v = {.width = 128, .height = 128, .eps = s->eps, .camera = s->camera,
+                    .bounds = {-2, -2, -2, 2, 2, 2}};
+    st = iacsg_render(r, &v, fr, &err);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK, "%s: %s", s->name, err.message);
+}
+
+TEST(render_reference_images) {
+    const char *update = getenv("IACSG_UPDATE_REFERENCE");
+    for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
+        const reference_scene *s = &scenes[k];
+        char path[1024];
+        snprintf(path, sizeof path, "%s/tests/data/reference/%s.png", test_source_dir(), s->name);
+        iacsg_frame fr;
+        render_scene(s, &fr);
+        iacsg_error err = {0};
+        if (update && *update == '1') {
+            CHECK(iacsg_image_write(path, fr.width, fr.height, 3, fr.rgb, 0, &err) == IACSG_OK, "%s", err.message);
+            test_note("%s: reference rewritten", path);
+            iacsg_frame_free(&fr);
+            continue;
+        }
+        int w, h, ch;
+        float *ref = NULL;
+        CHECK(iacsg_image_read(path, &w, &h, &ch, &ref, &err) == IACSG_OK, "%s", err.message);
+        CHECK(w == fr.width && h == fr.height && ch == 3, "%s: reference is %dx%dx%d", s->name, w, h, ch);
+        /* Tolerance: 8-bit quantization plus small shading differences everywhere; larger ones (a pixel whose
+         * hit moved across an edge) on at most 0.2 % of the pixels. */
+        long far_off = 0, n = (long)w * h;
+        double sum = 0;
+        for (long p = 0; p < n * 3; p++) {
+            double diff = fabs(fr.rgb[p] - ref[p]);
+            sum += diff;
+            far_off += diff > 0.1;
+        }
+        free(ref);
+        iacsg_frame_free(&fr);
+        test_note("%s: mean difference %.5f, %ld channel values off by more than 0.1", s->name, sum / (3.0 * n),
+                  far_off);
+        CHECK(sum / (3.0 * n) < 2.0 / 255, "%s: mean difference %.4f", s->name, sum / (3.0 * n));
+        CHECK(far_off <= n * 3 / 500, "%s: %ld values differ by more than 0.1", s->name, far_off);
+    }
+}
