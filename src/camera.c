@@ -37,6 +37,17 @@ void iacsg_camera_set_azel(iacsg_camera *c, const double at[3], double az, doubl
     }
 }
 
+void iacsg_camera_fit_azel(iacsg_camera *c, const double bounds[6], double az, double el) {
+    double radius = 0, at[3] = {c->at[0], c->at[1], c->at[2]};
+    for (int k = 0; k < 3; k++) { /* the farthest corner from `at` */
+        double far = fmax(fabs(bounds[k] - at[k]), fabs(bounds[k + 3] - at[k]));
+        radius += far * far;
+    }
+    radius = sqrt(radius);
+    double distance = c->ortho_height > 0 ? 2 * radius : 1.05 * radius / sin(c->fov * pi / 360);
+    iacsg_camera_set_azel(c, at, az, el, distance);
+}
+
 iacsg_status iacsg_camera_params(const iacsg_camera *c, int width, int height, double *params, iacsg_error *err) {
     double f[3], r[3], u[3], up[3] = {c->up[0], c->up[1], c->up[2]};
     for (int k = 0; k < 3; k++)

@@ -14,6 +14,11 @@ typedef struct {
  * (degrees above the xy plane), at the given distance, with +z up (+y up when looking straight down or up). */
 void iacsg_camera_set_azel(iacsg_camera *c, const double at[3], double az, double el, double distance);
 
+/* Places the eye by azimuth and elevation (as iacsg_camera_set_azel) looking at c->at, far enough that the
+ * sphere around the box `bounds` (x0,y0,z0,x1,y1,z1) fits in the perspective view, or is in front of the
+ * orthographic image plane. */
+void iacsg_camera_fit_azel(iacsg_camera *c, const double bounds[6], double az, double el);
+
 /* Fills params[0 .. 13] (PARAM_EYE .. PARAM_SCALE_V of kernels/params.h) for a width x height image.
  * IACSG_ERR_ARG when eye == at, up is parallel to the view direction, or fov is not in (0, 180). */
 iacsg_status iacsg_camera_params(const iacsg_camera *c, int width, int height, double *params, iacsg_error *err);

@@ -214,22 +214,14 @@ static const char *choose_bounds(render_options *o, const iacsg_expr *e) {
     return "the default: no enclosing box could be found";
 }
 
-/* -at defaults to the centre of the bounds; without -eye, the eye is placed by -az/-el far enough that the
- * bounds' circumscribed sphere fits in the view (perspective), or outside it (orthographic). */
+/* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. */
 static void place_camera(render_options *o) {
     iacsg_camera *c = &o->view.camera;
-    const double *b = o->view.bounds;
-    double radius = 0.5 * sqrt((b[3] - b[0]) * (b[3] - b[0]) + (b[4] - b[1]) * (b[4] - b[1]) +
-                               (b[5] - b[2]) * (b[5] - b[2]));
     if (!o->have_at)
         for (int k = 0; k < 3; k++)
-            c->at[k] = 0.5 * (b[k] + b[k + 3]);
-    if (o->have_eye)
-        return;
-    double half_fov = c->fov * 3.14159265358979323846 / 360;
-    double distance = c->ortho_height > 0 ? 2 * radius : 1.05 * radius / sin(half_fov);
-    double at[3] = {c->at[0], c->at[1], c->at[2]};
-    iacsg_camera_set_azel(c, at, o->az, o->el, distance);
+            c->at[k] = 0.5 * (o->view.bounds[k] + o->view.bounds[k + 3]);
+    if (!o->have_eye)
+        iacsg_camera_fit_azel(c, o->view.bounds, o->az, o->el);
 }
 
 /* "dir/name.png", 7 -> "dir/name_0007.png" (malloc'ed). */
