@@ -7,12 +7,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define LOCAL_SIZE 16
+
 extern const char iacsg_cl_ia[]; /* the flattened ia/ headers (Makefile: IA_CL_HEADERS) */
 
 static const char kernel_head[] =
     "__kernel void iacsg_eval_queries(__global const int *which, __global const ia_real *in,\n"
-    "                                 __global ia_real *out) {\n"
+    "                                 __global ia_real *out, uint n) {\n"
     "    size_t i = get_global_id(0);\n"
+    "    if (i >= n)\n"
+    "        return;\n"
     "    __global const ia_real *v = in + 8 * i;\n"
     "    ia_interval x = ia_make(v[0], v[1]), y = ia_make(v[2], v[3]), z = ia_make(v[4], v[5]);\n"
     "    ia_interval t = ia_make(v[6], v[7]);\n"
@@ -70,6 +74,7 @@ iacsg_status device_eval(clrt *rt, const iacsg_expr *const *exprs, int nexprs, i
     cl_mem bufs[3] = {NULL, NULL, NULL};
     cl_int rc = CL_SUCCESS;
     size_t real = fp64 ? sizeof(double) : sizeof(float);
+    cl_uint count = (cl_uint)n;
     void *host_in = malloc(8 * n * real), *host_out = malloc(6 * n * real);
     char *src = program_source(exprs, nexprs, err);
     iacsg_status st = IACSG_ERR_OPENCL;
@@ -100,7 +105,11 @@ iacsg_status device_eval(clrt *rt, const iacsg_expr *const *exprs, int nexprs, i
     CLRT_CHECK(err, rc);
     for (cl_uint k = 0; k < 3; k++)
         CLRT_CHECK(err, clSetKernelArg(kernel, k, sizeof(cl_mem), &bufs[k]));
-    CLRT_CHECK(err, clEnqueueNDRangeKernel(rt->queue, kernel, 1, NULL, &n, NULL, 0, NULL, NULL));
+    CLRT_CHECK(err, clSetKernelArg(kernel, 3, sizeof(cl_uint), &count));
+    /* A small explicit work-group: left to itself PoCL groups thousands of work-items, and a kernel with many
+     * expressions inlined then overflows its thread's stack. */
+    size_t group = LOCAL_SIZE, global = (n + LOCAL_SIZE - 1) / LOCAL_SIZE * LOCAL_SIZE;
+    CLRT_CHECK(err, clEnqueueNDRangeKernel(rt->queue, kernel, 1, NULL, &global, &group, 0, NULL, NULL));
     CLRT_CHECK(err, clEnqueueReadBuffer(rt->queue, bufs[2], CL_TRUE, 0, 6 * n * real, host_out, 0, NULL, NULL));
     for (size_t i = 0; i < 6 * n; i++)
         out[i] = fp64 ? ((double *)host_out)[i] : ((float *)host_out)[i];
