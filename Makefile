@@ -3,6 +3,7 @@
 #   make            build build/iacsg (and build/libiacsg.a)
 #   make test       install missing Debian packages, build, run every test (ends "N passed, N failed")
 #   make demo       render the README's first example
+#   make gallery    render examples/*.csg into the contact sheet docs/gallery.png
 #   make deps       install the Debian packages the project needs (apt-get; sudo when not root)
 #   make bench-ia   nanoseconds per interval operation, host and device, rigorous and fast
 #   make fuzz       libFuzzer on the expression compiler for FUZZ_SECONDS (default 60)
@@ -110,6 +111,15 @@ check: $(BUILD)/iacsg-tests $(BUILD)/iacsg
 demo: deps
 	@$(MAKE) --no-print-directory $(BUILD)/iacsg
 	$(BUILD)/iacsg "min(sphere,torus)" -eps 1e-5
+
+# The examples' scenes (Fig. 2, 3, 7, 8 of the Hijazi seed) as one contact sheet, through the embedding example.
+GALLERY_SCENES = $(sort $(wildcard examples/*.csg))
+$(BUILD)/examples/embed: examples/embed.c $(BUILD)/libiacsg.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -o $@ $< $(BUILD)/libiacsg.a $(LIBS)
+gallery: deps
+	@$(MAKE) --no-print-directory $(BUILD)/examples/embed
+	$(BUILD)/examples/embed docs/gallery.png 256 3 $(GALLERY_SCENES)
 
 bench-ia: deps
 	@$(MAKE) --no-print-directory $(BUILD)/iacsg-tests
