@@ -84,7 +84,7 @@ $(BUILD)/tests/%.f64.o: tests/%.c
 	$(CC) $(CFLAGS_ALL) -DIA_FP64 -MMD -MP -c $< -o $@
 
 $(BUILD)/tests/main.o: $(BUILD)/tests.inc
-$(BUILD)/tests/main.o: CFLAGS += -DIACSG_SOURCE_DIR_DEFAULT='"$(CURDIR)"'
+$(BUILD)/tests/main.o: CFLAGS += -DIACSG_SOURCE_DIR_DEFAULT='"$(CURDIR)"' -DIACSG_BINARY_DEFAULT='"$(CURDIR)/$(BUILD)/iacsg"'
 $(BUILD)/tests.inc: $(TEST_C) $(TEST_FP_C)
 	@mkdir -p $(dir $@)
 	sed -n 's/^TEST(\([a-zA-Z0-9_]*\)).*/X(\1)/p' $(TEST_C) > $@.tmp

@@ -95,6 +95,11 @@ const char *test_source_dir(void) {
 }
 
 /* With no arguments every test runs except the benchmarks (bench_*), which run only when named. */
+const char *test_binary_path(void) {
+    const char *b = getenv("IACSG_BIN");
+    return b && *b ? b : IACSG_BINARY_DEFAULT;
+}
+
 static int selected(const char *name, int argc, char **argv) {
     if (argc < 2)
         return strncmp(name, "bench_", 6) != 0;

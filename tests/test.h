@@ -49,5 +49,7 @@ double test_rand_unit(test_rng_t *r); /* uniform in [0, 1) */
 
 /* The repository root (where tests/data lives): IACSG_SOURCE_DIR, else the compiled-in default. */
 const char *test_source_dir(void);
+/* The iacsg command under test: IACSG_BIN, else the binary of this build directory. */
+const char *test_binary_path(void);
 
 #endif
