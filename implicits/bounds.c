@@ -2,7 +2,7 @@
  *
  * Plain interval arithmetic cannot prove anything over unbounded boxes for most shapes (x^4 - 5x^2 over
  * [2, inf] is [-inf, inf]), so the search is limited to the cube [-BOUNDS_DOMAIN, BOUNDS_DOMAIN]^3 and to times
- * t in [0, 1]: the box returned holds every zero of f in that cube at those times. For each side of each axis,
+ * t in [0, 1] (bisected like the space): the box returned holds every zero of f in that cube at those times. For each side of each axis,
  * a binary search over candidate planes finds the tightest plane beyond which the slab of the cube is proven
  * free of zeros; a slab counts as proven when adaptive bisection (a budget of BOUNDS_BUDGET evaluations)
  * covers it with boxes whose enclosure excludes 0. */
@@ -19,10 +19,12 @@ typedef struct {
     const iacsg_expr *e;
     void *scratch;
     double (*stack)[8];
+    int uses_time;
 } prover;
 
 /* 1 if f has no zero in the box (x0,x1,y0,y1,z0,z1) for t in [0, 1]. */
 static int no_zero_in(prover *p, const double box[6]) {
+    double unit = 1 / (2 * BOUNDS_DOMAIN), scale[4] = {unit, unit, unit, p->uses_time};
     int top = 0, evals = 0;
     memcpy(p->stack[top], box, 6 * sizeof(double));
     p->stack[top][6] = 0;
@@ -36,9 +38,10 @@ static int no_zero_in(prover *p, const double box[6]) {
         eval_dag_f64(&p->e->simple, p->e->order, p->e->count, b, p->scratch, r);
         if (!(r[0] <= 0 && r[1] >= 0))
             continue;
+        /* the widest side relative to the domain, time included: morph(a, b, t) needs t split to be proven */
         int axis = 0;
-        for (int a = 1; a < 3; a++)
-            if (b[2 * a + 1] - b[2 * a] > b[2 * axis + 1] - b[2 * axis])
+        for (int a = 1; a < 4; a++)
+            if ((b[2 * a + 1] - b[2 * a]) * scale[a] > (b[2 * axis + 1] - b[2 * axis]) * scale[axis])
                 axis = a;
         double mid = b[2 * axis] * 0.5 + b[2 * axis + 1] * 0.5;
         if (!(mid > b[2 * axis] && mid < b[2 * axis + 1]))
@@ -73,7 +76,8 @@ static double candidate(int j) {
 }
 
 int iacsg_expr_bounds(const iacsg_expr *e, double box[6]) {
-    prover p = {e, malloc(eval_scratch_size(e->root)), malloc((BOUNDS_BUDGET + 2) * sizeof(double[8]))};
+    prover p = {e, malloc(eval_scratch_size(e->root)), malloc((BOUNDS_BUDGET + 2) * sizeof(double[8])),
+                iacsg_expr_uses_time(e)};
     int ok = p.scratch && p.stack;
     double result[6];
     for (int axis = 0; ok && axis < 3; axis++)

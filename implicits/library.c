@@ -47,8 +47,10 @@ const lib_entry lib_entries[] = {
      {"max(a, -b) + max(r - abs(a + b), 0)^2 / (4 * r)"}},
     {"product", LIB_BLEND, "product(a, b, k = 0)", "", {"a * b - k"}},
     {"morph", LIB_BLEND, "morph(a, b, s = t)", "", {"(1 - s) * a + s * b"}},
-    {"sigmoid_blend", LIB_BLEND, "sigmoid_blend(a, b, s = t, k = 12, c = 0.5)", "",
-     {"a + (b - a) / (1 + exp(-k * (s - c)))"}},
+    /* Written as a weighted mean, not a + (b - a) w: where a and b are both positive the enclosure stays
+     * positive, so bounds are provable. */
+    {"sigmoid_blend", LIB_BLEND, "sigmoid_blend(a, b, s = t, k = 12, c = 0.5)", "w = 1 / (1 + exp(-k * (s - c)))",
+     {"(1 - w) * a + w * b"}},
     {"pown", LIB_BLEND, "pown(a, n)", "", {"a^n"}},
     /* ---- transforms: a point p is in the moved solid when the inverse motion takes it into the original */
     {"move", LIB_TRANSFORM, "move(shape, dx = 0, dy = 0, dz = 0)", "", {"x - dx", "y - dy", "z - dz"}},

@@ -75,10 +75,11 @@ static void skip_newlines(parser *p) {
 
 static int parse_expr(parser *p);
 
-static int enter(parser *p) {
+/* One more level of nesting, opened at token `at`. */
+static int enter(parser *p, long at) {
     if (++p->depth <= PARSE_MAX_DEPTH)
         return 1;
-    const token *t = peek(p);
+    const token *t = &p->a->toks[at];
     if (p->status == IACSG_OK)
         p->status = iacsg_error_set(p->err, IACSG_ERR_LIMIT, t->line, t->column,
                                     "expression nested too deeply (more than %d levels)", PARSE_MAX_DEPTH);
@@ -170,7 +171,7 @@ static int parse_primary(parser *p) {
     if (t->kind == TOK_NAME) {
         p->pos++;
         if (at_punct(p, '(')) {
-            if (!enter(p))
+            if (!enter(p, at))
                 return -1;
             int r = parse_call(p, at);
             p->depth--;
@@ -179,7 +180,7 @@ static int parse_primary(parser *p) {
         return add_node(p, AST_NAME, at, 0, -1, -1);
     }
     if (at_punct(p, '(')) {
-        if (!enter(p))
+        if (!enter(p, at))
             return -1;
         p->pos++;
         int r = parse_expr(p);
@@ -209,7 +210,7 @@ static int parse_unary(parser *p) {
     if (r >= 0 && at_punct(p, '^')) {
         long op = p->pos++;
         skip_newlines(p);
-        if (!enter(p))
+        if (!enter(p, op))
             return -1;
         int e = parse_unary(p);
         p->depth--;
