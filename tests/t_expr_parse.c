@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <glob.h>
 #include <time.h>
 
 static void expect_error(const char *text, iacsg_status status, int line, int column, const char *message) {
@@ -276,4 +277,30 @@ TEST(expr_uses_time_and_bounds) {
                         : box[k] >= cases[i].box[k] && box[k] <= cases[i].box[k] + 0.5 * (cases[i].box[k] - cases[i].box[k - 3]),
                   "'%s': bound %d is %g, the surface's is %g", cases[i].text, k, box[k], cases[i].box[k]);
     }
+}
+
+/* Every scene in examples/ compiles and has proven bounds (the gallery renders them). */
+TEST(expr_examples_compile) {
+    char pattern[1024];
+    snprintf(pattern, sizeof pattern, "%s/examples/*.csg", test_source_dir());
+    glob_t g;
+    CHECK(glob(pattern, 0, NULL, &g) == 0 && g.gl_pathc >= 15, "examples/*.csg: fewer than 15 scenes");
+    for (size_t i = 0; i < g.gl_pathc; i++) {
+        FILE *f = fopen(g.gl_pathv[i], "rb");
+        char text[8192];
+        size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+        if (f)
+            fclose(f);
+        text[n] = '\0';
+        iacsg_expr *e;
+        iacsg_error err = {0};
+        double box[6];
+        CHECK(n > 0 && iacsg_expr_parse(text, g.gl_pathv[i], &e, &err) == IACSG_OK, "%s:%d:%d: %s", g.gl_pathv[i],
+              err.line, err.column, err.message);
+        int bounded = iacsg_expr_bounds(e, box);
+        iacsg_expr_destroy(e);
+        CHECK(bounded, "%s: no bounds found", g.gl_pathv[i]);
+    }
+    test_note("%zu scenes", g.gl_pathc);
+    globfree(&g);
 }
