@@ -13,10 +13,18 @@
 #define KERNELS_CAMERA_H
 #include "params.h"
 
+/* The screen coordinates s of column i and v of row j. Each is a chain of monotone rounded operations, so s
+ * increases with i and v decreases with j also in floating point (kernels/tile.h relies on it). */
+IA_FN ia_real camera_s(const KERNEL_CONSTANT ia_real *p, int i, int width) {
+    return ((ia_real)(2 * i + 1) / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];
+}
+IA_FN ia_real camera_v(const KERNEL_CONSTANT ia_real *p, int j, int height) {
+    return ((ia_real)1 - (ia_real)(2 * j + 1) / (ia_real)height) * p[PARAM_SCALE_V];
+}
+
 IA_FN void camera_ray(const KERNEL_CONSTANT ia_real *p, int ortho, int i, int j, int width, int height,
                       ia_real o[3], ia_real d[3]) {
-    ia_real s = ((ia_real)(2 * i + 1) / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];
-    ia_real v = ((ia_real)1 - (ia_real)(2 * j + 1) / (ia_real)height) * p[PARAM_SCALE_V];
+    ia_real s = camera_s(p, i, width), v = camera_v(p, j, height);
     for (int k = 0; k < 3; k++) {
         ia_real offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
         o[k] = ortho ? p[PARAM_EYE + k] + offset : p[PARAM_EYE + k];

@@ -18,10 +18,15 @@ enum {
     PARAM_BOX = 14,      /* 6: x0, y0, z0, x1, y1, z1, the bounds every ray is clipped to */
     PARAM_EPS = 20,      /* the width of a leaf of the bisection, in units of t (the distance along the ray) */
     PARAM_TIME = 21,     /* the value of the variable t of the expression */
-    PARAM_COUNT = 22
+    PARAM_TMIN = 22,     /* every ray's part inside the box lies in t in [TMIN, TMAX] (src/render.c) */
+    PARAM_TMAX = 23,
+    PARAM_COUNT = 24
 };
 
-/* Flags, an int argument of the render kernel. */
+/* Flags, an int argument of the render kernels. */
 #define RENDER_ORTHO 1
+
+/* The pixels of a tile (kernels/tile.h) are those of one work-group of the render kernel. */
+#define TILE_SIZE 8
 
 #endif

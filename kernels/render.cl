@@ -1,14 +1,54 @@
-/* kernels/render.cl -- the render entry point: one work-item per pixel of a band of rows.
+/* kernels/render.cl -- the entry points, run for each band of rows: iacsg_tiles, one work-item per tile, then
+ * iacsg_render, one work-item per pixel, in work-groups that are the tiles (neighbouring rays take similar
+ * paths through the bisection, so they run together).
  *
- * Per pixel: the camera ray (camera.h), clipped to the bounds (rays that miss the box cost nothing more), the
- * first root by stackless bisection (bisect.h), then the normal and the colour at the leaf's midpoint
- * (shade.h). Outputs, indexed by pixel of the whole image: rgb (3 floats, display-encoded), depth (the leaf's
- * start t, +inf on a miss), normal (3 floats, 0 on a miss), and with KERNEL_STATS the evaluation count.
- * The work-groups are 2D tiles, so neighbouring rays, which take similar paths, run together.
+ * Per pixel: the camera ray (camera.h), clipped to the bounds (rays that miss the box cost nothing more); if the
+ * tile may hold surface, the first root by stackless bisection (bisect.h), first in the tile's first coarse
+ * leaf, then after it (tile.h); then the normal and the colour at the leaf's midpoint (shade.h). Outputs,
+ * indexed by pixel of the whole image: rgb (3 floats, display-encoded), depth (the leaf's start t, +inf on a
+ * miss), normal (3 floats, 0 on a miss), and with KERNEL_STATS the evaluation counts.
  */
 #include "camera.h"
 #include "bisect.h"
+#include "tile.h"
 #include "shade.h"
+
+/* tiles[2k], tiles[2k+1]: the first coarse leaf of tile k (row-major, tiles_x per row); +inf, +inf when no
+ * ray of the tile can meet the surface. */
+__kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int height, int tile_row0,
+                          __global ia_real *tiles, __global uint *evals) {
+    int tx = (int)get_global_id(0), ty = tile_row0 + (int)get_global_id(1);
+    int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE;
+    if (tx >= tiles_x || ty * TILE_SIZE >= height)
+        return;
+    int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
+    int i1 = min(i0 + TILE_SIZE, width) - 1, j1 = min(j0 + TILE_SIZE, height) - 1;
+    ia_real lo = INFINITY, hi = INFINITY;
+    kernel_u32 count = 0;
+    tile_first_leaf(params, flags & RENDER_ORTHO, i0, i1, j0, j1, width, height, ia_point(params[PARAM_TIME]), &lo,
+                    &hi, &count);
+    size_t k = (size_t)ty * (size_t)tiles_x + (size_t)tx;
+    tiles[2 * k] = lo;
+    tiles[2 * k + 1] = hi;
+#ifdef KERNEL_STATS
+    evals[k] = count;
+#else
+    (void)evals;
+#endif
+}
+
+/* The first root of the ray in [t_near, t_far], given that none is before the tile's coarse leaf
+ * [leaf_lo, leaf_hi]: the leaf first, then what follows it. The two searches overlap (each covers at least its
+ * range), so nothing is skipped. */
+static inline int trace(const ia_real o[3], const ia_real d[3], ia_real t_near, ia_real t_far, ia_real leaf_lo,
+                        ia_real leaf_hi, ia_real eps, ia_interval time, ia_real *lo, ia_real *hi,
+                        kernel_u32 *count) {
+    ia_real a = fmax(t_near, leaf_lo), b = fmin(t_far, leaf_hi);
+    if (a <= b && bisect_first_root(o, d, a, ia_hi(b - a), eps, time, lo, hi, count))
+        return 1;
+    a = fmax(t_near, leaf_hi);
+    return a <= t_far && bisect_first_root(o, d, a, ia_hi(t_far - a), eps, time, lo, hi, count);
+}
 
 /* The depth image is float32: in double mode round the start down, so it stays before the first root. */
 static inline float depth_round_down(ia_real t) {
@@ -17,8 +57,8 @@ static inline float depth_round_down(ia_real t) {
 }
 
 __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int height, int row0,
-                           __global float *rgb, __global float *depth, __global float *normal,
-                           __global uint *evals) {
+                           __global const ia_real *tiles, __global float *rgb, __global float *depth,
+                           __global float *normal, __global uint *evals) {
     int i = (int)get_global_id(0), j = row0 + (int)get_global_id(1);
     if (i >= width || j >= height)
         return;
@@ -28,8 +68,10 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
     kernel_u32 count = 0;
     ia_interval time = ia_point(params[PARAM_TIME]);
     camera_ray(params, flags & RENDER_ORTHO, i, j, width, height, o, d);
-    int hit = camera_clip(params, o, d, &t_near, &t_far) &&
-              bisect_first_root(o, d, t_near, ia_hi(t_far - t_near), params[PARAM_EPS], time, &lo, &hi, &count);
+    size_t tile = (size_t)(j / TILE_SIZE) * (size_t)((width + TILE_SIZE - 1) / TILE_SIZE) + (size_t)(i / TILE_SIZE);
+    ia_real leaf_lo = tiles[2 * tile], leaf_hi = tiles[2 * tile + 1];
+    int hit = leaf_lo < INFINITY && camera_clip(params, o, d, &t_near, &t_far) &&
+              trace(o, d, t_near, t_far, leaf_lo, leaf_hi, params[PARAM_EPS], time, &lo, &hi, &count);
     if (hit) {
         ia_real t = lo * (ia_real)0.5 + hi * (ia_real)0.5;
         shade_normal(o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2], time.lo, d, n);

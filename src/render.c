@@ -13,12 +13,12 @@ extern const char iacsg_cl_ia[];      /* the flattened ia/ headers (Makefile: IA
 extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNEL_SOURCES) */
 
 /* The work-group is a tile of pixels: neighbouring rays take similar paths through the bisection. */
-enum { TILE_W = 8, TILE_H = 8, BAND_ROWS = 64 };
+enum { TILE_W = TILE_SIZE, TILE_H = TILE_SIZE, BAND_ROWS = 8 * TILE_SIZE };
 
 struct iacsg_renderer {
     clrt rt;
     cl_program program;
-    cl_kernel kernel;
+    cl_kernel kernel, tile_kernel;
     iacsg_render_config config;
     double build_seconds;
 };
@@ -55,6 +55,8 @@ iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_confi
         cl_int rc = CL_SUCCESS;
         r->kernel = clCreateKernel(r->program, "iacsg_render", &rc);
         CLRT_CHECK(err, rc);
+        r->tile_kernel = clCreateKernel(r->program, "iacsg_tiles", &rc);
+        CLRT_CHECK(err, rc);
     }
     if (st != IACSG_OK) {
         iacsg_renderer_destroy(r);
@@ -72,6 +74,8 @@ void iacsg_renderer_destroy(iacsg_renderer *r) {
         return;
     if (r->kernel)
         clReleaseKernel(r->kernel);
+    if (r->tile_kernel)
+        clReleaseKernel(r->tile_kernel);
     if (r->program)
         clReleaseProgram(r->program);
     clrt_close(&r->rt);
@@ -80,6 +84,35 @@ void iacsg_renderer_destroy(iacsg_renderer *r) {
 
 double iacsg_renderer_build_seconds(const iacsg_renderer *r) { return r->build_seconds; }
 const char *iacsg_renderer_device_name(const iacsg_renderer *r) { return r->rt.device_name; }
+
+/* [TMIN, TMAX]: a t range holding every ray's part inside the box, from the parameters as the device sees them
+ * (p, already rounded to the working precision). Perspective: distances from the eye to the box (|d| = 1 up to
+ * rounding); orthographic: the box corners' positions along f. Widened by 1e-5 relative, far more than the
+ * rounding of the rays (a few ulps). */
+static void t_range(double *p, int ortho) {
+    double lo = INFINITY, hi = 0, gap2 = 0;
+    for (int c = 0; c < 8; c++) {
+        double dist2 = 0, along = 0;
+        for (int k = 0; k < 3; k++) {
+            double diff = p[PARAM_BOX + k + 3 * ((c >> k) & 1)] - p[PARAM_EYE + k];
+            dist2 += diff * diff;
+            along += diff * p[PARAM_FORWARD + k];
+        }
+        lo = fmin(lo, along);
+        hi = fmax(hi, ortho ? along : sqrt(dist2));
+    }
+    if (!ortho) { /* distance from the eye to the nearest point of the box */
+        for (int k = 0; k < 3; k++) {
+            double e = p[PARAM_EYE + k], below = p[PARAM_BOX + k] - e, above = e - p[PARAM_BOX + 3 + k];
+            double out = fmax(fmax(below, above), 0);
+            gap2 += out * out;
+        }
+        lo = sqrt(gap2);
+    }
+    double slack = 1e-5 * (fabs(lo) + fabs(hi) + 1);
+    p[PARAM_TMIN] = fmax(lo - slack, 0);
+    p[PARAM_TMAX] = hi + slack;
+}
 
 /* The parameter block in the working precision. The box is rounded outward to float, so it only grows. */
 static iacsg_status fill_params(const iacsg_view *v, int fp64, void *block, iacsg_error *err) {
@@ -91,17 +124,24 @@ static iacsg_status fill_params(const iacsg_view *v, int fp64, void *block, iacs
         p[PARAM_BOX + k] = v->bounds[k];
     p[PARAM_EPS] = v->eps;
     p[PARAM_TIME] = v->time;
-    for (int k = 0; k < PARAM_COUNT; k++) {
-        if (fp64) {
-            ((double *)block)[k] = p[k];
-            continue;
+    for (int pass = 0; pass < 2; pass++) { /* the t range is computed from the rounded values of pass 0 */
+        if (pass == 1)
+            t_range(p, v->camera.ortho_height > 0);
+        for (int k = 0; k < PARAM_COUNT; k++) {
+            int down = (k >= PARAM_BOX && k < PARAM_BOX + 3) || k == PARAM_TMIN;
+            int up = (k >= PARAM_BOX + 3 && k < PARAM_BOX + 6) || k == PARAM_TMAX;
+            if (fp64) {
+                ((double *)block)[k] = p[k];
+                continue;
+            }
+            float f = (float)p[k];
+            if (down && (double)f > p[k])
+                f = nextafterf(f, -INFINITY);
+            if (up && (double)f < p[k])
+                f = nextafterf(f, INFINITY);
+            ((float *)block)[k] = f;
+            p[k] = f;
         }
-        float f = (float)p[k];
-        if (k >= PARAM_BOX && k < PARAM_BOX + 3 && (double)f > p[k])
-            f = nextafterf(f, -INFINITY);
-        if (k >= PARAM_BOX + 3 && k < PARAM_BOX + 6 && (double)f < p[k])
-            f = nextafterf(f, INFINITY);
-        ((float *)block)[k] = f;
     }
     return IACSG_OK;
 }
@@ -119,13 +159,17 @@ static iacsg_status check_view(const iacsg_view *v, iacsg_error *err) {
     return IACSG_OK;
 }
 
-static void summarize_evals(const cl_uint *evals, size_t n, iacsg_frame *f) {
+/* The mean counts the tiles' evaluations too, shared among the rays; the max is a ray's own. */
+static void summarize_evals(const cl_uint *evals, size_t n, const cl_uint *tile_evals, size_t tiles_n,
+                            iacsg_frame *f) {
     double sum = 0;
     for (size_t k = 0; k < n; k++) {
         sum += evals[k];
         if (evals[k] > f->evals_max)
             f->evals_max = evals[k];
     }
+    for (size_t k = 0; k < tiles_n; k++)
+        sum += tile_evals[k];
     f->evals_mean = n ? sum / (double)n : 0;
 }
 
@@ -140,15 +184,20 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     size_t n = (size_t)view->width * (size_t)view->height;
     size_t real_size = r->config.fp64 ? sizeof(double) : sizeof(float);
     cl_mem params_buf = NULL, rgb_buf = NULL, depth_buf = NULL, normal_buf = NULL, evals_buf = NULL;
-    cl_uint *evals = NULL;
+    cl_mem tiles_buf = NULL, tile_evals_buf = NULL;
+    cl_uint *evals = NULL, *tile_evals = NULL;
+    size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
+    size_t tiles_n = tiles_x * (((size_t)view->height + TILE_SIZE - 1) / TILE_SIZE);
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = malloc(3 * n * sizeof(float));
     frame->depth = malloc(n * sizeof(float));
     frame->normal = malloc(3 * n * sizeof(float));
-    if (r->config.stats)
+    if (r->config.stats) {
         evals = malloc(n * sizeof(cl_uint));
-    if (!frame->rgb || !frame->depth || !frame->normal || (r->config.stats && !evals)) {
+        tile_evals = malloc(tiles_n * sizeof(cl_uint));
+    }
+    if (!frame->rgb || !frame->depth || !frame->normal || (r->config.stats && (!evals || !tile_evals))) {
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
         goto done;
@@ -164,8 +213,12 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     CLRT_CHECK(err, rc);
     normal_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), NULL, &rc);
     CLRT_CHECK(err, rc);
+    tiles_buf = clCreateBuffer(ctx, CL_MEM_READ_WRITE, 2 * tiles_n * real_size, NULL, &rc);
+    CLRT_CHECK(err, rc);
     if (evals) {
         evals_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint), NULL, &rc);
+        CLRT_CHECK(err, rc);
+        tile_evals_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, tiles_n * sizeof(cl_uint), NULL, &rc);
         CLRT_CHECK(err, rc);
     }
     cl_int flags = view->camera.ortho_height > 0 ? RENDER_ORTHO : 0;
@@ -174,13 +227,24 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     CLRT_CHECK(err, clSetKernelArg(r->kernel, 1, sizeof(cl_int), &flags));
     CLRT_CHECK(err, clSetKernelArg(r->kernel, 2, sizeof(cl_int), &width));
     CLRT_CHECK(err, clSetKernelArg(r->kernel, 3, sizeof(cl_int), &height));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 5, sizeof(cl_mem), &rgb_buf));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 6, sizeof(cl_mem), &depth_buf));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 7, sizeof(cl_mem), &normal_buf));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 8, sizeof(cl_mem), evals_buf ? &evals_buf : NULL));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 5, sizeof(cl_mem), &tiles_buf));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 6, sizeof(cl_mem), &rgb_buf));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 7, sizeof(cl_mem), &depth_buf));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 8, sizeof(cl_mem), &normal_buf));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 9, sizeof(cl_mem), evals_buf ? &evals_buf : NULL));
+    for (cl_uint k = 0; k < 4; k++) /* params, flags, width, height: the same for both kernels */
+        CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, k, k ? sizeof(cl_int) : sizeof(cl_mem),
+                                       k == 0 ? (void *)&params_buf : k == 1 ? (void *)&flags
+                                                                   : k == 2 ? (void *)&width : (void *)&height));
+    CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 5, sizeof(cl_mem), &tiles_buf));
+    CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 6, sizeof(cl_mem), tile_evals_buf ? &tile_evals_buf : NULL));
     double t0 = now_seconds();
     for (cl_int row0 = 0; row0 < height; row0 += BAND_ROWS) {
         int rows = height - row0 < BAND_ROWS ? height - row0 : BAND_ROWS;
+        cl_int tile_row0 = row0 / TILE_SIZE;
+        size_t tile_global[2] = {tiles_x, (size_t)(rows + TILE_SIZE - 1) / TILE_SIZE};
+        CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 4, sizeof(cl_int), &tile_row0));
+        CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->tile_kernel, 2, NULL, tile_global, NULL, 0, NULL, NULL));
         size_t local[2] = {TILE_W, TILE_H};
         size_t global[2] = {(size_t)(width + TILE_W - 1) / TILE_W * TILE_W,
                             (size_t)(rows + TILE_H - 1) / TILE_H * TILE_H};
@@ -195,13 +259,16 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     CLRT_CHECK(err, clEnqueueReadBuffer(q, depth_buf, CL_FALSE, 0, n * sizeof(float), frame->depth, 0, NULL, NULL));
     CLRT_CHECK(err,
                clEnqueueReadBuffer(q, normal_buf, CL_FALSE, 0, 3 * n * sizeof(float), frame->normal, 0, NULL, NULL));
-    if (evals)
+    if (evals) {
         CLRT_CHECK(err, clEnqueueReadBuffer(q, evals_buf, CL_FALSE, 0, n * sizeof(cl_uint), evals, 0, NULL, NULL));
+        CLRT_CHECK(err, clEnqueueReadBuffer(q, tile_evals_buf, CL_FALSE, 0, tiles_n * sizeof(cl_uint), tile_evals, 0,
+                                            NULL, NULL));
+    }
     CLRT_CHECK(err, clFinish(q));
     frame->render_seconds = now_seconds() - t0;
     frame->rays = (long long)n;
     if (evals)
-        summarize_evals(evals, n, frame);
+        summarize_evals(evals, n, tile_evals, tiles_n, frame);
     goto done;
 fail:
     st = IACSG_ERR_OPENCL;
@@ -216,7 +283,12 @@ done:
         clReleaseMemObject(normal_buf);
     if (evals_buf)
         clReleaseMemObject(evals_buf);
+    if (tiles_buf)
+        clReleaseMemObject(tiles_buf);
+    if (tile_evals_buf)
+        clReleaseMemObject(tile_evals_buf);
     free(evals);
+    free(tile_evals);
     if (st != IACSG_OK)
         iacsg_frame_free(frame);
     return st;

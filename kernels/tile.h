@@ -1,0 +1,71 @@
+/* kernels/tile.h -- coarse to fine: before the rays of a TILE_SIZE x TILE_SIZE tile are traced, one work-item
+ * bisects the t range [TMIN, TMAX] with the box that holds every ray of the tile at once. Where 0 is not in F
+ * over that box, no ray of the tile meets the surface, so the tile's rays skip it; a tile with no candidate
+ * at all is background without tracing a single ray. The first surviving coarse leaf [lo, hi] is where the rays
+ * most likely hit: they search it first, then the rest (kernels/render.cl).
+ *
+ * Rigor: tile_box mirrors every rounded operation of camera_ray with the interval operation that encloses its
+ * rounded result (an outward-rounded op contains the round-to-nearest one), so each pixel's float ray is inside
+ * the box, and ray_extent's argument applies to it.
+ *
+ * Needs iacsg_F (the emitted source).
+ */
+#ifndef KERNELS_TILE_H
+#define KERNELS_TILE_H
+#include "bisect.h"
+#include "camera.h"
+
+/* The box holding the points o + t*d, t in T, of the float rays of columns i0..i1 and rows j0..j1. */
+IA_FN void tile_box(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1, int j0, int j1, int width,
+                    int height, ia_interval t, ia_interval box[3]) {
+    ia_interval s = ia_make(camera_s(p, i0, width), camera_s(p, i1, width));
+    ia_interval v = ia_make(camera_v(p, j1, height), camera_v(p, j0, height));
+    ia_interval d[3];
+    for (int k = 0; k < 3; k++) {
+        ia_interval offset = ia_add(ia_mul_r(s, p[PARAM_RIGHT + k]), ia_mul_r(v, p[PARAM_UP + k]));
+        if (ortho) { /* origins spread over the tile, one direction */
+            box[k] = ia_add(ia_add_r(offset, p[PARAM_EYE + k]), ia_mul_r(t, p[PARAM_FORWARD + k]));
+            continue;
+        }
+        d[k] = ia_add_r(offset, p[PARAM_FORWARD + k]);
+    }
+    if (ortho)
+        return;
+    ia_interval len = ia_sqrt(ia_add(ia_add(ia_sqr(d[0]), ia_sqr(d[1])), ia_sqr(d[2])));
+    for (int k = 0; k < 3; k++)
+        box[k] = ia_add_r(ia_mul(t, ia_div(d[k], len)), p[PARAM_EYE + k]);
+}
+
+/* Searches [TMIN, TMAX] for the tile's first coarse leaf: a node where 0 may be in F over the tile's box, no
+ * longer than the tile is wide there (splitting t further would not shrink the box much). Returns 0 when the
+ * surface is nowhere in the tile. */
+IA_FN int tile_first_leaf(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1, int j0, int j1, int width,
+                          int height, ia_interval time, ia_real *leaf_lo, ia_real *leaf_hi, kernel_u32 *evals) {
+    ia_real t0 = p[PARAM_TMIN], w = ia_hi(p[PARAM_TMAX] - p[PARAM_TMIN]);
+    /* The tile's angular (perspective) or linear (orthographic) size. */
+    ia_real spread = fmax(camera_s(p, i1, width) - camera_s(p, i0, width), camera_v(p, j0, height) -
+                                                                                camera_v(p, j1, height));
+    int level = 0;
+    bisect_index i = 0;
+    do {
+        ia_real lo = node_bound(t0, w, level, i), hi = node_bound(t0, w, level, i + 1);
+        ia_interval box[3];
+        tile_box(p, ortho, i0, i1, j0, j1, width, height, ia_make(lo, hi), box);
+        ia_interval f = iacsg_F(box[0], box[1], box[2], time);
+        BISECT_COUNT(*evals);
+        if (ia_contains_zero(f)) {
+            ia_real footprint = ortho ? spread : spread * hi;
+            if (hi - lo <= fmax(footprint, p[PARAM_EPS]) || level == BISECT_MAX_LEVEL) {
+                *leaf_lo = lo;
+                *leaf_hi = hi;
+                return 1;
+            }
+            level += 1;
+            i <<= 1;
+        } else if (!node_next(&level, &i)) {
+            return 0;
+        }
+    } while (1);
+}
+
+#endif
