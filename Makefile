@@ -25,7 +25,7 @@ CXXFLAGS_ALL = -std=c++17 -Wall -Wextra -Werror $(OPT) -I. -Isrc $(CXXFLAGS)
 LIBS = -lOpenCL -lOpenImageIO -lOpenImageIO_Util -lmpfr -lgmp -lm -lstdc++
 LDFLAGS_ALL = $(OPT) $(LDFLAGS)
 
-DEB_PACKAGES = gcc g++ make clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev
+DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev
 
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h
@@ -102,8 +102,12 @@ $(BUILD)/embedded_tests.c: $(TEST_CL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_tests $(TEST_CL_SOURCES) > $@
 
 # The user-facing targets install what is missing first, then build in a fresh make (so the new headers count).
+# `make test` runs the suite, the suite under ASan+UBSan (build-asan/), and valgrind on the compiler
+# (tests/run.sh); `make check` is the quick loop: the plain suite only.
 test: deps
-	@$(MAKE) --no-print-directory check
+	@$(MAKE) --no-print-directory $(BUILD)/iacsg-tests $(BUILD)/iacsg
+	@$(MAKE) --no-print-directory BUILD=build-asan SAN=1 build-asan/iacsg-tests build-asan/iacsg
+	@BUILD=$(BUILD) ASAN_BUILD=build-asan tests/run.sh
 
 check: $(BUILD)/iacsg-tests $(BUILD)/iacsg
 	$(BUILD)/iacsg-tests
