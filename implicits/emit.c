@@ -45,6 +45,10 @@ static void put_operand(strbuf *b, const dag *d, int i, role r, int axis) {
             strbuf_printf(b, "v%d_d%s", i, var_names[axis]);
     } else if (n->op <= OP_T) {
         strbuf_printf(b, "%s", var_names[n->op]);
+    } else if (n->op == OP_CONST && r == AS_INTERVAL && dag_is_point(d, i)) {
+        strbuf_printf(b, "ia_point(");
+        put_real(b, n->lo, n->flo);
+        strbuf_printf(b, ")");
     } else if (n->op == OP_CONST && r == AS_INTERVAL) {
         strbuf_printf(b, "ia_make("); /* an empty constant prints as [+inf, -inf], ia/'s empty */
         put_real(b, n->lo, n->flo);

@@ -111,6 +111,8 @@ static int make(dag *d, int op, int a, int b, int n, iacsg_error *err) {
             return make(d, OP_MUL_R, a, b, 0, err);
         break;
     case OP_DIV:
+        if (point_is(d, a, 1) && d->nodes[b].op != OP_CONST)
+            return make(d, OP_RECIP, b, -1, 0, err);
         if (dag_is_point(d, b) && d->nodes[a].op != OP_CONST) {
             int e;
             double v = point_value(d, b);
@@ -128,6 +130,8 @@ static int make(dag *d, int op, int a, int b, int n, iacsg_error *err) {
             double v = point_value(d, b);
             if (v == floor(v) && fabs(v) <= POWN_MAX)
                 return make(d, OP_POWN, a, -1, (int)v, err);
+            if (v == 0.5) /* the same domain (a >= 0), and sqrt is correctly rounded */
+                return make(d, OP_SQRT, a, -1, 0, err);
         }
         break;
     case OP_POWN:

@@ -13,7 +13,7 @@ static const struct {
     {"sphere", "sphere"},                                 /* x^2 -> sqr, r^2 folded to a point, ADD_R */
     {"torus_keywords", "torus(R = 1, r = 0.25)"},         /* keyword arguments, sqrt */
     {"shared_subexpressions", "min(sin(x) * y, sin(x) + 0.1)"}, /* sin(x) computed once; 0.1 as an interval */
-    {"powers", "x^3 + y^0.5 + z^-2 + x*x"},               /* pown, pow, pown < 0, sqr from x*x */
+    {"powers", "x^3 + y^0.5 + z^-2 + x*x + y^1.5"},     /* pown, sqrt, pown < 0, sqr from x*x, pow */
     {"csg_transform", "move(sphere(0.5), 1, 0, 0) | box \\ rotatez(cylinder(0.25), pi / 4)"},
     {"scene", "# a scene\nball = sphere(0.8)\nhole = cylinder(0.3)\nball \\ hole\n"},
     {"time", "sigmoid_blend(decocube, sphere)"},          /* uses t; exp */

@@ -231,10 +231,10 @@ TEST(expr_simplify) {
         int op, count;
     } cases[] = {
         {"x*x", OP_SQR, 1},          {"x^2", OP_SQR, 1},         {"x^3", OP_POWN, 1},
-        {"x^-2", OP_POWN, 1},        {"x^0.5", OP_POW, 1},       {"pow(x, 4)", OP_POWN, 1},
+        {"x^-2", OP_POWN, 1},        {"x^0.5", OP_SQRT, 1},      {"x^0.25", OP_POW, 1},       {"pow(x, 4)", OP_POWN, 1},
         {"x^(1+1)", OP_SQR, 1},      {"sin(x) + sin(x)", OP_SIN, 1}, {"sin(x) * sin(x)", OP_SQR, 1},
         {"x + 0", OP_ADD, 0},        {"x * 1", OP_MUL, 0},       {"--x", OP_NEG, 0},
-        {"x * 0.5", OP_MUL_R, 1},    {"x / 4", OP_MUL_R, 1},     {"x / 3", OP_DIV, 1},
+        {"x * 0.5", OP_MUL_R, 1},    {"x / 4", OP_MUL_R, 1},     {"x / 3", OP_DIV, 1},        {"1 / x", OP_RECIP, 1},
         {"x + 0.5", OP_ADD_R, 1},    {"x - 2", OP_ADD_R, 1},     {"x + 0.1", OP_ADD_R, 0},
         {"min(x, x)", OP_MIN, 0},    {"abs(-x)", OP_NEG, 0},     {"(-x)^2", OP_NEG, 0},
         {"sqrt(2) * cos(pi) + 1", OP_CONST, 1}, {"sphere(0.5)", OP_SQR, 3},

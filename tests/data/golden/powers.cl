@@ -8,7 +8,7 @@
 #endif
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     ia_interval v2 = ia_pown(x, 3);
-    ia_interval v5 = ia_pow(y, ia_make(IACSG_K(0x1p-1f, 0x1p-1), IACSG_K(0x1p-1f, 0x1p-1)));
+    ia_interval v5 = ia_pow(y, ia_point(IACSG_K(0x1p-1f, 0x1p-1)));
     ia_interval v6 = ia_add(v2, v5);
     ia_interval v10 = ia_pown(z, -2);
     ia_interval v11 = ia_add(v6, v10);

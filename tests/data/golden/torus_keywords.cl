@@ -12,7 +12,7 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v7 = ia_add(v4, v6);
     ia_interval v8 = ia_sqrt(v7);
     ia_interval v10 = ia_sqr(z);
-    ia_interval v11 = ia_sub(ia_make(IACSG_K(0x1p+0f, 0x1p+0), IACSG_K(0x1p+0f, 0x1p+0)), v8);
+    ia_interval v11 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
     ia_interval v12 = ia_sqr(v11);
     ia_interval v13 = ia_add(v12, v10);
     ia_interval v16 = ia_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
