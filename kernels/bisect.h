@@ -16,7 +16,7 @@
 #ifdef KERNEL_STATS
 #define BISECT_COUNT(n) ((n) += 1)
 #else
-#define BISECT_COUNT(n) ((void)0)
+#define BISECT_COUNT(n) ((void)(n))
 #endif
 
 /* Searches [t0, t0 + w] of the ray o + t*d at time `time` for the first leaf whose enclosure holds 0: a node no
