@@ -6,6 +6,7 @@
 #   make gallery    render examples/*.csg into the contact sheet docs/gallery.png
 #   make deps       install the Debian packages the project needs (apt-get; sudo when not root)
 #   make bench-ia   nanoseconds per interval operation, host and device, rigorous and fast
+#   make bench      render the benchmark suite of issue 5 and write BENCHMARKS.md (BENCH_QUICK=1: a quick look)
 #   make fuzz       libFuzzer on the expression compiler for FUZZ_SECONDS (default 60)
 #
 # BUILD=dir SAN=1 builds everything under AddressSanitizer and UndefinedBehaviorSanitizer in another directory.
@@ -45,7 +46,7 @@ CLI_OBJ = $(CLI_C:%.c=$(BUILD)/%.o)
 TEST_OBJ = $(TEST_C:%.c=$(BUILD)/%.o) $(TEST_FP_C:%.c=$(BUILD)/%.f32.o) $(TEST_FP_C:%.c=$(BUILD)/%.f64.o) \
            $(if $(TEST_CL_SOURCES),$(BUILD)/embedded_tests.o)
 
-.PHONY: all deps test check demo bench-ia fuzz clean
+.PHONY: all deps test check demo bench-ia fuzz clean bench
 all: $(BUILD)/iacsg
 
 deps:
@@ -128,6 +129,11 @@ gallery: deps
 bench-ia: deps
 	@$(MAKE) --no-print-directory $(BUILD)/iacsg-tests
 	$(BUILD)/iacsg-tests bench_ia
+
+# Not part of `make test`: about 15 minutes (tests/bench/bench.sh says what it measures and how).
+bench: deps
+	@$(MAKE) --no-print-directory $(BUILD)/iacsg
+	BENCH_QUICK=$(BENCH_QUICK) BENCH_BUILD=$(BUILD)/bench sh tests/bench/bench.sh $(BUILD)/iacsg
 
 # libFuzzer over the lexer, parser and compiler, seeded from examples/ and tests/data/fuzz/. New crashes land in
 # build-fuzz/crash-*: copy each into tests/data/fuzz/ so that every `make test` replays it.

@@ -1,0 +1,242 @@
+#!/bin/sh
+# tests/bench/bench.sh -- `make bench`: renders the fixed suite of issue 5 and writes BENCHMARKS.md.
+#
+#   tests/bench/bench.sh [IACSG]        (make bench runs it with build/iacsg)
+#
+# Environment: BENCH_QUICK=1 (fewer runs and rows, writes $BENCH_BUILD/BENCHMARKS.quick.md, for iterating),
+# BENCH_RUNS (cached runs per row, default 5), BENCH_GROWTH_RUNS (for the growth tables, default 3),
+# BENCH_OUT (the report, default BENCHMARKS.md), BENCH_ONLY (space-separated table names: seed libfive ref
+# res eps size modes), BENCH_BUILD (directory for the raw results, default build/bench).
+#
+# Every row is measured by running the whole `iacsg` command, never by a library call, so that its wall time is
+# what a user waits for. Per row:
+#   1. one first run with a fresh, empty PoCL kernel cache (POCL_CACHE_DIR=a new directory): "first";
+#   2. BENCH_RUNS runs with that now-filled cache: "cached" (medians; the render time also its minimum).
+# The render time and kernel build time come from `-stats` (src/render.c: clBuildProgram, and kernel launches
+# to the image in host memory); the wall time from `date +%s%N` around the command (process start to file
+# written, exit). Everything runs with -stats, whose kernel counts evaluations; its cost is measured once (the
+# "stats" row of the modes table).
+#
+# Only POSIX sh, coreutils (date %N, timeout, mktemp) and awk.
+set -u
+
+IACSG=${1:-${IACSG:-build/iacsg}}
+QUICK=${BENCH_QUICK:-0}
+BUILD_DIR=${BENCH_BUILD:-build/bench}
+if [ "$QUICK" = 1 ]; then
+    RUNS=${BENCH_RUNS:-2}
+    GROWTH_RUNS=${BENCH_GROWTH_RUNS:-1}
+    OUT=${BENCH_OUT:-$BUILD_DIR/BENCHMARKS.quick.md}
+else
+    RUNS=${BENCH_RUNS:-5}
+    GROWTH_RUNS=${BENCH_GROWTH_RUNS:-3}
+    OUT=${BENCH_OUT:-BENCHMARKS.md}
+fi
+ONLY=${BENCH_ONLY:-seed libfive ref res eps size modes}
+TIMEOUT=${BENCH_TIMEOUT:-300}
+HERE=$(dirname "$0")
+
+[ -x "$IACSG" ] || { echo "bench: $IACSG is not built (make build/iacsg)" >&2; exit 1; }
+mkdir -p "$BUILD_DIR" || exit 1
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/iacsg-bench.XXXXXX") || exit 1
+trap 'rm -rf "$WORK"' EXIT INT TERM
+RAW=$BUILD_DIR/raw.tsv         # one line per row: table, label, all numbers (for scripts and later comparison)
+: >"$RAW"
+BODY=$WORK/body.md             # the tables, assembled into $OUT at the end
+: >"$BODY"
+TARGETS=$WORK/targets.md
+: >"$TARGETS"
+ENVX=                          # extra environment for the next rows (e.g. POCL_MAX_PTHREAD_COUNT=1)
+T_START=$(date +%s)
+
+wants() { case " $ONLY " in *" $1 "*) return 0 ;; esac; return 1; }
+now_us() { echo $(( $(date +%s%N) / 1000 )); }
+say() { printf '%s\n' "$*" >>"$BODY"; }
+log() { printf 'bench [%ss]: %s\n' $(( $(date +%s) - T_START )) "$*" >&2; }
+loadavg() { cut -d' ' -f1-3 /proc/loadavg 2>/dev/null; }
+
+# median of the numbers on stdin ("-" if none)
+median() { sort -g | awk '{a[NR] = $1} END {if (NR == 0) print "-"; else if (NR % 2) print a[(NR + 1) / 2];
+                                              else print (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
+minimum() { sort -g | awk 'NR == 1 {print $1} END {if (NR == 0) print "-"}'; }
+# seconds (as printed by -stats) or microseconds to milliseconds, for the tables
+ms_of_s() { awk -v v="$1" 'BEGIN {if (v == "-" || v == "") print "-"; else printf "%.0f", v * 1000}'; }
+ms_of_us() { awk -v v="$1" 'BEGIN {if (v == "-" || v == "") print "-"; else printf "%.0f", v / 1000}'; }
+
+# One run of the whole command: run_once CACHE_DIR LOG ARGS...; appends "wall_us: N" and "exit: N" to LOG.
+run_once() {
+    cache=$1 logf=$2
+    shift 2
+    t0=$(now_us)
+    # shellcheck disable=SC2086 # ENVX is a list of VAR=value words
+    env POCL_CACHE_DIR="$cache" $ENVX timeout "$TIMEOUT" "$IACSG" "$@" -stats -o "$WORK/image.png" >"$logf" 2>&1
+    rc=$?
+    t1=$(now_us)
+    printf 'wall_us: %s\nexit: %s\n' $((t1 - t0)) "$rc" >>"$logf"
+    return $rc
+}
+
+field() { # field LOG KEY: the number after "KEY" in a -stats log
+    awk -v k="$2" 'index($0, k) == 1 {s = substr($0, length(k) + 1); gsub(/[^0-9.eE+-]/, " ", s);
+                                       split(s, a, " "); print a[1]; exit}' "$1"
+}
+
+# measure RUNS ARGS...: sets M_* (first run, then medians over RUNS cached runs). M_OK=0 on failure.
+measure() {
+    n=$1
+    shift
+    dir=$(mktemp -d "$WORK/kcache.XXXXXX")
+    M_OK=1 M_ERR=
+    run_once "$dir" "$WORK/first.log" "$@" || { M_OK=0; M_ERR=$(grep -v '^wall_us\|^exit' "$WORK/first.log" | tail -n 1); }
+    M_BUILD1=$(field "$WORK/first.log" "kernel build:")
+    M_RENDER1=$(field "$WORK/first.log" "render:")
+    M_WALL1=$(field "$WORK/first.log" "wall_us:")
+    M_EMEAN=$(awk '/evaluations per ray/ {sub(/.*mean /, ""); sub(/,.*/, ""); print}' "$WORK/first.log")
+    M_EMAX=$(awk '/evaluations per ray/ {sub(/.*max /, ""); print}' "$WORK/first.log")
+    M_BOUNDS=$(awk '/^bounds/ {print $2; exit}' "$WORK/first.log")
+    : >"$WORK/b" ; : >"$WORK/r" ; : >"$WORK/w"
+    k=0
+    while [ "$M_OK" = 1 ] && [ $k -lt "$n" ]; do
+        run_once "$dir" "$WORK/run.log" "$@" || { M_OK=0; M_ERR=$(tail -n 3 "$WORK/run.log" | head -n 1); }
+        field "$WORK/run.log" "kernel build:" >>"$WORK/b"
+        field "$WORK/run.log" "render:" >>"$WORK/r"
+        field "$WORK/run.log" "wall_us:" >>"$WORK/w"
+        k=$((k + 1))
+    done
+    M_BUILD=$(median <"$WORK/b")
+    M_RENDER=$(median <"$WORK/r")
+    M_RMIN=$(minimum <"$WORK/r")
+    M_WALL=$(median <"$WORK/w")
+    rm -rf "$dir"
+    [ "$M_OK" = 1 ] || { M_BUILD=- M_RENDER=- M_RMIN=- M_WALL=-; }
+    # milliseconds for the tables
+    R_MS=$(ms_of_s "$M_RENDER") RMIN_MS=$(ms_of_s "$M_RMIN") R1_MS=$(ms_of_s "$M_RENDER1")
+    B_MS=$(ms_of_s "$M_BUILD") B1_MS=$(ms_of_s "$M_BUILD1")
+    W_MS=$(ms_of_us "$M_WALL") W1_MS=$(ms_of_us "$M_WALL1")
+}
+
+# The standard table: header, then row LABEL ARGS... for each row.
+TABLE=
+EXTRA=          # extra cells for the next row (with their leading "| "), under the extra header of table
+table() { # table NAME TITLE FIRST-COLUMN [EXTRA-HEADER]
+    TABLE=$1
+    say ""
+    say "### $2"
+    say ""
+    if [ $# -ge 4 ]; then xh="$4 |"; xs=$(printf '%s' "$4" | sed 's/[^|]*|/---|/g; s/[^|]*$/---|/'); else xh= xs=; fi
+    say "| $3 | render ms, median [min] | evals/ray mean / max | build ms first / cached | render ms first run | wall ms first / cached | $xh"
+    say "|---|---|---|---|---|---|$xs"
+}
+row() { # row LABEL RUNS ARGS...: measure and write the row
+    row_measure "$@"
+    EXTRA=
+    row_emit
+}
+row_measure() { # row_measure LABEL RUNS ARGS...: measure only (then set EXTRA and call row_emit)
+    label=$1 n=$2
+    shift 2
+    log "$TABLE: $label"
+    measure "$n" "$@"
+    [ "$M_OK" = 1 ] || log "  FAILED: $M_ERR"
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$TABLE" "$label" "$M_OK" "$M_RENDER" "$M_RMIN" \
+        "$M_EMEAN" "$M_EMAX" "$M_BUILD1" "$M_BUILD" "$M_RENDER1" "$M_WALL1" "$M_WALL" "$n" >>"$RAW"
+}
+row_emit() {
+    if [ "$M_OK" = 1 ]; then
+        say "| $label | **$R_MS** [$RMIN_MS] | ${M_EMEAN:--} / ${M_EMAX:--} | $B1_MS / $B_MS | $R1_MS | $W1_MS / $W_MS |$EXTRA"
+    else
+        say "| $label | FAILED: $(printf '%s' "$M_ERR" | tr '|' '/') | | | | |$EXTRA"
+    fi
+}
+# the last value of a column for a label in the raw results (4 render, 8 build first, 9 build cached, 12 wall)
+raw() { awk -F'\t' -v t="$1" -v l="$2" -v c="$3" '$1 == t && $2 == l {v = $c} END {print (v == "" ? "-" : v)}' "$RAW"; }
+
+target() { # target TEXT MEASURED VERDICT(met|not met|-)
+    case $3 in met) v="**met**" ;; "not met") v="**not met**" ;; *) v="not measured" ;; esac
+    printf '| %s | %s | %s |\n' "$1" "$2" "$v" >>"$TARGETS"
+}
+le() { awk -v a="$1" -v b="$2" 'BEGIN {if (a == "-" || a == "" || b == "-" || b == "") print "-";
+                                      else if (a + 0 <= b + 0) print "met"; else print "not met"}'; }
+
+# A scene: the example file when engineer 2's examples/ has it, else the expression. Prints the argument.
+scene_arg() { # scene_arg FILE EXPR
+    if [ -f "$1" ]; then printf '%s' "$1"; else printf '%s' "$2"; fi
+}
+scene_src() { if [ -f "$1" ]; then printf '`%s`' "$1"; else printf '`%s`' "$2" | tr '|' '/'; fi; }
+
+# A union of N spheres on a grid in [-1.5,1.5]^3, one line, to a scene file: spheres N R FILE (R 0: 0.4 x the
+# grid spacing; grids 1, 2x2x1, 4x2x2, 4x4x4, 8x8x4, 16x8x8).
+spheres() {
+    awk -v n="$1" -v r="$2" 'BEGIN {
+        nx = 1; ny = 1; nz = 1; m = n
+        while (m > 1) { if (nx <= ny && nx <= nz) nx *= 2; else if (ny <= nz) ny *= 2; else nz *= 2; m /= 2 }
+        s = 3; if (nx > 1) s = 3 / (nx - 1); if (ny > 1 && 3 / (ny - 1) < s) s = 3 / (ny - 1)
+        if (nz > 1 && 3 / (nz - 1) < s) s = 3 / (nz - 1)
+        if (r == 0) r = (n == 1) ? 1 : 0.4 * s
+        printf "# %d spheres of radius %g on a %dx%dx%d grid in [-1.5,1.5]^3\n", n, r, nx, ny, nz
+        if (n > 1) printf "min("
+        sep = ""
+        for (i = 0; i < nx; i++) for (j = 0; j < ny; j++) for (k = 0; k < nz; k++) {
+            cx = (nx > 1) ? -1.5 + 3 * i / (nx - 1) : 0; cy = (ny > 1) ? -1.5 + 3 * j / (ny - 1) : 0
+            cz = (nz > 1) ? -1.5 + 3 * k / (nz - 1) : 0
+            printf "%s(x-(%g))^2+(y-(%g))^2+(z-(%g))^2-%g", sep, cx, cy, cz, r * r
+            sep = ", "
+        }
+        if (n > 1) printf ")"
+        printf "\n"
+    }' >"$3"
+}
+
+REF='min((x-0.5)^2+y^2+z^2-1, (1-sqrt(x^2+y^2))^2+z^2-0.125)'
+REFVIEW="-eye 0,-4,2.5 -at 0,0,0 -up 0,0,1 -fov 40 -bounds -2,-2,-2,2,2,2"
+TOP="-eye 0,0,4 -at 0,0,0 -up 0,1,0 -ortho 4 -bounds -2,-2,-2,2,2,2"
+
+. "$HERE/suite.sh"
+
+log "start: $IACSG, runs $RUNS (growth $GROWTH_RUNS), quick $QUICK, load $(loadavg)"
+LOAD0=$(loadavg)
+# The fixed cost of a command: OpenCL platform and device start-up, measured by `iacsg devices`.
+: >"$WORK/w"
+k=0
+while [ $k -lt 5 ]; do
+    t0=$(now_us); "$IACSG" devices >/dev/null 2>&1; t1=$(now_us)
+    echo $((t1 - t0)) >>"$WORK/w"
+    k=$((k + 1))
+done
+STARTUP_MS=$(ms_of_us "$(median <"$WORK/w")")
+DEVICE=$("$IACSG" devices 2>/dev/null | head -n 1 | sed 's/^0: //')
+
+bench_suite   # suite.sh: the tables
+
+LOAD1=$(loadavg)
+ELAPSED=$(( $(date +%s) - T_START ))
+{
+    echo "# Benchmarks"
+    echo ""
+    echo "Written by \`make bench\` (tests/bench/bench.sh, scenes in tests/bench/suite.sh)$( [ "$QUICK" = 1 ] && echo ', QUICK mode: fewer runs and rows')."
+    echo "Do not edit by hand: run \`make bench\` again."
+    echo ""
+    echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC'), bench took ${ELAPSED} s"
+    echo "- git commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD -- ia implicits kernels src 2>/dev/null || echo ' (with uncommitted changes in ia/ implicits/ kernels/ src/)')"
+    echo "- machine: $(lscpu 2>/dev/null | awk -F: '/^Model name/ {gsub(/^ +/, "", $2); print $2}'), $(nproc) CPUs ($(lscpu 2>/dev/null | awk -F: '/^Thread\(s\) per core/ {gsub(/ /, "", $2); t = $2} /^Core\(s\) per socket/ {gsub(/ /, "", $2); c = $2} /^Hypervisor vendor/ {gsub(/^ +/, "", $2); h = " under " $2} END {print c " cores per socket, " t " thread per core" h}'))"
+    echo "- OpenCL device: $DEVICE, $(dpkg-query -W -f='${Package} ${Version}' pocl-opencl-icd 2>/dev/null)"
+    echo "- load average at start / end: $LOAD0 / $LOAD1 (the 2 CPUs may be shared with other work: see the [min] column)"
+    echo "- runs per row: 1 first run (empty PoCL kernel cache) + $RUNS cached runs ($GROWTH_RUNS in the growth tables)"
+    echo ""
+    echo "Columns: **render** is the \`-stats\` render time (kernel launches to the image in host memory), median of the"
+    echo "cached runs, [minimum]; **evals/ray** the interval evaluations of F per ray; **build** the \`-stats\` kernel"
+    echo "build time (clBuildProgram) on the first run (empty cache) and cached; **render first run** includes what PoCL"
+    echo "compiles lazily at the first launch; **wall** the whole command, process start to image written, first run"
+    echo "and cached (median). The fixed start-up of a command (OpenCL platform and device, \`iacsg devices\`) is"
+    echo "**${STARTUP_MS} ms** (median of 5): wall - build - render - start-up is parsing, image writing and exit."
+    echo ""
+    echo "## Targets of issue 5"
+    echo ""
+    echo "| target | measured | verdict |"
+    echo "|---|---|---|"
+    cat "$TARGETS"
+    cat "$BODY"
+    if [ -f "$HERE/NOTES.md" ]; then echo ""; cat "$HERE/NOTES.md"; fi
+} >"$WORK/out.md"
+mv "$WORK/out.md" "$OUT"
+log "wrote $OUT (raw numbers in $RAW)"
