@@ -22,11 +22,11 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v22 = ia_add_r(v19, IACSG_K(-0x1p+0f, -0x1p+0));
     ia_interval v23 = ia_max(v20, v21);
     ia_interval v24 = ia_max(v23, v22);
-    ia_interval v30 = ia_mul(ia_make(IACSG_K(0x1.6a09dcp-1f, 0x1.6a09e667f3bc7p-1), IACSG_K(0x1.6a09fp-1f, 0x1.6a09e667f3bd1p-1)), x);
-    ia_interval v32 = ia_mul(ia_make(IACSG_K(0x1.6a09dcp-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09fp-1f, 0x1.6a09e667f3bd2p-1)), y);
+    ia_interval v30 = ia_mul(ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)), x);
+    ia_interval v32 = ia_mul(ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)), y);
     ia_interval v33 = ia_add(v30, v32);
-    ia_interval v34 = ia_mul(ia_make(IACSG_K(0x1.6a09dcp-1f, 0x1.6a09e667f3bc7p-1), IACSG_K(0x1.6a09fp-1f, 0x1.6a09e667f3bd1p-1)), y);
-    ia_interval v35 = ia_mul(ia_make(IACSG_K(0x1.6a09dcp-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09fp-1f, 0x1.6a09e667f3bd2p-1)), x);
+    ia_interval v34 = ia_mul(ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)), y);
+    ia_interval v35 = ia_mul(ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)), x);
     ia_interval v36 = ia_sub(v34, v35);
     ia_interval v37 = ia_sqr(v33);
     ia_interval v38 = ia_sqr(v36);
