@@ -299,7 +299,13 @@ int cli_render(int argc, char **argv) {
     iacsg_error err = {0};
     iacsg_expr *e = NULL;
     iacsg_renderer *r = NULL;
-    iacsg_status st = iacsg_expr_parse(text, name, &e, &err);
+    iacsg_status st = IACSG_OK;
+    const char *outputs[3] = {o.output, o.depth_file, o.normals_file};
+    for (int k = 0; k < 3 && st == IACSG_OK; k++)
+        if (outputs[k])
+            st = iacsg_image_check_format(outputs[k], &err);
+    if (st == IACSG_OK)
+        st = iacsg_expr_parse(text, name, &e, &err);
     if (st == IACSG_OK) {
         const char *which = choose_bounds(&o, e);
         const double *b = o.view.bounds;

@@ -15,6 +15,9 @@ extern "C" {
 iacsg_status iacsg_image_write(const char *path, int width, int height, int channels, const float *pixels,
                                int as_float, iacsg_error *err);
 
+/* IACSG_OK if `path` names a format OpenImageIO can write (by its extension), checked before a long render. */
+iacsg_status iacsg_image_check_format(const char *path, iacsg_error *err);
+
 /* Reads an image as floats (8-bit files give values in [0, 1]). *pixels is malloc'ed; the caller free()s it. */
 iacsg_status iacsg_image_read(const char *path, int *width, int *height, int *channels, float **pixels,
                               iacsg_error *err);

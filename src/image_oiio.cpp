@@ -56,6 +56,17 @@ extern "C" iacsg_status iacsg_image_write(const char *path, int width, int heigh
     }
 }
 
+extern "C" iacsg_status iacsg_image_check_format(const char *path, iacsg_error *err) {
+    try {
+        if (!ImageOutput::create(path))
+            return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: no image format for this file name (%s)", path,
+                                   OIIO::geterror().c_str());
+        return IACSG_OK;
+    } catch (const std::exception &e) {
+        return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: %s", path, e.what());
+    }
+}
+
 extern "C" iacsg_status iacsg_image_read(const char *path, int *width, int *height, int *channels, float **pixels,
                                          iacsg_error *err) {
     *pixels = nullptr;
