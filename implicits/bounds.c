@@ -5,7 +5,8 @@
  * t in [0, 1] (bisected like the space): the box returned holds every zero of f in that cube at those times. For each side of each axis,
  * a binary search over candidate planes finds the tightest plane beyond which the slab of the cube is proven
  * free of zeros; a slab counts as proven when adaptive bisection (a budget of BOUNDS_BUDGET evaluations)
- * covers it with boxes whose enclosure excludes 0. */
+ * covers it with boxes whose enclosure excludes 0. The total work is capped too (BOUNDS_WORK): for an
+ * expression of a million nodes the search gives up rather than take minutes. */
 #include "eval.h"
 #include "expr_internal.h"
 #include <math.h>
@@ -14,12 +15,14 @@
 
 #define BOUNDS_DOMAIN 1024.0
 #define BOUNDS_BUDGET 3000
+#define BOUNDS_WORK 30000000.0 /* node evaluations in all: about a tenth of a second; huge DAGs give up */
 
 typedef struct {
     const iacsg_expr *e;
     void *scratch;
     double (*stack)[8];
     int uses_time;
+    double work_left; /* below 0: out of work, no bounds */
 } prover;
 
 /* 1 if f has no zero in the box (x0,x1,y0,y1,z0,z1) for t in [0, 1]. */
@@ -33,7 +36,8 @@ static int no_zero_in(prover *p, const double box[6]) {
     while (top > 0) {
         double b[8], r[2];
         memcpy(b, p->stack[--top], sizeof b);
-        if (++evals > BOUNDS_BUDGET)
+        p->work_left -= p->e->count;
+        if (++evals > BOUNDS_BUDGET || p->work_left < 0)
             return 0;
         eval_dag_f64(&p->e->simple, p->e->order, p->e->count, b, p->scratch, r);
         if (!(r[0] <= 0 && r[1] >= 0))
@@ -77,7 +81,7 @@ static double candidate(int j) {
 
 int iacsg_expr_bounds(const iacsg_expr *e, double box[6]) {
     prover p = {e, malloc(eval_scratch_size(e->root)), malloc((BOUNDS_BUDGET + 2) * sizeof(double[8])),
-                iacsg_expr_uses_time(e)};
+                iacsg_expr_uses_time(e), BOUNDS_WORK};
     int ok = p.scratch && p.stack;
     double result[6];
     for (int axis = 0; ok && axis < 3; axis++)
@@ -100,7 +104,7 @@ int iacsg_expr_bounds(const iacsg_expr *e, double box[6]) {
         }
     free(p.scratch);
     free(p.stack);
-    if (!ok)
+    if (!ok || p.work_left < 0)
         return 0;
     box[0] = result[0], box[1] = result[2], box[2] = result[4];
     box[3] = result[1], box[4] = result[3], box[5] = result[5];
