@@ -4,6 +4,7 @@
 #include "lower.h"
 #include "library.h"
 #include "suggest.h"
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -104,11 +105,19 @@ typedef struct {
     int *values; /* AST node -> DAG node */
 } lowering;
 
-static int fail(lowering *l, long tok, iacsg_status status, const char *fmt, const char *a1, const char *a2,
-                const char *a3) {
+static int fail(lowering *l, long tok, iacsg_status status, const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+static int fail(lowering *l, long tok, iacsg_status status, const char *fmt, ...) {
     const token *t = &l->a->toks[tok];
     char msg[400];
-    snprintf(msg, sizeof msg, fmt, a1, a2, a3);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    /* errors inside the library's own texts have no place in the user's text */
     iacsg_error_set(l->env->err, status, l->what[0] ? 0 : t->line, l->what[0] ? 0 : t->column, "%s%s", l->what, msg);
     return -1;
 }
@@ -138,7 +147,7 @@ static int fail_unknown(lowering *l, long tok, const char *name, int called) {
                 suggest_offer(&s, l->bindings.slots[i].name);
     }
     if (!s.best)
-        return fail(l, tok, IACSG_ERR_NAME, called ? "unknown function '%s'" : "unknown name '%s'", name, "", "");
+        return fail(l, tok, IACSG_ERR_NAME, called ? "unknown function '%s'" : "unknown name '%s'", name);
     const lib_entry *e = lib_find(s.best);
     const char *kind = e ? lib_kind_name(e->kind) : find_op(s.best) >= 0 || find_csg(s.best) >= 0 ? "function" : "name";
     return fail(l, tok, IACSG_ERR_NAME, "unknown %s '%s', did you mean '%s'?", kind, name, s.best);
@@ -203,8 +212,9 @@ static int load_lib(lower_env *env, const lib_entry *e, lib_lowered *L) {
     return 0;
 }
 
-/* The call name(args) of a library entry: binds the arguments to the parameters and substitutes. */
-static int call_lib(lowering *l, const ast_node *call, const char *name, const lib_entry *e) {
+/* The call name(args) of a library entry (call is NULL for a bare name at token tok): binds the arguments to
+ * the parameters and substitutes. */
+static int call_lib(lowering *l, const ast_node *call, long tok, const char *name, const lib_entry *e) {
     lower_env *env = l->env;
     lib_lowered *L = &env->lib[e - lib_entries];
     if (load_lib(env, e, L) < 0)
@@ -225,19 +235,18 @@ static int call_lib(lowering *l, const ast_node *call, const char *name, const l
                 suggest_init(&s, kw);
                 for (int j = 0; j < L->nparams; j++)
                     suggest_offer(&s, L->names[j]);
-                return fail(l, g->keyword, IACSG_ERR_NAME,
-                            s.best ? "'%s' has no parameter '%s', did you mean '%s'?" : "'%s' has no parameter '%s'%s",
-                            name, kw, s.best ? s.best : "");
+                if (s.best)
+                    return fail(l, g->keyword, IACSG_ERR_NAME, "'%s' has no parameter '%s', did you mean '%s'?",
+                                name, kw, s.best);
+                return fail(l, g->keyword, IACSG_ERR_NAME, "'%s' has no parameter '%s'", name, kw);
             }
             if (params[k] >= 0)
-                return fail(l, g->keyword, IACSG_ERR_ARITY, "'%s' is given twice in the call of '%s'%s", kw, name, "");
+                return fail(l, g->keyword, IACSG_ERR_ARITY, "'%s' is given twice in the call of '%s'", kw, name);
         } else if (i > 0 && l->a->args[call->first + i - 1].keyword >= 0) {
-            return fail(l, call->tok, IACSG_ERR_SYNTAX, "in the call of '%s': a positional argument follows a keyword%s%s",
-                        name, "", "");
+            return fail(l, call->tok, IACSG_ERR_SYNTAX, "in the call of '%s': a positional argument follows a keyword",
+                        name);
         } else if (i >= L->nparams) {
-            char n[16];
-            snprintf(n, sizeof n, "%d", L->nparams);
-            return fail(l, call->tok, IACSG_ERR_ARITY, "'%s' takes at most %s argument%s", name, n,
+            return fail(l, call->tok, IACSG_ERR_ARITY, "'%s' takes at most %d argument%s", name, L->nparams,
                         L->nparams == 1 ? "" : "s");
         }
         params[k] = l->values[g->value];
@@ -246,8 +255,7 @@ static int call_lib(lowering *l, const ast_node *call, const char *name, const l
     for (int k = 0; k < L->nparams; k++)
         if (params[k] < 0) {
             if (L->defaults[k] < 0)
-                return fail(l, call ? call->tok : 0, IACSG_ERR_ARITY, "'%s' needs its argument '%s'%s", name,
-                            L->names[k], "");
+                return fail(l, tok, IACSG_ERR_ARITY, "'%s' needs its argument '%s'", name, L->names[k]);
             params[k] = dag_substitute(env->d, L->defaults[k], env->d, same, params, k, env->err);
             if (params[k] < 0)
                 return -1;
@@ -279,28 +287,25 @@ static int lower_call(lowering *l, const ast_node *n) {
     ast_token_text(l->a, n->tok, name, sizeof name);
     const lib_entry *e = lib_find(name);
     if (e)
-        return call_lib(l, n, name, e);
+        return call_lib(l, n, n->tok, name, e);
     int op = find_op(name), csg = find_csg(name);
     if (op < 0 && csg < 0) {
         for (int i = 0; i < l->nparams; i++)
             if (strcmp(l->params[i], name) == 0)
-                return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is not a function%s%s", name, "", "");
+                return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is not a function", name);
         if (binding_find(&l->bindings, name) && binding_find(&l->bindings, name)->name[0])
-            return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is a binding, not a function%s%s", name, "", "");
+            return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is a binding, not a function", name);
         if (is_builtin(name))
-            return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is not a function%s%s", name, "", "");
+            return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is not a function", name);
         return fail_unknown(l, n->tok, name, 1);
     }
     for (int i = 0; i < n->nargs; i++)
         if (l->a->args[n->first + i].keyword >= 0)
-            return fail(l, l->a->args[n->first + i].keyword, IACSG_ERR_NAME, "'%s' takes no keyword arguments%s%s",
-                        name, "", "");
+            return fail(l, l->a->args[n->first + i].keyword, IACSG_ERR_NAME, "'%s' takes no keyword arguments", name);
     int arity = csg >= 0 ? 1 : dag_ops[op].arity, nary = csg >= 0 || dag_ops[op].nary;
     if (nary ? n->nargs < arity : n->nargs != arity) {
-        char want[32], got[16];
-        snprintf(want, sizeof want, "%s%d argument%s", nary ? "at least " : "", arity, arity == 1 ? "" : "s");
-        snprintf(got, sizeof got, "%d", n->nargs);
-        return fail(l, n->tok, IACSG_ERR_ARITY, "'%s' takes %s, got %s", name, want, got);
+        return fail(l, n->tok, IACSG_ERR_ARITY, "'%s' takes %s%d argument%s, got %d", name, nary ? "at least " : "",
+                    arity, arity == 1 ? "" : "s", n->nargs);
     }
     if (csg >= 0)
         return fold(l, n, csg == 0 ? OP_MIN : OP_MAX, csg == 2);
@@ -328,11 +333,11 @@ static int lower_name(lowering *l, const ast_node *n) {
             return dag_add(d, leaf_ops[i], -1, -1, 0, l->env->err);
     const lib_entry *e = lib_find(name);
     if (e && e->kind == LIB_PRIMITIVE)
-        return call_lib(l, NULL, name, e);
+        return call_lib(l, NULL, n->tok, name, e);
     if (e || find_op(name) >= 0 || find_csg(name) >= 0)
-        return fail(l, n->tok, IACSG_ERR_ARITY, "'%s' needs arguments: write %s(...)", name, name, "");
+        return fail(l, n->tok, IACSG_ERR_ARITY, "'%s' needs arguments: write %s(...)", name, name);
     if (is_builtin(name))
-        return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is reserved for multi-material scenes%s%s", name, "", "");
+        return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is reserved for multi-material scenes", name);
     return fail_unknown(l, n->tok, name, 0);
 }
 
@@ -341,12 +346,10 @@ static int lower_bind(lowering *l, const ast_node *n) {
     ast_token_text(l->a, n->tok, name, sizeof name);
     int line = l->a->toks[n->tok].line;
     if (is_builtin(name))
-        return fail(l, n->tok, IACSG_ERR_NAME, "cannot bind '%s': it is a built-in name%s%s", name, "", "");
+        return fail(l, n->tok, IACSG_ERR_NAME, "cannot bind '%s': it is a built-in name", name);
     binding *b = binding_find(&l->bindings, name);
     if (b && b->name[0]) {
-        char at[16];
-        snprintf(at, sizeof at, "%d", b->line);
-        return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is already bound (line %s)%s", name, at, "");
+        return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is already bound (line %d)", name, b->line);
     }
     if (!binding_add(&l->bindings, name, l->values[n->a], line))
         return iacsg_error_set(l->env->err, IACSG_ERR_NOMEM, 0, 0, "out of memory"), -1;
