@@ -23,22 +23,16 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v1 = sin(x);
     ia_real v1_dx = cos(x) * (ia_real)1;
-    ia_real v1_dy = cos(x) * (ia_real)0;
-    ia_real v1_dz = cos(x) * (ia_real)0;
     ia_real v3 = v1 * y;
     ia_real v3_dx = v1_dx * y + v1 * (ia_real)0;
-    ia_real v3_dy = v1_dy * y + v1 * (ia_real)1;
-    ia_real v3_dz = v1_dz * y + v1 * (ia_real)0;
+    ia_real v3_dy = (ia_real)0 * y + v1 * (ia_real)1;
     ia_real v5 = v1 + IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4);
     ia_real v5_dx = v1_dx + (ia_real)0;
-    ia_real v5_dy = v1_dy + (ia_real)0;
-    ia_real v5_dz = v1_dz + (ia_real)0;
     ia_real v6 = fmin(v3, v5);
     ia_real v6_dx = (v3 <= v5 ? v3_dx : v5_dx);
-    ia_real v6_dy = (v3 <= v5 ? v3_dy : v5_dy);
-    ia_real v6_dz = (v3 <= v5 ? v3_dz : v5_dz);
+    ia_real v6_dy = (v3 <= v5 ? v3_dy : (ia_real)0);
     *gx = v6_dx;
     *gy = v6_dy;
-    *gz = v6_dz;
+    *gz = (ia_real)0;
     return v6;
 }
