@@ -40,7 +40,12 @@ HERE=$(dirname "$0")
 mkdir -p "$BUILD_DIR" || exit 1
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/iacsg-bench.XXXXXX") || exit 1
 trap 'rm -rf "$WORK"' EXIT INT TERM
-RAW=$BUILD_DIR/raw.tsv         # one line per row: table, label, all numbers (for scripts and later comparison)
+# A private copy of the binary (kernels and ia/ are embedded in it): others may rebuild build/iacsg meanwhile,
+# and every row should measure the same program.
+cp "$IACSG" "$WORK/iacsg" || exit 1
+IACSG_SRC=$IACSG
+IACSG=$WORK/iacsg
+RAW=$BUILD_DIR/raw.tsv         # one line per row: table label ok render rmin evals-mean evals-max build1 build render1 wall1 wall runs cpu1 cpu
 : >"$RAW"
 BODY=$WORK/body.md             # the tables, assembled into $OUT at the end
 : >"$BODY"
@@ -67,13 +72,27 @@ ms_of_us() { awk -v v="$1" 'BEGIN {if (v == "-" || v == "") print "-"; else prin
 run_once() {
     cache=$1 logf=$2
     shift 2
+    times >"$WORK/times0"
     t0=$(now_us)
     # shellcheck disable=SC2086 # ENVX is a list of VAR=value words
     env POCL_CACHE_DIR="$cache" $ENVX timeout "$TIMEOUT" "$IACSG" "$@" -stats -o "$WORK/image.png" >"$logf" 2>&1
     rc=$?
     t1=$(now_us)
-    printf 'wall_us: %s\nexit: %s\n' $((t1 - t0)) "$rc" >>"$logf"
+    times >"$WORK/times1"
+    printf 'wall_us: %s\nexit: %s\ncpu_s: %s\n' $((t1 - t0)) "$rc" "$(children_cpu "$WORK/times0" "$WORK/times1")" >>"$logf"
     return $rc
+}
+
+# The CPU time (user + system, all threads) of the children between two outputs of the POSIX `times` builtin,
+# whose second line is the children's "XmY.YYs XmY.YYs". Unlike wall time, it hardly moves when other work
+# shares the CPUs, so it is the number to compare across runs on a busy machine.
+children_cpu() {
+    awk 'function sec(v, a) {split(v, a, "m"); sub(/s$/, "", a[2]); return a[1] * 60 + a[2]}
+         FNR == 2 {c[++f] = sec($1) + sec($2)} END {printf "%.3f", c[2] - c[1]}' "$1" "$2"
+}
+
+failure() { # failure LOG: the exit status and the last line the command printed
+    awk '/^exit: / {x = $2} !/^(wall_us|exit|cpu_s): / {l = $0} END {print "exit " x (x == 124 ? " (timeout)" : "") ": " l}' "$1"
 }
 
 field() { # field LOG KEY: the number after "KEY" in a -stats log
@@ -87,32 +106,36 @@ measure() {
     shift
     dir=$(mktemp -d "$WORK/kcache.XXXXXX")
     M_OK=1 M_ERR=
-    run_once "$dir" "$WORK/first.log" "$@" || { M_OK=0; M_ERR=$(grep -v '^wall_us\|^exit' "$WORK/first.log" | tail -n 1); }
+    run_once "$dir" "$WORK/first.log" "$@" || { M_OK=0; M_ERR=$(failure "$WORK/first.log"); }
     M_BUILD1=$(field "$WORK/first.log" "kernel build:")
     M_RENDER1=$(field "$WORK/first.log" "render:")
     M_WALL1=$(field "$WORK/first.log" "wall_us:")
     M_EMEAN=$(awk '/evaluations per ray/ {sub(/.*mean /, ""); sub(/,.*/, ""); print}' "$WORK/first.log")
     M_EMAX=$(awk '/evaluations per ray/ {sub(/.*max /, ""); print}' "$WORK/first.log")
     M_BOUNDS=$(awk '/^bounds/ {print $2; exit}' "$WORK/first.log")
-    : >"$WORK/b" ; : >"$WORK/r" ; : >"$WORK/w"
+    M_CPU1=$(field "$WORK/first.log" "cpu_s:")
+    : >"$WORK/b" ; : >"$WORK/r" ; : >"$WORK/w" ; : >"$WORK/c"
     k=0
     while [ "$M_OK" = 1 ] && [ $k -lt "$n" ]; do
-        run_once "$dir" "$WORK/run.log" "$@" || { M_OK=0; M_ERR=$(tail -n 3 "$WORK/run.log" | head -n 1); }
+        run_once "$dir" "$WORK/run.log" "$@" || { M_OK=0; M_ERR=$(failure "$WORK/run.log"); }
         field "$WORK/run.log" "kernel build:" >>"$WORK/b"
         field "$WORK/run.log" "render:" >>"$WORK/r"
         field "$WORK/run.log" "wall_us:" >>"$WORK/w"
+        field "$WORK/run.log" "cpu_s:" >>"$WORK/c"
         k=$((k + 1))
     done
     M_BUILD=$(median <"$WORK/b")
     M_RENDER=$(median <"$WORK/r")
     M_RMIN=$(minimum <"$WORK/r")
     M_WALL=$(median <"$WORK/w")
+    M_CPU=$(median <"$WORK/c")
     rm -rf "$dir"
-    [ "$M_OK" = 1 ] || { M_BUILD=- M_RENDER=- M_RMIN=- M_WALL=-; }
+    [ "$M_OK" = 1 ] || { M_BUILD=- M_RENDER=- M_RMIN=- M_WALL=- M_CPU=-; }
     # milliseconds for the tables
     R_MS=$(ms_of_s "$M_RENDER") RMIN_MS=$(ms_of_s "$M_RMIN") R1_MS=$(ms_of_s "$M_RENDER1")
     B_MS=$(ms_of_s "$M_BUILD") B1_MS=$(ms_of_s "$M_BUILD1")
     W_MS=$(ms_of_us "$M_WALL") W1_MS=$(ms_of_us "$M_WALL1")
+    C_MS=$(ms_of_s "$M_CPU") C1_MS=$(ms_of_s "$M_CPU1")
 }
 
 # The standard table: header, then row LABEL ARGS... for each row.
@@ -124,8 +147,8 @@ table() { # table NAME TITLE FIRST-COLUMN [EXTRA-HEADER]
     say "### $2"
     say ""
     if [ $# -ge 4 ]; then xh="$4 |"; xs=$(printf '%s' "$4" | sed 's/[^|]*|/---|/g; s/[^|]*$/---|/'); else xh= xs=; fi
-    say "| $3 | render ms, median [min] | evals/ray mean / max | build ms first / cached | render ms first run | wall ms first / cached | $xh"
-    say "|---|---|---|---|---|---|$xs"
+    say "| $3 | render ms, median [min] | evals/ray mean / max | build ms first / cached | render ms first run | wall ms first / cached | CPU ms first / cached | $xh"
+    say "|---|---|---|---|---|---|---|$xs"
 }
 row() { # row LABEL RUNS ARGS...: measure and write the row
     row_measure "$@"
@@ -138,14 +161,14 @@ row_measure() { # row_measure LABEL RUNS ARGS...: measure only (then set EXTRA a
     log "$TABLE: $label"
     measure "$n" "$@"
     [ "$M_OK" = 1 ] || log "  FAILED: $M_ERR"
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$TABLE" "$label" "$M_OK" "$M_RENDER" "$M_RMIN" \
-        "$M_EMEAN" "$M_EMAX" "$M_BUILD1" "$M_BUILD" "$M_RENDER1" "$M_WALL1" "$M_WALL" "$n" >>"$RAW"
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$TABLE" "$label" "$M_OK" "$M_RENDER" \
+        "$M_RMIN" "$M_EMEAN" "$M_EMAX" "$M_BUILD1" "$M_BUILD" "$M_RENDER1" "$M_WALL1" "$M_WALL" "$n" "$M_CPU1" "$M_CPU" >>"$RAW"
 }
 row_emit() {
     if [ "$M_OK" = 1 ]; then
-        say "| $label | **$R_MS** [$RMIN_MS] | ${M_EMEAN:--} / ${M_EMAX:--} | $B1_MS / $B_MS | $R1_MS | $W1_MS / $W_MS |$EXTRA"
+        say "| $label | **$R_MS** [$RMIN_MS] | ${M_EMEAN:--} / ${M_EMAX:--} | $B1_MS / $B_MS | $R1_MS | $W1_MS / $W_MS | $C1_MS / $C_MS |$EXTRA"
     else
-        say "| $label | FAILED: $(printf '%s' "$M_ERR" | tr '|' '/') | | | | |$EXTRA"
+        say "| $label | FAILED: $(printf '%s' "$M_ERR" | tr '|' '/') | | | | | |$EXTRA"
     fi
 }
 # the last value of a column for a label in the raw results (4 render, 8 build first, 9 build cached, 12 wall)
@@ -193,7 +216,7 @@ TOP="-eye 0,0,4 -at 0,0,0 -up 0,1,0 -ortho 4 -bounds -2,-2,-2,2,2,2"
 
 . "$HERE/suite.sh"
 
-log "start: $IACSG, runs $RUNS (growth $GROWTH_RUNS), quick $QUICK, load $(loadavg)"
+log "start: $IACSG_SRC, runs $RUNS (growth $GROWTH_RUNS), quick $QUICK, load $(loadavg)"
 LOAD0=$(loadavg)
 # The fixed cost of a command: OpenCL platform and device start-up, measured by `iacsg devices`.
 : >"$WORK/w"
@@ -227,7 +250,9 @@ ELAPSED=$(( $(date +%s) - T_START ))
     echo "cached runs, [minimum]; **evals/ray** the interval evaluations of F per ray; **build** the \`-stats\` kernel"
     echo "build time (clBuildProgram) on the first run (empty cache) and cached; **render first run** includes what PoCL"
     echo "compiles lazily at the first launch; **wall** the whole command, process start to image written, first run"
-    echo "and cached (median). The fixed start-up of a command (OpenCL platform and device, \`iacsg devices\`) is"
+    echo "and cached (median); **CPU** the whole command's user + system time, all threads (first / cached median):"
+    echo "it hardly moves when other work shares the CPUs, so compare it across runs and machine states."
+    echo "The fixed start-up of a command (OpenCL platform and device, \`iacsg devices\`) is"
     echo "**${STARTUP_MS} ms** (median of 5): wall - build - render - start-up is parsing, image writing and exit."
     echo ""
     echo "## Targets of issue 5"
