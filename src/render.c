@@ -12,8 +12,9 @@
 extern const char iacsg_cl_ia[];      /* the flattened ia/ headers (Makefile: IA_CL_HEADERS) */
 extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNEL_SOURCES) */
 
-/* The work-group is a tile of pixels: neighbouring rays take similar paths through the bisection. */
-enum { TILE_W = TILE_SIZE, TILE_H = TILE_SIZE, BAND_ROWS = 8 * TILE_SIZE };
+/* The work-group is a tile of pixels (kernels/tile.h): neighbouring rays take similar paths through the
+ * bisection. A band is a launch of several rows of tiles. */
+enum { BAND_ROWS = 8 * TILE_SIZE };
 
 struct iacsg_renderer {
     clrt rt;
@@ -173,6 +174,109 @@ static void summarize_evals(const cl_uint *evals, size_t n, const cl_uint *tile_
     f->evals_mean = n ? sum / (double)n : 0;
 }
 
+/* The device buffers of one frame. */
+typedef struct {
+    cl_mem params, rgb, depth, normal, tiles, evals, tile_evals; /* the last two only with stats */
+} frame_buffers;
+
+static void release_buffers(frame_buffers *b) {
+    cl_mem *all[] = {&b->params, &b->rgb, &b->depth, &b->normal, &b->tiles, &b->evals, &b->tile_evals};
+    for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
+        if (*all[k])
+            clReleaseMemObject(*all[k]);
+}
+
+static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t n, size_t tiles_n,
+                                   frame_buffers *b, iacsg_error *err) {
+    cl_context ctx = r->rt.context;
+    size_t real_size = r->config.fp64 ? sizeof(double) : sizeof(float);
+    cl_int rc = CL_SUCCESS;
+    b->params = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * real_size,
+                               (void *)params, &rc);
+    CLRT_CHECK(err, rc);
+    b->rgb = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), NULL, &rc);
+    CLRT_CHECK(err, rc);
+    b->depth = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(float), NULL, &rc);
+    CLRT_CHECK(err, rc);
+    b->normal = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), NULL, &rc);
+    CLRT_CHECK(err, rc);
+    b->tiles = clCreateBuffer(ctx, CL_MEM_READ_WRITE, 2 * tiles_n * real_size, NULL, &rc);
+    CLRT_CHECK(err, rc);
+    if (r->config.stats) {
+        b->evals = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint), NULL, &rc);
+        CLRT_CHECK(err, rc);
+        b->tile_evals = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, tiles_n * sizeof(cl_uint), NULL, &rc);
+        CLRT_CHECK(err, rc);
+    }
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+/* The arguments but the band's first row (index 4): both kernels start with params, flags, width, height. */
+static iacsg_status set_args(iacsg_renderer *r, const iacsg_view *view, frame_buffers *b, iacsg_error *err) {
+    cl_int flags = view->camera.ortho_height > 0 ? RENDER_ORTHO : 0;
+    cl_int width = view->width, height = view->height;
+    cl_kernel kernels[2] = {r->tile_kernel, r->kernel};
+    for (int k = 0; k < 2; k++) {
+        CLRT_CHECK(err, clSetKernelArg(kernels[k], 0, sizeof(cl_mem), &b->params));
+        CLRT_CHECK(err, clSetKernelArg(kernels[k], 1, sizeof(cl_int), &flags));
+        CLRT_CHECK(err, clSetKernelArg(kernels[k], 2, sizeof(cl_int), &width));
+        CLRT_CHECK(err, clSetKernelArg(kernels[k], 3, sizeof(cl_int), &height));
+        CLRT_CHECK(err, clSetKernelArg(kernels[k], 5, sizeof(cl_mem), &b->tiles));
+    }
+    CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 6, sizeof(cl_mem), b->tile_evals ? &b->tile_evals : NULL));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 6, sizeof(cl_mem), &b->rgb));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 7, sizeof(cl_mem), &b->depth));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 8, sizeof(cl_mem), &b->normal));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 9, sizeof(cl_mem), b->evals ? &b->evals : NULL));
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+/* Each band of rows: its tiles, then its pixels. With a progress callback, waits for each band. */
+static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
+    cl_command_queue q = r->rt.queue;
+    size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
+    for (cl_int row0 = 0; row0 < view->height; row0 += BAND_ROWS) {
+        int rows = view->height - row0 < BAND_ROWS ? view->height - row0 : BAND_ROWS;
+        cl_int tile_row0 = row0 / TILE_SIZE;
+        size_t tile_global[2] = {tiles_x, (size_t)(rows + TILE_SIZE - 1) / TILE_SIZE};
+        CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 4, sizeof(cl_int), &tile_row0));
+        CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->tile_kernel, 2, NULL, tile_global, NULL, 0, NULL, NULL));
+        size_t local[2] = {TILE_SIZE, TILE_SIZE};
+        size_t global[2] = {tiles_x * TILE_SIZE, tile_global[1] * TILE_SIZE};
+        CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &row0));
+        CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
+        if (view->progress) {
+            CLRT_CHECK(err, clFinish(q));
+            view->progress((double)(row0 + rows) / view->height, view->progress_ctx);
+        }
+    }
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+/* Copies the images (and the counts, with stats) back and waits for them. */
+static iacsg_status read_back(iacsg_renderer *r, const frame_buffers *b, size_t n, size_t tiles_n,
+                              iacsg_frame *f, cl_uint *evals, cl_uint *tile_evals, iacsg_error *err) {
+    cl_command_queue q = r->rt.queue;
+    CLRT_CHECK(err, clEnqueueReadBuffer(q, b->rgb, CL_FALSE, 0, 3 * n * sizeof(float), f->rgb, 0, NULL, NULL));
+    CLRT_CHECK(err, clEnqueueReadBuffer(q, b->depth, CL_FALSE, 0, n * sizeof(float), f->depth, 0, NULL, NULL));
+    CLRT_CHECK(err, clEnqueueReadBuffer(q, b->normal, CL_FALSE, 0, 3 * n * sizeof(float), f->normal, 0, NULL, NULL));
+    if (evals) {
+        CLRT_CHECK(err, clEnqueueReadBuffer(q, b->evals, CL_FALSE, 0, n * sizeof(cl_uint), evals, 0, NULL, NULL));
+        CLRT_CHECK(err, clEnqueueReadBuffer(q, b->tile_evals, CL_FALSE, 0, tiles_n * sizeof(cl_uint), tile_evals, 0,
+                                            NULL, NULL));
+    }
+    CLRT_CHECK(err, clFinish(q));
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
 iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err) {
     memset(frame, 0, sizeof *frame);
     double params[PARAM_COUNT]; /* room for either precision */
@@ -182,12 +286,10 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     if (st != IACSG_OK)
         return st;
     size_t n = (size_t)view->width * (size_t)view->height;
-    size_t real_size = r->config.fp64 ? sizeof(double) : sizeof(float);
-    cl_mem params_buf = NULL, rgb_buf = NULL, depth_buf = NULL, normal_buf = NULL, evals_buf = NULL;
-    cl_mem tiles_buf = NULL, tile_evals_buf = NULL;
+    size_t tiles_n = (((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE) *
+                     (((size_t)view->height + TILE_SIZE - 1) / TILE_SIZE);
+    frame_buffers buffers = {0};
     cl_uint *evals = NULL, *tile_evals = NULL;
-    size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
-    size_t tiles_n = tiles_x * (((size_t)view->height + TILE_SIZE - 1) / TILE_SIZE);
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = malloc(3 * n * sizeof(float));
@@ -197,96 +299,25 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
         evals = malloc(n * sizeof(cl_uint));
         tile_evals = malloc(tiles_n * sizeof(cl_uint));
     }
-    if (!frame->rgb || !frame->depth || !frame->normal || (r->config.stats && (!evals || !tile_evals))) {
+    if (!frame->rgb || !frame->depth || !frame->normal || (r->config.stats && (!evals || !tile_evals)))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
-        goto done;
-    }
-    cl_context ctx = r->rt.context;
-    cl_command_queue q = r->rt.queue;
-    cl_int rc = CL_SUCCESS;
-    params_buf = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * real_size, params, &rc);
-    CLRT_CHECK(err, rc);
-    rgb_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), NULL, &rc);
-    CLRT_CHECK(err, rc);
-    depth_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(float), NULL, &rc);
-    CLRT_CHECK(err, rc);
-    normal_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), NULL, &rc);
-    CLRT_CHECK(err, rc);
-    tiles_buf = clCreateBuffer(ctx, CL_MEM_READ_WRITE, 2 * tiles_n * real_size, NULL, &rc);
-    CLRT_CHECK(err, rc);
-    if (evals) {
-        evals_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint), NULL, &rc);
-        CLRT_CHECK(err, rc);
-        tile_evals_buf = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, tiles_n * sizeof(cl_uint), NULL, &rc);
-        CLRT_CHECK(err, rc);
-    }
-    cl_int flags = view->camera.ortho_height > 0 ? RENDER_ORTHO : 0;
-    cl_int width = view->width, height = view->height;
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 0, sizeof(cl_mem), &params_buf));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 1, sizeof(cl_int), &flags));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 2, sizeof(cl_int), &width));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 3, sizeof(cl_int), &height));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 5, sizeof(cl_mem), &tiles_buf));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 6, sizeof(cl_mem), &rgb_buf));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 7, sizeof(cl_mem), &depth_buf));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 8, sizeof(cl_mem), &normal_buf));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 9, sizeof(cl_mem), evals_buf ? &evals_buf : NULL));
-    for (cl_uint k = 0; k < 4; k++) /* params, flags, width, height: the same for both kernels */
-        CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, k, k ? sizeof(cl_int) : sizeof(cl_mem),
-                                       k == 0 ? (void *)&params_buf : k == 1 ? (void *)&flags
-                                                                   : k == 2 ? (void *)&width : (void *)&height));
-    CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 5, sizeof(cl_mem), &tiles_buf));
-    CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 6, sizeof(cl_mem), tile_evals_buf ? &tile_evals_buf : NULL));
+    if (st == IACSG_OK)
+        st = create_buffers(r, params, n, tiles_n, &buffers, err);
+    if (st == IACSG_OK)
+        st = set_args(r, view, &buffers, err);
     double t0 = now_seconds();
-    for (cl_int row0 = 0; row0 < height; row0 += BAND_ROWS) {
-        int rows = height - row0 < BAND_ROWS ? height - row0 : BAND_ROWS;
-        cl_int tile_row0 = row0 / TILE_SIZE;
-        size_t tile_global[2] = {tiles_x, (size_t)(rows + TILE_SIZE - 1) / TILE_SIZE};
-        CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 4, sizeof(cl_int), &tile_row0));
-        CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->tile_kernel, 2, NULL, tile_global, NULL, 0, NULL, NULL));
-        size_t local[2] = {TILE_W, TILE_H};
-        size_t global[2] = {(size_t)(width + TILE_W - 1) / TILE_W * TILE_W,
-                            (size_t)(rows + TILE_H - 1) / TILE_H * TILE_H};
-        CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &row0));
-        CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
-        if (view->progress) {
-            CLRT_CHECK(err, clFinish(q));
-            view->progress((double)(row0 + rows) / height, view->progress_ctx);
-        }
+    if (st == IACSG_OK)
+        st = launch_bands(r, view, err);
+    if (st == IACSG_OK)
+        st = read_back(r, &buffers, n, tiles_n, frame, evals, tile_evals, err);
+    if (st == IACSG_OK) {
+        frame->render_seconds = now_seconds() - t0;
+        frame->rays = (long long)n;
+        if (evals)
+            summarize_evals(evals, n, tile_evals, tiles_n, frame);
     }
-    CLRT_CHECK(err, clEnqueueReadBuffer(q, rgb_buf, CL_FALSE, 0, 3 * n * sizeof(float), frame->rgb, 0, NULL, NULL));
-    CLRT_CHECK(err, clEnqueueReadBuffer(q, depth_buf, CL_FALSE, 0, n * sizeof(float), frame->depth, 0, NULL, NULL));
-    CLRT_CHECK(err,
-               clEnqueueReadBuffer(q, normal_buf, CL_FALSE, 0, 3 * n * sizeof(float), frame->normal, 0, NULL, NULL));
-    if (evals) {
-        CLRT_CHECK(err, clEnqueueReadBuffer(q, evals_buf, CL_FALSE, 0, n * sizeof(cl_uint), evals, 0, NULL, NULL));
-        CLRT_CHECK(err, clEnqueueReadBuffer(q, tile_evals_buf, CL_FALSE, 0, tiles_n * sizeof(cl_uint), tile_evals, 0,
-                                            NULL, NULL));
-    }
-    CLRT_CHECK(err, clFinish(q));
-    frame->render_seconds = now_seconds() - t0;
-    frame->rays = (long long)n;
-    if (evals)
-        summarize_evals(evals, n, tile_evals, tiles_n, frame);
-    goto done;
-fail:
-    st = IACSG_ERR_OPENCL;
-done:
-    if (params_buf)
-        clReleaseMemObject(params_buf);
-    if (rgb_buf)
-        clReleaseMemObject(rgb_buf);
-    if (depth_buf)
-        clReleaseMemObject(depth_buf);
-    if (normal_buf)
-        clReleaseMemObject(normal_buf);
-    if (evals_buf)
-        clReleaseMemObject(evals_buf);
-    if (tiles_buf)
-        clReleaseMemObject(tiles_buf);
-    if (tile_evals_buf)
-        clReleaseMemObject(tile_evals_buf);
+    release_buffers(&buffers);
     free(evals);
     free(tile_evals);
     if (st != IACSG_OK)
