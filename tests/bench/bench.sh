@@ -6,7 +6,7 @@
 # Environment: BENCH_QUICK=1 (fewer runs and rows, writes $BENCH_BUILD/BENCHMARKS.quick.md, for iterating),
 # BENCH_RUNS (cached runs per row, default 5), BENCH_GROWTH_RUNS (for the growth tables, default 3),
 # BENCH_OUT (the report, default BENCHMARKS.md), BENCH_ONLY (space-separated table names: seed libfive ref
-# res eps size modes), BENCH_BUILD (directory for the raw results, default build/bench).
+# res eps size modes rays), BENCH_BUILD (directory for the raw results, default build/bench).
 #
 # Every row is measured by running the whole `iacsg` command, never by a library call, so that its wall time is
 # what a user waits for. Per row:
@@ -27,15 +27,27 @@ if [ "$QUICK" = 1 ]; then
     RUNS=${BENCH_RUNS:-2}
     GROWTH_RUNS=${BENCH_GROWTH_RUNS:-1}
     OUT=${BENCH_OUT:-$BUILD_DIR/BENCHMARKS.quick.md}
+    GEN=$BUILD_DIR/generated.quick.md
 else
     RUNS=${BENCH_RUNS:-5}
     GROWTH_RUNS=${BENCH_GROWTH_RUNS:-3}
     OUT=${BENCH_OUT:-BENCHMARKS.md}
+    GEN=$BUILD_DIR/generated.md
 fi
-ONLY=${BENCH_ONLY:-seed libfive ref res eps size modes}
+ONLY=${BENCH_ONLY:-seed libfive ref res eps size modes rays}
 TIMEOUT=${BENCH_TIMEOUT:-300}
 HERE=$(dirname "$0")
 
+# The report is the generated tables, then the hand-written analysis tests/bench/NOTES.md (its numbers are
+# dated there). `bench.sh --assemble` only re-joins them, after NOTES.md changed.
+assemble() {
+    { cat "$GEN"; if [ -f "$HERE/NOTES.md" ]; then echo ""; cat "$HERE/NOTES.md"; fi; } >"$OUT.tmp" &&
+        mv "$OUT.tmp" "$OUT"
+}
+if [ "${1:-}" = --assemble ]; then
+    assemble
+    exit $?
+fi
 [ -x "$IACSG" ] || { echo "bench: $IACSG is not built (make build/iacsg)" >&2; exit 1; }
 mkdir -p "$BUILD_DIR" || exit 1
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/iacsg-bench.XXXXXX") || exit 1
@@ -185,7 +197,6 @@ le() { awk -v a="$1" -v b="$2" 'BEGIN {if (a == "-" || a == "" || b == "-" || b 
 scene_arg() { # scene_arg FILE EXPR
     if [ -f "$1" ]; then printf '%s' "$1"; else printf '%s' "$2"; fi
 }
-scene_src() { if [ -f "$1" ]; then printf '`%s`' "$1"; else printf '`%s`' "$2" | tr '|' '/'; fi; }
 
 # A union of N spheres on a grid in [-1.5,1.5]^3, one line, to a scene file: spheres N R FILE (R 0: 0.4 x the
 # grid spacing; grids 1, 2x2x1, 4x2x2, 4x4x4, 8x8x4, 16x8x8).
@@ -252,7 +263,7 @@ ELAPSED=$(( $(date +%s) - T_START ))
     echo "compiles lazily at the first launch; **wall** the whole command, process start to image written, first run"
     echo "and cached (median); **CPU** the whole command's user + system time, all threads (first / cached median):"
     echo "it hardly moves when other work shares the CPUs, so compare it across runs and machine states."
-    echo "The fixed start-up of a command (OpenCL platform and device, \`iacsg devices\`) is"
+    echo "The fixed start-up of a command (loading its ~260 shared libraries, the OpenCL platform and device: \`iacsg devices\`) is"
     echo "**${STARTUP_MS} ms** (median of 5): wall - build - render - start-up is parsing, image writing and exit."
     echo ""
     echo "## Targets of issue 5"
@@ -261,7 +272,7 @@ ELAPSED=$(( $(date +%s) - T_START ))
     echo "|---|---|---|"
     cat "$TARGETS"
     cat "$BODY"
-    if [ -f "$HERE/NOTES.md" ]; then echo ""; cat "$HERE/NOTES.md"; fi
-} >"$WORK/out.md"
-mv "$WORK/out.md" "$OUT"
+} >"$GEN"
+assemble
+
 log "wrote $OUT (raw numbers in $RAW)"

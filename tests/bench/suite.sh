@@ -1,36 +1,33 @@
 # tests/bench/suite.sh -- the scenes and tables of `make bench` (sourced by bench.sh, which defines table, row,
 # measure, target and the variables used here: RUNS, GROWTH_RUNS, QUICK, REF, REFVIEW, TOP, WORK).
 #
-# Scenes come from engineer 2's examples/ when the file exists (scene_arg FILE EXPR), else from the expression
-# written here. Constants the Hijazi seed garbles follow implicits/library.c; where the seed leaves the scene's
+# Scenes come from examples/ when the file exists, else from the expression written here. Constants the Hijazi seed garbles follow implicits/library.c; where the seed leaves the scene's
 # placement open (the sphere radius against the cube, which cylinders), the choice is written next to it.
 
-# The Hijazi seed scenes (Figs. 2, 3, 7, 8), at 1024x1024 and eps 1e-5, the default camera (-az 35 -el 25).
-# name | example file | expression | extra options (bounds where the compiler proves none, or a loose one)
+# The Hijazi seed scenes (Figs. 2, 3, 7, 8), at 1024x1024 and eps 1e-5, the default camera (-az 35 -el 25), the
+# bounds the compiler proves (or given, for the fallback expressions that have none).
+#   s NAME EXAMPLE-FILE FALLBACK-EXPRESSION FALLBACK-OPTIONS [OPTIONS FOR BOTH]
 seed_scenes() {
-    # cube (the pseudo-cube x^500 + ..., side 2) and a sphere of radius 1.3, between the cube's inscribed (1) and
-    # circumscribed (1.73) spheres, as in Fig. 2
-    s cube_union_sphere "union(pseudocube, sphere(1.3))" ""
-    s cube_intersection_sphere "intersection(pseudocube, sphere(1.3))" ""
-    s cube_difference_sphere "difference(pseudocube, sphere(1.3))" ""
-    # three unit cylinders along x, y, z (infinite: clipped to the box); the difference drills x and y holes of
-    # radius 0.5 into the z cylinder
-    s cylinders_union "union(x^2+y^2-0.25, y^2+z^2-0.25, z^2+x^2-0.25)" "-bounds -1.5,-1.5,-1.5,1.5,1.5,1.5"
-    s cylinders_intersection "intersection(x^2+y^2-1, y^2+z^2-1, z^2+x^2-1)" ""
-    s cylinders_difference "difference(x^2+y^2-1, union(y^2+z^2-0.25, z^2+x^2-0.25))" "-bounds -1.5,-1.5,-1.5,1.5,1.5,1.5"
-    # Fig. 3 (the compiler's box for the citrus is loose, -64..64 by -512..512: the solid would be a few pixels)
-    s citrus_union_heart "union(citrus, heart)" "-bounds -1.5,-1.5,-1.5,1.5,1.5,1.5"
-    s citrus_intersection_heart "intersection(citrus, heart)" "-bounds -1.5,-1.5,-1.5,1.5,1.5,1.5"
+    # cube (the pseudo-cube x^500 + ..., side 2) and a sphere of radius 1.3, as in Fig. 2
+    s cube_union_sphere fig2_cube_sphere_union "union(pseudocube, sphere(1.3))" ""
+    s cube_intersection_sphere fig2_cube_sphere_intersection "intersection(pseudocube, sphere(1.3))" ""
+    s cube_difference_sphere fig2_cube_sphere_difference "difference(pseudocube, sphere(1.3))" ""
+    # three cylinders along x, y, z
+    s cylinders_union fig2_cylinders_union "union(x^2+y^2-0.25, y^2+z^2-0.25, z^2+x^2-0.25)" "-bounds -1.5,-1.5,-1.5,1.5,1.5,1.5"
+    s cylinders_intersection fig2_cylinders_intersection "intersection(x^2+y^2-1, y^2+z^2-1, z^2+x^2-1)" ""
+    s cylinders_difference fig2_cylinders_difference "difference(x^2+y^2-1, union(y^2+z^2-0.25, z^2+x^2-0.25))" "-bounds -1.5,-1.5,-1.5,1.5,1.5,1.5"
+    # Fig. 3
+    s citrus_union_heart fig3_citrus_heart_union "union(citrus, heart)" "-bounds -1.5,-1.5,-1.5,1.5,1.5,1.5"
+    s citrus_intersection_heart fig3_citrus_heart_intersection "intersection(citrus, heart)" "-bounds -1.5,-1.5,-1.5,1.5,1.5,1.5"
     # Fig. 7
-    s tangle_union_sphere "union(tangle, sphere(1.5))" ""
-    s decocube_union_heart "union(decocube, heart)" ""
-    s trigtorus_union_sphere "union(trigtorus, sphere(0.5))" "-bounds -2,-2,-2,2,2,2"
-    s superquadric_union_ellipsoid "union(superquadric, ellipsoid)" ""
-    s superquadric_difference_ellipsoid "difference(superquadric, ellipsoid)" ""
-    # Table 1's multiple-unions object, garbled constants read like the torus's ("z^2 2" as z^2 - 0.2, ...)
-    s multiple_unions "min(pseudocube(0.5), (x-1)^2+(y-1)^2+(z-1)^2-0.2, decocube, heart, torus, (x+1)^2+(y+1)^2+(z+1)^2-0.1)" "-bounds -2,-2,-2,2,2,2"
+    s tangle_union_sphere fig7_tangle_sphere_union "union(tangle, sphere(1.5))" ""
+    s decocube_union_heart fig7_decocube_heart_union "union(decocube, heart)" ""
+    s trigtorus_union_sphere fig7_trigtorus_sphere_union "union(trigtorus, sphere(0.5))" "-bounds -2,-2,-2,2,2,2"
+    s superquadric_union_ellipsoid fig7_superquadric_ellipsoid_union "union(superquadric, ellipsoid)" ""
+    s superquadric_difference_ellipsoid fig7_superquadric_ellipsoid_difference "difference(superquadric, ellipsoid)" ""
+    s multiple_unions fig7_multiple_unions "min(pseudocube(0.5), (x-1)^2+(y-1)^2+(z-1)^2-0.2, decocube, heart, torus, (x+1)^2+(y+1)^2+(z+1)^2-0.1)" "-bounds -2,-2,-2,2,2,2"
     # Fig. 8: the sigmoid blend of the decocube and a sphere, at mid-blend t = 0.5
-    s sigmoid_blend "sigmoid_blend(decocube, sphere)" "-bounds -2,-2,-2,2,2,2 -time 0.5"
+    s sigmoid_blend fig8_sigmoid_blend "sigmoid_blend(decocube, sphere)" "-bounds -2,-2,-2,2,2,2" "-time 0.5"
 }
 QUICK_SEED="cube_union_sphere tangle_union_sphere decocube_union_heart sigmoid_blend"
 
@@ -50,10 +47,10 @@ bench_suite() {
         table seed "Hijazi seed scenes: 1024x1024, eps 1e-5, default camera (-az 35 -el 25)" scene "source"
         s() {
             [ "$QUICK" = 1 ] && case " $QUICK_SEED " in *" $1 "*) ;; *) return ;; esac
-            arg=$(scene_arg "examples/$1.csg" "$2")
-            # shellcheck disable=SC2086 # $3 is a list of options
-            row_measure "$1" "$RUNS" "$arg" -size 1024x1024 -eps 1e-5 $3
-            EXTRA=" $(scene_src "examples/$1.csg" "$2") $3 |"
+            if [ -f "examples/$2.csg" ]; then arg=examples/$2.csg opts=${5:-}; else arg=$3 opts="$4 ${5:-}"; fi
+            # shellcheck disable=SC2086 # $opts is a list of options
+            row_measure "$1" "$RUNS" "$arg" -size 1024x1024 -eps 1e-5 $opts
+            EXTRA=" \`$(printf '%s' "$arg" | tr '|' '/')\` $opts (bounds $M_BOUNDS) |"
             row_emit
         }
         seed_scenes
@@ -170,7 +167,7 @@ bench_suite() {
             if [ "$sc" = ref ]; then
                 set -- "$REF" $REFVIEW
             else
-                set -- "$(scene_arg examples/tangle_union_sphere.csg "union(tangle, sphere(1.5))")"
+                set -- "$(scene_arg examples/fig7_tangle_sphere_union.csg "union(tangle, sphere(1.5))")"
             fi
             row "$sc, float rigorous (2 threads)" "$GROWTH_RUNS" "$@" -size 1024x1024 -eps 1e-5
             row "$sc, float -fast" "$GROWTH_RUNS" "$@" -size 1024x1024 -eps 1e-5 -fast
@@ -196,5 +193,34 @@ bench_suite() {
         done
         say ""
         say "The reference view without \`-stats\` (default kernel cache, kernel without the counter): wall $(ms_of_us "$(median <"$WORK/w")") ms, median of $RUNS."
+    fi
+
+    if wants rays; then
+        # Host-side statistics of the kernel's own bisection code (tests/bench/raystats.c): no tile pass, float,
+        # rigorous. Cheap, and not timed: where the evaluations go and what SIMD, pruning and neighbours could save.
+        say ""
+        say "### Where the evaluations go (tests/bench/raystats.sh: the kernel's bisection on the host, full rays, no tile pass)"
+        rs() { # rs TITLE EXPR VIEW...
+            title=$1 e=$2
+            shift 2
+            log "rays: $title"
+            say ""
+            say "$title:"
+            say ""
+            say '```'
+            IACSG=$IACSG sh "$HERE/raystats.sh" "$e" "$@" >"$WORK/rs.log" 2>&1 || echo "raystats failed" >>"$WORK/rs.log"
+            grep -v 'warning\|^ \|In function\|In file included\|^[0-9]* |' "$WORK/rs.log" >>"$BODY"
+            say '```'
+        }
+        rs "Reference view, 512x512, eps 1e-5" "$REF" 512 512 1e-5 0 -4 2.5 0 0 0 0 0 1 40 0 -2 -2 -2 2 2 2 0
+        if [ "$QUICK" != 1 ]; then
+            rs "tangle | sphere(1.5), 256x256, eps 1e-5, eye 0,-6,3.75 fov 40, box +-3" "union(tangle, sphere(1.5))" \
+                256 256 1e-5 0 -6 3.75 0 0 0 0 0 1 40 0 -3 -3 -3 3 3 3 0
+            rs "decocube | heart, 256x256, eps 1e-5, eye 0,-6,3.75 fov 40, box +-3" "union(decocube, heart)" \
+                256 256 1e-5 0 -6 3.75 0 0 0 0 0 1 40 0 -3 -3 -3 3 3 3 0
+            spheres 64 0 "$WORK/spheres64r.csg"
+            rs "union of 64 spheres (the size table's), reference camera, 256x256, eps 1e-5" "$(tail -n 1 "$WORK/spheres64r.csg")" \
+                256 256 1e-5 0 -4 2.5 0 0 0 0 0 1 40 0 -2 -2 -2 2 2 2 0
+        fi
     fi
 }
