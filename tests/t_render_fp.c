@@ -147,6 +147,18 @@ TEST_FP(render_sphere_ortho_depth) {
     expect_exact(check_spheres(unit_sphere, unit_sphere, SOLID_A, &v), "sphere, orthographic");
 }
 
+/* The eye inside the bounds: rays start at t = 0, not at the box. */
+TEST_FP(render_sphere_eye_inside_bounds) {
+    iacsg_view v = small_view(96, 1e-5);
+    for (int k = 0; k < 3; k++) {
+        v.bounds[k] = -6.5;
+        v.bounds[k + 3] = 5.25;
+    }
+    expect_exact(check_spheres(unit_sphere, unit_sphere, SOLID_A, &v), "sphere, eye inside, perspective");
+    v.camera.ortho_height = 2.5;
+    expect_exact(check_spheres(unit_sphere, unit_sphere, SOLID_A, &v), "sphere, eye inside, orthographic");
+}
+
 TEST_FP(render_spheres_csg_depth) {
     iacsg_view v = small_view(128, 1e-5);
     expect_exact(check_spheres(sphere_a, sphere_b, SOLID_UNION, &v), "union");
