@@ -88,8 +88,8 @@ const char *iacsg_renderer_device_name(const iacsg_renderer *r) { return r->rt.d
 
 /* [TMIN, TMAX]: a t range holding every ray's part inside the box, from the parameters as the device sees them
  * (p, already rounded to the working precision). Perspective: distances from the eye to the box (|d| = 1 up to
- * rounding); orthographic: the box corners' positions along f. Widened by 1e-5 relative, far more than the
- * rounding of the rays (a few ulps). */
+ * rounding); orthographic: the box corners' positions along f. Widened by 1e-5 relative to the sizes
+ * involved, far more than the rounding of the rays (a few ulps). */
 static void t_range(double *p, int ortho) {
     double lo = INFINITY, hi = 0, gap2 = 0;
     for (int c = 0; c < 8; c++) {
@@ -110,7 +110,8 @@ static void t_range(double *p, int ortho) {
         }
         lo = sqrt(gap2);
     }
-    double slack = 1e-5 * (fabs(lo) + fabs(hi) + 1);
+    /* orthographic origins lie off the eye's plane by rounding proportional to their offset s r + v u */
+    double slack = 1e-5 * (fabs(lo) + fabs(hi) + 1 + fabs(p[PARAM_SCALE_S]) + fabs(p[PARAM_SCALE_V]));
     p[PARAM_TMIN] = fmax(lo - slack, 0);
     p[PARAM_TMAX] = hi + slack;
 }
