@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -169,11 +170,23 @@ static int parse_options(int argc, char **argv, render_options *o) {
     return 0;
 }
 
-/* The text of a scene file when `input` names a regular file, else the input itself as an expression. The
- * result is malloc'ed; NULL (after a message) when the file cannot be read. */
+/* Whether a text that names no file was meant as a file name: it ends in ".csg" or starts like a path.
+ * (Expressions never do; "x/2" does not start with '/'.) */
+static int looks_like_path(const char *input) {
+    size_t n = strlen(input);
+    return (n > 4 && strcmp(input + n - 4, ".csg") == 0) || input[0] == '/' || strncmp(input, "./", 2) == 0 ||
+           strncmp(input, "../", 3) == 0;
+}
+
+/* The text of a scene file when `input` names a file, else the input itself as an expression. The result is
+ * malloc'ed; NULL (after a message) when the file cannot be read. */
 static char *read_input(const char *input, const char **name) {
     FILE *f = fopen(input, "rb");
     if (!f) {
+        if (errno != ENOENT || looks_like_path(input)) {
+            fprintf(stderr, "iacsg: %s: cannot read the scene file (%s)\n", input, strerror(errno));
+            return NULL;
+        }
         *name = "<expr>";
         return strdup(input);
     }
@@ -280,6 +293,20 @@ static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr) {
     printf("render: %.3f s\n", fr->render_seconds);
 }
 
+/* An output that is the scene file itself would destroy it: refuse before rendering. */
+static iacsg_status check_outputs_spare_input(const char *input, const char *const outputs[3], iacsg_error *err) {
+    struct stat in;
+    if (stat(input, &in) != 0)
+        return IACSG_OK;
+    for (int k = 0; k < 3; k++) {
+        struct stat out;
+        if (outputs[k] && stat(outputs[k], &out) == 0 && out.st_dev == in.st_dev && out.st_ino == in.st_ino)
+            return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "%s: the output would overwrite the scene file",
+                                   outputs[k]);
+    }
+    return IACSG_OK;
+}
+
 static void print_error(const iacsg_error *err, const char *name) {
     if (err->line > 0)
         fprintf(stderr, "iacsg: %s:%d:%d: %s\n", name, err->line, err->column, err->message);
@@ -304,6 +331,8 @@ int cli_render(int argc, char **argv) {
     for (int k = 0; k < 3 && st == IACSG_OK; k++)
         if (outputs[k])
             st = iacsg_image_check_format(outputs[k], &err);
+    if (st == IACSG_OK && name == o.input) /* a scene file */
+        st = check_outputs_spare_input(o.input, outputs, &err);
     if (st == IACSG_OK)
         st = iacsg_expr_parse(text, name, &e, &err);
     if (st == IACSG_OK) {
