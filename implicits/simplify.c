@@ -71,6 +71,11 @@ static int constant_between(dag *d, const char *lo, const char *hi, iacsg_error 
 /* The node op(a, b, n), rewritten by the rules of simplify.h. The rules only ever shrink the expression, so
  * this recursion is a few levels deep. */
 static int make(dag *d, int op, int a, int b, int n, iacsg_error *err) {
+    if ((op == OP_ADD || op == OP_MUL || op == OP_MIN || op == OP_MAX) && b < a) {
+        int swap = a; /* commutative: one order, so that x*y and y*x are one node (ia/ is symmetric here) */
+        a = b;
+        b = swap;
+    }
     const dag_node *A = a >= 0 ? &d->nodes[a] : NULL;
     int a_op = A ? A->op : -1;
     switch (op) {
@@ -79,6 +84,10 @@ static int make(dag *d, int op, int a, int b, int n, iacsg_error *err) {
             return A->a;
         break;
     case OP_ADD:
+        if (a == b) { /* x + x = 2x, one exact scaling */
+            int two = dag_add_real(d, 2, err);
+            return two < 0 ? -1 : make(d, OP_MUL_R, a, two, 0, err);
+        }
         if (point_is(d, a, 0))
             return b;
         if (point_is(d, b, 0))
@@ -101,8 +110,11 @@ static int make(dag *d, int op, int a, int b, int n, iacsg_error *err) {
     case OP_MUL:
         if (a == b)
             return make(d, OP_SQR, a, -1, 0, err);
-        if (dag_is_point(d, a) && !dag_is_point(d, b))
-            return make(d, OP_MUL, b, a, 0, err);
+        if (dag_is_point(d, a) && !dag_is_point(d, b)) { /* the point on the right: b * a */
+            int swap = a;
+            a = b;
+            b = swap;
+        }
         if (point_is(d, b, 1))
             return a;
         if (point_is(d, b, -1))

@@ -2,7 +2,8 @@
  * precisions, with ia/ itself, so folding is as rigorous as evaluating); pi and e become constants; x*x and
  * x^2 become sqr (tighter: sqr of an interval straddling 0 starts at 0); integer exponents become pown, other
  * exponents pow; exactly representable constants in + - * / become the *_R point ops; and a few identities
- * (x+0, x*1, 1/x as recip, --x, min(x,x), |-x|, ...) disappear. Every rule keeps the real function, so inclusion holds. */
+ * (x+0, x*1, 1/x as recip, x+x as 2x, --x, min(x,x), |-x|, ...) disappear; operands of + * min max are put
+ * in one order, so y*x and x*y are one node. Every rule keeps the real function, so inclusion holds. */
 #ifndef IACSG_SIMPLIFY_H
 #define IACSG_SIMPLIFY_H
 #include "dag.h"

@@ -241,6 +241,7 @@ TEST(expr_simplify) {
         {"min(x, x)", OP_MIN, 0},    {"abs(-x)", OP_NEG, 0},     {"(-x)^2", OP_NEG, 0},
         {"sqrt(2) * cos(pi) + 1", OP_CONST, 1}, {"sphere(0.5)", OP_SQR, 3},
         {"min(sphere, move(sphere, 0, 0, 0))", OP_MIN, 0}, /* equal subtrees are one node */
+        {"x*y + y*x", OP_MUL, 1},    {"x*y + y*x", OP_MUL_R, 1}, {"max(x, y) - max(y, x)", OP_MAX, 1},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         iacsg_expr *e;

@@ -23,7 +23,7 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v21 = ia_sqr(v20);
     ia_interval v22 = ia_add(v19, v21);
     ia_interval v23 = ia_mul(v16, v22);
-    ia_interval v24 = ia_add(v11, v2);
+    ia_interval v24 = ia_add(v2, v11);
     ia_interval v25 = ia_sub(v24, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
     ia_interval v26 = ia_sqr(v25);
     ia_interval v27 = ia_add_r(v4, IACSG_K(-0x1p+0f, -0x1p+0));
@@ -39,8 +39,8 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v43 = ia_add_r(v42, IACSG_K(0x1p+0f, 0x1p+0));
     ia_interval v44 = ia_recip(v43);
     ia_interval v45 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v44);
-    ia_interval v46 = ia_mul(v45, v32);
-    ia_interval v47 = ia_mul(v44, v34);
+    ia_interval v46 = ia_mul(v32, v45);
+    ia_interval v47 = ia_mul(v34, v44);
     ia_interval v48 = ia_add(v46, v47);
     return v48;
 }
@@ -61,7 +61,7 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v21 = v20 * v20;
     ia_real v22 = v19 + v21;
     ia_real v23 = v16 * v22;
-    ia_real v24 = v11 + v2;
+    ia_real v24 = v2 + v11;
     ia_real v25 = v24 - IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1);
     ia_real v26 = v25 * v25;
     ia_real v27 = v4 + IACSG_K(-0x1p+0f, -0x1p+0);
@@ -77,8 +77,8 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v43 = v42 + IACSG_K(0x1p+0f, 0x1p+0);
     ia_real v44 = 1 / v43;
     ia_real v45 = IACSG_K(0x1p+0f, 0x1p+0) - v44;
-    ia_real v46 = v45 * v32;
-    ia_real v47 = v44 * v34;
+    ia_real v46 = v32 * v45;
+    ia_real v47 = v34 * v44;
     ia_real v48 = v46 + v47;
     return v48;
 }
@@ -127,9 +127,9 @@ IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *
     ia_real v23_dx = v16_dx * v22 + v16 * v22_dx;
     ia_real v23_dy = v16_dy * v22 + v16 * v22_dy;
     ia_real v23_dz = v16_dz * v22 + v16 * v22_dz;
-    ia_real v24 = v11 + v2;
-    ia_real v24_dx = (ia_real)0 + v2_dx;
-    ia_real v24_dz = v11_dz + (ia_real)0;
+    ia_real v24 = v2 + v11;
+    ia_real v24_dx = v2_dx + (ia_real)0;
+    ia_real v24_dz = (ia_real)0 + v11_dz;
     ia_real v25 = v24 - IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1);
     ia_real v25_dx = v24_dx - (ia_real)0;
     ia_real v25_dz = v24_dz - (ia_real)0;
@@ -166,14 +166,14 @@ IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *
     ia_real v43 = v42 + IACSG_K(0x1p+0f, 0x1p+0);
     ia_real v44 = 1 / v43;
     ia_real v45 = IACSG_K(0x1p+0f, 0x1p+0) - v44;
-    ia_real v46 = v45 * v32;
-    ia_real v46_dx = (ia_real)0 * v32 + v45 * v32_dx;
-    ia_real v46_dy = (ia_real)0 * v32 + v45 * v32_dy;
-    ia_real v46_dz = (ia_real)0 * v32 + v45 * v32_dz;
-    ia_real v47 = v44 * v34;
-    ia_real v47_dx = (ia_real)0 * v34 + v44 * v34_dx;
-    ia_real v47_dy = (ia_real)0 * v34 + v44 * v34_dy;
-    ia_real v47_dz = (ia_real)0 * v34 + v44 * v34_dz;
+    ia_real v46 = v32 * v45;
+    ia_real v46_dx = v32_dx * v45 + v32 * (ia_real)0;
+    ia_real v46_dy = v32_dy * v45 + v32 * (ia_real)0;
+    ia_real v46_dz = v32_dz * v45 + v32 * (ia_real)0;
+    ia_real v47 = v34 * v44;
+    ia_real v47_dx = v34_dx * v44 + v34 * (ia_real)0;
+    ia_real v47_dy = v34_dy * v44 + v34 * (ia_real)0;
+    ia_real v47_dz = v34_dz * v44 + v34 * (ia_real)0;
     ia_real v48 = v46 + v47;
     ia_real v48_dx = v46_dx + v47_dx;
     ia_real v48_dy = v46_dy + v47_dy;

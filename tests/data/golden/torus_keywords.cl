@@ -14,7 +14,7 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v10 = ia_sqr(z);
     ia_interval v11 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
     ia_interval v12 = ia_sqr(v11);
-    ia_interval v13 = ia_add(v12, v10);
+    ia_interval v13 = ia_add(v10, v12);
     ia_interval v16 = ia_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
     return v16;
 }
@@ -26,7 +26,7 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v10 = z * z;
     ia_real v11 = IACSG_K(0x1p+0f, 0x1p+0) - v8;
     ia_real v12 = v11 * v11;
-    ia_real v13 = v12 + v10;
+    ia_real v13 = v10 + v12;
     ia_real v16 = v13 + IACSG_K(-0x1p-4f, -0x1p-4);
     return v16;
 }
@@ -49,10 +49,10 @@ IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *
     ia_real v12 = v11 * v11;
     ia_real v12_dx = (ia_real)2 * v11 * v11_dx;
     ia_real v12_dy = (ia_real)2 * v11 * v11_dy;
-    ia_real v13 = v12 + v10;
-    ia_real v13_dx = v12_dx + (ia_real)0;
-    ia_real v13_dy = v12_dy + (ia_real)0;
-    ia_real v13_dz = (ia_real)0 + v10_dz;
+    ia_real v13 = v10 + v12;
+    ia_real v13_dx = (ia_real)0 + v12_dx;
+    ia_real v13_dy = (ia_real)0 + v12_dy;
+    ia_real v13_dz = v10_dz + (ia_real)0;
     ia_real v16 = v13 + IACSG_K(-0x1p-4f, -0x1p-4);
     ia_real v16_dx = v13_dx;
     ia_real v16_dy = v13_dy;
