@@ -169,8 +169,12 @@ static int load_lib(lower_env *env, const lib_entry *e, lib_lowered *L) {
     if (parse(e->signature, &sig, env->err) != IACSG_OK)
         return -1;
     const ast_node *call = &sig.nodes[sig.root];
-    int ok = call->kind == AST_CALL && call->nargs <= LIB_MAX_PARAMS;
-    L->nparams = ok ? call->nargs : 0;
+    if (call->kind != AST_CALL || call->nargs > LIB_MAX_PARAMS) {
+        ast_free(&sig);
+        return iacsg_error_set(env->err, IACSG_ERR_SYNTAX, 0, 0, "built-in '%s' has a bad signature", e->name), -1;
+    }
+    int ok = 1;
+    L->nparams = call->nargs;
     for (int k = 0; ok && k < L->nparams; k++) {
         const ast_arg *g = &sig.args[call->first + k];
         long name_tok = g->keyword >= 0 ? g->keyword : sig.nodes[g->value].tok;
