@@ -2,6 +2,7 @@
  * attempts, nesting and size limits, scenes, precedence, and the meaning of primitives and transforms (checked
  * by host evaluation at points). */
 #include "implicits/expr_internal.h"
+#include "implicits/library.h"
 #include "test.h"
 #include <math.h>
 #include <stdio.h>
@@ -306,4 +307,23 @@ TEST(expr_examples_compile) {
     }
     test_note("%zu scenes", g.gl_pathc);
     globfree(&g);
+}
+
+/* Every library entry compiles when called with its required arguments (its texts parse and lower). */
+TEST(expr_library_entries_compile) {
+    for (int i = 0; i < lib_count; i++) {
+        const lib_entry *l = &lib_entries[i];
+        char text[256];
+        if (l->kind == LIB_PRIMITIVE)
+            snprintf(text, sizeof text, "%s", l->name);
+        else if (l->kind == LIB_TRANSFORM)
+            snprintf(text, sizeof text, "%s(sphere, 0.3)", l->name);
+        else
+            snprintf(text, sizeof text, "%s(sphere, box, 2)", l->name);
+        iacsg_expr *e;
+        iacsg_error err = {0};
+        CHECK(iacsg_expr_parse(text, "<test>", &e, &err) == IACSG_OK, "'%s': %s", text, err.message);
+        iacsg_expr_destroy(e);
+    }
+    test_note("%d entries", lib_count);
 }
