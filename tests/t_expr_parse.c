@@ -319,7 +319,7 @@ TEST(expr_library_entries_compile) {
         else if (l->kind == LIB_TRANSFORM)
             snprintf(text, sizeof text, "%s(sphere, 0.3)", l->name);
         else
-            snprintf(text, sizeof text, "%s(sphere, box, 2)", l->name);
+            snprintf(text, sizeof text, "%s(sphere, box)", l->name);
         iacsg_expr *e;
         iacsg_error err = {0};
         CHECK(iacsg_expr_parse(text, "<test>", &e, &err) == IACSG_OK, "'%s': %s", text, err.message);
