@@ -17,7 +17,7 @@ IA_FN ia_interval ia_sub(ia_interval a, ia_interval b) {
     return ia_make(ia_lo(a.lo - b.hi), ia_hi(a.hi - b.lo));
 }
 
-/* a + c for a real c (exact, not a decimal approximation). Empty stays empty. */
+/* a + c for a finite real c (exact, not a decimal approximation). Empty stays empty. */
 IA_FN ia_interval ia_add_r(ia_interval a, ia_real c) {
     if (ia_is_empty(a))
         return a;
@@ -40,7 +40,7 @@ IA_FN ia_interval ia_mul(ia_interval a, ia_interval b) {
     return ia_make(ia_lo(fmin(fmin(p1, p2), fmin(p3, p4))), ia_hi(fmax(fmax(p1, p2), fmax(p3, p4))));
 }
 
-/* a * c for a real c. Empty stays empty; 0 * unbounded = [0,0]. */
+/* a * c for a finite real c. Empty stays empty; 0 * unbounded = [0,0]. */
 IA_FN ia_interval ia_mul_r(ia_interval a, ia_real c) {
     if (ia_is_empty(a))
         return a;
@@ -54,7 +54,8 @@ IA_FN ia_interval ia_sqr(ia_interval a) {
         return a;
     ia_real mig = a.lo > 0 ? a.lo : (a.hi < 0 ? -a.hi : (ia_real)0);
     ia_real mag = fmax(-a.lo, a.hi);
-    return ia_make(mig == 0 ? (ia_real)0 : fmax(ia_lo(mig * mig), (ia_real)0), ia_hi(mag * mag));
+    return ia_make(mig == 0 ? (ia_real)0 : fmax(ia_lo(mig * mig), (ia_real)0),
+                   mag == 0 ? (ia_real)0 : ia_hi(mag * mag));
 }
 
 /* 1 / a, set-based (IEEE 1788): 1/[0,0] is empty, 1/[0,h] = [1/h, +inf], a straddling 0 gives entire. */
@@ -69,24 +70,32 @@ IA_FN ia_interval ia_recip(ia_interval a) {
     return ia_make(lo, hi);
 }
 
-/* a / b, set-based: b = [0,0] gives empty; a containing 0 over b containing 0 gives entire; a one-signed
- * over b containing 0 gives the (possibly two-sided, hence entire) hull. */
+/* a / b, set-based (IEEE 1788 division restricted to one interval): b = [0,0] gives empty; a = [0,0] gives
+ * [0,0]; b with 0 strictly inside gives entire (two half-lines, or all of R); b touching 0 at one end gives a
+ * half-line, unless a has 0 strictly inside (then entire). */
 IA_FN ia_interval ia_div(ia_interval a, ia_interval b) {
     if (ia_is_empty(a) || ia_is_empty(b) || (b.lo == 0 && b.hi == 0))
         return ia_empty();
-    if (b.lo <= 0 && b.hi >= 0) {
-        if (a.lo == 0 && a.hi == 0)
-            return ia_make(0, 0);
-        /* recip then mul: two roundings, but this branch is rare and its results have an infinite side. */
-        ia_interval r = ia_recip(b);
-        if (a.lo <= 0 && a.hi >= 0)
+    if (a.lo == 0 && a.hi == 0)
+        return ia_make(0, 0);
+    if (b.lo < 0 && b.hi > 0)
+        return ia_entire();
+    if (b.lo == 0 || b.hi == 0) { /* a pole at the zero end of b; a bound of a at 0 gives exactly 0 */
+        int a_nonneg = a.lo >= 0, a_nonpos = a.hi <= 0;
+        if (!a_nonneg && !a_nonpos)
             return ia_entire();
-        return ia_mul(a, r);
+        if (b.lo == 0) /* b = [0, h], h > 0 */
+            return a_nonneg ? ia_make(a.lo == 0 ? (ia_real)0 : ia_lo_k(a.lo / b.hi, IA_ULP_DIV), IA_INF)
+                            : ia_make(-IA_INF, a.hi == 0 ? (ia_real)0 : ia_hi_k(a.hi / b.hi, IA_ULP_DIV));
+        /* b = [l, 0], l < 0 */
+        return a_nonneg ? ia_make(-IA_INF, a.lo == 0 ? (ia_real)0 : ia_hi_k(a.lo / b.lo, IA_ULP_DIV))
+                        : ia_make(a.hi == 0 ? (ia_real)0 : ia_lo_k(a.hi / b.lo, IA_ULP_DIV), IA_INF);
     }
-    /* b is one-signed and nonzero: the extremes are among the four corner quotients (inf/inf cannot occur:
-     * a bound of b is finite on the side facing 0, and x/inf = 0 is exact). */
+    /* b is one-signed and away from 0: the extremes are among the four corner quotients (x/inf = 0 is the
+     * limit). A corner inf/inf stands for quotients from 0 to inf of one sign: it counts as 0, and the inf is
+     * the corner (inf bound of a) / (finite bound of b), which is always present. */
     ia_real q1 = a.lo / b.lo, q2 = a.lo / b.hi, q3 = a.hi / b.lo, q4 = a.hi / b.hi;
-    q1 = isnan(q1) ? (ia_real)0 : q1; /* inf/inf: only when both bounds are infinite on the far sides */
+    q1 = isnan(q1) ? (ia_real)0 : q1;
     q2 = isnan(q2) ? (ia_real)0 : q2;
     q3 = isnan(q3) ? (ia_real)0 : q3;
     q4 = isnan(q4) ? (ia_real)0 : q4;
@@ -102,10 +111,28 @@ IA_FN ia_interval ia_sqrt(ia_interval a) {
     return ia_make(lo, ia_hi_k(sqrt(a.hi), IA_ULP_SQRT));
 }
 
-/* x^n for x >= 0 (possibly +inf) and n >= 1, rounded down (dir < 0) or up (dir > 0) at every step: the
- * factors are nonnegative, so rounding each partial product the same way bounds the exact power. */
+/* Above this exponent ia_pown uses the platform's pow instead of square-and-multiply: the chain's rounding
+ * errors compound (squaring doubles the relative error so far), to about 2.25 (n-1) ulps, while pow is
+ * within IA_ULP_POW ulps, 3 IA_ULP_POW + 3 after widening. */
+#define IA_POWN_CHAIN_MAX ((3 * IA_ULP_POW + 3) / 2 + 1)
+
+/* x^n for x >= 0 (possibly +inf) and n >= 1, rounded down (dir < 0) or up (dir > 0). Square-and-multiply
+ * rounds every partial product the same way (the factors are nonnegative, so that bounds the exact power);
+ * for large n, pow widened by its error bound, the exponent split in two when the format cannot hold it. */
 IA_FN ia_real ia__pown_nonneg(ia_real x, unsigned int n, int dir) {
     ia_real r = 1, b = x;
+    if (x == 0)
+        return 0;
+    if (n > IA_POWN_CHAIN_MAX) {
+        unsigned int n_hi = n & ~0xffffu, n_lo = n & 0xffffu; /* 16 significant bits each: exact as floats */
+        ia_real p = pow(x, (ia_real)n_lo);
+        p = n_lo == 0 ? (ia_real)1 : dir < 0 ? fmax(ia_lo_k(p, IA_ULP_POW), (ia_real)0) : ia_hi_k(p, IA_ULP_POW);
+        if (n_hi == 0)
+            return p;
+        ia_real q = pow(x, (ia_real)n_hi);
+        q = dir < 0 ? fmax(ia_lo_k(q, IA_ULP_POW), (ia_real)0) : ia_hi_k(q, IA_ULP_POW);
+        return dir < 0 ? fmax(ia_lo(ia__mul0(p, q)), (ia_real)0) : ia_hi(ia__mul0(p, q));
+    }
     while (1) {
         if (n & 1)
             r = dir < 0 ? fmax(ia_lo(r * b), (ia_real)0) : ia_hi(r * b);
@@ -134,7 +161,9 @@ IA_FN ia_interval ia__pown_pos(ia_interval a, unsigned int m) {
 }
 
 /* a^n for an integer n of either sign (IEEE 1788 pown): a^0 = [1,1] for nonempty a (0^0 = 1); even n over an
- * interval straddling 0 starts at 0; negative n is 1 / a^|n|, so pown([0,0], -n) is empty. */
+ * interval holding 0 starts at exactly 0; negative n is 1 / a^|n| set-based, so pown([0,0], -n) is empty and
+ * odd -n over an interval with 0 inside is entire. Square-and-multiply up to |n| = IA_POWN_CHAIN_MAX, pow
+ * above (see there). */
 IA_FN ia_interval ia_pown(ia_interval a, int n) {
     if (ia_is_empty(a))
         return a;
@@ -142,7 +171,12 @@ IA_FN ia_interval ia_pown(ia_interval a, int n) {
         return ia_point(1);
     if (n > 0)
         return ia__pown_pos(a, (unsigned int)n);
-    return ia_recip(ia__pown_pos(a, 0u - (unsigned int)n)); /* 0u - n: no overflow at INT_MIN */
+    unsigned int m = 0u - (unsigned int)n; /* no overflow at INT_MIN */
+    if ((m & 1) == 0)
+        a = ia_abs(a); /* x^-m = |x|^-m: one-signed, so that 1/a below is one interval */
+    /* 1/a^m and (1/a)^m are both enclosures: the first is tight where a^m is in range, the second where it
+     * overflows or is subnormal (1/a^m then only knows "below 1/MAX"). Keep the common part. */
+    return ia_intersect(ia_recip(ia__pown_pos(a, m)), ia__pown_pos(ia_recip(a), m));
 }
 
 #endif

@@ -46,10 +46,32 @@ IA_FN int ia__pi_multiples(ia_interval a, ia_real shift) {
     return fmod(m0, (ia_real)2) == 0 ? 1 : 2;
 }
 
+/* Settles which critical points a contains from the signs of the derivative at its ends (cos for sin, -sin
+ * for cos; its zeros are pi apart and simple), for a shorter than 2 pi: a sign change means exactly one zero
+ * (a maximum if the derivative falls, a minimum if it rises); no change means none if a is shorter than pi,
+ * two (a maximum and a minimum) if it is at least pi long. The sign of a computed cos or sin is exact when
+ * nonzero: |sin x| and |cos x| exceed 2^-70 at every float and double x, far above any error bound.
+ * Returns the bits of ia__pi_multiples (1: a maximum, 2: a minimum), or -1 when undecided. This is what keeps
+ * huge arguments tight, where a / pi cannot be enclosed to within one integer. */
+IA_FN int ia__critical(ia_interval a, ia_real d_lo, ia_real d_hi) {
+    if (d_lo == 0 || d_hi == 0 || !(ia_hi(a.hi - a.lo) < 2 * IA_PI_LO))
+        return -1;
+    if ((d_lo > 0) != (d_hi > 0))
+        return d_lo > 0 ? 1 : 2;
+    if (ia_hi(a.hi - a.lo) < IA_PI_LO)
+        return 0;
+    return ia_lo(a.hi - a.lo) >= IA_PI_HI ? 3 : -1;
+}
+
 /* cos or sin of a, given the end point values, whose maxima (value 1) sit where a/pi - shift is an even
  * integer and minima (value -1) where it is odd: cos has shift 0, sin has shift 1/2. */
 IA_FN ia_interval ia__sincos(ia_interval a, ia_real f_lo, ia_real f_hi, ia_real shift) {
     int hits = ia__pi_multiples(a, shift);
+    if (hits != 0) { /* maybe an extremum: check the derivative (cos for sin, -sin for cos) */
+        int c = shift == 0 ? ia__critical(a, -sin(a.lo), -sin(a.hi)) : ia__critical(a, cos(a.lo), cos(a.hi));
+        if (c >= 0)
+            hits = c;
+    }
     ia_real lo = hits & 2 ? (ia_real)-1 : ia_lo_k(fmin(f_lo, f_hi), IA_ULP_SINCOS);
     ia_real hi = hits & 1 ? (ia_real)1 : ia_hi_k(fmax(f_lo, f_hi), IA_ULP_SINCOS);
     return ia_make(fmax(lo, (ia_real)-1), fmin(hi, (ia_real)1));
@@ -74,11 +96,14 @@ IA_FN ia_interval ia_sin(ia_interval a) {
 }
 
 /* tan(a): increasing between poles; an interval that may contain a pole (pi/2 + k pi) gives entire, the hull of
- * the two unbounded branches. Empty stays empty. */
+ * the two unbounded branches. Empty stays empty; an unbounded a gives entire. */
 IA_FN ia_interval ia_tan(ia_interval a) {
     if (ia_is_empty(a))
         return a;
-    if (a.lo == -IA_INF || a.hi == IA_INF || ia__pi_multiples(a, (ia_real)0.5) != 0)
+    if (a.lo == -IA_INF || a.hi == IA_INF)
+        return ia_entire();
+    /* poles are the zeros of cos; if the quotient test cannot exclude one, the signs of cos can */
+    if (ia__pi_multiples(a, (ia_real)0.5) != 0 && ia__critical(a, cos(a.lo), cos(a.hi)) != 0)
         return ia_entire();
     return ia_make(ia_lo_k(tan(a.lo), IA_ULP_TAN), ia_hi_k(tan(a.hi), IA_ULP_TAN));
 }

@@ -13,15 +13,22 @@
  *   + - * are correctly rounded; /, sqrt and the elementary functions are within the ulp bounds of
  *   ia/round.h (the OpenCL C specification's table on the device, measured glibc bounds on the host). Each
  *   bound computed in round-to-nearest is then moved outward past that error (ia/round.h explains why that
- *   is enough). With IA_FTZ the same holds on a device that flushes subnormals to zero.
+ *   is enough). With IA_FTZ the same holds on a device (or an x86 host in FTZ+DAZ mode) that flushes
+ *   subnormals to zero, provided no input bound is subnormal; results then have no subnormal bound either.
  *
- *   Tightness. Monotone operations return bounds within a few ulps of the exact range (one ulp for + - *,
- *   k+1 for a function with a k-ulp bound). sin and cos return +-1 exactly when the interval may contain an
- *   extremum; sqr and even pown of an interval straddling 0 start at exactly 0. Nothing returns
- *   [-inf, +inf] unless the true range is unbounded on both sides.
+ *   Tightness. Each bound is within a few steps (format numbers) of the exact range rounded outward:
+ *   0 for neg, abs, min, max, hull, intersect; 1 for + - * sqr, add_r, mul_r, width and correctly rounded
+ *   / and sqrt (2 within 2^(p+3) subnormal steps of 0, p = 24 or 53); 3k+3 for a function with a k-ulp bound
+ *   (k+1 from the function and its rounding, 2k+2 from the widening); pown: about 2.25 (|n|-1) + 2 up to
+ *   |n| = IA_POWN_CHAIN_MAX, that of pow above it, doubled for n < 0. sin and cos return +-1 exactly when the
+ *   interval may contain an extremum, and find out whether it does from the derivative's signs when the
+ *   interval is shorter than 2 pi (so huge arguments stay tight); sqr and even pown of an interval holding 0
+ *   start at exactly 0. Nothing returns [-inf, +inf] unless the true range is unbounded on both sides.
+ *   tests/t_ia_tight_fp.c checks all of this against MPFR, on the host and on the device.
  *
- *   Values. Empty is [+inf, -inf]; every operation maps empty inputs to empty. Infinite bounds mean
- *   "unbounded". No operation makes a NaN bound from non-NaN inputs (ia_mid of empty is NaN by definition).
+ *   Values. Empty is [+inf, -inf]; every operation maps empty inputs to empty (for hull, empty is the
+ *   identity). Infinite bounds mean "unbounded". Reals passed to an operation (add_r, mul_r, contains) are
+ *   finite. No operation makes a NaN bound from non-NaN inputs (ia_mid of empty is NaN by definition).
  *
  *   Fast mode (IA_FAST) drops the widening: the Hijazi seed's arithmetic, for measuring the cost of rigor.
  *

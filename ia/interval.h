@@ -31,8 +31,21 @@ IA_FN IA_BOOL ia_certainly_pos(ia_interval a) { return a.lo > 0 || ia_is_empty(a
 IA_FN IA_BOOL ia_contains_zero(ia_interval a) { return a.lo <= 0 && a.hi >= 0; }
 IA_FN IA_BOOL ia_contains(ia_interval a, ia_real x) { return a.lo <= x && x <= a.hi; }
 
-/* Width hi - lo rounded up; +inf for unbounded, 0 for empty (so bisection never splits an empty). */
-IA_FN ia_real ia_width(ia_interval a) { return ia_is_empty(a) ? (ia_real)0 : ia_hi(a.hi - a.lo); }
+/* Width hi - lo rounded up (exact when the difference is a float); +inf for unbounded, 0 for empty (so
+ * bisection never splits an empty). */
+IA_FN ia_real ia_width(ia_interval a) {
+    if (ia_is_empty(a))
+        return 0;
+    ia_real w = a.hi - a.lo;
+#ifndef IA_FTZ /* (flushing could make an inexact difference look exact) */
+    /* Fast2Sum: with |big| >= |small|, small - (w - big) is exactly the rounding error of big + small */
+    int hi_big = fabs(a.hi) >= fabs(a.lo);
+    ia_real big = hi_big ? a.hi : -a.lo, small = hi_big ? -a.lo : a.hi;
+    if (small - (w - big) == 0)
+        return w;
+#endif
+    return ia_hi(w);
+}
 
 /* A point of the interval near its centre, as IEEE 1788 mid: 0 for entire, +-MAX for half-unbounded,
  * NaN for empty. The halves are summed so that [-MAX, MAX] does not overflow. */
