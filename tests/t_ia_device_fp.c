@@ -1,0 +1,356 @@
+/* tests/t_ia_device_fp.c -- ia/ on the OpenCL device: the device runner shared by the ia tests (declared in
+ * tests/oracle_ia.h), the device's ulp errors for the built-ins ia/ uses (checked against the IA_ULP_* table
+ * for the device in ia/round.h), the proof that the checker catches the fast mode (IA_FAST), whose
+ * unwidened bounds must show violations while the rigorous build shows none, and the IA_FTZ build. */
+#include "clrt.h"
+#include "ia/ia.h"
+#include "oracle_ia.h"
+#include <stdlib.h>
+#include <time.h>
+
+extern const char iacsg_cl_ia[], iacsg_cl_tests[];
+
+static struct {
+    int tried, ok;
+    clrt rt;
+    cl_program prog[3]; /* modes: 0 rigorous, 1 fast (IA_FAST), 2 rigorous with IA_FTZ forced (built on demand) */
+    cl_kernel ops[3], bench[3], fns;
+    char options[3][512];
+    char describe[3][1400];
+    char err[1024];
+} dev;
+
+/* "#define IA_OP_ADD 0" ... from the op list of tests/oracle.h, so host and device number the ops alike. */
+static const char *prelude(void) {
+    static char s[4096];
+    if (s[0])
+        return s;
+    size_t len = 0;
+#define X(NAME, name, kind)                                                                                            \
+    len += (size_t)snprintf(s + len, sizeof s - len, "#define IA_OP_" #NAME " %d\n", ORACLE_##NAME);
+    ORACLE_OPS(X)
+#undef X
+    static const char *fns[] = {"DIV", "SQRT", "EXP", "LOG", "SIN", "COS", "TAN", "ATAN", "POW"};
+    for (int i = 0; i < ORACLE_NFNS; i++)
+        len += (size_t)snprintf(s + len, sizeof s - len, "#define IA_FN_%s %d\n", fns[i], i);
+    return s;
+}
+
+/* Builds the test program in one mode (see dev.prog). */
+static int build_mode(int mode, int fp64, char *err, size_t size) {
+    iacsg_error e = {0};
+    cl_int rc = CL_SUCCESS;
+    const char *src[3] = {iacsg_cl_ia, prelude(), iacsg_cl_tests};
+    char *opt = dev.options[mode];
+    if (clrt_ia_options(&dev.rt, fp64, mode == 1, opt, sizeof dev.options[mode], &e) != IACSG_OK) {
+        snprintf(err, size, "clrt_ia_options: %s", e.message);
+        return -1;
+    }
+    if (mode == 2 && !strstr(opt, "IA_FTZ"))
+        snprintf(opt + strlen(opt), sizeof dev.options[mode] - strlen(opt), " -D IA_FTZ");
+    if (clrt_build(&dev.rt, src, 3, opt, &dev.prog[mode], &e) != IACSG_OK) {
+        snprintf(err, size, "building the ia/ test program (%s): %s", opt, e.message);
+        return -1;
+    }
+    dev.ops[mode] = clCreateKernel(dev.prog[mode], "ia_test_ops", &rc);
+    if (rc == CL_SUCCESS)
+        dev.bench[mode] = clCreateKernel(dev.prog[mode], "ia_bench_ops", &rc);
+    if (rc == CL_SUCCESS && mode == 0)
+        dev.fns = clCreateKernel(dev.prog[mode], "ia_test_fns", &rc);
+    if (rc != CL_SUCCESS) {
+        snprintf(err, size, "clCreateKernel: %s", clrt_error_name(rc));
+        return -1;
+    }
+    char names[1400];
+    snprintf(names, sizeof names, "%s / %s (%s)", dev.rt.platform_name, dev.rt.device_name, dev.options[mode]);
+    memcpy(dev.describe[mode], names, sizeof names);
+    return 0;
+}
+
+static int dev_open(char *err, size_t size) {
+    if (dev.tried) {
+        if (!dev.ok)
+            snprintf(err, size, "%s", dev.err);
+        return dev.ok ? 0 : -1;
+    }
+    dev.tried = 1;
+    iacsg_error e = {0};
+    const char *idx = getenv("IACSG_DEVICE");
+    if (clrt_open(&dev.rt, idx ? atoi(idx) : 0, &e) != IACSG_OK) {
+        snprintf(dev.err, sizeof dev.err, "no OpenCL device for the ia/ tests: %s", e.message);
+        snprintf(err, size, "%s", dev.err);
+        return -1;
+    }
+#ifdef IA_FP64
+    const int fp64 = 1;
+#else
+    const int fp64 = 0;
+#endif
+    for (int mode = 0; mode < 2; mode++)
+        if (build_mode(mode, fp64, dev.err, sizeof dev.err)) {
+            snprintf(err, size, "%s", dev.err);
+            return -1;
+        }
+    dev.ok = 1;
+    return 0;
+}
+
+const char *FP_NAME(ia_dev_describe)(int mode) { return dev.describe[mode >= 0 && mode < 3 ? mode : 0]; }
+
+/* Runs kernel k over `items` work items with the given buffers (inputs copied in, `out` read back). */
+typedef struct {
+    const void *data;
+    size_t size;
+    int is_output;
+    int is_scalar_int; /* passed by value: *(const int *)data */
+} karg;
+
+static int run_kernel(cl_kernel k, const karg *args, int nargs, size_t items, void *out, size_t out_size,
+                      double *seconds, char *err, size_t size) {
+    cl_mem mem[8] = {0};
+    cl_mem out_mem = NULL;
+    cl_int rc = CL_SUCCESS;
+    int status = -1;
+    for (int i = 0; i < nargs; i++) {
+        if (args[i].is_scalar_int) {
+            rc = clSetKernelArg(k, (cl_uint)i, sizeof(int), args[i].data);
+        } else {
+            cl_mem_flags fl = args[i].is_output ? CL_MEM_WRITE_ONLY : (CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR);
+            mem[i] =
+                clCreateBuffer(dev.rt.context, fl, args[i].size, args[i].is_output ? NULL : (void *)args[i].data, &rc);
+            if (rc != CL_SUCCESS)
+                goto done;
+            if (args[i].is_output)
+                out_mem = mem[i];
+            rc = clSetKernelArg(k, (cl_uint)i, sizeof(cl_mem), &mem[i]);
+        }
+        if (rc != CL_SUCCESS)
+            goto done;
+    }
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    rc = clEnqueueNDRangeKernel(dev.rt.queue, k, 1, NULL, &items, NULL, 0, NULL, NULL);
+    if (rc == CL_SUCCESS)
+        rc = clFinish(dev.rt.queue);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (seconds)
+        *seconds = (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9;
+    if (rc == CL_SUCCESS)
+        rc = clEnqueueReadBuffer(dev.rt.queue, out_mem, CL_TRUE, 0, out_size, out, 0, NULL, NULL);
+    if (rc == CL_SUCCESS)
+        status = 0;
+done:
+    if (status)
+        snprintf(err, size, "OpenCL: %s", clrt_error_name(rc));
+    for (int i = 0; i < nargs; i++)
+        if (mem[i])
+            clReleaseMemObject(mem[i]);
+    return status;
+}
+
+static void pack(const ia_case *k, long count, ia_real *in, int *n) {
+    for (long i = 0; i < count; i++) {
+        in[5 * i] = k[i].a.lo, in[5 * i + 1] = k[i].a.hi, in[5 * i + 2] = k[i].b.lo, in[5 * i + 3] = k[i].b.hi;
+        in[5 * i + 4] = k[i].c;
+        n[i] = k[i].n;
+    }
+}
+
+int FP_NAME(ia_dev_ops)(int mode, int op, const ia_case *k, long count, ia_real *out, char *err, size_t size) {
+    if (dev_open(err, size))
+        return -1;
+    if (mode < 0 || mode > 2)
+        mode = 0;
+#ifdef IA_FP64
+    if (!dev.prog[mode] && build_mode(mode, 1, err, size))
+        return -1;
+#else
+    if (!dev.prog[mode] && build_mode(mode, 0, err, size))
+        return -1;
+#endif
+    ia_real *in = malloc(sizeof *in * 5 * (size_t)count);
+    int *n = malloc(sizeof *n * (size_t)count);
+    if (!in || !n) {
+        free(in), free(n);
+        snprintf(err, size, "out of memory");
+        return -1;
+    }
+    pack(k, count, in, n);
+    karg args[] = {{&op, sizeof op, 0, 1},
+                   {in, sizeof *in * 5 * (size_t)count, 0, 0},
+                   {n, sizeof *n * (size_t)count, 0, 0},
+                   {NULL, sizeof *out * 2 * (size_t)count, 1, 0}};
+    int rc = run_kernel(dev.ops[mode], args, 4, (size_t)count, out, sizeof *out * 2 * (size_t)count, NULL, err, size);
+    free(in), free(n);
+    return rc;
+}
+
+int FP_NAME(ia_dev_fns)(int fn, const ia_real *x, const ia_real *y, long count, ia_real *out, char *err, size_t size) {
+    if (dev_open(err, size))
+        return -1;
+    karg args[] = {{&fn, sizeof fn, 0, 1},
+                   {x, sizeof *x * (size_t)count, 0, 0},
+                   {y, sizeof *y * (size_t)count, 0, 0},
+                   {NULL, sizeof *out * (size_t)count, 1, 0}};
+    return run_kernel(dev.fns, args, 4, (size_t)count, out, sizeof *out * (size_t)count, NULL, err, size);
+}
+
+int FP_NAME(ia_dev_bench)(int fast, int op, int reps, const ia_case *k, long count, long items, double *seconds,
+                          char *err, size_t size) {
+    if (dev_open(err, size))
+        return -1;
+    ia_real *in = malloc(sizeof *in * 5 * (size_t)count), *out = malloc(sizeof *out * (size_t)items);
+    int *n = malloc(sizeof *n * (size_t)count);
+    int cnt = (int)count, rc = -1;
+    if (in && n && out) {
+        pack(k, count, in, n);
+        karg args[] = {{&op, sizeof op, 0, 1},
+                       {&reps, sizeof reps, 0, 1},
+                       {&cnt, sizeof cnt, 0, 1},
+                       {in, sizeof *in * 5 * (size_t)count, 0, 0},
+                       {n, sizeof *n * (size_t)count, 0, 0},
+                       {NULL, sizeof *out * (size_t)items, 1, 0}};
+        rc = run_kernel(dev.bench[fast ? 1 : 0], args, 6, (size_t)items, out, sizeof *out * (size_t)items, seconds, err,
+                        size);
+    } else {
+        snprintf(err, size, "out of memory");
+    }
+    free(in), free(n), free(out);
+    return rc;
+}
+
+int FP_NAME(ia_dev_ulp_table)(int *out, char *err, size_t size) {
+    if (dev_open(err, size))
+        return -1;
+    cl_int rc = CL_SUCCESS;
+    cl_kernel k = clCreateKernel(dev.prog[0], "ia_test_ulp_table", &rc);
+    if (rc != CL_SUCCESS) {
+        snprintf(err, size, "clCreateKernel: %s", clrt_error_name(rc));
+        return -1;
+    }
+    karg args[] = {{NULL, sizeof(int) * (ORACLE_NFNS + 1), 1, 0}};
+    int status = run_kernel(k, args, 1, 1, out, sizeof(int) * (ORACLE_NFNS + 1), NULL, err, size);
+    clReleaseKernel(k);
+    return status;
+}
+
+/* ---- the device's math built-ins against MPFR */
+
+TEST_FP(ia_device_ulps) {
+    char err[1024];
+    int table[ORACLE_NFNS + 1];
+    CHECK(FP_NAME(ia_dev_ulp_table)(table, err, sizeof err) == 0, "%s", err);
+    test_note("device %s", FP_NAME(ia_dev_describe)(0));
+    long count = test_iters(40000);
+    ia_real *x = malloc(sizeof *x * (size_t)count), *y = malloc(sizeof *y * (size_t)count),
+            *res = malloc(sizeof *res * (size_t)count);
+    CHECK(x && y && res, "out of memory");
+    char line[1024] = "";
+    size_t len = 0;
+    int bad = -1;
+    double bad_u = 0, bad_x = 0, bad_y = 0;
+    for (int fn = 0; fn < ORACLE_NFNS; fn++) {
+        test_rng_t *r = test_rng();
+        for (long i = 0; i < count; i++)
+            fn_args(fn, r, &x[i], &y[i]);
+        if (FP_NAME(ia_dev_fns)(fn, x, y, count, res, err, sizeof err)) {
+            free(x), free(y), free(res);
+            CHECK(0, "%s", err);
+        }
+        double wx = 0, wy = 0, u = fn_measure(fn, x, y, res, count, &wx, &wy);
+        /* k = 0 means correctly rounded: half an ulp */
+        double bound = table[fn] == 0 ? 0.5 : table[fn];
+        len += (size_t)snprintf(line + len, sizeof line - len, " %s %.3g (<= %g)", oracle_fn_name[fn], u, bound);
+        if (u > bound && bad < 0)
+            bad = fn, bad_u = u, bad_x = wx, bad_y = wy;
+    }
+    free(x), free(y), free(res);
+    test_note("device max ulp error " FMT_NAME ":%s", line);
+    CHECK(bad < 0, "device %s " FMT_NAME " error %.3g ulps exceeds the IA_ULP bound %d at x = %s, y = %s",
+          bad >= 0 ? oracle_fn_name[bad] : "", bad_u, bad >= 0 ? table[bad] : 0, oracle_hex(bad_x), oracle_hex(bad_y));
+}
+
+/* ---- the checker catches the fast mode */
+
+TEST_FP(ia_device_fast_caught) {
+    test_rng_t *r = test_rng();
+    long count = test_iters(4000);
+    const int np = 10;
+    ia_case *k = malloc(sizeof *k * (size_t)count);
+    ia_real *rig = malloc(sizeof *rig * 2 * (size_t)count), *fast = malloc(sizeof *fast * 2 * (size_t)count);
+    CHECK(k && rig && fast, "out of memory");
+    pt_t p[PT_MAX];
+    pt_init(p, np);
+    char msg[2048], line[2048] = "", first[2048] = "";
+    size_t len = 0;
+    long total_fast = 0, total_rig = 0, checks = 0, nops = 0;
+    for (int op = 0; op < ORACLE_NOPS; op++) {
+        int kind = oracle_op_kind[op];
+        if (!(kind == ORACLE_K_UN || kind == ORACLE_K_BIN || kind == ORACLE_K_POWN || kind == ORACLE_K_REAL))
+            continue;
+        nops++;
+        for (long i = 0; i < count; i++)
+            k[i] = gen_case(r, 0);
+        if (FP_NAME(ia_dev_ops)(0, op, k, count, rig, msg, sizeof msg) ||
+            FP_NAME(ia_dev_ops)(1, op, k, count, fast, msg, sizeof msg)) {
+            pt_clear(p, np);
+            free(k), free(rig), free(fast);
+            CHECK(0, "%s", msg);
+        }
+        long vf = 0, vr = 0, c0 = 0;
+        for (long i = 0; i < count; i++) {
+            pt_draw(op, &k[i], p, np, r);
+            if (pt_check(op, &k[i], p, np, fast + 2 * i, "fast device", msg, sizeof msg, &c0)) {
+                if (!vf && !first[0])
+                    snprintf(first, sizeof first, "%s", msg);
+                vf++;
+            }
+            vr += pt_check(op, &k[i], p, np, rig + 2 * i, "device", msg, sizeof msg, &checks);
+        }
+        total_fast += vf, total_rig += vr;
+        if (vf)
+            len += (size_t)snprintf(line + len, sizeof line - len, " %s %ld", oracle_op_name[op], vf);
+    }
+    pt_clear(p, np);
+    free(k), free(rig), free(fast);
+    test_note("fast mode (IA_FAST) " FMT_NAME ": %ld of %ld cases violate containment; rigorous: %ld", total_fast,
+              count * nops, total_rig);
+    test_note("fast violations per op:%s", line);
+    test_note("first: %.400s", first);
+    CHECK(total_rig == 0, "the rigorous build violated containment in %ld cases", total_rig);
+    CHECK(total_fast > 0, "the checker found no violation in the fast build: it cannot see a 1-ulp slip");
+}
+
+/* ---- the IA_FTZ build (what a device without subnormals gets) compiles and stays rigorous here */
+
+TEST_FP(ia_device_ftz_build) {
+    test_rng_t *r = test_rng();
+    long count = test_iters(2000), checks = 0;
+    const int np = 10;
+    ia_case *k = calloc((size_t)count, sizeof *k);
+    ia_real *out = malloc(sizeof *out * 2 * (size_t)count);
+    CHECK(k && out, "out of memory");
+    pt_t p[PT_MAX];
+    pt_init(p, np);
+    char msg[2048];
+    pt_ftz = 1;
+    for (int op = 0; op < ORACLE_NOPS; op++) {
+        for (long i = 0; i < count; i++)
+            k[i] = gen_case(r, GEN_NO_SUBNORMAL);
+        int bad = FP_NAME(ia_dev_ops)(2, op, k, count, out, msg, sizeof msg);
+        for (long i = 0; !bad && i < count; i++) {
+            pt_draw(op, &k[i], p, np, r);
+            bad = pt_check(op, &k[i], p, np, out + 2 * i, "device IA_FTZ", msg, sizeof msg, &checks);
+        }
+        if (bad) {
+            pt_clear(p, np);
+            free(k), free(out);
+            pt_ftz = 0;
+            CHECK(0, "%s", msg);
+        }
+    }
+    pt_ftz = 0;
+    pt_clear(p, np);
+    free(k), free(out);
+    test_note("%s: %ld checks over all ops, 0 violations", FP_NAME(ia_dev_describe)(2), checks);
+}
