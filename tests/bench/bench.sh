@@ -238,6 +238,15 @@ while [ $k -lt 5 ]; do
     k=$((k + 1))
 done
 STARTUP_MS=$(ms_of_us "$(median <"$WORK/w")")
+# The process alone (its shared libraries, no OpenCL): `iacsg --version`.
+: >"$WORK/w"
+k=0
+while [ $k -lt 5 ]; do
+    t0=$(now_us); "$IACSG" --version >/dev/null 2>&1; t1=$(now_us)
+    echo $((t1 - t0)) >>"$WORK/w"
+    k=$((k + 1))
+done
+PROCESS_MS=$(ms_of_us "$(median <"$WORK/w")")
 DEVICE=$("$IACSG" devices 2>/dev/null | head -n 1 | sed 's/^0: //')
 
 bench_suite   # suite.sh: the tables
