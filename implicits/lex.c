@@ -2,6 +2,7 @@
  * inside parentheses is plain space, so long expressions may span lines. */
 #include "lex.h"
 #include "strbuf.h"
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,6 +29,18 @@ static size_t number_length(const char *s) {
         }
     }
     return i;
+}
+
+/* Why the number of length len at s is not acceptable, or NULL. A letter right after it ("0x", "2e", "3pi")
+ * makes it malformed: products are written with '*'. Beyond the largest double it is out of range (a real
+ * that no float or double interval of finite numbers can enclose). */
+static const char *number_problem(const char *s, size_t len) {
+    if (is_alpha(s[len]))
+        return "malformed number";
+    char buf[LEX_MAX_NUMBER + 1];
+    memcpy(buf, s, len);
+    buf[len] = '\0';
+    return isinf(strtod(buf, NULL)) ? "number out of range (beyond 1.8e308)" : NULL;
 }
 
 long lex(const char *text, token **out, iacsg_error *err) {
@@ -89,6 +102,15 @@ long lex(const char *text, token **out, iacsg_error *err) {
                 free(toks);
                 return iacsg_error_set(err, IACSG_ERR_LIMIT, line, column, "number too long (over %d characters)",
                                        LEX_MAX_NUMBER),
+                       -1;
+            }
+            const char *bad = number_problem(text + i, t->len);
+            if (bad) {
+                size_t shown = t->len;
+                while (is_alpha(text[i + shown]) || is_digit(text[i + shown]))
+                    shown++;
+                free(toks);
+                return iacsg_error_set(err, IACSG_ERR_SYNTAX, line, column, "%s: '%.*s'", bad, (int)shown, text + i),
                        -1;
             }
         } else if (is_alpha(c)) {

@@ -35,7 +35,9 @@ TEST(expr_errors) {
     expect_error("(x + y", IACSG_ERR_SYNTAX, 1, 7, "expected ')'");
     expect_error("x) + (y", IACSG_ERR_SYNTAX, 1, 2, "unbalanced ')'");
     expect_error("x y", IACSG_ERR_SYNTAX, 1, 3, "expected an operator or the end of the statement");
-    expect_error("2e", IACSG_ERR_SYNTAX, 1, 2, "expected an operator"); /* no exponent digits: 2 then e */
+    expect_error("2e", IACSG_ERR_SYNTAX, 1, 1, "malformed number: '2e'"); /* a letter glued to a number */
+    expect_error("0x1p3", IACSG_ERR_SYNTAX, 1, 1, "malformed number: '0x1p3'");
+    expect_error("x + 1e999", IACSG_ERR_SYNTAX, 1, 5, "number out of range");
     expect_error("1 @ 2", IACSG_ERR_SYNTAX, 1, 3, "unexpected character '@'");
     expect_error("x + \xff", IACSG_ERR_SYNTAX, 1, 5, "unexpected byte 0xff");
     expect_error("sqrt(x, y)", IACSG_ERR_ARITY, 1, 1, "'sqrt' takes 1 argument, got 2");
