@@ -95,6 +95,39 @@ const char *test_source_dir(void) {
 }
 
 /* With no arguments every test runs except the benchmarks (bench_*), which run only when named. */
+char *test_read_file(const char *path, size_t *size) {
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = NULL;
+    size_t cap = 0, len = 0, n;
+    char chunk[65536];
+    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0) {
+        if (len + n + 1 > cap) {
+            cap = 2 * (len + n + 1);
+            char *grown = realloc(buf, cap);
+            if (!grown) {
+                free(buf);
+                fclose(f);
+                return NULL;
+            }
+            buf = grown;
+        }
+        memcpy(buf + len, chunk, n);
+        len += n;
+    }
+    int failed = ferror(f);
+    fclose(f);
+    if (failed || (!buf && !(buf = malloc(1)))) {
+        free(buf);
+        return NULL;
+    }
+    buf[len] = '\0';
+    if (size)
+        *size = len;
+    return buf;
+}
+
 const char *test_binary_path(void) {
     const char *b = getenv("IACSG_BIN");
     return b && *b ? b : IACSG_BINARY_DEFAULT;

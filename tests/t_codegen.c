@@ -19,24 +19,6 @@ static const struct {
     {"time", "sigmoid_blend(decocube, sphere)"},          /* uses t; exp */
 };
 
-static char *read_file(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = malloc((size_t)n + 1);
-    if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
-        free(s);
-        s = NULL;
-    }
-    if (s)
-        s[n] = '\0';
-    fclose(f);
-    return s;
-}
-
 TEST(codegen_golden) {
     int update = getenv("IACSG_GOLDEN_UPDATE") != NULL;
     for (size_t i = 0; i < sizeof goldens / sizeof goldens[0]; i++) {
@@ -52,7 +34,7 @@ TEST(codegen_golden) {
             FILE *f = fopen(path, "wb");
             CHECK(f && fputs(src, f) >= 0 && fclose(f) == 0, "cannot write %s", path);
         }
-        char *want = read_file(path);
+        char *want = test_read_file(path, NULL);
         CHECK(want != NULL, "missing %s (IACSG_GOLDEN_UPDATE=1 writes it)", path);
         int same = strcmp(want, src) == 0;
         if (!same)

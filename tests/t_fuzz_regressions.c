@@ -8,32 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static char *read_all(const char *path, size_t *size) {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *buf = NULL;
-    size_t cap = 0, len = 0, n;
-    char chunk[65536];
-    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0) {
-        if (len + n > cap) {
-            cap = (len + n) * 2;
-            char *grown = realloc(buf, cap);
-            if (!grown) {
-                free(buf);
-                fclose(f);
-                return NULL;
-            }
-            buf = grown;
-        }
-        memcpy(buf + len, chunk, n);
-        len += n;
-    }
-    fclose(f);
-    *size = len;
-    return buf ? buf : calloc(1, 1);
-}
-
 /* Runs every file of dir (with the given suffix, or all) through expr_exercise; with must_compile, each must
  * compile, else each must compile or be rejected with a message. Returns the number of files. */
 static int replay_dir(const char *dir, const char *suffix, int must_compile, int *compiled) {
@@ -49,7 +23,7 @@ static int replay_dir(const char *dir, const char *suffix, int must_compile, int
         char path[8192];
         snprintf(path, sizeof path, "%s/%s", dir, ent->d_name);
         size_t size = 0;
-        char *data = read_all(path, &size);
+        char *data = test_read_file(path, &size);
         CHECK(data, "cannot read %s", path);
         int r = expr_exercise(data, size);
         free(data);

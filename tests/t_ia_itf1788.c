@@ -187,27 +187,9 @@ static void parse_statement(itl_set *set, const char *file, const char *tc, int 
     add_test(set, &t);
 }
 
-static char *read_all(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = malloc((size_t)len + 1);
-    if (s && fread(s, 1, (size_t)len, f) != (size_t)len) {
-        free(s);
-        s = NULL;
-    }
-    if (s)
-        s[len] = '\0';
-    fclose(f);
-    return s;
-}
-
 /* Parses a whole .itl file into set; returns the number of tests added, or -1 if unreadable. */
 static long parse_file(itl_set *set, const char *path, const char *file) {
-    char *s = read_all(path);
+    char *s = test_read_file(path, NULL);
     if (!s)
         return -1;
     long before = set->n;

@@ -9,6 +9,7 @@
  */
 #ifndef IACSG_TEST_H
 #define IACSG_TEST_H
+#include <stddef.h>
 #include <stdint.h>
 
 #define TEST(name) void test_##name(void)
@@ -49,6 +50,9 @@ double test_rand_unit(test_rng_t *r); /* uniform in [0, 1) */
 
 /* The repository root (where tests/data lives): IACSG_SOURCE_DIR, else the compiled-in default. */
 const char *test_source_dir(void);
+/* The whole file, NUL-terminated (it may contain NULs: *size says how long); NULL if it cannot be read.
+ * The caller free()s it. size may be NULL. */
+char *test_read_file(const char *path, size_t *size);
 /* The iacsg command under test: IACSG_BIN, else the binary of this build directory. */
 const char *test_binary_path(void);
 
