@@ -134,7 +134,7 @@ static int run(const char *dir, char **words, int nwords, char *err_text, size_t
 /* Checks one row; returns NULL if it keeps every promise, else what went wrong (static buffer). */
 static const char *check_row(const char *dir, int baseline, const char *status_text, const char *fragment,
                              char *args) {
-    static char why[20000];
+    static char why[32768]; /* room for every part in full: shown + stderr + fragment */
     char shown[4096];
     snprintf(shown, sizeof shown, "iacsg %s", args);
     char *words[MAX_WORDS];
