@@ -108,7 +108,7 @@ static int parse_options(int argc, char **argv, render_options *o) {
             o->normals_file = v;
         } else if (strcmp(a, "-size") == 0) {
             if (!parse_size(v, &o->view.width, &o->view.height))
-                return bad_value(a, v, "WxH, e.g. 1024x768");
+                return bad_value(a, v, "WxH with W and H from 1 to 32768, e.g. 1024x768");
         } else if (strcmp(a, "-eps") == 0) {
             if (!parse_numbers(v, &o->view.eps, 1) || !(o->view.eps > 0))
                 return bad_value(a, v, "a positive number");
