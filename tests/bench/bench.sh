@@ -227,26 +227,36 @@ TOP="-eye 0,0,4 -at 0,0,0 -up 0,1,0 -ortho 4 -bounds -2,-2,-2,2,2,2"
 
 . "$HERE/suite.sh"
 
+# The fixed cost of a command, median wall of 5 runs: STARTUP_MS of `iacsg devices` (the process, its shared
+# libraries, the OpenCL platform and device) and PROCESS_MS of `iacsg --version` (the process and libraries).
+startup_costs() {
+    for what in devices --version; do
+        : >"$WORK/w"
+        k=0
+        while [ $k -lt 5 ]; do
+            t0=$(now_us); "$IACSG" "$what" >/dev/null 2>&1; t1=$(now_us)
+            echo $((t1 - t0)) >>"$WORK/w"
+            k=$((k + 1))
+        done
+        if [ "$what" = devices ]; then STARTUP_MS=$(ms_of_us "$(median <"$WORK/w")"); else PROCESS_MS=$(ms_of_us "$(median <"$WORK/w")"); fi
+    done
+}
+
+# A target on a ratio of two rows' render times (A / B <= LIMIT). The render medians are noisy when other work
+# shares the CPUs; the whole-command CPU times are not, and since both commands also pay the same fixed costs,
+# CPU(A) / CPU(B) is below the render ratio: if it alone exceeds LIMIT, the target is certainly not met.
+# ratio_target TEXT RENDER_A RENDER_B CPU_A CPU_B LIMIT
+ratio_target() {
+    r=$(awk -v a="$2" -v b="$3" 'BEGIN {if (a == "-" || b == "-" || b <= 0) print "-"; else printf "%.2f", a / b}')
+    c=$(awk -v a="$4" -v b="$5" 'BEGIN {if (a == "-" || b == "-" || b <= 0) print "-"; else printf "%.2f", a / b}')
+    v=$(awk -v r="$r" -v c="$c" -v l="$6" 'BEGIN {if (r == "-") print "-"; else if (r + 0 > l || (c != "-" && c + 0 > l)) print "not met";
+                                                else print "met"}')
+    target "$1" "render ${r}x (whole-command CPU ${c}x: the fixed costs both pay dilute it, so the render's own ratio is at least that)" "$v"
+}
+
 log "start: $IACSG_SRC, runs $RUNS (growth $GROWTH_RUNS), quick $QUICK, load $(loadavg)"
 LOAD0=$(loadavg)
-# The fixed cost of a command: OpenCL platform and device start-up, measured by `iacsg devices`.
-: >"$WORK/w"
-k=0
-while [ $k -lt 5 ]; do
-    t0=$(now_us); "$IACSG" devices >/dev/null 2>&1; t1=$(now_us)
-    echo $((t1 - t0)) >>"$WORK/w"
-    k=$((k + 1))
-done
-STARTUP_MS=$(ms_of_us "$(median <"$WORK/w")")
-# The process alone (its shared libraries, no OpenCL): `iacsg --version`.
-: >"$WORK/w"
-k=0
-while [ $k -lt 5 ]; do
-    t0=$(now_us); "$IACSG" --version >/dev/null 2>&1; t1=$(now_us)
-    echo $((t1 - t0)) >>"$WORK/w"
-    k=$((k + 1))
-done
-PROCESS_MS=$(ms_of_us "$(median <"$WORK/w")")
+startup_costs
 DEVICE=$("$IACSG" devices 2>/dev/null | head -n 1 | sed 's/^0: //')
 
 bench_suite   # suite.sh: the tables
