@@ -293,6 +293,24 @@ static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr) {
     printf("render: %.3f s\n", fr->render_seconds);
 }
 
+/* The directory an output goes to must take new files (the image is written beside it, then renamed): checked
+ * before rendering, so that a typo in a path does not cost a whole render. */
+static iacsg_status check_directory_writable(const char *path, iacsg_error *err) {
+    const char *slash = strrchr(path, '/');
+    char dir[4096];
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else
+        snprintf(dir, sizeof dir, "%.*s", slash == path ? 1 : (int)(slash - path), path);
+    struct stat st;
+    const char *why = stat(dir, &st) != 0                  ? strerror(errno)
+                      : !S_ISDIR(st.st_mode)               ? "not a directory"
+                      : access(dir, W_OK | X_OK) != 0 ? strerror(errno)
+                                                           : NULL;
+    return why ? iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: cannot write into '%s' (%s)", path, dir, why)
+               : IACSG_OK;
+}
+
 /* An output that is the scene file itself would destroy it: refuse before rendering. */
 static iacsg_status check_outputs_spare_input(const char *input, const char *const outputs[3], iacsg_error *err) {
     struct stat in;
@@ -329,8 +347,8 @@ int cli_render(int argc, char **argv) {
     iacsg_status st = IACSG_OK;
     const char *outputs[3] = {o.output, o.depth_file, o.normals_file};
     for (int k = 0; k < 3 && st == IACSG_OK; k++)
-        if (outputs[k])
-            st = iacsg_image_check_format(outputs[k], &err);
+        if (outputs[k] && (st = iacsg_image_check_format(outputs[k], &err)) == IACSG_OK)
+            st = check_directory_writable(outputs[k], &err);
     if (st == IACSG_OK && name == o.input) /* a scene file */
         st = check_outputs_spare_input(o.input, outputs, &err);
     if (st == IACSG_OK)
