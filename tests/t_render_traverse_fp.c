@@ -5,6 +5,7 @@
 #include "kernels/traverse.h"
 #include "test.h"
 #include <math.h>
+#include <mpfr.h>
 
 #ifdef IA_FP64
 #define TRAVERSE_LEVELS 52
@@ -68,17 +69,30 @@ TEST_FP(render_traverse_walk_covers_root) {
     }
 }
 
+/* Whether lo <= o + d*t <= hi for the exact value, in MPFR at a precision that holds it exactly (the product
+ * has at most 106 significant bits, the sum adds the exponent range between them). */
+static int ray_point_inside(ia_real o, ia_real d, ia_real t, ia_real lo, ia_real hi) {
+    mpfr_t v, p;
+    mpfr_inits2(2400, v, p, (mpfr_ptr)0);
+    mpfr_set_d(p, (double)d, MPFR_RNDN);
+    mpfr_mul_d(p, p, (double)t, MPFR_RNDN);
+    mpfr_add_d(v, p, (double)o, MPFR_RNDN);
+    int inside = mpfr_cmp_d(v, (double)lo) >= 0 && mpfr_cmp_d(v, (double)hi) <= 0;
+    mpfr_clears(v, p, (mpfr_ptr)0);
+    return inside;
+}
+
 /* The box of a ray segment contains the exact points o + t*d, t in the segment, at its end points (the extremes
- * of a linear function), checked in long double arithmetic which holds float and double products exactly
- * enough: the products of two floats are exact in double, and of two doubles within 2^-64 in long double. */
+ * of a linear function). Near o + t*d = 0 the box is a few ulps of a tiny number wide (ray_extent rounds each
+ * end once), so the check is exact. */
 TEST_FP(render_traverse_ray_extent_contains_ray) {
     test_rng_t *rng = test_rng();
     for (long it = 0; it < test_iters(100000); it++) {
         ia_real o = (ia_real)(8 * test_rand_unit(rng) - 4), d = (ia_real)(2 * test_rand_unit(rng) - 1);
         ia_real a = (ia_real)(8 * test_rand_unit(rng)), b = a + (ia_real)(test_rand_unit(rng) * 1e-3);
         ia_interval x = ray_extent(o, d, ia_make(a, b));
-        long double ea = (long double)o + (long double)d * a, eb = (long double)o + (long double)d * b;
-        CHECK(x.lo <= fminl(ea, eb) && fmaxl(ea, eb) <= x.hi, "o=%a d=%a t=[%a,%a]: box [%a,%a] misses the ray",
-              (double)o, (double)d, (double)a, (double)b, (double)x.lo, (double)x.hi);
+        CHECK(ray_point_inside(o, d, a, x.lo, x.hi) && ray_point_inside(o, d, b, x.lo, x.hi),
+              "o=%a d=%a t=[%a,%a]: box [%a,%a] misses the ray", (double)o, (double)d, (double)a, (double)b,
+              (double)x.lo, (double)x.hi);
     }
 }
