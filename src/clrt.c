@@ -39,6 +39,9 @@ const char *clrt_error_name(cl_int rc) {
 
 iacsg_status clrt_record(iacsg_error *err, cl_int rc, const char *call, const char *func, int line) {
     int n = (int)strcspn(call, "(");
+    if (call[n] != '(') /* CLRT_CHECK(err, rc) after a create call: the function is all we can name */
+        return iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "an OpenCL call failed: %s (in %s, line %d)",
+                               clrt_error_name(rc), func, line);
     return iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "%.*s failed: %s (in %s, line %d)", n, call,
                            clrt_error_name(rc), func, line);
 }
@@ -109,6 +112,10 @@ iacsg_status clrt_open(clrt *rt, int device_index, iacsg_error *err) {
     CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp, NULL));
     CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof rt->compute_units,
                                     &rt->compute_units, NULL));
+    CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof rt->global_mem_size,
+                                    &rt->global_mem_size, NULL));
+    CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof rt->max_alloc_size,
+                                    &rt->max_alloc_size, NULL));
     rt->has_fp64 = strstr(ext, "cl_khr_fp64") != NULL;
     rt->float_denorms = (fp & CL_FP_DENORM) != 0;
     rt->cr_divide_sqrt = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;

@@ -19,6 +19,8 @@ typedef struct {
     int float_denorms;    /* CL_FP_DENORM in the single-precision config; if 0, ia/ is built with IA_FTZ */
     int cr_divide_sqrt;   /* CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT: build with -cl-fp32-correctly-rounded-... */
     cl_uint compute_units;
+    cl_ulong global_mem_size; /* CL_DEVICE_GLOBAL_MEM_SIZE */
+    cl_ulong max_alloc_size;  /* CL_DEVICE_MAX_MEM_ALLOC_SIZE: the largest single buffer */
 } clrt;
 
 /* Calls an OpenCL function returning cl_int (or checks the cl_int a create call returned through its last

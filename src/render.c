@@ -187,6 +187,22 @@ static void release_buffers(frame_buffers *b) {
             clReleaseMemObject(*all[k]);
 }
 
+/* The frame's buffers must fit the device: checked up front, so that a too-large image gets a message in
+ * terms of -size rather than an OpenCL error code. The largest buffer holds 3 floats a pixel, and the frame's
+ * buffers together 7 (8 with -stats). */
+static iacsg_status check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n,
+                                        iacsg_error *err) {
+    double mib = 1024.0 * 1024.0;
+    double largest = 3.0 * (double)n * sizeof(float), total = (r->config.stats ? 8.0 : 7.0) * (double)n * sizeof(float);
+    if (largest <= (double)r->rt.max_alloc_size && total <= (double)r->rt.global_mem_size)
+        return IACSG_OK;
+    return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0,
+                           "a %dx%d image needs %.0f MiB of device memory (%.0f MiB in one buffer); '%s' has %.0f MiB "
+                           "(%.0f MiB in one buffer): use a smaller -size",
+                           view->width, view->height, total / mib, largest / mib, r->rt.device_name,
+                           (double)r->rt.global_mem_size / mib, (double)r->rt.max_alloc_size / mib);
+}
+
 static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t n, size_t tiles_n,
                                    frame_buffers *b, iacsg_error *err) {
     cl_context ctx = r->rt.context;
@@ -303,6 +319,8 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     if (!frame->rgb || !frame->depth || !frame->normal || (r->config.stats && (!evals || !tile_evals)))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
+    if (st == IACSG_OK)
+        st = check_device_memory(r, view, n, err);
     if (st == IACSG_OK)
         st = create_buffers(r, params, n, tiles_n, &buffers, err);
     if (st == IACSG_OK)
