@@ -1,8 +1,8 @@
 /* kernels/tile.h -- coarse to fine: before the rays of a TILE_SIZE x TILE_SIZE tile are traced, one work-item
  * bisects the t range [TMIN, TMAX] with the box that holds every ray of the tile at once. Where 0 is not in F
  * over that box, no ray of the tile meets the surface, so the tile's rays skip it; a tile with no candidate
- * at all is background without tracing a single ray. The first surviving coarse leaf [lo, hi] is where the rays
- * most likely hit: they search it first, then the rest (kernels/render.cl).
+ * at all is background without tracing a single ray. The rays start their walks of the same tree at the first
+ * surviving coarse leaf (kernels/bisect.h, render.cl).
  *
  * Rigor: tile_box mirrors every rounded operation of camera_ray with the interval operation that encloses its
  * rounded result (an outward-rounded op contains the round-to-nearest one), so each pixel's float ray is inside
@@ -36,12 +36,20 @@ IA_FN void tile_box(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1,
         box[k] = ia_add_r(ia_mul(t, ia_div(d[k], len)), p[PARAM_EYE + k]);
 }
 
-/* Searches [TMIN, TMAX] for the tile's first coarse leaf: a node where 0 may be in F over the tile's box, no
- * longer than the tile is wide there (splitting t further would not shrink the box much). Returns 0 when the
- * surface is nowhere in the tile. */
+/* The root interval [*t0, *t0 + *w] of the bisection tree that the tile pass and every ray of the frame walk:
+ * it holds every ray's part inside the bounds (PARAM_TMIN, PARAM_TMAX). */
+IA_FN void frame_root(const KERNEL_CONSTANT ia_real *p, ia_real *t0, ia_real *w) {
+    *t0 = p[PARAM_TMIN];
+    *w = ia_hi(p[PARAM_TMAX] - p[PARAM_TMIN]);
+}
+
+/* Searches the frame's tree (frame_root) for the tile's first coarse leaf: a node where 0 may be in F over the
+ * tile's box, no longer than the tile is wide there (splitting t further would not shrink the box much).
+ * Returns 0 when the surface is nowhere in the tile, else 1 with the leaf's level and index. */
 IA_FN int tile_first_leaf(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1, int j0, int j1, int width,
-                          int height, ia_interval time, ia_real *leaf_lo, ia_real *leaf_hi, kernel_u32 *evals) {
-    ia_real t0 = p[PARAM_TMIN], w = ia_hi(p[PARAM_TMAX] - p[PARAM_TMIN]);
+                          int height, ia_interval time, int *leaf_level, bisect_index *leaf_i, kernel_u32 *evals) {
+    ia_real t0, w;
+    frame_root(p, &t0, &w);
     /* The tile's angular (perspective) or linear (orthographic) size. */
     ia_real spread = fmax(camera_s(p, i1, width) - camera_s(p, i0, width), camera_v(p, j0, height) -
                                                                                 camera_v(p, j1, height));
@@ -56,8 +64,8 @@ IA_FN int tile_first_leaf(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, i
         if (ia_contains_zero(f)) {
             ia_real footprint = ortho ? spread : spread * hi;
             if (hi - lo <= fmax(footprint, p[PARAM_EPS]) || level == BISECT_MAX_LEVEL) {
-                *leaf_lo = lo;
-                *leaf_hi = hi;
+                *leaf_level = level;
+                *leaf_i = i;
                 return 1;
             }
             level += 1;

@@ -40,6 +40,20 @@ IA_FN ia_real node_bound(ia_real t0, ia_real w, int level, bisect_index i) {
     return t0 + w * ((ia_real)i * node_scale(level));
 }
 
+/* The index j at `level` of the node holding t: it starts at or before t (so the nodes before it end at or
+ * before t) and the next one starts after t; the first or the last node when t is outside the root. The
+ * estimate is corrected with node_bound itself, so its rounding costs a step or two, never a wrong start. */
+IA_FN bisect_index node_at(ia_real t0, ia_real w, int level, ia_real t) {
+    bisect_index last = (((bisect_index)1) << level) - 1;
+    ia_real u = (t - t0) / w / node_scale(level);
+    bisect_index j = u > 0 ? (bisect_index)fmin(u, (ia_real)last) : 0;
+    while (j > 0 && node_bound(t0, w, level, j) > t)
+        j -= 1;
+    while (j < last && node_bound(t0, w, level, j + 1) <= t)
+        j += 1;
+    return j;
+}
+
 /* Moves from a node to the next node in ray order that is not inside it. Returns 0 when there is none. */
 IA_FN int node_next(int *level, bisect_index *i) {
     *i += 1;

@@ -69,6 +69,24 @@ TEST_FP(render_traverse_walk_covers_root) {
     }
 }
 
+/* node_at gives the node holding t (the first or the last one outside the root): the walk may start there
+ * without skipping a node that reaches past t. */
+TEST_FP(render_traverse_node_at) {
+    test_rng_t *rng = test_rng();
+    for (long it = 0; it < test_iters(100000); it++) {
+        ia_real t0, w;
+        random_root(rng, &t0, &w);
+        int k = (int)(test_rand_u64(rng) % TRAVERSE_LEVELS);
+        ia_real t = t0 + (ia_real)((1.2 * test_rand_unit(rng) - 0.1) * (double)w);
+        bisect_index j = node_at(t0, w, k, t), last = ((bisect_index)1 << k) - 1;
+        CHECK(j <= last, "level %d: index %llu past the last node", k, (unsigned long long)j);
+        CHECK(j == 0 || node_bound(t0, w, k, j) <= t, "level %d index %llu starts after t = %a", k,
+              (unsigned long long)j, (double)t);
+        CHECK(j == last || node_bound(t0, w, k, j + 1) > t, "level %d index %llu ends at or before t = %a", k,
+              (unsigned long long)j, (double)t);
+    }
+}
+
 /* Whether lo <= o + d*t <= hi for the exact value, in MPFR at a precision that holds it exactly (the product
  * has at most 106 significant bits, the sum adds the exponent range between them). */
 static int ray_point_inside(ia_real o, ia_real d, ia_real t, ia_real lo, ia_real hi) {
