@@ -644,6 +644,35 @@ static inline double fn_measure(int fn, const ia_real *x, const ia_real *y, cons
     return worst;
 }
 
+/* The max ulp error of each function, measured one function at a time, against the IA_ULP_* bounds of a table
+ * (0 means correctly rounded: half an ulp); the first function over its bound is kept for the failure message. */
+typedef struct {
+    char line[1024];
+    size_t len;
+    int bad, bad_bound;
+    double bad_u, bad_x, bad_y;
+} ulp_report;
+
+static inline void ulp_report_add(ulp_report *rep, int fn, int table_ulps, const ia_real *x, const ia_real *y,
+                                  const ia_real *res, long count) {
+    double wx = 0, wy = 0, u = fn_measure(fn, x, y, res, count, &wx, &wy);
+    double bound = table_ulps == 0 ? 0.5 : table_ulps;
+    if (rep->len < sizeof rep->line)
+        rep->len += (size_t)snprintf(rep->line + rep->len, sizeof rep->line - rep->len, " %s %.3g (<= %g)",
+                                     oracle_fn_name[fn], u, bound);
+    if (u > bound && rep->bad < 0)
+        rep->bad = fn, rep->bad_bound = table_ulps, rep->bad_u = u, rep->bad_x = wx, rep->bad_y = wy;
+}
+
+/* Notes the maxima and fails the test if a function exceeded its bound; `who` is "host" or "device". */
+#define ULP_REPORT_FINISH(rep, who)                                                                            \
+    do {                                                                                                       \
+        test_note(who " max ulp error " FMT_NAME ":%s", (rep).line);                                           \
+        CHECK((rep).bad < 0, who " %s " FMT_NAME " error %.3g ulps exceeds the IA_ULP bound %d at x = %s, y = %s", \
+              (rep).bad >= 0 ? oracle_fn_name[(rep).bad] : "", (rep).bad_u, (rep).bad_bound,                  \
+              oracle_hex((rep).bad_x), oracle_hex((rep).bad_y));                                               \
+    } while (0)
+
 /* ---- the device (tests/t_ia_device_fp.c): one OpenCL device, the ia/ test program built once per format with
  * the options of clrt_ia_options, in a mode: 0 rigorous, 1 fast (IA_FAST), 2 rigorous with IA_FTZ forced.
  * Each returns 0, or -1 with a message in err. */

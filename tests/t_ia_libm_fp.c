@@ -26,24 +26,15 @@ TEST_FP(ia_libm_ulps) {
     ia_real *x = malloc(sizeof *x * (size_t)count), *y = malloc(sizeof *y * (size_t)count),
             *res = malloc(sizeof *res * (size_t)count);
     CHECK(x && y && res, "out of memory");
-    char line[1024] = "";
-    size_t len = 0;
-    int bad = -1;
-    double bad_u = 0, bad_x = 0, bad_y = 0;
+    ulp_report rep = {.bad = -1};
     for (int fn = 0; fn < ORACLE_NFNS; fn++) {
         test_rng_t *r = test_rng();
         for (long i = 0; i < count; i++) {
             fn_args(fn, r, &x[i], &y[i]);
             res[i] = host_fn(fn, x[i], y[i]);
         }
-        double wx = 0, wy = 0, u = fn_measure(fn, x, y, res, count, &wx, &wy);
-        double bound = table[fn] == 0 ? 0.5 : table[fn];
-        len += (size_t)snprintf(line + len, sizeof line - len, " %s %.3g (<= %g)", oracle_fn_name[fn], u, bound);
-        if (u > bound && bad < 0)
-            bad = fn, bad_u = u, bad_x = wx, bad_y = wy;
+        ulp_report_add(&rep, fn, table[fn], x, y, res, count);
     }
     free(x), free(y), free(res);
-    test_note("host libm max ulp error " FMT_NAME ":%s", line);
-    CHECK(bad < 0, "host %s " FMT_NAME " error %.3g ulps exceeds the IA_ULP bound %d at x = %s, y = %s",
-          bad >= 0 ? oracle_fn_name[bad] : "", bad_u, bad >= 0 ? table[bad] : 0, oracle_hex(bad_x), oracle_hex(bad_y));
+    ULP_REPORT_FINISH(rep, "host");
 }
