@@ -75,16 +75,22 @@
 #define ia_lo_k(r, k) (r)
 #define ia_hi_k(r, k) (r)
 #else
-/* The widening amount for an error of k ulps. */
-#define IA_PAD(r, k)                                                                                           \
-    ((k) == 0 ? fabs(r) * (IA_R(0.625) * IA_REAL_EPS) + IA_TINY                                                 \
-              : fabs(r) * ((ia_real)((k) + 1) * IA_REAL_EPS) + (ia_real)((k) + 1) * IA_TINY)
+/* The widening for an error of k ulps moves r by |r| * C + T: C = 0.625 EPS and T = TINY for k = 0, C = (k+1) EPS
+ * and T = (k+1) TINY for k >= 1, as above. It is computed as fma(|r|, -C, r - T): r - T first, which is exact
+ * or rounds to r (T is below half an ulp of r once r is normal, and differences of subnormals are exact), then
+ * the exact product |r| * C taken off with one rounding, which is monotone. The argument above holds for this
+ * form as it is (its pad is this one up to the rounding of the product, far inside its margins), and it is one
+ * fused operation where a multiply, an add and a subtract were. The widening was half the render kernel's time
+ * (IA_FAST renders the reference view with the same evaluations at 0.53x its CPU); this form took the kernel
+ * from ~5300 to ~4600 CPU samples. fma is correctly rounded in OpenCL C and in C11 alike. */
+#define IA_PAD_C(k) ((k) == 0 ? IA_R(0.625) * IA_REAL_EPS : (ia_real)((k) + 1) * IA_REAL_EPS)
+#define IA_PAD_T(k) ((k) == 0 ? IA_TINY : (ia_real)((k) + 1) * IA_TINY)
 /* min(x, MAX) and max(x, -MAX) that also map NaN to the finite end (as fmin and fmax do, but inline on the
  * host, where glibc's fmin is a call). */
 IA_FN ia_real ia__below_max(ia_real x) { return x <= IA_REAL_MAX ? x : IA_REAL_MAX; }
 IA_FN ia_real ia__above_min(ia_real x) { return x >= -IA_REAL_MAX ? x : -IA_REAL_MAX; }
-#define ia_lo_k(r, k) ia__below_max((r) - IA_PAD(r, k))
-#define ia_hi_k(r, k) ia__above_min((r) + IA_PAD(r, k))
+#define ia_lo_k(r, k) ia__below_max(fma(fabs(r), -IA_PAD_C(k), (r) - IA_PAD_T(k)))
+#define ia_hi_k(r, k) ia__above_min(fma(fabs(r), IA_PAD_C(k), (r) + IA_PAD_T(k)))
 #endif
 
 /* One ulp outward: for correctly rounded results (+, -, * and the rounded steps inside other operations). */
