@@ -113,8 +113,16 @@ IA_FN ia_interval ia_sqrt(ia_interval a) {
 
 /* Above this exponent ia_pown uses the platform's pow instead of square-and-multiply: the chain's rounding
  * errors compound (squaring doubles the relative error so far), to about 2.25 (n-1) ulps, while pow is
- * within IA_ULP_POW ulps, 3 IA_ULP_POW + 3 after widening. */
+ * within IA_ULP_POW ulps, 3 IA_ULP_POW + 3 after widening. On the host, whose pow is within an ulp and
+ * cheap, pow is the tighter from n = 5 on. On the device the chain goes on to n = 1024: pow there costs
+ * an order of magnitude more (two calls per bound; PoCL's pow made the x^500 pseudo-cube scenes spend 60 %
+ * of their time in it), and x^n has condition number n, so an error of about 2n ulps is what two ulps of
+ * uncertainty in x cost anyway. */
+#if IA_DEVICE
+#define IA_POWN_CHAIN_MAX 1024
+#else
 #define IA_POWN_CHAIN_MAX ((3 * IA_ULP_POW + 3) / 2 + 1)
+#endif
 
 /* x^n for x >= 0 (possibly +inf) and n >= 1, rounded down (dir < 0) or up (dir > 0). Square-and-multiply
  * rounds every partial product the same way (the factors are nonnegative, so that bounds the exact power);

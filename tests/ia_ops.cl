@@ -91,7 +91,8 @@ kernel void ia_bench_ops(int op, int reps, int count, global const ia_real *in, 
     out[i] = acc;
 }
 
-/* The error bounds (ulps) this build of ia/ assumes, per IA_FN_* function, and whether IA_FTZ is on. */
+/* The error bounds (ulps) this build of ia/ assumes, per IA_FN_* function, whether IA_FTZ is on, and the largest
+ * exponent ia_pown computes by square-and-multiply. */
 kernel void ia_test_ulp_table(global int *out) {
     if (get_global_id(0) != 0)
         return;
@@ -109,4 +110,5 @@ kernel void ia_test_ulp_table(global int *out) {
 #else
     out[IA_FN_POW + 1] = 0;
 #endif
+    out[IA_FN_POW + 2] = IA_POWN_CHAIN_MAX;
 }

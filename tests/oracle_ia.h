@@ -681,7 +681,8 @@ int FP_NAME(ia_dev_fns)(int fn, const ia_real *x, const ia_real *y, long count, 
 /* Times `reps` applications of op per work item over `items` work items; *seconds is the kernel's wall time. */
 int FP_NAME(ia_dev_bench)(int fast, int op, int reps, const ia_case *k, long count, long items, double *seconds,
                           char *err, size_t size);
-/* The device build's IA_ULP_* per ORACLE_FN_*, then 1 if it was built with IA_FTZ (ORACLE_NFNS + 1 ints). */
+/* The device build's IA_ULP_* per ORACLE_FN_*, then 1 if it was built with IA_FTZ, then its IA_POWN_CHAIN_MAX
+ * (ORACLE_NFNS + 2 ints). */
 int FP_NAME(ia_dev_ulp_table)(int *out, char *err, size_t size);
 /* "platform / device (build options)" of a mode's build, after a successful call of the above. */
 const char *FP_NAME(ia_dev_describe)(int mode);

@@ -228,8 +228,8 @@ int FP_NAME(ia_dev_ulp_table)(int *out, char *err, size_t size) {
         snprintf(err, size, "clCreateKernel: %s", clrt_error_name(rc));
         return -1;
     }
-    karg args[] = {{NULL, sizeof(int) * (ORACLE_NFNS + 1), 1, 0}};
-    int status = run_kernel(k, args, 1, 1, out, sizeof(int) * (ORACLE_NFNS + 1), NULL, err, size);
+    karg args[] = {{NULL, sizeof(int) * (ORACLE_NFNS + 2), 1, 0}};
+    int status = run_kernel(k, args, 1, 1, out, sizeof(int) * (ORACLE_NFNS + 2), NULL, err, size);
     clReleaseKernel(k);
     return status;
 }
@@ -238,7 +238,7 @@ int FP_NAME(ia_dev_ulp_table)(int *out, char *err, size_t size) {
 
 TEST_FP(ia_device_ulps) {
     char err[1024];
-    int table[ORACLE_NFNS + 1];
+    int table[ORACLE_NFNS + 2];
     CHECK(FP_NAME(ia_dev_ulp_table)(table, err, sizeof err) == 0, "%s", err);
     test_note("device %s", FP_NAME(ia_dev_describe)(0));
     long count = test_iters(40000);
