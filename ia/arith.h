@@ -44,7 +44,9 @@ IA_FN ia_interval ia_mul(ia_interval a, ia_interval b) {
 IA_FN ia_interval ia_mul_r(ia_interval a, ia_real c) {
     if (ia_is_empty(a))
         return a;
-    ia_real p = ia__mul0(a.lo, c), q = ia__mul0(a.hi, c);
+    if (c == 0) /* exactly, also for an unbounded a */
+        return ia_make(0, 0);
+    ia_real p = a.lo * c, q = a.hi * c; /* c is finite and nonzero: no 0 * inf, so no NaN to resolve */
     return ia_make(ia_lo(fmin(p, q)), ia_hi(fmax(p, q)));
 }
 
