@@ -56,8 +56,7 @@ IA_FN ia_interval ia_sqr(ia_interval a) {
         return a;
     ia_real mig = a.lo > 0 ? a.lo : (a.hi < 0 ? -a.hi : (ia_real)0);
     ia_real mag = fmax(-a.lo, a.hi);
-    return ia_make(mig == 0 ? (ia_real)0 : fmax(ia_lo(mig * mig), (ia_real)0),
-                   mag == 0 ? (ia_real)0 : ia_hi(mag * mag));
+    return ia_make(fmax(ia_lo(mig * mig), (ia_real)0), mag == 0 ? (ia_real)0 : ia_hi(mag * mag));
 }
 
 /* 1 / a, set-based (IEEE 1788): 1/[0,0] is empty, 1/[0,h] = [1/h, +inf], a straddling 0 gives entire. */
