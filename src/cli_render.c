@@ -183,7 +183,9 @@ static int looks_like_path(const char *input) {
 static char *read_input(const char *input, const char **name) {
     FILE *f = fopen(input, "rb");
     if (!f) {
-        if (errno != ENOENT || looks_like_path(input)) {
+        /* Decided by existence, not by fopen's errno: a long expression fails with ENAMETOOLONG. */
+        struct stat st;
+        if (stat(input, &st) == 0 || looks_like_path(input)) {
             fprintf(stderr, "iacsg: %s: cannot read the scene file (%s)\n", input, strerror(errno));
             return NULL;
         }

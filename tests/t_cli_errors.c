@@ -206,3 +206,21 @@ TEST(cli_bad_inputs) {
     CHECK(failures == 0, "%d of %d bad inputs broke a promise (listed above)", failures, rows);
     test_note("%d bad inputs: each a one-line error with the expected status, no crash, hang or stray file", rows);
 }
+
+/* A good input that the bad-input rules must not catch: an expression longer than a file name may be (its
+ * fopen fails with ENAMETOOLONG, not ENOENT) is still an expression. */
+TEST(cli_long_expression_is_not_a_file) {
+    char tmpl[] = "/tmp/iacsg-long-XXXXXX";
+    char *dir = mkdtemp(tmpl);
+    CHECK(dir, "mkdtemp failed");
+    static char expr[512];
+    expr[0] = '\0';
+    for (int k = 0; k < 40; k++)
+        strcat(expr, k ? "+sphere(0.5)" : "sphere(0.5)");
+    char *words[] = {expr, "-size", "8x8", "-o", "out.png"};
+    char err_text[16384];
+    int status = run(dir, words, 5, err_text, sizeof err_text);
+    remove_tree(dir);
+    CHECK(status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0, "a %zu-character expression failed: %s",
+          strlen(expr), err_text);
+}
