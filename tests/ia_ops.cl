@@ -112,3 +112,75 @@ kernel void ia_test_ulp_table(global int *out) {
 #endif
     out[IA_FN_POW + 2] = IA_POWN_CHAIN_MAX;
 }
+
+#ifdef IA_VW
+/* ---- ia/vec.h (built with -D IA_VW=8, 16, ...): the layout of ia_test_ops, IA_VW consecutive cases per work item,
+ * gathered into the lanes of one iav, so that the host can compare every lane with ia_test_ops on the same case.
+ * pown, add_r and mul_r take a constant of the expression (n, c), the same in every lane in real use: for lane j
+ * the whole vector goes through the op with case j's constant, and lane j of that result is kept, so every n
+ * and c meets IA_VW different intervals at once. IA_OP_CZERO writes iav_contains_zero's lane (-1 or 0) twice. */
+#ifdef IA_FP64
+typedef long ia_test_mask;
+#else
+typedef int ia_test_mask;
+#endif
+
+IA_FN iav ia_test_vapply(int op, iav a, iav b, int n, ia_real c) {
+    switch (op) {
+    case IA_OP_ADD: return iav_add(a, b);
+    case IA_OP_SUB: return iav_sub(a, b);
+    case IA_OP_MUL: return iav_mul(a, b);
+    case IA_OP_DIV: return iav_div(a, b);
+    case IA_OP_RECIP: return iav_recip(a);
+    case IA_OP_SQR: return iav_sqr(a);
+    case IA_OP_POWN: return iav_pown(a, n);
+    case IA_OP_POW: return iav_pow(a, b);
+    case IA_OP_SQRT: return iav_sqrt(a);
+    case IA_OP_EXP: return iav_exp(a);
+    case IA_OP_LOG: return iav_log(a);
+    case IA_OP_SIN: return iav_sin(a);
+    case IA_OP_COS: return iav_cos(a);
+    case IA_OP_TAN: return iav_tan(a);
+    case IA_OP_ATAN: return iav_atan(a);
+    case IA_OP_NEG: return iav_neg(a);
+    case IA_OP_ABS: return iav_abs(a);
+    case IA_OP_MIN: return iav_min(a, b);
+    case IA_OP_MAX: return iav_max(a, b);
+    case IA_OP_ADD_R: return iav_add_r(a, c);
+    case IA_OP_MUL_R: return iav_mul_r(a, c);
+    }
+    return iav_point((ia_real)NAN);
+}
+
+kernel void ia_test_vops(int op, global const ia_real *in, global const int *n, global ia_real *out) {
+    size_t base = get_global_id(0) * IA_VW;
+    ia_real alo[IA_VW], ahi[IA_VW], blo[IA_VW], bhi[IA_VW], rlo[IA_VW], rhi[IA_VW], tlo[IA_VW], thi[IA_VW];
+    for (int j = 0; j < IA_VW; j++) {
+        global const ia_real *p = in + 5 * (base + (size_t)j);
+        alo[j] = p[0], ahi[j] = p[1], blo[j] = p[2], bhi[j] = p[3];
+    }
+    iav a = iav_make(IAV_LOAD(alo), IAV_LOAD(ahi)), b = iav_make(IAV_LOAD(blo), IAV_LOAD(bhi));
+    if (op == IA_OP_CZERO) {
+        ia_test_mask m[IA_VW];
+        IAV_STORE(iav_contains_zero(a), m);
+        for (int j = 0; j < IA_VW; j++)
+            rlo[j] = rhi[j] = (ia_real)m[j];
+    } else if (op == IA_OP_POWN || op == IA_OP_ADD_R || op == IA_OP_MUL_R) {
+        for (int j = 0; j < IA_VW; j++) {
+            size_t i = base + (size_t)j;
+            iav r = ia_test_vapply(op, a, b, n[i], in[5 * i + 4]);
+            IAV_STORE(r.lo, tlo);
+            IAV_STORE(r.hi, thi);
+            rlo[j] = tlo[j], rhi[j] = thi[j];
+        }
+    } else {
+        iav r = ia_test_vapply(op, a, b, 0, 0);
+        IAV_STORE(r.lo, rlo);
+        IAV_STORE(r.hi, rhi);
+    }
+    for (int j = 0; j < IA_VW; j++) {
+        out[2 * (base + (size_t)j)] = rlo[j];
+        out[2 * (base + (size_t)j) + 1] = rhi[j];
+    }
+}
+#endif

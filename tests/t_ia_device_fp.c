@@ -1,6 +1,7 @@
 /* tests/t_ia_device_fp.c -- ia/ on the OpenCL device: the device runner shared by the ia tests (declared in
- * tests/oracle_ia.h), the device's ulp errors for the built-ins ia/ uses (checked against the IA_ULP_* table
- * for the device in ia/round.h), the proof that the checker catches the fast mode (IA_FAST), whose
+ * tests/oracle_ia.h; ia_dev_ops_in, for builds with extra options such as ia/vec.h's -D IA_VW, is declared in
+ * tests/t_ia_vec_device_fp.c, its only user), the device's ulp errors for the built-ins ia/ uses (checked against the
+ * IA_ULP_* table for the device in ia/round.h), the proof that the checker catches the fast mode (IA_FAST), whose
  * unwidened bounds must show violations while the rigorous build shows none, and the IA_FTZ build. */
 #include "clrt.h"
 #include "ia/ia.h"
@@ -36,22 +37,38 @@ static const char *prelude(void) {
     return s;
 }
 
-/* Builds the test program in one mode (see dev.prog). */
-static int build_mode(int mode, int fp64, char *err, size_t size) {
+/* Builds the test program in a mode (see dev.prog) with `extra` options (or NULL) after the mode's; the options
+ * used are left in opt. */
+static int build_program(int mode, int fp64, const char *extra, char *opt, size_t opt_size, cl_program *prog, char *err,
+                         size_t size) {
     iacsg_error e = {0};
-    cl_int rc = CL_SUCCESS;
     const char *src[3] = {iacsg_cl_ia, prelude(), iacsg_cl_tests};
-    char *opt = dev.options[mode];
-    if (clrt_ia_options(&dev.rt, fp64, mode == 1, opt, sizeof dev.options[mode], &e) != IACSG_OK) {
+    if (clrt_ia_options(&dev.rt, fp64, mode == 1, opt, opt_size, &e) != IACSG_OK) {
         snprintf(err, size, "clrt_ia_options: %s", e.message);
         return -1;
     }
     if (mode == 2 && !strstr(opt, "IA_FTZ"))
-        snprintf(opt + strlen(opt), sizeof dev.options[mode] - strlen(opt), " -D IA_FTZ");
-    if (clrt_build(&dev.rt, src, 3, opt, &dev.prog[mode], &e) != IACSG_OK) {
+        snprintf(opt + strlen(opt), opt_size - strlen(opt), " -D IA_FTZ");
+    if (extra && *extra)
+        snprintf(opt + strlen(opt), opt_size - strlen(opt), " %s", extra);
+    if (clrt_build(&dev.rt, src, 3, opt, prog, &e) != IACSG_OK) {
         snprintf(err, size, "building the ia/ test program (%s): %s", opt, e.message);
         return -1;
     }
+    return 0;
+}
+
+static void describe_build(char *out, size_t size, const char *opt) { /* out may be in dev: format aside */
+    char names[1400];
+    snprintf(names, sizeof names, "%s / %s (%s)", dev.rt.platform_name, dev.rt.device_name, opt);
+    snprintf(out, size, "%s", names);
+}
+
+/* Builds the test program in one mode (see dev.prog). */
+static int build_mode(int mode, int fp64, char *err, size_t size) {
+    cl_int rc = CL_SUCCESS;
+    if (build_program(mode, fp64, NULL, dev.options[mode], sizeof dev.options[mode], &dev.prog[mode], err, size))
+        return -1;
     dev.ops[mode] = clCreateKernel(dev.prog[mode], "ia_test_ops", &rc);
     if (rc == CL_SUCCESS)
         dev.bench[mode] = clCreateKernel(dev.prog[mode], "ia_bench_ops", &rc);
@@ -61,9 +78,7 @@ static int build_mode(int mode, int fp64, char *err, size_t size) {
         snprintf(err, size, "clCreateKernel: %s", clrt_error_name(rc));
         return -1;
     }
-    char names[1400];
-    snprintf(names, sizeof names, "%s / %s (%s)", dev.rt.platform_name, dev.rt.device_name, dev.options[mode]);
-    memcpy(dev.describe[mode], names, sizeof names);
+    describe_build(dev.describe[mode], sizeof dev.describe[mode], dev.options[mode]);
     return 0;
 }
 
@@ -156,18 +171,13 @@ static void pack(const ia_case *k, long count, ia_real *in, int *n) {
     }
 }
 
-int FP_NAME(ia_dev_ops)(int mode, int op, const ia_case *k, long count, ia_real *out, char *err, size_t size) {
-    if (dev_open(err, size))
+/* The cases on kernel k (the arguments of ia_test_ops), `lanes` cases per work item. */
+static int run_ops(cl_kernel kern, int lanes, int op, const ia_case *k, long count, ia_real *out, char *err,
+                   size_t size) {
+    if (lanes < 1 || count % lanes) {
+        snprintf(err, size, "%ld cases do not fill work items of %d", count, lanes);
         return -1;
-    if (mode < 0 || mode > 2)
-        mode = 0;
-#ifdef IA_FP64
-    if (!dev.prog[mode] && build_mode(mode, 1, err, size))
-        return -1;
-#else
-    if (!dev.prog[mode] && build_mode(mode, 0, err, size))
-        return -1;
-#endif
+    }
     ia_real *in = malloc(sizeof *in * 5 * (size_t)count);
     int *n = malloc(sizeof *n * (size_t)count);
     if (!in || !n) {
@@ -180,9 +190,83 @@ int FP_NAME(ia_dev_ops)(int mode, int op, const ia_case *k, long count, ia_real 
                    {in, sizeof *in * 5 * (size_t)count, 0, 0},
                    {n, sizeof *n * (size_t)count, 0, 0},
                    {NULL, sizeof *out * 2 * (size_t)count, 1, 0}};
-    int rc = run_kernel(dev.ops[mode], args, 4, (size_t)count, out, sizeof *out * 2 * (size_t)count, NULL, err, size);
+    int rc = run_kernel(kern, args, 4, (size_t)(count / lanes), out, sizeof *out * 2 * (size_t)count, NULL, err, size);
     free(in), free(n);
     return rc;
+}
+
+int FP_NAME(ia_dev_ops)(int mode, int op, const ia_case *k, long count, ia_real *out, char *err, size_t size) {
+    if (dev_open(err, size))
+        return -1;
+    if (mode < 0 || mode > 2)
+        mode = 0;
+#ifdef IA_FP64
+    if (!dev.prog[mode] && build_mode(mode, 1, err, size))
+        return -1;
+#else
+    if (!dev.prog[mode] && build_mode(mode, 0, err, size))
+        return -1;
+#endif
+    return run_ops(dev.ops[mode], 1, op, k, count, out, err, size);
+}
+
+/* Programs built with extra options (tests/t_ia_vec_device_fp.c), once per mode and options, kept for the run. */
+static struct {
+    int mode;
+    char extra[128], describe[1400];
+    cl_program prog;
+} built[8];
+static int nbuilt;
+
+static int find_built(int mode, const char *extra, char *err, size_t size) {
+    if (dev_open(err, size))
+        return -1;
+    if (mode < 0 || mode > 2)
+        mode = 0;
+    for (int i = 0; i < nbuilt; i++)
+        if (built[i].mode == mode && !strcmp(built[i].extra, extra))
+            return i;
+    if (nbuilt == (int)(sizeof built / sizeof built[0]) || strlen(extra) >= sizeof built[0].extra) {
+        snprintf(err, size, "too many test program builds, or options too long: %s", extra);
+        return -1;
+    }
+#ifdef IA_FP64
+    const int fp64 = 1;
+#else
+    const int fp64 = 0;
+#endif
+    char opt[512];
+    if (build_program(mode, fp64, extra, opt, sizeof opt, &built[nbuilt].prog, err, size))
+        return -1;
+    built[nbuilt].mode = mode;
+    snprintf(built[nbuilt].extra, sizeof built[nbuilt].extra, "%s", extra);
+    describe_build(built[nbuilt].describe, sizeof built[nbuilt].describe, opt);
+    return nbuilt++;
+}
+
+/* ia_dev_ops on the kernel named `kernel` (with ia_test_ops's arguments), `lanes` cases per work item, in the
+ * program built in `mode` with `extra` options after the mode's. */
+int FP_NAME(ia_dev_ops_in)(int mode, const char *extra, const char *kernel, int lanes, int op, const ia_case *k,
+                           long count, ia_real *out, char *err, size_t size) {
+    int b = find_built(mode, extra, err, size);
+    if (b < 0)
+        return -1;
+    cl_int rc = CL_SUCCESS;
+    cl_kernel kern = clCreateKernel(built[b].prog, kernel, &rc);
+    if (rc != CL_SUCCESS) {
+        snprintf(err, size, "clCreateKernel %s: %s", kernel, clrt_error_name(rc));
+        return -1;
+    }
+    int status = run_ops(kern, lanes, op, k, count, out, err, size);
+    clReleaseKernel(kern);
+    return status;
+}
+
+const char *FP_NAME(ia_dev_describe_in)(int mode, const char *extra) {
+    for (int i = 0; i < nbuilt; i++)
+        if (built[i].mode == mode && !strcmp(built[i].extra, extra))
+            return built[i].describe;
+    return "(not built)";
 }
 
 int FP_NAME(ia_dev_fns)(int fn, const ia_real *x, const ia_real *y, long count, ia_real *out, char *err, size_t size) {
