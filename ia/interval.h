@@ -65,14 +65,14 @@ IA_FN ia_real ia_mid(ia_interval a) {
 /* -a. Empty stays empty. */
 IA_FN ia_interval ia_neg(ia_interval a) { return ia_make(-a.hi, -a.lo); }
 
-/* |a|: [mig, mag]. Empty stays empty. */
+/* |a|: [mig, mag], a zero lower bound always +0. Empty stays empty. */
 IA_FN ia_interval ia_abs(ia_interval a) {
     if (ia_is_empty(a))
         return a;
     if (a.lo >= 0)
         return ia_make(a.lo + (ia_real)0, a.hi); /* + 0 turns -0 into +0 */
     if (a.hi <= 0)
-        return ia_make(-a.hi, -a.lo);
+        return ia_make(-a.hi + (ia_real)0, -a.lo);
     return ia_make(0, fmax(-a.lo, a.hi));
 }
 

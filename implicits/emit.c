@@ -37,8 +37,10 @@ typedef struct {
     unsigned char *axes; /* per node: bit k set when its derivative along axis k is not identically 0 */
 } emitter;
 
-/* The text standing for operand node i in the interval code, point code, or its derivative along axis. */
-typedef enum { AS_INTERVAL, AS_POINT, AS_DERIV } role;
+/* The text standing for operand node i in the interval code, the vector interval code (ia/vec.h: the same
+ * templates with iav_ for ia_), the point code, or its derivative along axis. */
+typedef enum { AS_INTERVAL, AS_VECTOR, AS_POINT, AS_DERIV } role;
+static int is_interval(role r) { return r == AS_INTERVAL || r == AS_VECTOR; }
 static void put_operand(strbuf *b, const emitter *em, int i, role r, int axis) {
     const dag *d = em->d;
     const dag_node *n = &d->nodes[i];
@@ -51,12 +53,13 @@ static void put_operand(strbuf *b, const emitter *em, int i, role r, int axis) {
             strbuf_printf(b, "v%d_d%s", i, var_names[axis]);
     } else if (n->op <= OP_T) {
         strbuf_printf(b, "%s", var_names[n->op]);
-    } else if (n->op == OP_CONST && r == AS_INTERVAL && dag_is_point(d, i)) {
-        strbuf_printf(b, "ia_point(");
+    } else if (n->op == OP_CONST && is_interval(r) && dag_is_point(d, i)) {
+        strbuf_printf(b, r == AS_VECTOR ? "iav_point(" : "ia_point(");
         put_real(b, n->lo, n->flo);
         strbuf_printf(b, ")");
-    } else if (n->op == OP_CONST && r == AS_INTERVAL) {
-        strbuf_printf(b, "ia_make("); /* an empty constant prints as [+inf, -inf], ia/'s empty */
+    } else if (n->op == OP_CONST && is_interval(r)) {
+        /* an empty constant prints as [+inf, -inf], ia/'s empty */
+        strbuf_printf(b, r == AS_VECTOR ? "iav_const(" : "ia_make(");
         put_real(b, n->lo, n->flo);
         strbuf_printf(b, ", ");
         put_real(b, n->hi, n->fhi);
@@ -100,6 +103,8 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r,
             put_operand(b, em, n->b, AS_DERIV, axis);
         else if (IS("R"))
             strbuf_printf(b, "v%d", i);
+        else if (r == AS_VECTOR && len > 3 && strncmp(p, "ia_", 3) == 0)
+            strbuf_printf(b, "iav_%.*s", (int)len - 3, p + 3);
         else
             strbuf_append(b, p, len);
 #undef IS
@@ -128,8 +133,8 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
         const dag_node *n = &em->d->nodes[i];
         if (n->op < OP_NEG)
             continue; /* leaves are written in place */
-        strbuf_printf(b, "    %s v%d = ", r == AS_INTERVAL ? "ia_interval" : "ia_real", i);
-        expand(b, em, i, r == AS_INTERVAL ? dag_ops[n->op].interval : dag_ops[n->op].point, r, 0);
+        strbuf_printf(b, "    %s v%d = ", r == AS_INTERVAL ? "ia_interval" : r == AS_VECTOR ? "iav" : "ia_real", i);
+        expand(b, em, i, is_interval(r) ? dag_ops[n->op].interval : dag_ops[n->op].point, r, 0);
         strbuf_printf(b, ";\n");
         if (r != AS_DERIV)
             continue;
@@ -178,6 +183,12 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     strbuf_printf(&b, "    return ");
     put_operand(&b, &em, root, AS_INTERVAL, 0);
     strbuf_printf(&b, ";\n}\n");
+    /* The same over IA_VW lanes, for the kernels that trace several rays per work-item. */
+    strbuf_printf(&b, "#ifdef IA_VW\nIA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n", prefix);
+    body(&b, &em, order, count, AS_VECTOR);
+    strbuf_printf(&b, "    return ");
+    put_operand(&b, &em, root, AS_VECTOR, 0);
+    strbuf_printf(&b, ";\n}\n#endif\n");
     strbuf_printf(&b, "IA_FN ia_real %s_f(ia_real x, ia_real y, ia_real z, ia_real t) {\n", prefix);
     body(&b, &em, order, count, AS_POINT);
     strbuf_printf(&b, "    return ");

@@ -29,4 +29,10 @@ enum {
 /* The pixels of a tile (kernels/tile.h) are those of one work-group of the render kernel. */
 #define TILE_SIZE 8
 
+/* A work-item of the render kernel traces PACKET_W x PACKET_H pixels of one tile in as many SIMD lanes
+ * (kernels/packet.h); the host builds the program with -D IA_VW=PACKET_LANES. */
+#define PACKET_W 4
+#define PACKET_H 4
+#define PACKET_LANES (PACKET_W * PACKET_H)
+
 #endif

@@ -10,6 +10,7 @@
  */
 #include "camera.h"
 #include "bisect.h"
+#include "packet.h"
 #include "tile.h"
 #include "shade.h"
 
@@ -39,54 +40,80 @@ __kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int 
 #endif
 }
 
-/* The first root of the ray in [t_near, t_far]: the walk of the frame's tree from the tile's first coarse leaf
- * (level, leaf), or from the node holding t_near at that level when the ray enters the bounds after the leaf. */
-static inline int trace(const KERNEL_CONSTANT ia_real *p, const ia_real o[3], const ia_real d[3], ia_real t_near,
-                        ia_real t_far, int level, bisect_index leaf, ia_interval time, ia_real *lo, ia_real *hi,
-                        kernel_u32 *count) {
-    ia_real t0, w;
-    frame_root(p, &t0, &w);
-    bisect_index i = max(leaf, node_at(t0, w, level, t_near));
-    return bisect_first_root(o, d, t0, w, level, i, t_near, t_far, p[PARAM_EPS], time, lo, hi, count);
-}
-
 /* The depth image is float32: in double mode round the start down, so it stays before the first root. */
 static inline float depth_round_down(ia_real t) {
     float f = (float)t;
     return (ia_real)f > t ? nextafter(f, -INFINITY) : f;
 }
 
+/* One work-item per packet of PACKET_W x PACKET_H pixels (params.h), its rays traced together in SIMD lanes
+ * (packet.h); work-groups are the tiles. Set-up and shading run lane by lane, in scalar code. */
 __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int height, int row0,
                            __global const ia_real *tiles, __global float *rgb, __global float *depth,
                            __global float *normal, __global uint *evals) {
-    int i = (int)get_global_id(0), j = row0 + (int)get_global_id(1);
-    if (i >= width || j >= height)
+    int i0 = (int)get_global_id(0) * PACKET_W, j0 = row0 + (int)get_global_id(1) * PACKET_H;
+    if (i0 >= width || j0 >= height)
         return;
-    size_t pixel = (size_t)j * (size_t)width + (size_t)i;
-    ia_real o[3], d[3], n[3] = {0, 0, 0}, t_near, t_far, lo, hi;
-    float color[3];
-    kernel_u32 count = 0;
-    ia_interval time = ia_point(params[PARAM_TIME]);
-    camera_ray(params, flags & RENDER_ORTHO, i, j, width, height, o, d);
-    size_t tile = (size_t)(j / TILE_SIZE) * (size_t)((width + TILE_SIZE - 1) / TILE_SIZE) + (size_t)(i / TILE_SIZE);
+    size_t tile = (size_t)(j0 / TILE_SIZE) * (size_t)((width + TILE_SIZE - 1) / TILE_SIZE) + (size_t)(i0 / TILE_SIZE);
     int level = (int)tiles[2 * tile];
-    int hit = level >= 0 && camera_clip(params, o, d, &t_near, &t_far) &&
-              trace(params, o, d, t_near, t_far, level, (bisect_index)tiles[2 * tile + 1], time, &lo, &hi, &count);
-    if (hit) {
-        ia_real t = lo * (ia_real)0.5 + hi * (ia_real)0.5;
-        shade_normal(o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2], time.lo, d, n);
-        shade_surface(params, n, d, color);
-    } else {
-        shade_background(j, height, color);
+    bisect_index leaf = (bisect_index)tiles[2 * tile + 1];
+    ia_interval time = ia_point(params[PARAM_TIME]);
+    ia_real t0, w;
+    frame_root(params, &t0, &w);
+    /* Each lane's ray, its part inside the bounds and its first node, or "not searching". */
+    ia_real o[3][IA_VW], d[3][IA_VW], t_near[IA_VW], t_far[IA_VW], searching[IA_VW];
+    bisect_index start[IA_VW];
+    for (int k = 0; k < IA_VW; k++) {
+        int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
+        ia_real ok[3], dk[3];
+        camera_ray(params, flags & RENDER_ORTHO, min(i, width - 1), min(j, height - 1), width, height, ok, dk);
+        int search = i < width && j < height && level >= 0 && camera_clip(params, ok, dk, &t_near[k], &t_far[k]);
+        searching[k] = search;
+        start[k] = search ? max(leaf, node_at(t0, w, level, t_near[k])) : 0;
+        for (int c = 0; c < 3; c++) {
+            o[c][k] = ok[c];
+            d[c][k] = dk[c];
+        }
     }
-    depth[pixel] = hit ? depth_round_down(lo) : INFINITY;
+    ia_realv ov[3], dv[3], hit_lo = IAV_R(0), hit_hi = IAV_R(0);
     for (int c = 0; c < 3; c++) {
-        rgb[3 * pixel + c] = color[c];
-        normal[3 * pixel + c] = (float)n[c];
+        ov[c] = IAV_LOAD(o[c]);
+        dv[c] = IAV_LOAD(d[c]);
     }
+    packet_index counts = (packet_index)0;
+    ia_maskv hit = packet_first_root(ov, dv, t0, w, (packet_int)max(level, 0), IAV_LOAD(start), IAV_LOAD(t_near),
+                                     IAV_LOAD(t_far), IAV_LOAD(searching) != 0, params[PARAM_EPS],
+                                     iav_splat(time), &hit_lo, &hit_hi, &counts);
+    ia_real lo[IA_VW], hi[IA_VW], hits[IA_VW];
+    bisect_index count[IA_VW];
+    IAV_STORE(hit_lo, lo);
+    IAV_STORE(hit_hi, hi);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), hit), hits);
+    IAV_STORE(counts, count);
+    for (int k = 0; k < IA_VW; k++) {
+        int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
+        if (i >= width || j >= height)
+            continue;
+        size_t pixel = (size_t)j * (size_t)width + (size_t)i;
+        ia_real n[3] = {0, 0, 0}, dk[3] = {d[0][k], d[1][k], d[2][k]};
+        float color[3];
+        if (hits[k] != 0) {
+            ia_real t = lo[k] * (ia_real)0.5 + hi[k] * (ia_real)0.5;
+            shade_normal(o[0][k] + t * dk[0], o[1][k] + t * dk[1], o[2][k] + t * dk[2], time.lo, dk, n);
+            shade_surface(params, n, dk, color);
+        } else {
+            shade_background(j, height, color);
+        }
+        depth[pixel] = hits[k] != 0 ? depth_round_down(lo[k]) : INFINITY;
+        for (int c = 0; c < 3; c++) {
+            rgb[3 * pixel + c] = color[c];
+            normal[3 * pixel + c] = (float)n[c];
+        }
 #ifdef KERNEL_STATS
-    evals[pixel] = count;
+        evals[pixel] = (uint)count[k];
 #else
-    (void)evals;
+        (void)count;
+        (void)evals;
 #endif
+    }
 }

@@ -15,25 +15,34 @@
 #include "bisect.h"
 #include "camera.h"
 
-/* The box holding the points o + t*d, t in T, of the float rays of columns i0..i1 and rows j0..j1. */
-IA_FN void tile_box(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1, int j0, int j1, int width,
-                    int height, ia_interval t, ia_interval box[3]) {
+/* The float rays of columns i0..i1 and rows j0..j1 as one box-valued ray: every point o + t*d of them, t in
+ * T, lies in base + T * dir. Perspective: base is the eye and dir the box of the unit directions; orthographic:
+ * base is the box of the origins and dir the one direction. Computed once per tile; the search then costs one
+ * multiplication and one addition per axis and node. */
+typedef struct {
+    ia_interval base[3], dir[3];
+} tile_rays;
+
+IA_FN void tile_rays_of(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1, int j0, int j1, int width,
+                        int height, tile_rays *r) {
     ia_interval s = ia_make(camera_s(p, i0, width), camera_s(p, i1, width));
     ia_interval v = ia_make(camera_v(p, j1, height), camera_v(p, j0, height));
-    ia_interval d[3];
     for (int k = 0; k < 3; k++) {
         ia_interval offset = ia_add(ia_mul_r(s, p[PARAM_RIGHT + k]), ia_mul_r(v, p[PARAM_UP + k]));
-        if (ortho) { /* origins spread over the tile, one direction */
-            box[k] = ia_add(ia_add_r(offset, p[PARAM_EYE + k]), ia_mul_r(t, p[PARAM_FORWARD + k]));
-            continue;
-        }
-        d[k] = ia_add_r(offset, p[PARAM_FORWARD + k]);
+        r->base[k] = ortho ? ia_add_r(offset, p[PARAM_EYE + k]) : ia_point(p[PARAM_EYE + k]);
+        r->dir[k] = ortho ? ia_point(p[PARAM_FORWARD + k]) : ia_add_r(offset, p[PARAM_FORWARD + k]);
     }
     if (ortho)
         return;
-    ia_interval len = ia_sqrt(ia_add(ia_add(ia_sqr(d[0]), ia_sqr(d[1])), ia_sqr(d[2])));
+    ia_interval len = ia_sqrt(ia_add(ia_add(ia_sqr(r->dir[0]), ia_sqr(r->dir[1])), ia_sqr(r->dir[2])));
     for (int k = 0; k < 3; k++)
-        box[k] = ia_add_r(ia_mul(t, ia_div(d[k], len)), p[PARAM_EYE + k]);
+        r->dir[k] = ia_div(r->dir[k], len);
+}
+
+/* The box holding the points o + t*d, t in T, of the tile's float rays. */
+IA_FN void tile_box(const tile_rays *r, ia_interval t, ia_interval box[3]) {
+    for (int k = 0; k < 3; k++)
+        box[k] = ia_add(r->base[k], ia_mul(t, r->dir[k]));
 }
 
 /* The root interval [*t0, *t0 + *w] of the bisection tree that the tile pass and every ray of the frame walk:
@@ -53,12 +62,14 @@ IA_FN int tile_first_leaf(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, i
     /* The tile's angular (perspective) or linear (orthographic) size. */
     ia_real spread = fmax(camera_s(p, i1, width) - camera_s(p, i0, width), camera_v(p, j0, height) -
                                                                                 camera_v(p, j1, height));
+    tile_rays rays;
+    tile_rays_of(p, ortho, i0, i1, j0, j1, width, height, &rays);
     int level = 0;
     bisect_index i = 0;
     do {
         ia_real lo = node_bound(t0, w, level, i), hi = node_bound(t0, w, level, i + 1);
         ia_interval box[3];
-        tile_box(p, ortho, i0, i1, j0, j1, width, height, ia_make(lo, hi), box);
+        tile_box(&rays, ia_make(lo, hi), box);
         ia_interval f = iacsg_F(box[0], box[1], box[2], time);
         BISECT_COUNT(*evals);
         if (ia_contains_zero(f)) {

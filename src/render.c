@@ -5,6 +5,7 @@
 #include "clrt.h"
 #include "kernels/params.h"
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -45,8 +46,7 @@ iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_confi
     char options[512];
     st = clrt_ia_options(&r->rt, config->fp64, config->fast, options, sizeof options - 32, err);
     if (st == IACSG_OK) {
-        if (config->stats)
-            strcat(options, " -D KERNEL_STATS");
+        snprintf(options + strlen(options), 32, " -D IA_VW=%d%s", PACKET_LANES, config->stats ? " -D KERNEL_STATS" : "");
         const char *sources[] = {iacsg_cl_ia, expr_cl, iacsg_cl_kernels};
         double t0 = now_seconds();
         st = clrt_build(&r->rt, sources, 3, options, &r->program, err);
@@ -262,8 +262,8 @@ static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacs
         size_t tile_global[2] = {tiles_x, (size_t)(rows + TILE_SIZE - 1) / TILE_SIZE};
         CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 4, sizeof(cl_int), &tile_row0));
         CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->tile_kernel, 2, NULL, tile_global, NULL, 0, NULL, NULL));
-        size_t local[2] = {TILE_SIZE, TILE_SIZE};
-        size_t global[2] = {tiles_x * TILE_SIZE, tile_global[1] * TILE_SIZE};
+        size_t local[2] = {TILE_SIZE / PACKET_W, TILE_SIZE / PACKET_H};
+        size_t global[2] = {tiles_x * local[0], tile_global[1] * local[1]};
         CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &row0));
         CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
         if (view->progress) {

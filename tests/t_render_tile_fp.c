@@ -3,7 +3,7 @@
  * pixel's own float ray over the range (ray_extent, itself checked in t_render_traverse_fp.c) lies inside it. */
 #include "ia/ia.h"
 
-/* tile.h's search calls the expression's inclusion function; this test only uses tile_box. */
+/* tile.h's search calls the expression's inclusion function; this test only uses tile_rays_of and tile_box. */
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     (void)t;
     return ia_add_r(ia_add(ia_add(ia_sqr(x), ia_sqr(y)), ia_sqr(z)), -1);
@@ -38,7 +38,9 @@ TEST_FP(render_tile_box_holds_its_rays) {
         int i1 = (i0 + TILE_SIZE < w ? i0 + TILE_SIZE : w) - 1, j1 = (j0 + TILE_SIZE < h ? j0 + TILE_SIZE : h) - 1;
         ia_real a = (ia_real)uniform(rng, 0, 10), b = a + (ia_real)uniform(rng, 0, 1);
         ia_interval box[3];
-        tile_box(p, ortho, i0, i1, j0, j1, w, h, ia_make(a, b), box);
+        tile_rays rays;
+        tile_rays_of(p, ortho, i0, i1, j0, j1, w, h, &rays);
+        tile_box(&rays, ia_make(a, b), box);
         for (int j = j0; j <= j1; j++)
             for (int i = i0; i <= i1; i++) {
                 ia_real o[3], d[3];

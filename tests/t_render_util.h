@@ -17,9 +17,10 @@ typedef struct {
 /* What the hand-written expressions of the tests build from two spheres. */
 typedef enum { SOLID_A, SOLID_UNION, SOLID_INTER, SOLID_DIFF } solid_op;
 
-/* OpenCL C for the CSG of spheres a and b: F, f and its gradient, as the compiler would emit them. */
+/* OpenCL C for the CSG of spheres a and b: F, Fv, f and its gradient, as the compiler would emit them. */
 static inline char *spheres_cl(sphere a, sphere b, solid_op op) {
     static const char *ops_F[] = {"a", "ia_min(a, b)", "ia_max(a, b)", "ia_max(a, ia_neg(b))"};
+    static const char *ops_Fv[] = {"a", "iav_min(a, b)", "iav_max(a, b)", "iav_max(a, iav_neg(b))"};
     static const char *ops_f[] = {"a", "fmin(a, b)", "fmax(a, b)", "fmax(a, -b)"};
     /* The gradient of the branch that min/max selects; for the difference, -grad b when -b wins. */
     static const char *ops_g[] = {"1", "a <= b", "a >= b", "a >= -b"};
@@ -35,6 +36,13 @@ static inline char *spheres_cl(sphere a, sphere b, solid_op op) {
              "#define SA %a, %a, %a, %a\n#define SB %a, %a, %a, %a\n"
              "IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n"
              "  ia_interval a = sph_F(x, y, z, SA), b = sph_F(x, y, z, SB); (void)t; (void)b; return %s;\n}\n"
+             "#ifdef IA_VW\n"
+             "IA_FN iav sph_Fv(iav x, iav y, iav z, ia_real cx, ia_real cy, ia_real cz, ia_real r) {\n"
+             "  return iav_add_r(iav_add(iav_add(iav_sqr(iav_add_r(x, -cx)), iav_sqr(iav_add_r(y, -cy))),"
+             " iav_sqr(iav_add_r(z, -cz))), -r * r);\n}\n"
+             "IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {\n"
+             "  iav a = sph_Fv(x, y, z, SA), b = sph_Fv(x, y, z, SB); (void)t; (void)b; return %s;\n}\n"
+             "#endif\n"
              "IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {\n"
              "  ia_real a = sph_f(x, y, z, SA), b = sph_f(x, y, z, SB); (void)t; (void)b; return %s;\n}\n"
              "IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy,"
@@ -45,7 +53,7 @@ static inline char *spheres_cl(sphere a, sphere b, solid_op op) {
              "  *gy = sg * 2 * (y - (use_a ? ca[1] : cb[1]));\n"
              "  *gz = sg * 2 * (z - (use_a ? ca[2] : cb[2]));\n"
              "  return iacsg_f(x, y, z, t);\n}\n",
-             a.c[0], a.c[1], a.c[2], a.r, b.c[0], b.c[1], b.c[2], b.r, ops_F[op], ops_f[op], ops_g[op], ops_gs[op]);
+             a.c[0], a.c[1], a.c[2], a.r, b.c[0], b.c[1], b.c[2], b.r, ops_F[op], ops_Fv[op], ops_f[op], ops_g[op], ops_gs[op]);
     return s;
 }
 

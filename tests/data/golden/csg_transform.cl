@@ -37,6 +37,39 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v44 = ia_min(v16, v43);
     return v44;
 }
+#ifdef IA_VW
+IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
+    iav v9 = iav_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));
+    iav v10 = iav_sqr(v9);
+    iav v11 = iav_sqr(y);
+    iav v12 = iav_add(v10, v11);
+    iav v13 = iav_sqr(z);
+    iav v14 = iav_add(v12, v13);
+    iav v16 = iav_add_r(v14, IACSG_K(-0x1p-2f, -0x1p-2));
+    iav v17 = iav_abs(x);
+    iav v18 = iav_abs(y);
+    iav v19 = iav_abs(z);
+    iav v20 = iav_add_r(v17, IACSG_K(-0x1p+0f, -0x1p+0));
+    iav v21 = iav_add_r(v18, IACSG_K(-0x1p+0f, -0x1p+0));
+    iav v22 = iav_add_r(v19, IACSG_K(-0x1p+0f, -0x1p+0));
+    iav v23 = iav_max(v20, v21);
+    iav v24 = iav_max(v22, v23);
+    iav v30 = iav_mul(x, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
+    iav v32 = iav_mul(y, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
+    iav v33 = iav_add(v30, v32);
+    iav v34 = iav_mul(y, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
+    iav v35 = iav_mul(x, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
+    iav v36 = iav_sub(v34, v35);
+    iav v37 = iav_sqr(v33);
+    iav v38 = iav_sqr(v36);
+    iav v39 = iav_add(v37, v38);
+    iav v41 = iav_add_r(v39, IACSG_K(-0x1p-4f, -0x1p-4));
+    iav v42 = iav_neg(v41);
+    iav v43 = iav_max(v24, v42);
+    iav v44 = iav_min(v16, v43);
+    return v44;
+}
+#endif
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v9 = x + IACSG_K(-0x1p+0f, -0x1p+0);
     ia_real v10 = v9 * v9;

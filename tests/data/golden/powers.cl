@@ -18,6 +18,20 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v16 = ia_add(v13, v15);
     return v16;
 }
+#ifdef IA_VW
+IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
+    iav v2 = iav_pown(x, 3);
+    iav v5 = iav_sqrt(y);
+    iav v6 = iav_add(v2, v5);
+    iav v10 = iav_pown(z, -2);
+    iav v11 = iav_add(v6, v10);
+    iav v12 = iav_sqr(x);
+    iav v13 = iav_add(v11, v12);
+    iav v15 = iav_pow(y, iav_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
+    iav v16 = iav_add(v13, v15);
+    return v16;
+}
+#endif
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v2 = pown(x, 3);
     ia_real v5 = sqrt(y);

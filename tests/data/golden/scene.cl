@@ -18,6 +18,20 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v16 = ia_max(v11, v15);
     return v16;
 }
+#ifdef IA_VW
+IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
+    iav v3 = iav_sqr(x);
+    iav v5 = iav_sqr(y);
+    iav v6 = iav_add(v3, v5);
+    iav v8 = iav_sqr(z);
+    iav v9 = iav_add(v6, v8);
+    iav v11 = iav_sub(v9, iav_const(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    iav v14 = iav_sub(v6, iav_const(IACSG_K(0x1.70a3d2p-4f, 0x1.70a3d70a3d709p-4), IACSG_K(0x1.70a3dap-4f, 0x1.70a3d70a3d70dp-4)));
+    iav v15 = iav_neg(v14);
+    iav v16 = iav_max(v11, v15);
+    return v16;
+}
+#endif
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v3 = x * x;
     ia_real v5 = y * y;

@@ -13,6 +13,15 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v6 = ia_min(v3, v5);
     return v6;
 }
+#ifdef IA_VW
+IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
+    iav v1 = iav_sin(x);
+    iav v3 = iav_mul(v1, y);
+    iav v5 = iav_add(v1, iav_const(IACSG_K(0x1.999998p-4f, 0x1.9999999999999p-4), IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4)));
+    iav v6 = iav_min(v3, v5);
+    return v6;
+}
+#endif
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v1 = sin(x);
     ia_real v3 = v1 * y;

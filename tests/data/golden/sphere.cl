@@ -15,6 +15,17 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v11 = ia_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
     return v11;
 }
+#ifdef IA_VW
+IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
+    iav v3 = iav_sqr(x);
+    iav v5 = iav_sqr(y);
+    iav v6 = iav_add(v3, v5);
+    iav v8 = iav_sqr(z);
+    iav v9 = iav_add(v6, v8);
+    iav v11 = iav_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
+    return v11;
+}
+#endif
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v3 = x * x;
     ia_real v5 = y * y;

@@ -44,6 +44,46 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v48 = ia_add(v46, v47);
     return v48;
 }
+#ifdef IA_VW
+IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
+    iav v2 = iav_sqr(x);
+    iav v4 = iav_sqr(y);
+    iav v5 = iav_add(v2, v4);
+    iav v8 = iav_sub(v5, iav_const(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    iav v9 = iav_sqr(v8);
+    iav v11 = iav_sqr(z);
+    iav v14 = iav_add_r(v11, IACSG_K(-0x1p+0f, -0x1p+0));
+    iav v15 = iav_sqr(v14);
+    iav v16 = iav_add(v9, v15);
+    iav v17 = iav_add(v4, v11);
+    iav v18 = iav_sub(v17, iav_const(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    iav v19 = iav_sqr(v18);
+    iav v20 = iav_add_r(v2, IACSG_K(-0x1p+0f, -0x1p+0));
+    iav v21 = iav_sqr(v20);
+    iav v22 = iav_add(v19, v21);
+    iav v23 = iav_mul(v16, v22);
+    iav v24 = iav_add(v2, v11);
+    iav v25 = iav_sub(v24, iav_const(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    iav v26 = iav_sqr(v25);
+    iav v27 = iav_add_r(v4, IACSG_K(-0x1p+0f, -0x1p+0));
+    iav v28 = iav_sqr(v27);
+    iav v29 = iav_add(v26, v28);
+    iav v30 = iav_mul(v23, v29);
+    iav v32 = iav_sub(v30, iav_const(IACSG_K(0x1.47ae14p-6f, 0x1.47ae147ae147ap-6), IACSG_K(0x1.47ae16p-6f, 0x1.47ae147ae147bp-6)));
+    iav v33 = iav_add(v5, v11);
+    iav v34 = iav_add_r(v33, IACSG_K(-0x1p+0f, -0x1p+0));
+    iav v40 = iav_add_r(t, IACSG_K(-0x1p-1f, -0x1p-1));
+    iav v41 = iav_mul_r(v40, IACSG_K(-0x1.8p+3f, -0x1.8p+3));
+    iav v42 = iav_exp(v41);
+    iav v43 = iav_add_r(v42, IACSG_K(0x1p+0f, 0x1p+0));
+    iav v44 = iav_recip(v43);
+    iav v45 = iav_sub(iav_point(IACSG_K(0x1p+0f, 0x1p+0)), v44);
+    iav v46 = iav_mul(v32, v45);
+    iav v47 = iav_mul(v34, v44);
+    iav v48 = iav_add(v46, v47);
+    return v48;
+}
+#endif
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v2 = x * x;
     ia_real v4 = y * y;

@@ -18,6 +18,20 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v16 = ia_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
     return v16;
 }
+#ifdef IA_VW
+IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
+    iav v4 = iav_sqr(x);
+    iav v6 = iav_sqr(y);
+    iav v7 = iav_add(v4, v6);
+    iav v8 = iav_sqrt(v7);
+    iav v10 = iav_sqr(z);
+    iav v11 = iav_sub(iav_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
+    iav v12 = iav_sqr(v11);
+    iav v13 = iav_add(v10, v12);
+    iav v16 = iav_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
+    return v16;
+}
+#endif
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v4 = x * x;
     ia_real v6 = y * y;

@@ -1,0 +1,199 @@
+/* ia/vec.h -- intervals of IA_VW lanes, OpenCL C only (built with -D IA_VW=4, 8 or 16): the operations of
+ * ia/ over vectors of bounds, without branches, so that one work-item evaluates an expression for IA_VW rays
+ * at once in SIMD registers. PoCL does not vectorise the bisection across work-items (its trip count differs
+ * per ray), so the kernels do it by hand (kernels/bisect_simd.h) and need these.
+ *
+ * The contract differs from ia/ia.h in one point, on purpose: a lane whose operand is empty, or whose operand
+ * misses the operation's domain entirely (sqrt of [-2,-1]), may hold ANY value, NaN included. Dropping the
+ * emptiness tests is what makes the operations branch-free. It is enough for the renderer: every operation maps
+ * empty to empty, so when a node of an expression is empty over a box the whole expression is, and then any
+ * result encloses its (empty) range. A lane whose operands are nonempty gets exactly what ia/ia.h promises:
+ * inclusion under the same rounding arguments (ia/round.h), bounds never NaN, and the same tightness.
+ * A NaN that reaches the end fails iav_contains_zero, as an empty interval would.
+ *
+ * The polynomial operations (neg + - * sqr pown sqrt abs min max, add_r, mul_r) are vector code. The others
+ * (/ recip exp log sin cos tan atan pow, and pown with a negative or very large exponent) run ia/'s scalar
+ * operation lane by lane: correct, not faster; a lane with a NaN bound is passed to them as empty.
+ */
+#ifndef IA_VEC_H
+#define IA_VEC_H
+#include "elem.h"
+#if IA_DEVICE && defined(IA_VW)
+
+#define IAV_CAT_(a, b) a##b
+#define IAV_CAT(a, b) IAV_CAT_(a, b)
+#ifdef IA_FP64
+typedef IAV_CAT(double, IA_VW) ia_realv;
+typedef IAV_CAT(long, IA_VW) ia_maskv; /* comparisons: -1 (all bits) in a true lane, 0 in a false one */
+#else
+typedef IAV_CAT(float, IA_VW) ia_realv;
+typedef IAV_CAT(int, IA_VW) ia_maskv;
+#endif
+#define IAV_LOAD(p) IAV_CAT(vload, IA_VW)(0, p)
+#define IAV_STORE(v, p) IAV_CAT(vstore, IA_VW)(v, 0, p)
+#define IAV_R(x) ((ia_realv)(x))
+
+typedef struct {
+    ia_realv lo, hi;
+} iav;
+
+IA_FN iav iav_make(ia_realv lo, ia_realv hi) {
+    iav r;
+    r.lo = lo;
+    r.hi = hi;
+    return r;
+}
+/* Every lane the same: a constant [lo, hi], a point, or a scalar interval. */
+IA_FN iav iav_const(ia_real lo, ia_real hi) { return iav_make(IAV_R(lo), IAV_R(hi)); }
+IA_FN iav iav_point(ia_real x) { return iav_const(x, x); }
+IA_FN iav iav_splat(ia_interval a) { return iav_const(a.lo, a.hi); }
+
+/* Lanes where 0 may be a value; false on NaN and on empty. */
+IA_FN ia_maskv iav_contains_zero(iav a) { return a.lo <= 0 && a.hi >= 0; }
+
+/* ---- widening (ia/round.h), lane-wise: the same pads; fmin / fmax map the NaN of "inf - inf" to the finite
+ * end as ia__below_max / ia__above_min do. */
+#ifdef IA_FAST
+#define iav_lo_k(r, k) (r)
+#define iav_hi_k(r, k) (r)
+#else
+#define iav_lo_k(r, k) fmin(fma(fabs(r), IAV_R(-IA_PAD_C(k)), (r) - IA_PAD_T(k)), IAV_R(IA_REAL_MAX))
+#define iav_hi_k(r, k) fmax(fma(fabs(r), IAV_R(IA_PAD_C(k)), (r) + IA_PAD_T(k)), IAV_R(-IA_REAL_MAX))
+#endif
+#define iav_lo(r) iav_lo_k(r, 0)
+#define iav_hi(r) iav_hi_k(r, 0)
+
+/* ---- exact operations */
+IA_FN iav iav_neg(iav a) { return iav_make(-a.hi, -a.lo); }
+/* [mig, mag]; + 0 turns a -0 lower bound into +0, as ia_abs does. */
+IA_FN iav iav_abs(iav a) {
+    return iav_make(fmax(fmax(a.lo, -a.hi), IAV_R(0)) + IAV_R(0), fmax(-a.lo, a.hi));
+}
+IA_FN iav iav_min(iav a, iav b) { return iav_make(fmin(a.lo, b.lo), fmin(a.hi, b.hi)); }
+IA_FN iav iav_max(iav a, iav b) { return iav_make(fmax(a.lo, b.lo), fmax(a.hi, b.hi)); }
+
+/* ---- rounded operations. Nonempty operands have lo < +inf and hi > -inf, so a.lo + b.lo and a.lo - b.hi
+ * are never inf - inf: no test needed where ia_add has one. */
+IA_FN iav iav_add(iav a, iav b) { return iav_make(iav_lo(a.lo + b.lo), iav_hi(a.hi + b.hi)); }
+IA_FN iav iav_sub(iav a, iav b) { return iav_make(iav_lo(a.lo - b.hi), iav_hi(a.hi - b.lo)); }
+IA_FN iav iav_add_r(iav a, ia_real c) { return iav_make(iav_lo(a.lo + c), iav_hi(a.hi + c)); }
+
+/* c is a constant of the expression: the tests on it are the same in every lane. */
+IA_FN iav iav_mul_r(iav a, ia_real c) {
+    if (c == 0)
+        return iav_point(0);
+    ia_realv p = a.lo * c, q = a.hi * c;
+    return c > 0 ? iav_make(iav_lo(p), iav_hi(q)) : iav_make(iav_lo(q), iav_hi(p));
+}
+
+/* x * y with 0 * inf = 0, as ia__mul0. */
+IA_FN ia_realv iav__mul0(ia_realv x, ia_realv y) {
+    ia_realv p = x * y;
+    return select(p, IAV_R(0), isnan(p));
+}
+IA_FN iav iav_mul(iav a, iav b) {
+    ia_realv p1 = iav__mul0(a.lo, b.lo), p2 = iav__mul0(a.lo, b.hi);
+    ia_realv p3 = iav__mul0(a.hi, b.lo), p4 = iav__mul0(a.hi, b.hi);
+    return iav_make(iav_lo(fmin(fmin(p1, p2), fmin(p3, p4))), iav_hi(fmax(fmax(p1, p2), fmax(p3, p4))));
+}
+
+/* mig = the smallest |x|, mag = the largest; [0, ...] when a straddles 0. */
+IA_FN iav iav_sqr(iav a) {
+    ia_realv mig = fmax(fmax(a.lo, -a.hi), IAV_R(0)), mag = fmax(-a.lo, a.hi);
+    return iav_make(fmax(iav_lo(mig * mig), IAV_R(0)), select(iav_hi(mag * mag), IAV_R(0), mag == 0));
+}
+
+IA_FN iav iav_sqrt(iav a) {
+    ia_realv lo = select(fmax(iav_lo_k(sqrt(a.lo), IA_ULP_SQRT), IAV_R(0)), IAV_R(0), a.lo <= 0);
+    return iav_make(lo, iav_hi_k(sqrt(a.hi), IA_ULP_SQRT));
+}
+
+/* x^n for x >= 0 (possibly +inf), n >= 1, by ia__pown_nonneg's square-and-multiply, every product rounded
+ * down in the lanes where down < 0 and up where it is >= 0: r*C*s + T*s moves outward by the pad of
+ * ia/round.h in the lane's direction s = +-1 (fma(|r|, s C, r + s T) is ia_hi_k's form for s = 1 and
+ * ia_lo_k's for s = -1). The NaN of +inf rounded down becomes MAX, and a rounded-down product never goes
+ * below 0, as in the scalar version. n is a constant of the expression, so the loop unrolls. */
+IA_FN ia_realv iav__round_dir(ia_realv r, ia_realv s) {
+#ifdef IA_FAST
+    (void)s;
+    return r;
+#else
+    ia_realv v = fma(fabs(r), s * IA_PAD_C(0), r + s * IA_PAD_T(0));
+    return fmax(select(v, IAV_R(IA_REAL_MAX), isnan(v)), IAV_R(0));
+#endif
+}
+IA_FN ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
+    ia_realv r = IAV_R(1), b = x;
+    while (1) {
+        if (n & 1)
+            r = iav__round_dir(r * b, s);
+        n >>= 1;
+        if (n == 0)
+            return select(r, IAV_R(0), x == 0);
+        b = iav__round_dir(b * b, s);
+    }
+}
+
+/* The scalar ia/ operation in each lane, for the operations with no vector version. */
+IA_FN ia_interval iav__lane(ia_real lo, ia_real hi) { return isnan(lo) || isnan(hi) ? ia_empty() : ia_make(lo, hi); }
+#define IAV_LANEWISE(call)                                                                                     \
+    ia_real alo[IA_VW], ahi[IA_VW], blo[IA_VW], bhi[IA_VW];                                                    \
+    IAV_STORE(a.lo, alo);                                                                                      \
+    IAV_STORE(a.hi, ahi);                                                                                      \
+    IAV_STORE(b.lo, blo);                                                                                      \
+    IAV_STORE(b.hi, bhi);                                                                                      \
+    for (int k = 0; k < IA_VW; k++) {                                                                          \
+        ia_interval A = iav__lane(alo[k], ahi[k]), B = iav__lane(blo[k], bhi[k]);                              \
+        ia_interval R = call;                                                                                  \
+        (void)A;                                                                                               \
+        (void)B;                                                                                               \
+        alo[k] = R.lo;                                                                                         \
+        ahi[k] = R.hi;                                                                                         \
+    }                                                                                                          \
+    return iav_make(IAV_LOAD(alo), IAV_LOAD(ahi))
+#define IAV_UNARY_BY_LANE(name)                                                                                \
+    IA_FN iav iav_##name(iav a) {                                                                              \
+        iav b = a;                                                                                             \
+        IAV_LANEWISE(ia_##name(A));                                                                            \
+    }
+#define IAV_BINARY_BY_LANE(name)                                                                               \
+    IA_FN iav iav_##name(iav a, iav b) { IAV_LANEWISE(ia_##name(A, B)); }
+IAV_UNARY_BY_LANE(recip)
+IAV_UNARY_BY_LANE(exp)
+IAV_UNARY_BY_LANE(log)
+IAV_UNARY_BY_LANE(sin)
+IAV_UNARY_BY_LANE(cos)
+IAV_UNARY_BY_LANE(tan)
+IAV_UNARY_BY_LANE(atan)
+IAV_BINARY_BY_LANE(div)
+IAV_BINARY_BY_LANE(pow)
+IA_FN iav iav__pown_by_lane(iav a, int n) {
+    iav b = a;
+    IAV_LANEWISE(ia_pown(A, n));
+}
+
+/* a^n for an integer constant n. Even n: |a|'s ends; odd n: increasing, each end's sign chooses the
+ * direction of its chain and the sign of its result. Negative n, and n beyond the device's square-and-multiply
+ * range (IA_POWN_CHAIN_MAX, ia/arith.h), lane by lane. */
+IA_FN iav iav_pown(iav a, int n) {
+    if (n == 0)
+        return iav_point(1);
+    if (n == 1)
+        return a;
+    if (n == 2)
+        return iav_sqr(a);
+    if (n < 0 || n > IA_POWN_CHAIN_MAX)
+        return iav__pown_by_lane(a, n);
+    unsigned int m = (unsigned int)n;
+    if ((m & 1) == 0) {
+        iav g = iav_abs(a);
+        return iav_make(iav__pown_nonneg(g.lo, m, IAV_R(-1)), iav__pown_nonneg(g.hi, m, IAV_R(1)));
+    }
+    /* a.lo >= 0: round its power down; a.lo < 0: round |a.lo|^n up and negate. Symmetrically for a.hi. */
+    ia_realv s_lo = select(IAV_R(-1), IAV_R(1), a.lo < 0), s_hi = select(IAV_R(1), IAV_R(-1), a.hi < 0);
+    ia_realv lo = iav__pown_nonneg(fabs(a.lo), m, s_lo), hi = iav__pown_nonneg(fabs(a.hi), m, s_hi);
+    return iav_make(select(lo, -lo, a.lo < 0), select(hi, -hi, a.hi < 0));
+}
+
+#endif
+#endif

@@ -1,0 +1,89 @@
+/* kernels/packet.h -- the first roots of IA_VW rays at once: bisect.h's walk with one SIMD lane per ray
+ * (OpenCL C only; ia/vec.h's intervals and the emitted iacsg_Fv).
+ *
+ * Why by hand: PoCL runs a work-group's work-items in a loop that it vectorises only when every work-item takes
+ * the same path; the bisection's trip count differs per ray, so the scalar kernel ran one ray at a time with no
+ * vector instruction at all. Here a work-item carries a packet of PACKET_W x PACKET_H neighbouring rays, which
+ * mostly walk the same nodes; the loop runs while any lane is searching, and a finished lane just idles.
+ *
+ * Each lane does exactly what bisect_first_root does for its ray, with the same node ends (node_bound's formula
+ * over the same operations, so bit-identical to the tile pass's and to the scalar walk's), the same enclosures
+ * and the same decisions, written as selects: bisect.h's guarantee holds lane by lane.
+ */
+#ifndef KERNELS_PACKET_H
+#define KERNELS_PACKET_H
+#include "traverse.h"
+#if IA_DEVICE && defined(IA_VW)
+
+#ifdef IA_FP64
+typedef IAV_CAT(long, IA_VW) packet_int;   /* a level per lane: the width of ia_maskv, for select */
+typedef IAV_CAT(ulong, IA_VW) packet_index; /* bisect_index per lane */
+#define packet_as_real IAV_CAT(as_double, IA_VW)
+#define packet_index_to_real IAV_CAT(convert_double, IA_VW)
+#define packet_int_to_index IAV_CAT(convert_ulong, IA_VW)
+#define packet_index_to_int IAV_CAT(convert_long, IA_VW)
+#define PACKET_EXP_BIAS 1023
+#define PACKET_MANT_BITS 52
+#else
+typedef IAV_CAT(int, IA_VW) packet_int;
+typedef IAV_CAT(uint, IA_VW) packet_index;
+#define packet_as_real IAV_CAT(as_float, IA_VW)
+#define packet_index_to_real IAV_CAT(convert_float, IA_VW)
+#define packet_int_to_index IAV_CAT(convert_uint, IA_VW)
+#define packet_index_to_int IAV_CAT(convert_int, IA_VW)
+#define PACKET_EXP_BIAS 127
+#define PACKET_MANT_BITS 23
+#endif
+
+/* node_bound lane by lane: t0 + w * (i * 2^-level), 2^-level from its exponent bits (node_scale). */
+IA_FN ia_realv packet_node_bound(ia_real t0, ia_real w, packet_int level, packet_index i) {
+    ia_realv scale = packet_as_real(packet_int_to_index(PACKET_EXP_BIAS - level) << PACKET_MANT_BITS);
+    return t0 + w * (packet_index_to_real(i) * scale);
+}
+
+/* ray_extent lane by lane. */
+IA_FN iav packet_extent(ia_realv o, ia_realv d, iav t) {
+    ia_maskv forward = d >= 0;
+    ia_realv first = select(t.hi, t.lo, forward), last = select(t.lo, t.hi, forward);
+    return iav_make(iav_lo(fma(d, first, o)), iav_hi(fma(d, last, o)));
+}
+
+/* bisect_first_root for the lanes in `searching`: each from its node (level, i) on, in [t_near, t_far] of its
+ * ray o + t*d. Returns the lanes that hit, with their leaves in [*hit_lo, *hit_hi]; *evals counts each lane's
+ * evaluations of F (KERNEL_STATS only). */
+IA_FN ia_maskv packet_first_root(const ia_realv o[3], const ia_realv d[3], ia_real t0, ia_real w, packet_int level,
+                                 packet_index i, ia_realv t_near, ia_realv t_far, ia_maskv searching, ia_real eps,
+                                 iav time, ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
+    ia_maskv hit = (ia_maskv)0;
+    while (any(searching)) {
+        ia_realv lo = packet_node_bound(t0, w, level, i), hi = packet_node_bound(t0, w, level, i + 1);
+        searching &= ~(lo > t_far); /* so is every node after it: a miss */
+        ia_realv a = fmax(lo, t_near), b = fmin(hi, t_far);
+        ia_maskv live = searching & (a <= b);
+        iav t = iav_make(a, b);
+        iav f = iacsg_Fv(packet_extent(o[0], d[0], t), packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t),
+                         time);
+#ifdef KERNEL_STATS
+        *evals -= packet_int_to_index(live); /* a true lane is -1 */
+#endif
+        ia_maskv zero = live & iav_contains_zero(f);
+        ia_maskv leaf = zero & ((b - a <= eps) | (level == BISECT_MAX_LEVEL));
+        *hit_lo = select(*hit_lo, a, leaf);
+        *hit_hi = select(*hit_hi, b, leaf);
+        hit |= leaf;
+        searching &= ~leaf;
+        ia_maskv down = zero & ~leaf; /* to the left child */
+        /* the others to the next node not inside this one (node_next): i + 1, then up past its trailing zeros
+         * (the levels where it is a left child's position), and out when that reaches the root */
+        ia_maskv next = searching & ~down;
+        packet_index i1 = i + 1;
+        packet_int up = min(packet_index_to_int(popcount((i1 & (0 - i1)) - 1)), level);
+        i = select(select(i, i << 1, down), i1 >> packet_int_to_index(up), next);
+        level = select(select(level, level + 1, down), level - up, next);
+        searching &= ~(next & (level == 0));
+    }
+    return hit;
+}
+
+#endif
+#endif
