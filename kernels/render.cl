@@ -46,6 +46,19 @@ static inline float depth_round_down(ia_real t) {
     return (ia_real)f > t ? nextafter(f, -INFINITY) : f;
 }
 
+/* Writes pixel (i, j)'s outputs: a miss (background) when n is NULL. */
+static inline void put_pixel(int i, int j, int width, int height, float color[3], ia_real depth_t, const ia_real *n,
+                             __global float *rgb, __global float *depth, __global float *normal) {
+    size_t pixel = (size_t)j * (size_t)width + (size_t)i;
+    if (!n)
+        shade_background(j, height, color);
+    depth[pixel] = n ? depth_round_down(depth_t) : INFINITY;
+    for (int c = 0; c < 3; c++) {
+        rgb[3 * pixel + c] = color[c];
+        normal[3 * pixel + c] = n ? (float)n[c] : 0.0f;
+    }
+}
+
 /* One work-item per packet of PACKET_W x PACKET_H pixels (params.h), its rays traced together in SIMD lanes
  * (packet.h); work-groups are the tiles. Set-up and shading run lane by lane, in scalar code. */
 __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int height, int row0,
@@ -56,6 +69,19 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
         return;
     size_t tile = (size_t)(j0 / TILE_SIZE) * (size_t)((width + TILE_SIZE - 1) / TILE_SIZE) + (size_t)(i0 / TILE_SIZE);
     int level = (int)tiles[2 * tile];
+    float color[3];
+    if (level < 0) { /* the tile pass proved the whole tile empty: no ray to set up */
+        for (int k = 0; k < IA_VW; k++) {
+            int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
+            if (i < width && j < height) {
+                put_pixel(i, j, width, height, color, 0, NULL, rgb, depth, normal);
+#ifdef KERNEL_STATS
+                evals[(size_t)j * (size_t)width + (size_t)i] = 0;
+#endif
+            }
+        }
+        return;
+    }
     bisect_index leaf = (bisect_index)tiles[2 * tile + 1];
     ia_interval time = ia_point(params[PARAM_TIME]);
     ia_real t0, w;
@@ -67,7 +93,7 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
         ia_real ok[3], dk[3];
         camera_ray(params, flags & RENDER_ORTHO, min(i, width - 1), min(j, height - 1), width, height, ok, dk);
-        int search = i < width && j < height && level >= 0 && camera_clip(params, ok, dk, &t_near[k], &t_far[k]);
+        int search = i < width && j < height && camera_clip(params, ok, dk, &t_near[k], &t_far[k]);
         searching[k] = search;
         start[k] = search ? max(leaf, node_at(t0, w, level, t_near[k])) : 0;
         for (int c = 0; c < 3; c++) {
@@ -81,7 +107,7 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
         dv[c] = IAV_LOAD(d[c]);
     }
     packet_index counts = (packet_index)0;
-    ia_maskv hit = packet_first_root(ov, dv, t0, w, (packet_int)max(level, 0), IAV_LOAD(start), IAV_LOAD(t_near),
+    ia_maskv hit = packet_first_root(ov, dv, t0, w, (packet_int)level, IAV_LOAD(start), IAV_LOAD(t_near),
                                      IAV_LOAD(t_far), IAV_LOAD(searching) != 0, params[PARAM_EPS],
                                      iav_splat(time), &hit_lo, &hit_hi, &counts);
     ia_real lo[IA_VW], hi[IA_VW], hits[IA_VW];
@@ -94,23 +120,15 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
         if (i >= width || j >= height)
             continue;
-        size_t pixel = (size_t)j * (size_t)width + (size_t)i;
-        ia_real n[3] = {0, 0, 0}, dk[3] = {d[0][k], d[1][k], d[2][k]};
-        float color[3];
+        ia_real n[3], dk[3] = {d[0][k], d[1][k], d[2][k]};
         if (hits[k] != 0) {
             ia_real t = lo[k] * (ia_real)0.5 + hi[k] * (ia_real)0.5;
             shade_normal(o[0][k] + t * dk[0], o[1][k] + t * dk[1], o[2][k] + t * dk[2], time.lo, dk, n);
             shade_surface(params, n, dk, color);
-        } else {
-            shade_background(j, height, color);
         }
-        depth[pixel] = hits[k] != 0 ? depth_round_down(lo[k]) : INFINITY;
-        for (int c = 0; c < 3; c++) {
-            rgb[3 * pixel + c] = color[c];
-            normal[3 * pixel + c] = (float)n[c];
-        }
+        put_pixel(i, j, width, height, color, lo[k], hits[k] != 0 ? n : NULL, rgb, depth, normal);
 #ifdef KERNEL_STATS
-        evals[pixel] = (uint)count[k];
+        evals[(size_t)j * (size_t)width + (size_t)i] = (uint)count[k];
 #else
         (void)count;
         (void)evals;
