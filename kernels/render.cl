@@ -46,16 +46,19 @@ static inline float depth_round_down(ia_real t) {
     return (ia_real)f > t ? nextafter(f, -INFINITY) : f;
 }
 
-/* Writes pixel (i, j)'s outputs: a miss (background) when n is NULL. */
+/* Writes pixel (i, j)'s outputs (depth and normal only where the host asked for them, non-NULL): a miss
+ * (background) when n is NULL. */
 static inline void put_pixel(int i, int j, int width, int height, float color[3], ia_real depth_t, const ia_real *n,
                              __global float *rgb, __global float *depth, __global float *normal) {
     size_t pixel = (size_t)j * (size_t)width + (size_t)i;
     if (!n)
         shade_background(j, height, color);
-    depth[pixel] = n ? depth_round_down(depth_t) : INFINITY;
+    if (depth)
+        depth[pixel] = n ? depth_round_down(depth_t) : INFINITY;
     for (int c = 0; c < 3; c++) {
         rgb[3 * pixel + c] = color[c];
-        normal[3 * pixel + c] = n ? (float)n[c] : 0.0f;
+        if (normal)
+            normal[3 * pixel + c] = n ? (float)n[c] : 0.0f;
     }
 }
 
@@ -86,31 +89,21 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
     ia_interval time = ia_point(params[PARAM_TIME]);
     ia_real t0, w;
     frame_root(params, &t0, &w);
-    /* Each lane's ray, its part inside the bounds and its first node, or "not searching". */
-    ia_real o[3][IA_VW], d[3][IA_VW], t_near[IA_VW], t_far[IA_VW], searching[IA_VW];
-    bisect_index start[IA_VW];
-    for (int k = 0; k < IA_VW; k++) {
-        int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
-        ia_real ok[3], dk[3];
-        camera_ray(params, flags & RENDER_ORTHO, min(i, width - 1), min(j, height - 1), width, height, ok, dk);
-        int search = i < width && j < height && camera_clip(params, ok, dk, &t_near[k], &t_far[k]);
-        searching[k] = search;
-        start[k] = search ? max(leaf, node_at(t0, w, level, t_near[k])) : 0;
-        for (int c = 0; c < 3; c++) {
-            o[c][k] = ok[c];
-            d[c][k] = dk[c];
-        }
-    }
-    ia_realv ov[3], dv[3], hit_lo = IAV_R(0), hit_hi = IAV_R(0);
-    for (int c = 0; c < 3; c++) {
-        ov[c] = IAV_LOAD(o[c]);
-        dv[c] = IAV_LOAD(d[c]);
-    }
+    /* Each lane's ray, its part inside the bounds and its first node. */
+    packet_int lanes = packet_lane_numbers();
+    packet_int col = i0 + lanes % PACKET_W, row = j0 + lanes / PACKET_W;
+    ia_realv ov[3], dv[3], t_near, t_far, hit_lo = IAV_R(0), hit_hi = IAV_R(0);
+    packet_rays(params, flags & RENDER_ORTHO, min(col, width - 1), min(row, height - 1), width, height, ov, dv);
+    ia_maskv searching = (col < width) & (row < height) & packet_clip(params, ov, dv, &t_near, &t_far);
+    packet_index start = max((packet_index)leaf, packet_node_at(t0, w, level, t_near));
     packet_index counts = (packet_index)0;
-    ia_maskv hit = packet_first_root(ov, dv, t0, w, (packet_int)level, IAV_LOAD(start), IAV_LOAD(t_near),
-                                     IAV_LOAD(t_far), IAV_LOAD(searching) != 0, params[PARAM_EPS],
-                                     iav_splat(time), &hit_lo, &hit_hi, &counts);
-    ia_real lo[IA_VW], hi[IA_VW], hits[IA_VW];
+    ia_maskv hit = packet_first_root(ov, dv, t0, w, (packet_int)level, start, t_near, t_far, searching,
+                                     params[PARAM_EPS], iav_splat(time), &hit_lo, &hit_hi, &counts);
+    ia_real o[3][IA_VW], d[3][IA_VW], lo[IA_VW], hi[IA_VW], hits[IA_VW];
+    for (int c = 0; c < 3; c++) {
+        IAV_STORE(ov[c], o[c]);
+        IAV_STORE(dv[c], d[c]);
+    }
     bisect_index count[IA_VW];
     IAV_STORE(hit_lo, lo);
     IAV_STORE(hit_hi, hi);

@@ -216,10 +216,14 @@ static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t
     cl_mem_flags image = CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR;
     b->rgb = clCreateBuffer(ctx, image, 3 * n * sizeof(float), f->rgb, &rc);
     CLRT_CHECK(err, rc);
-    b->depth = clCreateBuffer(ctx, image, n * sizeof(float), f->depth, &rc);
-    CLRT_CHECK(err, rc);
-    b->normal = clCreateBuffer(ctx, image, 3 * n * sizeof(float), f->normal, &rc);
-    CLRT_CHECK(err, rc);
+    if (f->depth) {
+        b->depth = clCreateBuffer(ctx, image, n * sizeof(float), f->depth, &rc);
+        CLRT_CHECK(err, rc);
+    }
+    if (f->normal) {
+        b->normal = clCreateBuffer(ctx, image, 3 * n * sizeof(float), f->normal, &rc);
+        CLRT_CHECK(err, rc);
+    }
     b->tiles = clCreateBuffer(ctx, CL_MEM_READ_WRITE, 2 * tiles_n * real_size, NULL, &rc);
     CLRT_CHECK(err, rc);
     if (r->config.stats) {
@@ -247,8 +251,8 @@ static iacsg_status set_args(iacsg_renderer *r, const iacsg_view *view, frame_bu
     }
     CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 6, sizeof(cl_mem), b->tile_evals ? &b->tile_evals : NULL));
     CLRT_CHECK(err, clSetKernelArg(r->kernel, 6, sizeof(cl_mem), &b->rgb));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 7, sizeof(cl_mem), &b->depth));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 8, sizeof(cl_mem), &b->normal));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 7, sizeof(cl_mem), b->depth ? &b->depth : NULL));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 8, sizeof(cl_mem), b->normal ? &b->normal : NULL));
     CLRT_CHECK(err, clSetKernelArg(r->kernel, 9, sizeof(cl_mem), b->evals ? &b->evals : NULL));
     return IACSG_OK;
 fail:
@@ -287,6 +291,8 @@ static iacsg_status read_back(iacsg_renderer *r, const frame_buffers *b, size_t 
     cl_mem images[3] = {b->rgb, b->depth, b->normal};
     size_t sizes[3] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float)};
     for (int k = 0; k < 3; k++) {
+        if (!images[k])
+            continue;
         cl_int rc = CL_SUCCESS;
         void *p = clEnqueueMapBuffer(q, images[k], CL_FALSE, CL_MAP_READ, 0, sizes[k], 0, NULL, NULL, &rc);
         CLRT_CHECK(err, rc);
@@ -325,13 +331,14 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = image_alloc(3 * n);
-    frame->depth = image_alloc(n);
-    frame->normal = image_alloc(3 * n);
+    frame->depth = view->no_depth ? NULL : image_alloc(n);
+    frame->normal = view->no_normals ? NULL : image_alloc(3 * n);
     if (r->config.stats) {
         evals = malloc(n * sizeof(cl_uint));
         tile_evals = malloc(tiles_n * sizeof(cl_uint));
     }
-    if (!frame->rgb || !frame->depth || !frame->normal || (r->config.stats && (!evals || !tile_evals)))
+    if (!frame->rgb || (!frame->depth && !view->no_depth) || (!frame->normal && !view->no_normals) ||
+        (r->config.stats && (!evals || !tile_evals)))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
     if (st == IACSG_OK)

@@ -41,6 +41,8 @@ typedef struct {
     double bounds[6]; /* x0, y0, z0, x1, y1, z1: rays are clipped to this box */
     double eps;       /* leaf width of the bisection along the ray (world units) */
     double time;      /* the value of t in the expression */
+    /* Leave frame.depth or frame.normal NULL: the kernel then writes 4 or 12 bytes a pixel fewer. */
+    int no_depth, no_normals;
     /* Called after each band of rows with the fraction done, when not NULL. */
     void (*progress)(double done, void *ctx);
     void *progress_ctx;
@@ -49,8 +51,8 @@ typedef struct {
 typedef struct {
     int width, height;
     float *rgb;    /* 3 floats a pixel, display-encoded in [0, 1], row 0 at the top */
-    float *depth;  /* 1 float a pixel: distance from the eye (ray parameter) at the hit, +inf on a miss */
-    float *normal; /* 3 floats a pixel: the unit normal facing the eye, 0 on a miss */
+    float *depth;  /* 1 float a pixel: distance from the eye (ray parameter) at the hit, +inf on a miss (or NULL) */
+    float *normal; /* 3 floats a pixel: the unit normal facing the eye, 0 on a miss (or NULL) */
     /* Statistics: rays traced, and with config.stats interval evaluations per ray (mean over all rays, max). */
     long long rays;
     double evals_mean;
