@@ -1,14 +1,23 @@
-/* kernels/packet.h -- the first roots of IA_VW rays at once: bisect.h's walk with one SIMD lane per ray
- * (OpenCL C only; ia/vec.h's intervals and the emitted iacsg_Fv).
+/* kernels/packet.h -- the first roots of IA_VW rays at once, by interval bisection (Knoll et al., Hijazi et al.)
+ * without a stack (traverse.h), one SIMD lane per ray (OpenCL C only; ia/vec.h's intervals and the emitted
+ * iacsg_Fv).
  *
- * Why by hand: PoCL runs a work-group's work-items in a loop that it vectorises only when every work-item takes
- * the same path; the bisection's trip count differs per ray, so the scalar kernel ran one ray at a time with no
- * vector instruction at all. Here a work-item carries a packet of PACKET_W x PACKET_H neighbouring rays, which
- * mostly walk the same nodes; the loop runs while any lane is searching, and a finished lane just idles.
+ * Why lanes: PoCL runs a work-group's work-items in a loop that it vectorises only when every work-item takes
+ * the same path; the bisection's trip count differs per ray, so a kernel with a ray per work-item ran one ray at
+ * a time with no vector instruction at all. Here a work-item carries a packet of PACKET_W x PACKET_H
+ * neighbouring rays, which mostly walk the same nodes; the loop runs while any lane is searching, and a lane
+ * that is done idles.
  *
- * Each lane does exactly what bisect_first_root does for its ray, with the same node ends (node_bound's formula
- * over the same operations, so bit-identical to the tile pass's and to the scalar walk's), the same enclosures
- * and the same decisions, written as selects: bisect.h's guarantee holds lane by lane.
+ * The walk is over the tree of one root interval [t0, t0 + w] shared by all the rays of a frame (the tile pass,
+ * tile.h, walks the same tree), restricted to each ray's part [t_near, t_far] inside the bounds: each node is
+ * clipped to it. A ray starts at its tile's first coarse leaf, before which the tile pass proved the tile
+ * root-free: a ray whose surface lies after that leaf continues at the leaf's level instead of descending again
+ * from the top.
+ *
+ * Guarantee, lane by lane: every node before the returned leaf was proven root-free on [t_near, t_far] (0 not in
+ * F over its box, and the box contains the float ray's points), and the clipped nodes tile [t_near, t_far]
+ * without gaps (node ends are traverse.h's formula over the same operations, bit-identical wherever computed).
+ * So if the float ray meets the surface there, a leaf is returned, and its start is never after the first root.
  */
 #ifndef KERNELS_PACKET_H
 #define KERNELS_PACKET_H
@@ -39,6 +48,14 @@ typedef IAV_CAT(uint, IA_VW) packet_index;
 #define packet_real_to_index IAV_CAT(convert_uint, IA_VW)
 #define PACKET_EXP_BIAS 127
 #define PACKET_MANT_BITS 23
+#endif
+
+/* Interval evaluations are counted per lane only in a kernel built with -D KERNEL_STATS: the normal kernel
+ * pays nothing. A true lane of a mask is -1. */
+#ifdef KERNEL_STATS
+#define PACKET_COUNT(counts, lanes) ((counts) -= packet_int_to_index(lanes))
+#else
+#define PACKET_COUNT(counts, lanes) ((void)(counts))
 #endif
 
 /* node_bound lane by lane: t0 + w * (i * 2^-level), 2^-level from its exponent bits (node_scale). */
@@ -129,9 +146,21 @@ IA_FN iav packet_extent(ia_realv o, ia_realv d, iav t) {
     return iav_make(iav_lo(fma(d, first, o)), iav_hi(fma(d, last, o)));
 }
 
-/* bisect_first_root for the lanes in `searching`: each from its node (level, i) on, in [t_near, t_far] of its
- * ray o + t*d. Returns the lanes that hit, with their leaves in [*hit_lo, *hit_hi]; *evals counts each lane's
- * evaluations of F (KERNEL_STATS only). */
+/* One step of the walk in every lane of `searching`: the lanes of `down` (a subset) descend to the left child,
+ * the others move to the next node not inside theirs (node_next: i + 1, then up past its trailing zeros, the
+ * levels where it is a left child's position), and leave `searching` when that climbs to the root. */
+IA_FN void packet_advance(ia_maskv *searching, ia_maskv down, packet_int *level, packet_index *i) {
+    ia_maskv next = *searching & ~down;
+    packet_index i1 = *i + 1;
+    packet_int up = min(packet_index_to_int(popcount((i1 & (0 - i1)) - 1)), *level);
+    *i = select(select(*i, *i << 1, down), i1 >> packet_int_to_index(up), next);
+    *level = select(select(*level, *level + 1, down), *level - up, next);
+    *searching &= ~(next & (*level == 0));
+}
+
+/* The first root of each lane of `searching` in [t_near, t_far] of its ray o + t*d, from its node (level, i) on
+ * (no node before it may hold a root): the first clipped node whose enclosure holds 0 and that is no wider than
+ * eps, or at the deepest level. Returns the lanes that hit, with their leaves in [*hit_lo, *hit_hi]. */
 IA_FN ia_maskv packet_first_root(const ia_realv o[3], const ia_realv d[3], ia_real t0, ia_real w, packet_int level,
                                  packet_index i, ia_realv t_near, ia_realv t_far, ia_maskv searching, ia_real eps,
                                  iav time, ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
@@ -144,24 +173,14 @@ IA_FN ia_maskv packet_first_root(const ia_realv o[3], const ia_realv d[3], ia_re
         iav t = iav_make(a, b);
         iav f = iacsg_Fv(packet_extent(o[0], d[0], t), packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t),
                          time);
-#ifdef KERNEL_STATS
-        *evals -= packet_int_to_index(live); /* a true lane is -1 */
-#endif
+        PACKET_COUNT(*evals, live);
         ia_maskv zero = live & iav_contains_zero(f);
         ia_maskv leaf = zero & ((b - a <= eps) | (level == BISECT_MAX_LEVEL));
         *hit_lo = select(*hit_lo, a, leaf);
         *hit_hi = select(*hit_hi, b, leaf);
         hit |= leaf;
         searching &= ~leaf;
-        ia_maskv down = zero & ~leaf; /* to the left child */
-        /* the others to the next node not inside this one (node_next): i + 1, then up past its trailing zeros
-         * (the levels where it is a left child's position), and out when that reaches the root */
-        ia_maskv next = searching & ~down;
-        packet_index i1 = i + 1;
-        packet_int up = min(packet_index_to_int(popcount((i1 & (0 - i1)) - 1)), level);
-        i = select(select(i, i << 1, down), i1 >> packet_int_to_index(up), next);
-        level = select(select(level, level + 1, down), level - up, next);
-        searching &= ~(next & (level == 0));
+        packet_advance(&searching, zero & ~leaf, &level, &i);
     }
     return hit;
 }

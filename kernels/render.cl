@@ -3,41 +3,73 @@
  * paths through the bisection, so they run together).
  *
  * Per pixel: the camera ray (camera.h), clipped to the bounds (rays that miss the box cost nothing more); if the
- * tile may hold surface, the first root by stackless bisection (bisect.h) from the tile's first coarse leaf on
+ * tile may hold surface, the first root by stackless bisection (packet.h) from the tile's first coarse leaf on
  * (tile.h); then the normal and the colour at the leaf's midpoint (shade.h). Outputs,
  * indexed by pixel of the whole image: rgb (3 floats, display-encoded), depth (the leaf's start t, +inf on a
  * miss), normal (3 floats, 0 on a miss), and with KERNEL_STATS the evaluation counts.
  */
 #include "camera.h"
-#include "bisect.h"
-#include "packet.h"
 #include "tile.h"
 #include "shade.h"
 
 /* tiles[2k], tiles[2k+1]: the level and index of tile k's first coarse leaf (row-major, tiles_x per row), as
  * reals (exact: the index has fewer bits than the mantissa, see traverse.h); level -1 when no ray of the tile
- * can meet the surface. */
+ * can meet the surface. One work-item per PACKET_W x PACKET_H tiles, searched in SIMD lanes (tile.h). */
 __kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int height, int tile_row0,
                           __global ia_real *tiles, __global uint *evals) {
-    int tx = (int)get_global_id(0), ty = tile_row0 + (int)get_global_id(1);
-    int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE;
-    if (tx >= tiles_x || ty * TILE_SIZE >= height)
+    int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
+    int tx0 = (int)get_global_id(0) * PACKET_W, ty0 = tile_row0 + (int)get_global_id(1) * PACKET_H;
+    if (tx0 >= tiles_x || ty0 >= tiles_y)
         return;
-    int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
-    int i1 = min(i0 + TILE_SIZE, width) - 1, j1 = min(j0 + TILE_SIZE, height) - 1;
-    int level = -1;
-    bisect_index leaf = 0;
-    kernel_u32 count = 0;
-    tile_first_leaf(params, flags & RENDER_ORTHO, i0, i1, j0, j1, width, height, ia_point(params[PARAM_TIME]),
-                    &level, &leaf, &count);
-    size_t k = (size_t)ty * (size_t)tiles_x + (size_t)tx;
-    tiles[2 * k] = (ia_real)level;
-    tiles[2 * k + 1] = (ia_real)leaf;
+    int ortho = flags & RENDER_ORTHO;
+    ia_real base[2][3][IA_VW], dir[2][3][IA_VW], spread[IA_VW], valid[IA_VW];
+    for (int k = 0; k < IA_VW; k++) {
+        int tx = tx0 + k % PACKET_W, ty = ty0 + k / PACKET_W;
+        valid[k] = tx < tiles_x && ty < tiles_y;
+        tx = min(tx, tiles_x - 1); /* a lane past the edge searches nothing, but gets a finite box */
+        ty = min(ty, tiles_y - 1);
+        int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
+        int i1 = min(i0 + TILE_SIZE, width) - 1, j1 = min(j0 + TILE_SIZE, height) - 1;
+        tile_rays rays;
+        tile_rays_of(params, ortho, i0, i1, j0, j1, width, height, &rays);
+        for (int c = 0; c < 3; c++) {
+            base[0][c][k] = rays.base[c].lo;
+            base[1][c][k] = rays.base[c].hi;
+            dir[0][c][k] = rays.dir[c].lo;
+            dir[1][c][k] = rays.dir[c].hi;
+        }
+        spread[k] = fmax(camera_s(params, i1, width) - camera_s(params, i0, width),
+                         camera_v(params, j0, height) - camera_v(params, j1, height));
+    }
+    iav base_v[3], dir_v[3];
+    for (int c = 0; c < 3; c++) {
+        base_v[c] = iav_make(IAV_LOAD(base[0][c]), IAV_LOAD(base[1][c]));
+        dir_v[c] = iav_make(IAV_LOAD(dir[0][c]), IAV_LOAD(dir[1][c]));
+    }
+    ia_real t0, w;
+    frame_root(params, &t0, &w);
+    packet_int level = (packet_int)0;
+    packet_index leaf = (packet_index)0, counts = (packet_index)0;
+    ia_maskv found = tile_first_leaves(base_v, dir_v, IAV_LOAD(spread), ortho, t0, w, params[PARAM_EPS],
+                                       IAV_LOAD(valid) != 0, iav_point(params[PARAM_TIME]), &level, &leaf, &counts);
+    ia_real level_r[IA_VW], leaf_r[IA_VW];
+    bisect_index count[IA_VW];
+    IAV_STORE(select((ia_realv)-1, packet_int_to_real(level), found), level_r);
+    IAV_STORE(packet_index_to_real(leaf), leaf_r);
+    IAV_STORE(counts, count);
+    for (int k = 0; k < IA_VW; k++) {
+        if (valid[k] == 0)
+            continue;
+        size_t tile = (size_t)(ty0 + k / PACKET_W) * (size_t)tiles_x + (size_t)(tx0 + k % PACKET_W);
+        tiles[2 * tile] = level_r[k];
+        tiles[2 * tile + 1] = leaf_r[k];
 #ifdef KERNEL_STATS
-    evals[k] = count;
+        evals[tile] = (uint)count[k];
 #else
-    (void)evals;
+        (void)count;
+        (void)evals;
 #endif
+    }
 }
 
 /* The depth image is float32: in double mode round the start down, so it stays before the first root. */

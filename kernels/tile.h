@@ -2,17 +2,17 @@
  * bisects the t range [TMIN, TMAX] with the box that holds every ray of the tile at once. Where 0 is not in F
  * over that box, no ray of the tile meets the surface, so the tile's rays skip it; a tile with no candidate
  * at all is background without tracing a single ray. The rays start their walks of the same tree at the first
- * surviving coarse leaf (kernels/bisect.h, render.cl).
+ * surviving coarse leaf (kernels/packet.h, render.cl).
  *
  * Rigor: tile_box mirrors every rounded operation of camera_ray with the interval operation that encloses its
  * rounded result (an outward-rounded op contains the round-to-nearest one), so each pixel's float ray is inside
  * the box, and ray_extent's argument applies to it.
  *
- * Needs iacsg_F (the emitted source).
+ * Needs iacsg_Fv (the emitted source).
  */
 #ifndef KERNELS_TILE_H
 #define KERNELS_TILE_H
-#include "bisect.h"
+#include "packet.h"
 #include "camera.h"
 
 /* The float rays of columns i0..i1 and rows j0..j1 as one box-valued ray: every point o + t*d of them, t in
@@ -52,39 +52,36 @@ IA_FN void frame_root(const KERNEL_CONSTANT ia_real *p, ia_real *t0, ia_real *w)
     *w = ia_hi(p[PARAM_TMAX] - p[PARAM_TMIN]);
 }
 
-/* Searches the frame's tree (frame_root) for the tile's first coarse leaf: a node where 0 may be in F over the
- * tile's box, no longer than the tile is wide there (splitting t further would not shrink the box much).
- * Returns 0 when the surface is nowhere in the tile, else 1 with the leaf's level and index. */
-IA_FN int tile_first_leaf(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1, int j0, int j1, int width,
-                          int height, ia_interval time, int *leaf_level, bisect_index *leaf_i, kernel_u32 *evals) {
-    ia_real t0, w;
-    frame_root(p, &t0, &w);
-    /* The tile's angular (perspective) or linear (orthographic) size. */
-    ia_real spread = fmax(camera_s(p, i1, width) - camera_s(p, i0, width), camera_v(p, j0, height) -
-                                                                                camera_v(p, j1, height));
-    tile_rays rays;
-    tile_rays_of(p, ortho, i0, i1, j0, j1, width, height, &rays);
-    int level = 0;
-    bisect_index i = 0;
-    do {
-        ia_real lo = node_bound(t0, w, level, i), hi = node_bound(t0, w, level, i + 1);
-        ia_interval box[3];
-        tile_box(&rays, ia_make(lo, hi), box);
-        ia_interval f = iacsg_F(box[0], box[1], box[2], time);
-        BISECT_COUNT(*evals);
-        if (ia_contains_zero(f)) {
-            ia_real footprint = ortho ? spread : spread * hi;
-            if (hi - lo <= fmax(footprint, p[PARAM_EPS]) || level == BISECT_MAX_LEVEL) {
-                *leaf_level = level;
-                *leaf_i = i;
-                return 1;
-            }
-            level += 1;
-            i <<= 1;
-        } else if (!node_next(&level, &i)) {
-            return 0;
-        }
-    } while (1);
+#if IA_DEVICE && defined(IA_VW)
+/* Searches the frame's tree (frame_root) for the first coarse leaf of IA_VW tiles at once, one per lane (as
+ * packet.h walks rays): a node where 0 may be in F over the tile's box, no longer than the tile is wide there
+ * (splitting t further would not shrink the box much), or eps. Returns the lanes of `searching` whose tile may
+ * hold surface, with their leaves' levels and indices; *evals counts each lane's evaluations (KERNEL_STATS).
+ * base, dir: the lanes' tile_rays; spread: their angular (perspective) or linear (orthographic) sizes. */
+IA_FN ia_maskv tile_first_leaves(const iav base[3], const iav dir[3], ia_realv spread, int ortho, ia_real t0,
+                                 ia_real w, ia_real eps, ia_maskv searching, iav time, packet_int *leaf_level,
+                                 packet_index *leaf_i, packet_index *evals) {
+    ia_maskv found = (ia_maskv)0;
+    packet_int level = (packet_int)0;
+    packet_index i = (packet_index)0;
+    while (any(searching)) {
+        ia_realv lo = packet_node_bound(t0, w, level, i), hi = packet_node_bound(t0, w, level, i + 1);
+        iav t = iav_make(lo, hi), box[3];
+        for (int k = 0; k < 3; k++) /* tile_box */
+            box[k] = iav_add(base[k], iav_mul(t, dir[k]));
+        iav f = iacsg_Fv(box[0], box[1], box[2], time);
+        PACKET_COUNT(*evals, searching);
+        ia_maskv zero = searching & iav_contains_zero(f);
+        ia_realv footprint = ortho ? spread : spread * hi;
+        ia_maskv leaf = zero & ((hi - lo <= fmax(footprint, IAV_R(eps))) | (level == BISECT_MAX_LEVEL));
+        *leaf_level = select(*leaf_level, level, leaf);
+        *leaf_i = select(*leaf_i, i, leaf);
+        found |= leaf;
+        searching &= ~leaf;
+        packet_advance(&searching, zero & ~leaf, &level, &i);
+    }
+    return found;
 }
+#endif
 
 #endif

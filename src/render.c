@@ -266,11 +266,13 @@ static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacs
     for (cl_int row0 = 0; row0 < view->height; row0 += BAND_ROWS) {
         int rows = view->height - row0 < BAND_ROWS ? view->height - row0 : BAND_ROWS;
         cl_int tile_row0 = row0 / TILE_SIZE;
-        size_t tile_global[2] = {tiles_x, (size_t)(rows + TILE_SIZE - 1) / TILE_SIZE};
+        size_t tile_rows = (size_t)(rows + TILE_SIZE - 1) / TILE_SIZE;
+        /* a work-item per PACKET_W x PACKET_H tiles, then per as many pixels, a tile per work-group */
+        size_t tile_global[2] = {(tiles_x + PACKET_W - 1) / PACKET_W, (tile_rows + PACKET_H - 1) / PACKET_H};
         CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 4, sizeof(cl_int), &tile_row0));
         CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->tile_kernel, 2, NULL, tile_global, NULL, 0, NULL, NULL));
         size_t local[2] = {TILE_SIZE / PACKET_W, TILE_SIZE / PACKET_H};
-        size_t global[2] = {tiles_x * local[0], tile_global[1] * local[1]};
+        size_t global[2] = {tiles_x * local[0], tile_rows * local[1]};
         CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &row0));
         CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
         if (view->progress) {

@@ -2,8 +2,10 @@
 #ifndef IACSG_K
 #ifdef IA_FP64
 #define IACSG_K(f, d) (d)
+typedef double4 iacsg_grad;
 #else
 #define IACSG_K(f, d) (f)
+typedef float4 iacsg_grad;
 #endif
 #endif
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
@@ -103,82 +105,64 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
 }
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v9 = x + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v9_dx = (ia_real)1;
+    iacsg_grad v9_d = (iacsg_grad)(1, 0, 0, 0);
     ia_real v10 = v9 * v9;
-    ia_real v10_dx = (ia_real)2 * v9 * v9_dx;
+    iacsg_grad v10_d = (ia_real)2 * v9 * v9_d;
     ia_real v11 = y * y;
-    ia_real v11_dy = (ia_real)2 * y * (ia_real)1;
+    iacsg_grad v11_d = (ia_real)2 * y * (iacsg_grad)(0, 1, 0, 0);
     ia_real v12 = v10 + v11;
-    ia_real v12_dx = v10_dx + (ia_real)0;
-    ia_real v12_dy = (ia_real)0 + v11_dy;
+    iacsg_grad v12_d = v10_d + v11_d;
     ia_real v13 = z * z;
-    ia_real v13_dz = (ia_real)2 * z * (ia_real)1;
+    iacsg_grad v13_d = (ia_real)2 * z * (iacsg_grad)(0, 0, 1, 0);
     ia_real v14 = v12 + v13;
-    ia_real v14_dx = v12_dx + (ia_real)0;
-    ia_real v14_dy = v12_dy + (ia_real)0;
-    ia_real v14_dz = (ia_real)0 + v13_dz;
+    iacsg_grad v14_d = v12_d + v13_d;
     ia_real v16 = v14 + IACSG_K(-0x1p-2f, -0x1p-2);
-    ia_real v16_dx = v14_dx;
-    ia_real v16_dy = v14_dy;
-    ia_real v16_dz = v14_dz;
+    iacsg_grad v16_d = v14_d;
     ia_real v17 = fabs(x);
-    ia_real v17_dx = (x < 0 ? -(ia_real)1 : (ia_real)1);
+    iacsg_grad v17_d = (x < 0 ? -(iacsg_grad)(1, 0, 0, 0) : (iacsg_grad)(1, 0, 0, 0));
     ia_real v18 = fabs(y);
-    ia_real v18_dy = (y < 0 ? -(ia_real)1 : (ia_real)1);
+    iacsg_grad v18_d = (y < 0 ? -(iacsg_grad)(0, 1, 0, 0) : (iacsg_grad)(0, 1, 0, 0));
     ia_real v19 = fabs(z);
-    ia_real v19_dz = (z < 0 ? -(ia_real)1 : (ia_real)1);
+    iacsg_grad v19_d = (z < 0 ? -(iacsg_grad)(0, 0, 1, 0) : (iacsg_grad)(0, 0, 1, 0));
     ia_real v20 = v17 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v20_dx = v17_dx;
+    iacsg_grad v20_d = v17_d;
     ia_real v21 = v18 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v21_dy = v18_dy;
+    iacsg_grad v21_d = v18_d;
     ia_real v22 = v19 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v22_dz = v19_dz;
+    iacsg_grad v22_d = v19_d;
     ia_real v23 = fmax(v20, v21);
-    ia_real v23_dx = (v20 >= v21 ? v20_dx : (ia_real)0);
-    ia_real v23_dy = (v20 >= v21 ? (ia_real)0 : v21_dy);
+    iacsg_grad v23_d = (v20 >= v21 ? v20_d : v21_d);
     ia_real v24 = fmax(v22, v23);
-    ia_real v24_dx = (v22 >= v23 ? (ia_real)0 : v23_dx);
-    ia_real v24_dy = (v22 >= v23 ? (ia_real)0 : v23_dy);
-    ia_real v24_dz = (v22 >= v23 ? v22_dz : (ia_real)0);
+    iacsg_grad v24_d = (v22 >= v23 ? v22_d : v23_d);
     ia_real v30 = x * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1);
-    ia_real v30_dx = (ia_real)1 * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1) + x * (ia_real)0;
+    iacsg_grad v30_d = (iacsg_grad)(1, 0, 0, 0) * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1) + x * (iacsg_grad)0;
     ia_real v32 = y * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1);
-    ia_real v32_dy = (ia_real)1 * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1) + y * (ia_real)0;
+    iacsg_grad v32_d = (iacsg_grad)(0, 1, 0, 0) * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1) + y * (iacsg_grad)0;
     ia_real v33 = v30 + v32;
-    ia_real v33_dx = v30_dx + (ia_real)0;
-    ia_real v33_dy = (ia_real)0 + v32_dy;
+    iacsg_grad v33_d = v30_d + v32_d;
     ia_real v34 = y * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1);
-    ia_real v34_dy = (ia_real)1 * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1) + y * (ia_real)0;
+    iacsg_grad v34_d = (iacsg_grad)(0, 1, 0, 0) * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1) + y * (iacsg_grad)0;
     ia_real v35 = x * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1);
-    ia_real v35_dx = (ia_real)1 * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1) + x * (ia_real)0;
+    iacsg_grad v35_d = (iacsg_grad)(1, 0, 0, 0) * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1) + x * (iacsg_grad)0;
     ia_real v36 = v34 - v35;
-    ia_real v36_dx = (ia_real)0 - v35_dx;
-    ia_real v36_dy = v34_dy - (ia_real)0;
+    iacsg_grad v36_d = v34_d - v35_d;
     ia_real v37 = v33 * v33;
-    ia_real v37_dx = (ia_real)2 * v33 * v33_dx;
-    ia_real v37_dy = (ia_real)2 * v33 * v33_dy;
+    iacsg_grad v37_d = (ia_real)2 * v33 * v33_d;
     ia_real v38 = v36 * v36;
-    ia_real v38_dx = (ia_real)2 * v36 * v36_dx;
-    ia_real v38_dy = (ia_real)2 * v36 * v36_dy;
+    iacsg_grad v38_d = (ia_real)2 * v36 * v36_d;
     ia_real v39 = v37 + v38;
-    ia_real v39_dx = v37_dx + v38_dx;
-    ia_real v39_dy = v37_dy + v38_dy;
+    iacsg_grad v39_d = v37_d + v38_d;
     ia_real v41 = v39 + IACSG_K(-0x1p-4f, -0x1p-4);
-    ia_real v41_dx = v39_dx;
-    ia_real v41_dy = v39_dy;
+    iacsg_grad v41_d = v39_d;
     ia_real v42 = -v41;
-    ia_real v42_dx = -v41_dx;
-    ia_real v42_dy = -v41_dy;
+    iacsg_grad v42_d = -v41_d;
     ia_real v43 = fmax(v24, v42);
-    ia_real v43_dx = (v24 >= v42 ? v24_dx : v42_dx);
-    ia_real v43_dy = (v24 >= v42 ? v24_dy : v42_dy);
-    ia_real v43_dz = (v24 >= v42 ? v24_dz : (ia_real)0);
+    iacsg_grad v43_d = (v24 >= v42 ? v24_d : v42_d);
     ia_real v44 = fmin(v16, v43);
-    ia_real v44_dx = (v16 <= v43 ? v16_dx : v43_dx);
-    ia_real v44_dy = (v16 <= v43 ? v16_dy : v43_dy);
-    ia_real v44_dz = (v16 <= v43 ? v16_dz : v43_dz);
-    *gx = v44_dx;
-    *gy = v44_dy;
-    *gz = v44_dz;
+    iacsg_grad v44_d = (v16 <= v43 ? v16_d : v43_d);
+    iacsg_grad g = v44_d;
+    *gx = g.x;
+    *gy = g.y;
+    *gz = g.z;
     return v44;
 }

@@ -2,8 +2,10 @@
 #ifndef IACSG_K
 #ifdef IA_FP64
 #define IACSG_K(f, d) (d)
+typedef double4 iacsg_grad;
 #else
 #define IACSG_K(f, d) (f)
+typedef float4 iacsg_grad;
 #endif
 #endif
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
@@ -46,32 +48,26 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
 }
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v2 = pown(x, 3);
-    ia_real v2_dx = (ia_real)3 * pown(x, 3 - 1) * (ia_real)1;
+    iacsg_grad v2_d = (ia_real)3 * pown(x, 3 - 1) * (iacsg_grad)(1, 0, 0, 0);
     ia_real v5 = sqrt(y);
-    ia_real v5_dy = (ia_real)1 / ((ia_real)2 * v5);
+    iacsg_grad v5_d = (iacsg_grad)(0, 1, 0, 0) / ((ia_real)2 * v5);
     ia_real v6 = v2 + v5;
-    ia_real v6_dx = v2_dx + (ia_real)0;
-    ia_real v6_dy = (ia_real)0 + v5_dy;
+    iacsg_grad v6_d = v2_d + v5_d;
     ia_real v10 = pown(z, -2);
-    ia_real v10_dz = (ia_real)-2 * pown(z, -2 - 1) * (ia_real)1;
+    iacsg_grad v10_d = (ia_real)-2 * pown(z, -2 - 1) * (iacsg_grad)(0, 0, 1, 0);
     ia_real v11 = v6 + v10;
-    ia_real v11_dx = v6_dx + (ia_real)0;
-    ia_real v11_dy = v6_dy + (ia_real)0;
-    ia_real v11_dz = (ia_real)0 + v10_dz;
+    iacsg_grad v11_d = v6_d + v10_d;
     ia_real v12 = x * x;
-    ia_real v12_dx = (ia_real)2 * x * (ia_real)1;
+    iacsg_grad v12_d = (ia_real)2 * x * (iacsg_grad)(1, 0, 0, 0);
     ia_real v13 = v11 + v12;
-    ia_real v13_dx = v11_dx + v12_dx;
-    ia_real v13_dy = v11_dy + (ia_real)0;
-    ia_real v13_dz = v11_dz + (ia_real)0;
+    iacsg_grad v13_d = v11_d + v12_d;
     ia_real v15 = pow(y, IACSG_K(0x1.8p+0f, 0x1.8p+0));
-    ia_real v15_dy = v15 * ((ia_real)0 * log(y) + IACSG_K(0x1.8p+0f, 0x1.8p+0) * (ia_real)1 / y);
+    iacsg_grad v15_d = v15 * ((iacsg_grad)0 * log(y) + IACSG_K(0x1.8p+0f, 0x1.8p+0) * (iacsg_grad)(0, 1, 0, 0) / y);
     ia_real v16 = v13 + v15;
-    ia_real v16_dx = v13_dx + (ia_real)0;
-    ia_real v16_dy = v13_dy + v15_dy;
-    ia_real v16_dz = v13_dz + (ia_real)0;
-    *gx = v16_dx;
-    *gy = v16_dy;
-    *gz = v16_dz;
+    iacsg_grad v16_d = v13_d + v15_d;
+    iacsg_grad g = v16_d;
+    *gx = g.x;
+    *gy = g.y;
+    *gz = g.z;
     return v16;
 }

@@ -2,8 +2,10 @@
 #ifndef IACSG_K
 #ifdef IA_FP64
 #define IACSG_K(f, d) (d)
+typedef double4 iacsg_grad;
 #else
 #define IACSG_K(f, d) (f)
+typedef float4 iacsg_grad;
 #endif
 #endif
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
@@ -31,17 +33,16 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
 }
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v1 = sin(x);
-    ia_real v1_dx = cos(x) * (ia_real)1;
+    iacsg_grad v1_d = cos(x) * (iacsg_grad)(1, 0, 0, 0);
     ia_real v3 = v1 * y;
-    ia_real v3_dx = v1_dx * y + v1 * (ia_real)0;
-    ia_real v3_dy = (ia_real)0 * y + v1 * (ia_real)1;
+    iacsg_grad v3_d = v1_d * y + v1 * (iacsg_grad)(0, 1, 0, 0);
     ia_real v5 = v1 + IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4);
-    ia_real v5_dx = v1_dx + (ia_real)0;
+    iacsg_grad v5_d = v1_d + (iacsg_grad)0;
     ia_real v6 = fmin(v3, v5);
-    ia_real v6_dx = (v3 <= v5 ? v3_dx : v5_dx);
-    ia_real v6_dy = (v3 <= v5 ? v3_dy : (ia_real)0);
-    *gx = v6_dx;
-    *gy = v6_dy;
-    *gz = (ia_real)0;
+    iacsg_grad v6_d = (v3 <= v5 ? v3_d : v5_d);
+    iacsg_grad g = v6_d;
+    *gx = g.x;
+    *gy = g.y;
+    *gz = g.z;
     return v6;
 }

@@ -2,8 +2,10 @@
 #ifndef IACSG_K
 #ifdef IA_FP64
 #define IACSG_K(f, d) (d)
+typedef double4 iacsg_grad;
 #else
 #define IACSG_K(f, d) (f)
+typedef float4 iacsg_grad;
 #endif
 #endif
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
@@ -37,24 +39,20 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
 }
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v3 = x * x;
-    ia_real v3_dx = (ia_real)2 * x * (ia_real)1;
+    iacsg_grad v3_d = (ia_real)2 * x * (iacsg_grad)(1, 0, 0, 0);
     ia_real v5 = y * y;
-    ia_real v5_dy = (ia_real)2 * y * (ia_real)1;
+    iacsg_grad v5_d = (ia_real)2 * y * (iacsg_grad)(0, 1, 0, 0);
     ia_real v6 = v3 + v5;
-    ia_real v6_dx = v3_dx + (ia_real)0;
-    ia_real v6_dy = (ia_real)0 + v5_dy;
+    iacsg_grad v6_d = v3_d + v5_d;
     ia_real v8 = z * z;
-    ia_real v8_dz = (ia_real)2 * z * (ia_real)1;
+    iacsg_grad v8_d = (ia_real)2 * z * (iacsg_grad)(0, 0, 1, 0);
     ia_real v9 = v6 + v8;
-    ia_real v9_dx = v6_dx + (ia_real)0;
-    ia_real v9_dy = v6_dy + (ia_real)0;
-    ia_real v9_dz = (ia_real)0 + v8_dz;
+    iacsg_grad v9_d = v6_d + v8_d;
     ia_real v11 = v9 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v11_dx = v9_dx;
-    ia_real v11_dy = v9_dy;
-    ia_real v11_dz = v9_dz;
-    *gx = v11_dx;
-    *gy = v11_dy;
-    *gz = v11_dz;
+    iacsg_grad v11_d = v9_d;
+    iacsg_grad g = v11_d;
+    *gx = g.x;
+    *gy = g.y;
+    *gz = g.z;
     return v11;
 }

@@ -2,8 +2,10 @@
 #ifndef IACSG_K
 #ifdef IA_FP64
 #define IACSG_K(f, d) (d)
+typedef double4 iacsg_grad;
 #else
 #define IACSG_K(f, d) (f)
+typedef float4 iacsg_grad;
 #endif
 #endif
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
@@ -124,82 +126,57 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
 }
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v2 = x * x;
-    ia_real v2_dx = (ia_real)2 * x * (ia_real)1;
+    iacsg_grad v2_d = (ia_real)2 * x * (iacsg_grad)(1, 0, 0, 0);
     ia_real v4 = y * y;
-    ia_real v4_dy = (ia_real)2 * y * (ia_real)1;
+    iacsg_grad v4_d = (ia_real)2 * y * (iacsg_grad)(0, 1, 0, 0);
     ia_real v5 = v2 + v4;
-    ia_real v5_dx = v2_dx + (ia_real)0;
-    ia_real v5_dy = (ia_real)0 + v4_dy;
+    iacsg_grad v5_d = v2_d + v4_d;
     ia_real v8 = v5 - IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1);
-    ia_real v8_dx = v5_dx - (ia_real)0;
-    ia_real v8_dy = v5_dy - (ia_real)0;
+    iacsg_grad v8_d = v5_d - (iacsg_grad)0;
     ia_real v9 = v8 * v8;
-    ia_real v9_dx = (ia_real)2 * v8 * v8_dx;
-    ia_real v9_dy = (ia_real)2 * v8 * v8_dy;
+    iacsg_grad v9_d = (ia_real)2 * v8 * v8_d;
     ia_real v11 = z * z;
-    ia_real v11_dz = (ia_real)2 * z * (ia_real)1;
+    iacsg_grad v11_d = (ia_real)2 * z * (iacsg_grad)(0, 0, 1, 0);
     ia_real v14 = v11 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v14_dz = v11_dz;
+    iacsg_grad v14_d = v11_d;
     ia_real v15 = v14 * v14;
-    ia_real v15_dz = (ia_real)2 * v14 * v14_dz;
+    iacsg_grad v15_d = (ia_real)2 * v14 * v14_d;
     ia_real v16 = v9 + v15;
-    ia_real v16_dx = v9_dx + (ia_real)0;
-    ia_real v16_dy = v9_dy + (ia_real)0;
-    ia_real v16_dz = (ia_real)0 + v15_dz;
+    iacsg_grad v16_d = v9_d + v15_d;
     ia_real v17 = v4 + v11;
-    ia_real v17_dy = v4_dy + (ia_real)0;
-    ia_real v17_dz = (ia_real)0 + v11_dz;
+    iacsg_grad v17_d = v4_d + v11_d;
     ia_real v18 = v17 - IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1);
-    ia_real v18_dy = v17_dy - (ia_real)0;
-    ia_real v18_dz = v17_dz - (ia_real)0;
+    iacsg_grad v18_d = v17_d - (iacsg_grad)0;
     ia_real v19 = v18 * v18;
-    ia_real v19_dy = (ia_real)2 * v18 * v18_dy;
-    ia_real v19_dz = (ia_real)2 * v18 * v18_dz;
+    iacsg_grad v19_d = (ia_real)2 * v18 * v18_d;
     ia_real v20 = v2 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v20_dx = v2_dx;
+    iacsg_grad v20_d = v2_d;
     ia_real v21 = v20 * v20;
-    ia_real v21_dx = (ia_real)2 * v20 * v20_dx;
+    iacsg_grad v21_d = (ia_real)2 * v20 * v20_d;
     ia_real v22 = v19 + v21;
-    ia_real v22_dx = (ia_real)0 + v21_dx;
-    ia_real v22_dy = v19_dy + (ia_real)0;
-    ia_real v22_dz = v19_dz + (ia_real)0;
+    iacsg_grad v22_d = v19_d + v21_d;
     ia_real v23 = v16 * v22;
-    ia_real v23_dx = v16_dx * v22 + v16 * v22_dx;
-    ia_real v23_dy = v16_dy * v22 + v16 * v22_dy;
-    ia_real v23_dz = v16_dz * v22 + v16 * v22_dz;
+    iacsg_grad v23_d = v16_d * v22 + v16 * v22_d;
     ia_real v24 = v2 + v11;
-    ia_real v24_dx = v2_dx + (ia_real)0;
-    ia_real v24_dz = (ia_real)0 + v11_dz;
+    iacsg_grad v24_d = v2_d + v11_d;
     ia_real v25 = v24 - IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1);
-    ia_real v25_dx = v24_dx - (ia_real)0;
-    ia_real v25_dz = v24_dz - (ia_real)0;
+    iacsg_grad v25_d = v24_d - (iacsg_grad)0;
     ia_real v26 = v25 * v25;
-    ia_real v26_dx = (ia_real)2 * v25 * v25_dx;
-    ia_real v26_dz = (ia_real)2 * v25 * v25_dz;
+    iacsg_grad v26_d = (ia_real)2 * v25 * v25_d;
     ia_real v27 = v4 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v27_dy = v4_dy;
+    iacsg_grad v27_d = v4_d;
     ia_real v28 = v27 * v27;
-    ia_real v28_dy = (ia_real)2 * v27 * v27_dy;
+    iacsg_grad v28_d = (ia_real)2 * v27 * v27_d;
     ia_real v29 = v26 + v28;
-    ia_real v29_dx = v26_dx + (ia_real)0;
-    ia_real v29_dy = (ia_real)0 + v28_dy;
-    ia_real v29_dz = v26_dz + (ia_real)0;
+    iacsg_grad v29_d = v26_d + v28_d;
     ia_real v30 = v23 * v29;
-    ia_real v30_dx = v23_dx * v29 + v23 * v29_dx;
-    ia_real v30_dy = v23_dy * v29 + v23 * v29_dy;
-    ia_real v30_dz = v23_dz * v29 + v23 * v29_dz;
+    iacsg_grad v30_d = v23_d * v29 + v23 * v29_d;
     ia_real v32 = v30 - IACSG_K(0x1.47ae14p-6f, 0x1.47ae147ae147bp-6);
-    ia_real v32_dx = v30_dx - (ia_real)0;
-    ia_real v32_dy = v30_dy - (ia_real)0;
-    ia_real v32_dz = v30_dz - (ia_real)0;
+    iacsg_grad v32_d = v30_d - (iacsg_grad)0;
     ia_real v33 = v5 + v11;
-    ia_real v33_dx = v5_dx + (ia_real)0;
-    ia_real v33_dy = v5_dy + (ia_real)0;
-    ia_real v33_dz = (ia_real)0 + v11_dz;
+    iacsg_grad v33_d = v5_d + v11_d;
     ia_real v34 = v33 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v34_dx = v33_dx;
-    ia_real v34_dy = v33_dy;
-    ia_real v34_dz = v33_dz;
+    iacsg_grad v34_d = v33_d;
     ia_real v40 = t + IACSG_K(-0x1p-1f, -0x1p-1);
     ia_real v41 = v40 * IACSG_K(-0x1.8p+3f, -0x1.8p+3);
     ia_real v42 = exp(v41);
@@ -207,19 +184,14 @@ IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *
     ia_real v44 = 1 / v43;
     ia_real v45 = IACSG_K(0x1p+0f, 0x1p+0) - v44;
     ia_real v46 = v32 * v45;
-    ia_real v46_dx = v32_dx * v45 + v32 * (ia_real)0;
-    ia_real v46_dy = v32_dy * v45 + v32 * (ia_real)0;
-    ia_real v46_dz = v32_dz * v45 + v32 * (ia_real)0;
+    iacsg_grad v46_d = v32_d * v45 + v32 * (iacsg_grad)0;
     ia_real v47 = v34 * v44;
-    ia_real v47_dx = v34_dx * v44 + v34 * (ia_real)0;
-    ia_real v47_dy = v34_dy * v44 + v34 * (ia_real)0;
-    ia_real v47_dz = v34_dz * v44 + v34 * (ia_real)0;
+    iacsg_grad v47_d = v34_d * v44 + v34 * (iacsg_grad)0;
     ia_real v48 = v46 + v47;
-    ia_real v48_dx = v46_dx + v47_dx;
-    ia_real v48_dy = v46_dy + v47_dy;
-    ia_real v48_dz = v46_dz + v47_dz;
-    *gx = v48_dx;
-    *gy = v48_dy;
-    *gz = v48_dz;
+    iacsg_grad v48_d = v46_d + v47_d;
+    iacsg_grad g = v48_d;
+    *gx = g.x;
+    *gy = g.y;
+    *gz = g.z;
     return v48;
 }

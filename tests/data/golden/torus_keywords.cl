@@ -2,8 +2,10 @@
 #ifndef IACSG_K
 #ifdef IA_FP64
 #define IACSG_K(f, d) (d)
+typedef double4 iacsg_grad;
 #else
 #define IACSG_K(f, d) (f)
+typedef float4 iacsg_grad;
 #endif
 #endif
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
@@ -46,33 +48,26 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
 }
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v4 = x * x;
-    ia_real v4_dx = (ia_real)2 * x * (ia_real)1;
+    iacsg_grad v4_d = (ia_real)2 * x * (iacsg_grad)(1, 0, 0, 0);
     ia_real v6 = y * y;
-    ia_real v6_dy = (ia_real)2 * y * (ia_real)1;
+    iacsg_grad v6_d = (ia_real)2 * y * (iacsg_grad)(0, 1, 0, 0);
     ia_real v7 = v4 + v6;
-    ia_real v7_dx = v4_dx + (ia_real)0;
-    ia_real v7_dy = (ia_real)0 + v6_dy;
+    iacsg_grad v7_d = v4_d + v6_d;
     ia_real v8 = sqrt(v7);
-    ia_real v8_dx = v7_dx / ((ia_real)2 * v8);
-    ia_real v8_dy = v7_dy / ((ia_real)2 * v8);
+    iacsg_grad v8_d = v7_d / ((ia_real)2 * v8);
     ia_real v10 = z * z;
-    ia_real v10_dz = (ia_real)2 * z * (ia_real)1;
+    iacsg_grad v10_d = (ia_real)2 * z * (iacsg_grad)(0, 0, 1, 0);
     ia_real v11 = IACSG_K(0x1p+0f, 0x1p+0) - v8;
-    ia_real v11_dx = (ia_real)0 - v8_dx;
-    ia_real v11_dy = (ia_real)0 - v8_dy;
+    iacsg_grad v11_d = (iacsg_grad)0 - v8_d;
     ia_real v12 = v11 * v11;
-    ia_real v12_dx = (ia_real)2 * v11 * v11_dx;
-    ia_real v12_dy = (ia_real)2 * v11 * v11_dy;
+    iacsg_grad v12_d = (ia_real)2 * v11 * v11_d;
     ia_real v13 = v10 + v12;
-    ia_real v13_dx = (ia_real)0 + v12_dx;
-    ia_real v13_dy = (ia_real)0 + v12_dy;
-    ia_real v13_dz = v10_dz + (ia_real)0;
+    iacsg_grad v13_d = v10_d + v12_d;
     ia_real v16 = v13 + IACSG_K(-0x1p-4f, -0x1p-4);
-    ia_real v16_dx = v13_dx;
-    ia_real v16_dy = v13_dy;
-    ia_real v16_dz = v13_dz;
-    *gx = v16_dx;
-    *gy = v16_dy;
-    *gz = v16_dz;
+    iacsg_grad v16_d = v13_d;
+    iacsg_grad g = v16_d;
+    *gx = g.x;
+    *gy = g.y;
+    *gz = g.z;
     return v16;
 }
