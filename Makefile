@@ -24,7 +24,6 @@ endif
 CFLAGS_ALL = -std=c11 $(WARN) $(OPT) -I. -Isrc -I$(BUILD) -D_POSIX_C_SOURCE=200809L $(CFLAGS)
 CXXFLAGS_ALL = -std=c++17 -Wall -Wextra -Werror $(OPT) -I. -Isrc $(CXXFLAGS)
 LIBS = -lOpenCL -lOpenImageIO -lOpenImageIO_Util -lmpfr -lgmp -lm -lstdc++
-CLI_LIBS = -lOpenCL -lm -ldl -lpthread
 LDFLAGS_ALL = $(OPT) $(LDFLAGS)
 
 DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev
@@ -62,19 +61,8 @@ deps:
 $(BUILD)/libiacsg.a: $(LIB_OBJ)
 	ar rcs $@ $^
 
-# The CLI does not link OpenImageIO (~260 libraries to load at every start): it dlopen()s the image writer,
-# libiacsg_image.so beside it, when it renders (src/cli_image.c).
-$(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a | $(BUILD)/libiacsg_image.so
-	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(CLI_LIBS)
-
-$(BUILD)/libiacsg_image.so: $(BUILD)/pic/src/image_oiio.o $(BUILD)/pic/src/error.o
-	$(CXX) $(LDFLAGS_ALL) -shared -o $@ $^ -lOpenImageIO -lOpenImageIO_Util -lstdc++
-$(BUILD)/pic/%.o: %.c
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -fPIC -MMD -MP -c $< -o $@
-$(BUILD)/pic/%.o: %.cpp
-	@mkdir -p $(dir $@)
-	$(CXX) $(CXXFLAGS_ALL) -fPIC -MMD -MP -c $< -o $@
+$(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a
+	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(LIBS)
 
 $(BUILD)/iacsg-tests: $(TEST_OBJ) $(BUILD)/libiacsg.a
 	$(CC) $(LDFLAGS_ALL) -o $@ $(TEST_OBJ) $(BUILD)/libiacsg.a $(LIBS)

@@ -277,7 +277,7 @@ static iacsg_status write_frame(const render_options *o, const iacsg_frame *fr, 
         char *path = o->frames ? numbered(paths[k], frame) : strdup(paths[k]);
         if (!path)
             return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
-        iacsg_status st = cli_image_write(path, fr->width, fr->height, channels[k], data[k], k > 0, err);
+        iacsg_status st = iacsg_image_write(path, fr->width, fr->height, channels[k], data[k], k > 0, err);
         if (st == IACSG_OK)
             printf("wrote %s\n", path);
         free(path);
@@ -334,40 +334,6 @@ static void print_error(const iacsg_error *err, const char *name) {
         fprintf(stderr, "iacsg: %s\n", err->message);
 }
 
-/* Everything that can fail before rendering, reporting the first failure in this order: for each output, its
- * format then its directory; the outputs sparing the scene file; the parse; the renderer. The format checks
- * need the image writer, which loads on a thread meanwhile, so they run last (after the OpenCL start-up they
- * overlap); a failing one still wins over every failure that comes after it in that order. */
-static iacsg_status prepare(render_options *o, const char *text, const char *name, iacsg_expr **e,
-                            iacsg_renderer **r, iacsg_error *err) {
-    const char *outputs[3] = {o->output, o->depth_file, o->normals_file};
-    iacsg_status st = IACSG_OK;
-    int last_format = 2; /* the last output whose format check comes before the first failure */
-    for (int k = 0; k < 3 && st == IACSG_OK; k++)
-        if (outputs[k] && (st = check_directory_writable(outputs[k], err)) != IACSG_OK)
-            last_format = k;
-    if (st == IACSG_OK && name == o->input) /* a scene file */
-        st = check_outputs_spare_input(o->input, outputs, err);
-    if (st == IACSG_OK)
-        st = iacsg_expr_parse(text, name, e, err);
-    const char *which = NULL;
-    if (st == IACSG_OK) {
-        which = choose_bounds(o, *e);
-        place_camera(o);
-        st = iacsg_renderer_create_expr(*e, &o->config, r, err);
-    }
-    for (int k = 0; k <= last_format; k++) {
-        iacsg_status format = outputs[k] ? cli_image_check_format(outputs[k], err) : IACSG_OK;
-        if (format != IACSG_OK)
-            return format;
-    }
-    if (which) {
-        const double *b = o->view.bounds;
-        printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
-    }
-    return st;
-}
-
 int cli_render(int argc, char **argv) {
     render_options o;
     int rc = parse_options(argc, argv, &o);
@@ -377,11 +343,25 @@ int cli_render(int argc, char **argv) {
     char *text = read_input(o.input, &name);
     if (!text)
         return 1;
-    cli_image_load_start(); /* overlaps loading the image writer with the parse and the OpenCL start-up */
     iacsg_error err = {0};
     iacsg_expr *e = NULL;
     iacsg_renderer *r = NULL;
-    iacsg_status st = prepare(&o, text, name, &e, &r, &err);
+    iacsg_status st = IACSG_OK;
+    const char *outputs[3] = {o.output, o.depth_file, o.normals_file};
+    for (int k = 0; k < 3 && st == IACSG_OK; k++)
+        if (outputs[k] && (st = iacsg_image_check_format(outputs[k], &err)) == IACSG_OK)
+            st = check_directory_writable(outputs[k], &err);
+    if (st == IACSG_OK && name == o.input) /* a scene file */
+        st = check_outputs_spare_input(o.input, outputs, &err);
+    if (st == IACSG_OK)
+        st = iacsg_expr_parse(text, name, &e, &err);
+    if (st == IACSG_OK) {
+        const char *which = choose_bounds(&o, e);
+        const double *b = o.view.bounds;
+        printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
+        place_camera(&o);
+        st = iacsg_renderer_create_expr(e, &o.config, &r, &err);
+    }
     progress_bar bar = {0, 0};
     if (isatty(STDERR_FILENO)) {
         o.view.progress = show_progress;
