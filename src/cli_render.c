@@ -362,6 +362,8 @@ int cli_render(int argc, char **argv) {
         place_camera(&o);
         st = iacsg_renderer_create_expr(e, &o.config, &r, &err);
     }
+    o.view.no_depth = !o.depth_file; /* images nobody writes are not computed */
+    o.view.no_normals = !o.normals_file;
     progress_bar bar = {0, 0};
     if (isatty(STDERR_FILENO)) {
         o.view.progress = show_progress;
