@@ -14,8 +14,10 @@ extern const char iacsg_cl_ia[];      /* the flattened ia/ headers (Makefile: IA
 extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNEL_SOURCES) */
 
 /* The work-group is a tile of pixels (kernels/tile.h): neighbouring rays take similar paths through the
- * bisection. A band is a launch of several rows of tiles. */
-enum { BAND_ROWS = 8 * TILE_SIZE };
+ * bisection. A band is a launch of several rows of tiles: narrow ones when progress is reported, otherwise
+ * wide enough that launches are few (each wakes the device's threads and waits for the slowest), yet short
+ * enough that no launch runs for long (GPU drivers may kill a kernel that holds the display for seconds). */
+enum { BAND_ROWS_PROGRESS = 8 * TILE_SIZE, BAND_ROWS = 64 * TILE_SIZE };
 
 struct iacsg_renderer {
     clrt rt;
@@ -263,8 +265,9 @@ fail:
 static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
     size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
-    for (cl_int row0 = 0; row0 < view->height; row0 += BAND_ROWS) {
-        int rows = view->height - row0 < BAND_ROWS ? view->height - row0 : BAND_ROWS;
+    int band = view->progress ? BAND_ROWS_PROGRESS : BAND_ROWS;
+    for (cl_int row0 = 0; row0 < view->height; row0 += band) {
+        int rows = view->height - row0 < band ? view->height - row0 : band;
         cl_int tile_row0 = row0 / TILE_SIZE;
         size_t tile_rows = (size_t)(rows + TILE_SIZE - 1) / TILE_SIZE;
         /* a work-item per PACKET_W x PACKET_H tiles, then per as many pixels, a tile per work-group */
