@@ -6,7 +6,7 @@
 # Environment: BENCH_QUICK=1 (fewer runs and rows, writes $BENCH_BUILD/BENCHMARKS.quick.md, for iterating),
 # BENCH_RUNS (cached runs per row, default 5), BENCH_GROWTH_RUNS (for the growth tables, default 3),
 # BENCH_OUT (the report, default BENCHMARKS.md), BENCH_ONLY (space-separated table names: seed libfive ref
-# res eps size modes rays), BENCH_BUILD (directory for the raw results, default build/bench).
+# res eps size modes), BENCH_BUILD (directory for the raw results, default build/bench).
 #
 # Every row is measured by running the whole `iacsg` command, never by a library call, so that its wall time is
 # what a user waits for. Per row:
@@ -34,7 +34,7 @@ else
     OUT=${BENCH_OUT:-BENCHMARKS.md}
     GEN=$BUILD_DIR/generated.md
 fi
-ONLY=${BENCH_ONLY:-seed libfive ref res eps size modes rays}
+ONLY=${BENCH_ONLY:-seed libfive ref res eps size modes}
 TIMEOUT=${BENCH_TIMEOUT:-300}
 HERE=$(dirname "$0")
 

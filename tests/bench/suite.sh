@@ -204,33 +204,4 @@ bench_suite() {
         say ""
         say "The reference view without \`-stats\` (default kernel cache, kernel without the counter): wall $(ms_of_us "$(median <"$WORK/w")") ms, median of $RUNS."
     fi
-
-    if wants rays; then
-        # Host-side statistics of the kernel's own bisection code (tests/bench/raystats.c): no tile pass, float,
-        # rigorous. Cheap, and not timed: where the evaluations go and what SIMD, pruning and neighbours could save.
-        say ""
-        say "### Where the evaluations go (tests/bench/raystats.sh: the kernel's bisection on the host, full rays, no tile pass)"
-        rs() { # rs TITLE EXPR VIEW...
-            title=$1 e=$2
-            shift 2
-            log "rays: $title"
-            say ""
-            say "$title:"
-            say ""
-            say '```'
-            IACSG=$IACSG sh "$HERE/raystats.sh" "$e" "$@" >"$WORK/rs.log" 2>&1 || echo "raystats failed" >>"$WORK/rs.log"
-            grep -v 'warning\|^ \|In function\|In file included\|^[0-9]* |' "$WORK/rs.log" >>"$BODY"
-            say '```'
-        }
-        rs "Reference view, 512x512, eps 1e-5" "$REF" 512 512 1e-5 0 -4 2.5 0 0 0 0 0 1 40 0 -2 -2 -2 2 2 2 0
-        if [ "$QUICK" != 1 ]; then
-            rs "tangle | sphere(1.5), 256x256, eps 1e-5, eye 0,-6,3.75 fov 40, box +-3" "union(tangle, sphere(1.5))" \
-                256 256 1e-5 0 -6 3.75 0 0 0 0 0 1 40 0 -3 -3 -3 3 3 3 0
-            rs "decocube | heart, 256x256, eps 1e-5, eye 0,-6,3.75 fov 40, box +-3" "union(decocube, heart)" \
-                256 256 1e-5 0 -6 3.75 0 0 0 0 0 1 40 0 -3 -3 -3 3 3 3 0
-            spheres 64 0 "$WORK/spheres64r.csg"
-            rs "union of 64 spheres (the size table's), reference camera, 256x256, eps 1e-5" "$(tail -n 1 "$WORK/spheres64r.csg")" \
-                256 256 1e-5 0 -4 2.5 0 0 0 0 0 1 40 0 -2 -2 -2 2 2 2 0
-        fi
-    fi
 }
