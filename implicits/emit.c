@@ -146,6 +146,103 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
     }
 }
 
+/* A union (min) of at least this many parts is emitted in groups that the kernels can skip per block of
+ * tiles (kernels/packet.h); at most EMIT_MAX_GROUPS groups (a 64-bit mask), about sqrt(parts) of them. */
+#define EMIT_GROUP_MIN_PARTS 16
+#define EMIT_MAX_GROUPS 64
+
+/* The operands of the root's union: min(min(a, b), c) -> a, b, c, left to right (the DAG folds n-ary min to
+ * binary). Returns their number in a malloc'ed array, 0 when the root is not a min or the parts are too many
+ * (a shared min can be reached many times), -1 out of memory. */
+static int union_parts(const dag *d, int root, int **out) {
+    *out = NULL;
+    if (d->nodes[root].op != OP_MIN)
+        return 0;
+    int *work = malloc(2 * EMIT_MAX_NODES * sizeof *work), *parts = malloc(EMIT_MAX_NODES * sizeof *parts);
+    if (!work || !parts) {
+        free(work);
+        free(parts);
+        return -1;
+    }
+    int top = 0, count = 0;
+    work[top++] = root;
+    while (top > 0 && count < EMIT_MAX_NODES && top < 2 * EMIT_MAX_NODES - 1) {
+        const dag_node *n = &d->nodes[work[--top]];
+        if (n->op == OP_MIN) { /* b below a, so a comes out first */
+            work[top++] = n->b;
+            work[top++] = n->a;
+        } else {
+            parts[count++] = (int)(n - d->nodes);
+        }
+    }
+    free(work);
+    if (top > 0) { /* too many */
+        free(parts);
+        return 0;
+    }
+    *out = parts;
+    return count;
+}
+
+/* Fv of a union in groups of consecutive parts (scene files list neighbouring solids together, so a group
+ * tends to be compact in space): iacsg_Fv_group(g, ...) is the min of group g's parts, with the nodes they
+ * need computed once per group, and iacsg_Fv the min of the groups. Returns 0 on out of memory. */
+static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *parts, int nparts,
+                             const char *prefix) {
+    int groups = (int)ceil(sqrt((double)nparts));
+    groups = groups > EMIT_MAX_GROUPS ? EMIT_MAX_GROUPS : groups;
+    int per_group = (nparts + groups - 1) / groups;
+    groups = (nparts + per_group - 1) / per_group;
+    unsigned char *needed = malloc((size_t)root + 1);
+    if (!needed)
+        return 0;
+    strbuf_printf(b, "#define IACSG_GROUPS %d\n__attribute__((noinline)) iav %s_Fv_group(int group, iav x, iav y, "
+                     "iav z, iav t) {\n    switch (group) {\n",
+                  groups, prefix);
+    for (int g = 0; g < groups; g++) {
+        int first = g * per_group, last = first + per_group < nparts ? first + per_group : nparts;
+        memset(needed, 0, (size_t)root + 1);
+        for (int c = first; c < last; c++) {
+            int *order;
+            int count = dag_reachable(em->d, parts[c], &order);
+            if (count < 0) {
+                free(needed);
+                return 0;
+            }
+            for (int k = 0; k < count; k++)
+                needed[order[k]] = 1;
+            free(order);
+        }
+        int *order = malloc(((size_t)root + 1) * sizeof *order), count = 0;
+        if (!order) {
+            free(needed);
+            return 0;
+        }
+        for (int i = 0; i <= root; i++) /* index order is an evaluation order */
+            if (needed[i])
+                order[count++] = i;
+        strbuf_printf(b, "    case %d: {\n", g);
+        body(b, em, order, count, AS_VECTOR);
+        free(order);
+        strbuf_printf(b, "        iav r = ");
+        put_operand(b, em, parts[first], AS_VECTOR);
+        strbuf_printf(b, ";\n");
+        for (int c = first + 1; c < last; c++) {
+            strbuf_printf(b, "        r = iav_min(r, ");
+            put_operand(b, em, parts[c], AS_VECTOR);
+            strbuf_printf(b, ");\n");
+        }
+        strbuf_printf(b, "        return r;\n    }\n");
+    }
+    free(needed);
+    strbuf_printf(b, "    }\n    return iav_point(IA_INF);\n}\n");
+    strbuf_printf(b, "IA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n    iav r = %s_Fv_group(0, x, y, z, t);\n"
+                     "    for (int group = 1; group < IACSG_GROUPS; group++)\n"
+                     "        r = iav_min(r, %s_Fv_group(group, x, y, z, t));\n    return r;\n}\n",
+                  prefix, prefix, prefix);
+    return 1;
+}
+
 iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, iacsg_error *err) {
     *source = NULL;
     if (!valid_prefix(prefix))
@@ -181,12 +278,23 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     strbuf_printf(&b, "    return ");
     put_operand(&b, &em, root, AS_INTERVAL);
     strbuf_printf(&b, ";\n}\n");
-    /* The same over IA_VW lanes, for the kernels that trace several rays per work-item. */
-    strbuf_printf(&b, "#ifdef IA_VW\nIA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n", prefix);
-    body(&b, &em, order, count, AS_VECTOR);
-    strbuf_printf(&b, "    return ");
-    put_operand(&b, &em, root, AS_VECTOR);
-    strbuf_printf(&b, ";\n}\n#endif\n");
+    /* The same over IA_VW lanes, for the kernels that trace several rays per work-item; a large union in
+     * groups. */
+    int *parts;
+    int nparts = union_parts(d, root, &parts);
+    strbuf_printf(&b, "#ifdef IA_VW\n");
+    int ok = nparts >= 0;
+    if (nparts >= EMIT_GROUP_MIN_PARTS) {
+        ok = emit_union_groups(&b, &em, root, parts, nparts, prefix);
+    } else if (ok) {
+        strbuf_printf(&b, "IA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n", prefix);
+        body(&b, &em, order, count, AS_VECTOR);
+        strbuf_printf(&b, "    return ");
+        put_operand(&b, &em, root, AS_VECTOR);
+        strbuf_printf(&b, ";\n}\n");
+    }
+    free(parts);
+    strbuf_printf(&b, "#endif\n");
     strbuf_printf(&b, "IA_FN ia_real %s_f(ia_real x, ia_real y, ia_real z, ia_real t) {\n", prefix);
     body(&b, &em, order, count, AS_POINT);
     strbuf_printf(&b, "    return ");
@@ -205,5 +313,9 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     free(order);
     free(em.axes);
     *source = strbuf_finish(&b);
+    if (*source && !ok) {
+        free(*source);
+        *source = NULL;
+    }
     return *source ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory generating code");
 }

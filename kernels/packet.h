@@ -64,6 +64,23 @@ IA_FN ia_realv packet_node_bound(ia_real t0, ia_real w, packet_int level, packet
     return t0 + w * (packet_index_to_real(i) * scale);
 }
 
+/* F over the groups of a union set in `groups` (bit g for group g): the min of their enclosures, exact (min
+ * rounds nothing). The tile pass leaves out only groups certainly positive (> 0) on every box of the block
+ * (tile.h), so there the union is < 0, = 0 or > 0 exactly where the min of the groups kept is: the roots, and
+ * the walk's decisions, are the same. An expression emitted without groups (no IACSG_GROUPS) is iacsg_Fv. */
+IA_FN iav packet_F(ulong groups, iav x, iav y, iav z, iav t) {
+#ifdef IACSG_GROUPS
+    iav r = iav_point(IA_INF); /* the identity of min */
+    for (int g = 0; g < IACSG_GROUPS; g++)
+        if (groups >> g & 1)
+            r = iav_min(r, iacsg_Fv_group(g, x, y, z, t));
+    return r;
+#else
+    (void)groups;
+    return iacsg_Fv(x, y, z, t);
+#endif
+}
+
 /* Set-up, lane by lane: camera.h's and traverse.h's scalar code over vectors, the same operations in the same
  * order (FP_CONTRACT is off), so each lane's ray, clip and first node are bit for bit what the scalar
  * functions give for its pixel, which the host tests recompute. */
@@ -161,9 +178,9 @@ IA_FN void packet_advance(ia_maskv *searching, ia_maskv down, packet_int *level,
 /* The first root of each lane of `searching` in [t_near, t_far] of its ray o + t*d, from its node (level, i) on
  * (no node before it may hold a root): the first clipped node whose enclosure holds 0 and that is no wider than
  * eps, or at the deepest level. Returns the lanes that hit, with their leaves in [*hit_lo, *hit_hi]. */
-IA_FN ia_maskv packet_first_root(const ia_realv o[3], const ia_realv d[3], ia_real t0, ia_real w, packet_int level,
-                                 packet_index i, ia_realv t_near, ia_realv t_far, ia_maskv searching, ia_real eps,
-                                 iav time, ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
+IA_FN ia_maskv packet_first_root(ulong groups, const ia_realv o[3], const ia_realv d[3], ia_real t0, ia_real w,
+                                 packet_int level, packet_index i, ia_realv t_near, ia_realv t_far, ia_maskv searching,
+                                 ia_real eps, iav time, ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
     ia_maskv hit = (ia_maskv)0;
     while (any(searching)) {
         ia_realv lo = packet_node_bound(t0, w, level, i), hi = packet_node_bound(t0, w, level, i + 1);
@@ -171,8 +188,8 @@ IA_FN ia_maskv packet_first_root(const ia_realv o[3], const ia_realv d[3], ia_re
         ia_realv a = fmax(lo, t_near), b = fmin(hi, t_far);
         ia_maskv live = searching & (a <= b);
         iav t = iav_make(a, b);
-        iav f = iacsg_Fv(packet_extent(o[0], d[0], t), packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t),
-                         time);
+        iav f = packet_F(groups, packet_extent(o[0], d[0], t), packet_extent(o[1], d[1], t),
+                         packet_extent(o[2], d[2], t), time);
         PACKET_COUNT(*evals, live);
         ia_maskv zero = live & iav_contains_zero(f);
         ia_maskv leaf = zero & ((b - a <= eps) | (level == BISECT_MAX_LEVEL));

@@ -16,7 +16,7 @@
  * reals (exact: the index has fewer bits than the mantissa, see traverse.h); level -1 when no ray of the tile
  * can meet the surface. One work-item per PACKET_W x PACKET_H tiles, searched in SIMD lanes (tile.h). */
 __kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int height, int tile_row0,
-                          __global ia_real *tiles, __global uint *evals) {
+                          __global ia_real *tiles, __global uint *evals, __global ulong *tile_groups_of) {
     int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
     int tx0 = (int)get_global_id(0) * PACKET_W, ty0 = tile_row0 + (int)get_global_id(1) * PACKET_H;
     if (tx0 >= tiles_x || ty0 >= tiles_y)
@@ -48,10 +48,22 @@ __kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int 
     }
     ia_real t0, w;
     frame_root(params, &t0, &w);
+    ia_maskv searching = IAV_LOAD(valid) != 0;
+    iav time = iav_point(params[PARAM_TIME]);
+    /* The groups of a union that matter in any of the tiles, over the whole tree, for their common search; then
+     * each tile's own from its first leaf on, for its rays. */
+    ulong groups[IA_VW], any_tile = 0;
+    iav root = iav_make(packet_node_bound(t0, w, (packet_int)0, (packet_index)0),
+                        packet_node_bound(t0, w, (packet_int)0, (packet_index)1));
+    tile_groups(base_v, dir_v, root, time, groups);
+    for (int k = 0; k < IA_VW; k++)
+        any_tile |= valid[k] != 0 ? groups[k] : 0;
     packet_int level = (packet_int)0;
     packet_index leaf = (packet_index)0, counts = (packet_index)0;
-    ia_maskv found = tile_first_leaves(base_v, dir_v, IAV_LOAD(spread), ortho, t0, w, params[PARAM_EPS],
-                                       IAV_LOAD(valid) != 0, iav_point(params[PARAM_TIME]), &level, &leaf, &counts);
+    ia_maskv found = tile_first_leaves(any_tile, base_v, dir_v, IAV_LOAD(spread), ortho, t0, w, params[PARAM_EPS],
+                                       searching, time, &level, &leaf, &counts);
+    tile_groups(base_v, dir_v, iav_make(select(root.lo, packet_node_bound(t0, w, level, leaf), found), root.hi),
+                time, groups);
     ia_real level_r[IA_VW], leaf_r[IA_VW];
     bisect_index count[IA_VW];
     IAV_STORE(select((ia_realv)-1, packet_int_to_real(level), found), level_r);
@@ -63,6 +75,7 @@ __kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int 
         size_t tile = (size_t)(ty0 + k / PACKET_W) * (size_t)tiles_x + (size_t)(tx0 + k % PACKET_W);
         tiles[2 * tile] = level_r[k];
         tiles[2 * tile + 1] = leaf_r[k];
+        tile_groups_of[tile] = groups[k];
 #ifdef KERNEL_STATS
         evals[tile] = (uint)count[k];
 #else
@@ -98,7 +111,7 @@ static inline void put_pixel(int i, int j, int width, int height, float color[3]
  * (packet.h); work-groups are the tiles. Set-up and shading run lane by lane, in scalar code. */
 __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int height, int row0,
                            __global const ia_real *tiles, __global float *rgb, __global float *depth,
-                           __global float *normal, __global uint *evals) {
+                           __global float *normal, __global uint *evals, __global const ulong *tile_groups_of) {
     int i0 = (int)get_global_id(0) * PACKET_W, j0 = row0 + (int)get_global_id(1) * PACKET_H;
     if (i0 >= width || j0 >= height)
         return;
@@ -129,7 +142,7 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
     ia_maskv searching = (col < width) & (row < height) & packet_clip(params, ov, dv, &t_near, &t_far);
     packet_index start = max((packet_index)leaf, packet_node_at(t0, w, level, t_near));
     packet_index counts = (packet_index)0;
-    ia_maskv hit = packet_first_root(ov, dv, t0, w, (packet_int)level, start, t_near, t_far, searching,
+    ia_maskv hit = packet_first_root(tile_groups_of[tile], ov, dv, t0, w, (packet_int)level, start, t_near, t_far, searching,
                                      params[PARAM_EPS], iav_splat(time), &hit_lo, &hit_hi, &counts);
     ia_real o[3][IA_VW], d[3][IA_VW], lo[IA_VW], hi[IA_VW], hits[IA_VW];
     for (int c = 0; c < 3; c++) {

@@ -58,9 +58,9 @@ IA_FN void frame_root(const KERNEL_CONSTANT ia_real *p, ia_real *t0, ia_real *w)
  * (splitting t further would not shrink the box much), or eps. Returns the lanes of `searching` whose tile may
  * hold surface, with their leaves' levels and indices; *evals counts each lane's evaluations (KERNEL_STATS).
  * base, dir: the lanes' tile_rays; spread: their angular (perspective) or linear (orthographic) sizes. */
-IA_FN ia_maskv tile_first_leaves(const iav base[3], const iav dir[3], ia_realv spread, int ortho, ia_real t0,
-                                 ia_real w, ia_real eps, ia_maskv searching, iav time, packet_int *leaf_level,
-                                 packet_index *leaf_i, packet_index *evals) {
+IA_FN ia_maskv tile_first_leaves(ulong groups, const iav base[3], const iav dir[3], ia_realv spread, int ortho,
+                                 ia_real t0, ia_real w, ia_real eps, ia_maskv searching, iav time,
+                                 packet_int *leaf_level, packet_index *leaf_i, packet_index *evals) {
     ia_maskv found = (ia_maskv)0;
     packet_int level = (packet_int)0;
     packet_index i = (packet_index)0;
@@ -69,7 +69,7 @@ IA_FN ia_maskv tile_first_leaves(const iav base[3], const iav dir[3], ia_realv s
         iav t = iav_make(lo, hi), box[3];
         for (int k = 0; k < 3; k++) /* tile_box */
             box[k] = iav_add(base[k], iav_mul(t, dir[k]));
-        iav f = iacsg_Fv(box[0], box[1], box[2], time);
+        iav f = packet_F(groups, box[0], box[1], box[2], time);
         PACKET_COUNT(*evals, searching);
         ia_maskv zero = searching & iav_contains_zero(f);
         ia_realv footprint = ortho ? spread : spread * hi;
@@ -81,6 +81,30 @@ IA_FN ia_maskv tile_first_leaves(const iav base[3], const iav dir[3], ia_realv s
         packet_advance(&searching, zero & ~leaf, &level, &i);
     }
     return found;
+}
+
+/* The groups of a union (packet_F) that are not certainly positive in each lane's tile over [t.lo, t.hi] (bit g
+ * of groups[lane] for group g): where every box the tile's rays evaluate lies when they start at t.lo (the
+ * frame tree's nodes end at the root's end, t.hi). The others cannot change where the union is zero there.
+ * All ones for an expression without groups. */
+IA_FN void tile_groups(const iav base[3], const iav dir[3], iav t, iav time, ulong groups[IA_VW]) {
+    for (int k = 0; k < IA_VW; k++)
+        groups[k] = ~(ulong)0;
+#ifdef IACSG_GROUPS
+    iav box[3];
+    for (int k = 0; k < 3; k++) /* tile_box */
+        box[k] = iav_add(base[k], iav_mul(t, dir[k]));
+    for (int k = 0; k < IA_VW; k++)
+        groups[k] = 0;
+    for (int g = 0; g < IACSG_GROUPS; g++) {
+        ia_real lo[IA_VW];
+        IAV_STORE(iacsg_Fv_group(g, box[0], box[1], box[2], time).lo, lo);
+        for (int k = 0; k < IA_VW; k++)
+            groups[k] |= (ulong)!(lo[k] > 0) << g;
+    }
+#else
+    (void)base, (void)dir, (void)t, (void)time;
+#endif
 }
 #endif
 

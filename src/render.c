@@ -179,11 +179,11 @@ static void summarize_evals(const cl_uint *evals, size_t n, const cl_uint *tile_
 
 /* The device buffers of one frame. */
 typedef struct {
-    cl_mem params, rgb, depth, normal, tiles, evals, tile_evals; /* the last two only with stats */
+    cl_mem params, rgb, depth, normal, tiles, groups, evals, tile_evals; /* the last two only with stats */
 } frame_buffers;
 
 static void release_buffers(frame_buffers *b) {
-    cl_mem *all[] = {&b->params, &b->rgb, &b->depth, &b->normal, &b->tiles, &b->evals, &b->tile_evals};
+    cl_mem *all[] = {&b->params, &b->rgb, &b->depth, &b->normal, &b->tiles, &b->groups, &b->evals, &b->tile_evals};
     for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
         if (*all[k])
             clReleaseMemObject(*all[k]);
@@ -228,6 +228,8 @@ static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t
     }
     b->tiles = clCreateBuffer(ctx, CL_MEM_READ_WRITE, 2 * tiles_n * real_size, NULL, &rc);
     CLRT_CHECK(err, rc);
+    b->groups = clCreateBuffer(ctx, CL_MEM_READ_WRITE, tiles_n * sizeof(cl_ulong), NULL, &rc);
+    CLRT_CHECK(err, rc);
     if (r->config.stats) {
         b->evals = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint), NULL, &rc);
         CLRT_CHECK(err, rc);
@@ -252,6 +254,8 @@ static iacsg_status set_args(iacsg_renderer *r, const iacsg_view *view, frame_bu
         CLRT_CHECK(err, clSetKernelArg(kernels[k], 5, sizeof(cl_mem), &b->tiles));
     }
     CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 6, sizeof(cl_mem), b->tile_evals ? &b->tile_evals : NULL));
+    CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 7, sizeof(cl_mem), &b->groups));
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 10, sizeof(cl_mem), &b->groups));
     CLRT_CHECK(err, clSetKernelArg(r->kernel, 6, sizeof(cl_mem), &b->rgb));
     CLRT_CHECK(err, clSetKernelArg(r->kernel, 7, sizeof(cl_mem), b->depth ? &b->depth : NULL));
     CLRT_CHECK(err, clSetKernelArg(r->kernel, 8, sizeof(cl_mem), b->normal ? &b->normal : NULL));

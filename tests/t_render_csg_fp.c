@@ -5,7 +5,7 @@
  * Along a ray each primitive's inside is a union of t intervals, found from the roots of its polynomial in t
  * (quadratic for the sphere, slab and rod, quartic for the torus); the CSG of the insides is decided at the
  * midpoints between consecutive roots. Checked: no ray that passes through the solid (by more than 1e-6) is
- * missed, and no depth is after the first root. */
+ * missed, and no depth is after the first root. Also a union of 32 spheres, which is emitted in groups. */
 #include "t_render_util.h"
 #include "implicits/expr.h"
 #include <string.h>
@@ -155,12 +155,27 @@ static int box_span(const double b[6], const double o[3], const double d[3], dou
 
 typedef ray_poly (*make_poly)(const double o[3], const double d[3]);
 
+/* The exact first entry of the ray into a scene in [tn, tf], and the length of the inside piece it starts. */
+typedef int (*first_entry)(const void *scene, const double o[3], const double d[3], double tn, double tf, double *t,
+                           double *piece);
+
+/* Two primitives and an operation. */
+typedef struct {
+    make_poly a, b;
+    csg_op op;
+} csg_pair;
+static int pair_entry(const void *scene, const double o[3], const double d[3], double tn, double tf, double *t,
+                      double *piece) {
+    const csg_pair *s = scene;
+    return csg_first_entry(s->a(o, d), s->b(o, d), s->op, tn, tf, t, piece);
+}
+
 typedef struct {
     long through, misses, late;
 } csg_report;
 
 /* Compiles `expr`, renders it, and checks each pixel against the exact first entry. */
-static csg_report check_expr(const char *expr, make_poly fa, make_poly fb, csg_op op, const iacsg_view *view) {
+static csg_report check_scene(const char *expr, first_entry entry, const void *scene, const iacsg_view *view) {
     csg_report rep = {0, 0, 0};
     iacsg_error err = {0};
     iacsg_expr *e = NULL;
@@ -182,8 +197,7 @@ static csg_report check_expr(const char *expr, make_poly fa, make_poly fb, csg_o
             ia_real of[3], df[3];
             camera_ray(p, ortho, i, j, view->width, view->height, of, df);
             double o[3] = {of[0], of[1], of[2]}, d[3] = {df[0], df[1], df[2]}, tn, tf, t, piece;
-            if (!box_span(view->bounds, o, d, &tn, &tf) ||
-                !csg_first_entry(fa(o, d), fb(o, d), op, tn, tf, &t, &piece) || piece < 1e-6)
+            if (!box_span(view->bounds, o, d, &tn, &tf) || !entry(scene, o, d, tn, tf, &t, &piece) || piece < 1e-6)
                 continue;
             rep.through++;
             double depth = fr.depth[(size_t)j * view->width + i];
@@ -199,6 +213,11 @@ static csg_report check_expr(const char *expr, make_poly fa, make_poly fb, csg_o
     CHECK(rep.through > 100, "%s: too few rays through the solid (%ld)", expr, rep.through);
     CHECK(rep.misses == 0 && rep.late == 0, "%s: %ld missed and %ld late pixels", expr, rep.misses, rep.late);
     return rep;
+}
+
+static csg_report check_expr(const char *expr, make_poly fa, make_poly fb, csg_op op, const iacsg_view *view) {
+    csg_pair pair = {fa, fb, op};
+    return check_scene(expr, pair_entry, &pair, view);
 }
 
 static iacsg_view view_of(int w, int h, double eps) {
@@ -234,4 +253,43 @@ TEST_FP(render_thin_features) {
     iacsg_view side = {.width = 63, .height = 127, .eps = 1e-5, .bounds = {-1, -1, -1, 1, 1, 1},
                        .camera = {.eye = {3, 0.001, 0.1}, .at = {0, 0.001, 0.1}, .up = {0, 0, 1}, .fov = 20}};
     check_expr("sqrt(x^2 + y^2) - 0.004", rod, rod, CSG_ONLY_A, &side);
+}
+
+/* A union of many spheres (a 4x4x2 grid of radius 0.3): enough parts that the compiler emits it in groups and
+ * the tile pass leaves out, per block of tiles, the groups that cannot matter there (kernels/packet.h). The
+ * first entry is the earliest of the spheres' own. */
+enum { GRID_X = 4, GRID_Y = 4, GRID_Z = 2 };
+static void grid_centre(int n, double c[3]) {
+    c[0] = -1.2 + 0.8 * (n % GRID_X);
+    c[1] = -1.2 + 0.8 * (n / GRID_X % GRID_Y);
+    c[2] = -0.4 + 0.8 * (n / (GRID_X * GRID_Y));
+}
+static int grid_entry(const void *scene, const double o[3], const double d[3], double tn, double tf, double *t,
+                      double *piece) {
+    (void)scene;
+    int found = 0;
+    for (int n = 0; n < GRID_X * GRID_Y * GRID_Z; n++) {
+        double c[3], roots[MAX_ROOTS];
+        grid_centre(n, c);
+        ray_poly p = sphere_poly(c, 0.3, o, d);
+        if (poly_roots(p.c, p.degree, tn, tf, roots) == 2 && (!found || roots[0] < *t)) {
+            *t = roots[0];
+            *piece = roots[1] - roots[0];
+            found = 1;
+        }
+    }
+    return found;
+}
+
+TEST_FP(render_union_of_many_spheres) {
+    char expr[4096] = "min(", *end = expr + strlen(expr);
+    for (int n = 0; n < GRID_X * GRID_Y * GRID_Z; n++) {
+        double c[3];
+        grid_centre(n, c);
+        end += snprintf(end, sizeof expr - (size_t)(end - expr), "%s(x-%g)^2+(y-%g)^2+(z-%g)^2-0.09", n ? ", " : "",
+                        c[0], c[1], c[2]);
+    }
+    snprintf(end, sizeof expr - (size_t)(end - expr), ")");
+    iacsg_view v = view_of(160, 160, 1e-5);
+    check_scene(expr, grid_entry, NULL, &v);
 }
