@@ -142,9 +142,11 @@ IA_FN ia_real ia__pown_nonneg(ia_real x, unsigned int n, int dir) {
         q = dir < 0 ? fmax(ia_lo_k(q, IA_ULP_POW), (ia_real)0) : ia_hi_k(q, IA_ULP_POW);
         return dir < 0 ? fmax(ia_lo(ia__mul0(p, q)), (ia_real)0) : ia_hi(ia__mul0(p, q));
     }
+    int first = 1; /* the first factor is taken as it is: 1 * b is exact, no rounding to pad */
     while (1) {
         if (n & 1)
-            r = dir < 0 ? fmax(ia_lo(r * b), (ia_real)0) : ia_hi(r * b);
+            r = first ? b : dir < 0 ? fmax(ia_lo(r * b), (ia_real)0) : ia_hi(r * b);
+        first &= !(n & 1);
         n >>= 1;
         if (n == 0)
             return r;

@@ -32,6 +32,10 @@ typedef IAV_CAT(int, IA_VW) ia_maskv;
 #define IAV_LOAD(p) IAV_CAT(vload, IA_VW)(0, p)
 #define IAV_STORE(v, p) IAV_CAT(vstore, IA_VW)(v, 0, p)
 #define IAV_R(x) ((ia_realv)(x))
+/* For the functions whose integer argument is an expression constant: inlined, the constant unrolls their
+ * loops and folds their branches (left to itself, LLVM kept iav__pown_nonneg a called loop in double, a third
+ * of the tangle's render time). */
+#define IAV_INLINE static inline __attribute__((always_inline))
 
 typedef struct {
     ia_realv lo, hi;
@@ -113,7 +117,7 @@ IA_FN iav iav_sqrt(iav a) {
  * ia/round.h in the lane's direction s = +-1 (fma(|r|, s C, r + s T) is ia_hi_k's form for s = 1 and
  * ia_lo_k's for s = -1). The NaN of +inf rounded down becomes MAX, and a rounded-down product never goes
  * below 0, as in the scalar version. n is a constant of the expression, so the loop unrolls. */
-IA_FN ia_realv iav__round_dir(ia_realv r, ia_realv s) {
+IAV_INLINE ia_realv iav__round_dir(ia_realv r, ia_realv s) {
 #ifdef IA_FAST
     (void)s;
     return r;
@@ -122,11 +126,13 @@ IA_FN ia_realv iav__round_dir(ia_realv r, ia_realv s) {
     return fmax(select(v, IAV_R(IA_REAL_MAX), isnan(v)), IAV_R(0));
 #endif
 }
-IA_FN ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
+IAV_INLINE ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
     ia_realv r = IAV_R(1), b = x;
+    int first = 1; /* as in ia__pown_nonneg: the first factor unrounded */
     while (1) {
         if (n & 1)
-            r = iav__round_dir(r * b, s);
+            r = first ? b : iav__round_dir(r * b, s);
+        first &= !(n & 1);
         n >>= 1;
         if (n == 0)
             return select(r, IAV_R(0), x == 0);
@@ -175,7 +181,7 @@ IA_FN iav iav__pown_by_lane(iav a, int n) {
 /* a^n for an integer constant n. Even n: |a|'s ends; odd n: increasing, each end's sign chooses the
  * direction of its chain and the sign of its result. Negative n, and n beyond the device's square-and-multiply
  * range (IA_POWN_CHAIN_MAX, ia/arith.h), lane by lane. */
-IA_FN iav iav_pown(iav a, int n) {
+IAV_INLINE iav iav_pown(iav a, int n) {
     if (n == 0)
         return iav_point(1);
     if (n == 1)
