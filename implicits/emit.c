@@ -184,63 +184,120 @@ static int union_parts(const dag *d, int root, int **out) {
     return count;
 }
 
-/* Fv of a union in groups of consecutive parts (scene files list neighbouring solids together, so a group
- * tends to be compact in space): iacsg_Fv_group(g, ...) is the min of group g's parts, with the nodes they
- * need computed once per group, and iacsg_Fv the min of the groups. Returns 0 on out of memory. */
-static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *parts, int nparts,
-                             const char *prefix) {
+/* How a union's parts are grouped: ~sqrt(n) groups of consecutive parts (scene files list neighbouring solids
+ * together, so a group tends to be compact in space), at most EMIT_MAX_GROUPS. */
+typedef struct {
+    int count, per_group;
+} grouping;
+static grouping group_parts(int nparts) {
     int groups = (int)ceil(sqrt((double)nparts));
     groups = groups > EMIT_MAX_GROUPS ? EMIT_MAX_GROUPS : groups;
-    int per_group = (nparts + groups - 1) / groups;
-    groups = (nparts + per_group - 1) / per_group;
+    grouping g = {0, (nparts + groups - 1) / groups};
+    g.count = (nparts + g.per_group - 1) / g.per_group;
+    return g;
+}
+
+/* The nodes that parts[first .. last-1] need, in index order (an evaluation order), into order[]; their number,
+ * or -1 out of memory. needed: room for root + 1 flags. */
+static int group_nodes(const emitter *em, const int *parts, int first, int last, unsigned char *needed, int root,
+                       int *order) {
+    memset(needed, 0, (size_t)root + 1);
+    for (int c = first; c < last; c++) {
+        int *reach;
+        int count = dag_reachable(em->d, parts[c], &reach);
+        if (count < 0)
+            return -1;
+        for (int k = 0; k < count; k++)
+            needed[reach[k]] = 1;
+        free(reach);
+    }
+    int count = 0;
+    for (int i = 0; i <= root; i++)
+        if (needed[i])
+            order[count++] = i;
+    return count;
+}
+
+/* A union in groups, for the interval code over lanes (r = AS_VECTOR) or the point value and gradient
+ * (AS_DERIV): a function of the group's number, not inlined, each case computing the nodes its parts need
+ * (shared ones once per group) and their min; then the whole function as the min over the groups. The kernels
+ * evaluate only the groups that can matter in a tile (kernels/packet.h); and smaller straight-line blocks keep
+ * LLVM's compile time, which grows faster than linearly in a block's length, down (the gradient of 1024
+ * spheres as one block took 8 of the 18 s). Returns 0 on out of memory. */
+static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *parts, int nparts,
+                             const char *prefix, role r) {
+    grouping gr = group_parts(nparts);
     unsigned char *needed = malloc((size_t)root + 1);
-    if (!needed)
-        return 0;
-    strbuf_printf(b, "#define IACSG_GROUPS %d\n__attribute__((noinline)) iav %s_Fv_group(int group, iav x, iav y, "
-                     "iav z, iav t) {\n    switch (group) {\n",
-                  groups, prefix);
-    for (int g = 0; g < groups; g++) {
-        int first = g * per_group, last = first + per_group < nparts ? first + per_group : nparts;
-        memset(needed, 0, (size_t)root + 1);
-        for (int c = first; c < last; c++) {
-            int *order;
-            int count = dag_reachable(em->d, parts[c], &order);
-            if (count < 0) {
-                free(needed);
-                return 0;
-            }
-            for (int k = 0; k < count; k++)
-                needed[order[k]] = 1;
-            free(order);
-        }
-        int *order = malloc(((size_t)root + 1) * sizeof *order), count = 0;
-        if (!order) {
-            free(needed);
-            return 0;
-        }
-        for (int i = 0; i <= root; i++) /* index order is an evaluation order */
-            if (needed[i])
-                order[count++] = i;
-        strbuf_printf(b, "    case %d: {\n", g);
-        body(b, em, order, count, AS_VECTOR);
+    int *order = malloc(((size_t)root + 1) * sizeof *order);
+    if (!needed || !order) {
+        free(needed);
         free(order);
-        strbuf_printf(b, "        iav r = ");
-        put_operand(b, em, parts[first], AS_VECTOR);
+        return 0;
+    }
+    int vector = r == AS_VECTOR;
+    if (vector)
+        strbuf_printf(b, "#define IACSG_GROUPS %d\n__attribute__((noinline)) iav %s_Fv_group(int group, iav x, iav y, "
+                         "iav z, iav t) {\n",
+                      gr.count, prefix);
+    else
+        strbuf_printf(b, "__attribute__((noinline)) ia_real %s_f_grad_group(int group, ia_real x, ia_real y, "
+                         "ia_real z, ia_real t, iacsg_grad *g) {\n",
+                      prefix);
+    strbuf_printf(b, "    switch (group) {\n");
+    int ok = 1;
+    for (int g = 0; g < gr.count && ok; g++) {
+        int first = g * gr.per_group, last = first + gr.per_group < nparts ? first + gr.per_group : nparts;
+        int count = group_nodes(em, parts, first, last, needed, root, order);
+        ok = count >= 0;
+        if (!ok)
+            break;
+        strbuf_printf(b, "    case %d: {\n", g);
+        body(b, em, order, count, r);
+        strbuf_printf(b, vector ? "        iav r = " : "        ia_real r = ");
+        put_operand(b, em, parts[first], vector ? AS_VECTOR : AS_POINT);
+        if (!vector) {
+            strbuf_printf(b, ";\n        iacsg_grad rg = ");
+            put_operand(b, em, parts[first], AS_DERIV);
+        }
         strbuf_printf(b, ";\n");
         for (int c = first + 1; c < last; c++) {
-            strbuf_printf(b, "        r = iav_min(r, ");
-            put_operand(b, em, parts[c], AS_VECTOR);
+            if (vector) {
+                strbuf_printf(b, "        r = iav_min(r, ");
+                put_operand(b, em, parts[c], AS_VECTOR);
+                strbuf_printf(b, ");\n");
+                continue;
+            }
+            /* as MIN's point and derivative templates: fmin, and the first operand's gradient when r <= v */
+            strbuf_printf(b, "        rg = r <= ");
+            put_operand(b, em, parts[c], AS_POINT);
+            strbuf_printf(b, " ? rg : ");
+            put_operand(b, em, parts[c], AS_DERIV);
+            strbuf_printf(b, ";\n        r = fmin(r, ");
+            put_operand(b, em, parts[c], AS_POINT);
             strbuf_printf(b, ");\n");
         }
-        strbuf_printf(b, "        return r;\n    }\n");
+        strbuf_printf(b, vector ? "        return r;\n    }\n" : "        *g = rg;\n        return r;\n    }\n");
     }
     free(needed);
-    strbuf_printf(b, "    }\n    return iav_point(IA_INF);\n}\n");
-    strbuf_printf(b, "IA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n    iav r = %s_Fv_group(0, x, y, z, t);\n"
-                     "    for (int group = 1; group < IACSG_GROUPS; group++)\n"
-                     "        r = iav_min(r, %s_Fv_group(group, x, y, z, t));\n    return r;\n}\n",
-                  prefix, prefix, prefix);
-    return 1;
+    free(order);
+    if (vector) {
+        strbuf_printf(b, "    }\n    return iav_point(IA_INF);\n}\n");
+        strbuf_printf(b, "IA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n    iav r = %s_Fv_group(0, x, y, z, t);\n"
+                         "    for (int group = 1; group < IACSG_GROUPS; group++)\n"
+                         "        r = iav_min(r, %s_Fv_group(group, x, y, z, t));\n    return r;\n}\n",
+                      prefix, prefix, prefix);
+    } else {
+        strbuf_printf(b, "    }\n    *g = (iacsg_grad)0;\n    return (ia_real)INFINITY;\n}\n");
+        strbuf_printf(b, "IA_FN ia_real %s_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, "
+                         "ia_real *gz) {\n"
+                         "    iacsg_grad g, gv;\n    ia_real r = %s_f_grad_group(0, x, y, z, t, &g);\n"
+                         "    for (int group = 1; group < %d; group++) {\n"
+                         "        ia_real v = %s_f_grad_group(group, x, y, z, t, &gv);\n"
+                         "        g = r <= v ? g : gv;\n        r = fmin(r, v);\n    }\n"
+                         "    *gx = g.x;\n    *gy = g.y;\n    *gz = g.z;\n    return r;\n}\n",
+                      prefix, prefix, gr.count, prefix);
+    }
+    return ok;
 }
 
 iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, iacsg_error *err) {
@@ -285,7 +342,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     strbuf_printf(&b, "#ifdef IA_VW\n");
     int ok = nparts >= 0;
     if (nparts >= EMIT_GROUP_MIN_PARTS) {
-        ok = emit_union_groups(&b, &em, root, parts, nparts, prefix);
+        ok = emit_union_groups(&b, &em, root, parts, nparts, prefix, AS_VECTOR);
     } else if (ok) {
         strbuf_printf(&b, "IA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n", prefix);
         body(&b, &em, order, count, AS_VECTOR);
@@ -293,23 +350,26 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
         put_operand(&b, &em, root, AS_VECTOR);
         strbuf_printf(&b, ";\n}\n");
     }
-    free(parts);
     strbuf_printf(&b, "#endif\n");
     strbuf_printf(&b, "IA_FN ia_real %s_f(ia_real x, ia_real y, ia_real z, ia_real t) {\n", prefix);
     body(&b, &em, order, count, AS_POINT);
     strbuf_printf(&b, "    return ");
     put_operand(&b, &em, root, AS_POINT);
     strbuf_printf(&b, ";\n}\n");
-    strbuf_printf(&b, "IA_FN ia_real %s_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, "
-                      "ia_real *gz) {\n",
-                  prefix);
-    body(&b, &em, order, count, AS_DERIV);
-    strbuf_printf(&b, "    iacsg_grad g = ");
-    put_operand(&b, &em, root, AS_DERIV);
-    strbuf_printf(&b, ";\n    *gx = g.x;\n    *gy = g.y;\n    *gz = g.z;\n");
-    strbuf_printf(&b, "    return ");
-    put_operand(&b, &em, root, AS_POINT);
-    strbuf_printf(&b, ";\n}\n");
+    if (nparts >= EMIT_GROUP_MIN_PARTS) {
+        ok = ok && emit_union_groups(&b, &em, root, parts, nparts, prefix, AS_DERIV);
+    } else {
+        strbuf_printf(&b, "IA_FN ia_real %s_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, "
+                          "ia_real *gy, ia_real *gz) {\n",
+                      prefix);
+        body(&b, &em, order, count, AS_DERIV);
+        strbuf_printf(&b, "    iacsg_grad g = ");
+        put_operand(&b, &em, root, AS_DERIV);
+        strbuf_printf(&b, ";\n    *gx = g.x;\n    *gy = g.y;\n    *gz = g.z;\n    return ");
+        put_operand(&b, &em, root, AS_POINT);
+        strbuf_printf(&b, ";\n}\n");
+    }
+    free(parts);
     free(order);
     free(em.axes);
     *source = strbuf_finish(&b);

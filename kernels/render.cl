@@ -161,7 +161,8 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
         ia_real n[3], dk[3] = {d[0][k], d[1][k], d[2][k]};
         if (hits[k] != 0) {
             ia_real t = lo[k] * (ia_real)0.5 + hi[k] * (ia_real)0.5;
-            shade_normal(o[0][k] + t * dk[0], o[1][k] + t * dk[1], o[2][k] + t * dk[2], time.lo, dk, n);
+            shade_normal(tile_groups_of[tile], o[0][k] + t * dk[0], o[1][k] + t * dk[1], o[2][k] + t * dk[2], time.lo,
+                         dk, n);
             shade_surface(params, n, dk, color);
         }
         put_pixel(i, j, width, height, color, lo[k], hits[k] != 0 ? n : NULL, rgb, depth, normal);

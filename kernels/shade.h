@@ -2,16 +2,38 @@
  * the camera (upper left and right of the eye), over a vertical gradient background. Colours are linear and
  * are encoded for display with gamma 2 at the end (a square root: pow() cost a tenth of the whole render).
  *
- * Needs iacsg_f_grad, the point value and gradient of the expression (the emitted source).
+ * Needs iacsg_f_grad, the point value and gradient of the expression, or its groups (the emitted source).
  */
 #ifndef KERNELS_SHADE_H
 #define KERNELS_SHADE_H
 #include "params.h"
 
+/* The gradient at p. For a union emitted in groups, over the groups set in `groups` (the tile's, packet_F): the
+ * others are certainly positive around p, so the part that is 0 there is among these. */
+IA_FN void shade_gradient(ulong groups, ia_real x, ia_real y, ia_real z, ia_real time, ia_real g[3]) {
+#ifdef IACSG_GROUPS
+    iacsg_grad grad = (iacsg_grad)0, part;
+    ia_real f = (ia_real)INFINITY;
+    for (int k = 0; k < IACSG_GROUPS; k++) {
+        if (!(groups >> k & 1))
+            continue;
+        ia_real v = iacsg_f_grad_group(k, x, y, z, time, &part);
+        grad = f <= v ? grad : part; /* as the emitted iacsg_f_grad */
+        f = fmin(f, v);
+    }
+    g[0] = grad.x;
+    g[1] = grad.y;
+    g[2] = grad.z;
+#else
+    (void)groups;
+    iacsg_f_grad(x, y, z, time, &g[0], &g[1], &g[2]);
+#endif
+}
+
 /* The unit normal at p, from the gradient (f < 0 inside, so it points out), turned to face the ray direction d.
  * Returns 0 when the gradient vanishes or is not finite there; n is then -d. */
-IA_FN int shade_normal(ia_real x, ia_real y, ia_real z, ia_real time, const ia_real d[3], ia_real n[3]) {
-    iacsg_f_grad(x, y, z, time, &n[0], &n[1], &n[2]);
+IA_FN int shade_normal(ulong groups, ia_real x, ia_real y, ia_real z, ia_real time, const ia_real d[3], ia_real n[3]) {
+    shade_gradient(groups, x, y, z, time, n);
     ia_real len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     int ok = len > 0 && isfinite(len);
     ia_real facing = n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0 ? (ia_real)-1 : (ia_real)1;
