@@ -81,6 +81,37 @@ IA_FN iav packet_F(ulong groups, iav x, iav y, iav z, iav t) {
 #endif
 }
 
+/* The groups that can matter on node (level, i) of the frame's tree: the union of the masks of the segments
+ * (the nodes at SEGMENT_LEVEL) it overlaps, exact integer arithmetic on the tree's indices. */
+IA_FN ulong packet_node_groups(const __global ulong *segment_groups, int level, bisect_index i) {
+    bisect_index first = level >= SEGMENT_LEVEL ? i >> (level - SEGMENT_LEVEL) : i << (SEGMENT_LEVEL - level);
+    bisect_index last = level >= SEGMENT_LEVEL ? first : ((i + 1) << (SEGMENT_LEVEL - level)) - 1;
+    ulong groups = 0;
+    for (bisect_index k = first; k <= last; k++)
+        groups |= segment_groups[k];
+    return groups;
+}
+
+/* The groups that can matter on the nodes of the lanes of `live`. */
+IA_FN ulong packet_groups(const __global ulong *segment_groups, ia_maskv live, packet_int level, packet_index i) {
+#ifdef IACSG_GROUPS
+    ia_real on[IA_VW];
+    bisect_index index[IA_VW];
+    int lv[IA_VW];
+    IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
+    IAV_STORE(i, index);
+    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(level), 0, lv);
+    ulong groups = 0;
+    for (int k = 0; k < IA_VW; k++)
+        if (on[k] != 0)
+            groups |= packet_node_groups(segment_groups, lv[k], index[k]);
+    return groups;
+#else
+    (void)segment_groups, (void)live, (void)level, (void)i;
+    return ~(ulong)0;
+#endif
+}
+
 /* Set-up, lane by lane: camera.h's and traverse.h's scalar code over vectors, the same operations in the same
  * order (FP_CONTRACT is off), so each lane's ray, clip and first node are bit for bit what the scalar
  * functions give for its pixel, which the host tests recompute. */
@@ -178,7 +209,7 @@ IA_FN void packet_advance(ia_maskv *searching, ia_maskv down, packet_int *level,
 /* The first root of each lane of `searching` in [t_near, t_far] of its ray o + t*d, from its node (level, i) on
  * (no node before it may hold a root): the first clipped node whose enclosure holds 0 and that is no wider than
  * eps, or at the deepest level. Returns the lanes that hit, with their leaves in [*hit_lo, *hit_hi]. */
-IA_FN ia_maskv packet_first_root(ulong groups, const ia_realv o[3], const ia_realv d[3], ia_real t0, ia_real w,
+IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_realv o[3], const ia_realv d[3], ia_real t0, ia_real w,
                                  packet_int level, packet_index i, ia_realv t_near, ia_realv t_far, ia_maskv searching,
                                  ia_real eps, iav time, ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
     ia_maskv hit = (ia_maskv)0;
@@ -188,7 +219,8 @@ IA_FN ia_maskv packet_first_root(ulong groups, const ia_realv o[3], const ia_rea
         ia_realv a = fmax(lo, t_near), b = fmin(hi, t_far);
         ia_maskv live = searching & (a <= b);
         iav t = iav_make(a, b);
-        iav f = packet_F(groups, packet_extent(o[0], d[0], t), packet_extent(o[1], d[1], t),
+        iav f = packet_F(packet_groups(segment_groups, live, level, i), packet_extent(o[0], d[0], t),
+                         packet_extent(o[1], d[1], t),
                          packet_extent(o[2], d[2], t), time);
         PACKET_COUNT(*evals, live);
         ia_maskv zero = live & iav_contains_zero(f);

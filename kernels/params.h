@@ -35,4 +35,9 @@ enum {
 #define PACKET_H 4
 #define PACKET_LANES (PACKET_W * PACKET_H)
 
+/* For a union emitted in groups, the tile pass keeps a mask of the groups that can matter per tile and per
+ * segment of the frame's tree: the SEGMENTS nodes at level SEGMENT_LEVEL (kernels/packet.h). */
+#define SEGMENT_LEVEL 4
+#define SEGMENTS (1 << SEGMENT_LEVEL)
+
 #endif

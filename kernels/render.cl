@@ -12,6 +12,9 @@
 #include "tile.h"
 #include "shade.h"
 
+/* Tiles are row-major, tiles_x per row. */
+static inline size_t tile_index(int tx, int ty, int tiles_x) { return (size_t)ty * (size_t)tiles_x + (size_t)tx; }
+
 /* tiles[2k], tiles[2k+1]: the level and index of tile k's first coarse leaf (row-major, tiles_x per row), as
  * reals (exact: the index has fewer bits than the mantissa, see traverse.h); level -1 when no ray of the tile
  * can meet the surface. One work-item per PACKET_W x PACKET_H tiles, searched in SIMD lanes (tile.h). */
@@ -55,7 +58,7 @@ __kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int 
     ulong groups[IA_VW], any_tile = 0;
     iav root = iav_make(packet_node_bound(t0, w, (packet_int)0, (packet_index)0),
                         packet_node_bound(t0, w, (packet_int)0, (packet_index)1));
-    tile_groups(base_v, dir_v, root, time, groups);
+    tile_groups(base_v, dir_v, root, time, ~(ulong)0, groups);
     for (int k = 0; k < IA_VW; k++)
         any_tile |= valid[k] != 0 ? groups[k] : 0;
     packet_int level = (packet_int)0;
@@ -63,7 +66,22 @@ __kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int 
     ia_maskv found = tile_first_leaves(any_tile, base_v, dir_v, IAV_LOAD(spread), ortho, t0, w, params[PARAM_EPS],
                                        searching, time, &level, &leaf, &counts);
     tile_groups(base_v, dir_v, iav_make(select(root.lo, packet_node_bound(t0, w, level, leaf), found), root.hi),
-                time, groups);
+                time, any_tile, groups);
+    /* then per segment of the tree (params.h), among the tile's own */
+    ulong in_tiles = 0;
+    for (int k = 0; k < IA_VW; k++)
+        in_tiles |= valid[k] != 0 ? groups[k] : 0;
+    for (int s = 0; s < SEGMENTS; s++) {
+        ulong segment[IA_VW];
+        tile_groups(base_v, dir_v,
+                    iav_make(packet_node_bound(t0, w, (packet_int)SEGMENT_LEVEL, (packet_index)s),
+                             packet_node_bound(t0, w, (packet_int)SEGMENT_LEVEL, (packet_index)(s + 1))),
+                    time, in_tiles, segment);
+        for (int k = 0; k < IA_VW; k++)
+            if (valid[k] != 0)
+                tile_groups_of[tile_index(tx0 + k % PACKET_W, ty0 + k / PACKET_W, tiles_x) * SEGMENTS + s] =
+                    segment[k] & groups[k];
+    }
     ia_real level_r[IA_VW], leaf_r[IA_VW];
     bisect_index count[IA_VW];
     IAV_STORE(select((ia_realv)-1, packet_int_to_real(level), found), level_r);
@@ -72,10 +90,9 @@ __kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int 
     for (int k = 0; k < IA_VW; k++) {
         if (valid[k] == 0)
             continue;
-        size_t tile = (size_t)(ty0 + k / PACKET_W) * (size_t)tiles_x + (size_t)(tx0 + k % PACKET_W);
+        size_t tile = tile_index(tx0 + k % PACKET_W, ty0 + k / PACKET_W, tiles_x);
         tiles[2 * tile] = level_r[k];
         tiles[2 * tile + 1] = leaf_r[k];
-        tile_groups_of[tile] = groups[k];
 #ifdef KERNEL_STATS
         evals[tile] = (uint)count[k];
 #else
@@ -142,7 +159,8 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
     ia_maskv searching = (col < width) & (row < height) & packet_clip(params, ov, dv, &t_near, &t_far);
     packet_index start = max((packet_index)leaf, packet_node_at(t0, w, level, t_near));
     packet_index counts = (packet_index)0;
-    ia_maskv hit = packet_first_root(tile_groups_of[tile], ov, dv, t0, w, (packet_int)level, start, t_near, t_far, searching,
+    const __global ulong *segment_groups = tile_groups_of + tile * SEGMENTS;
+    ia_maskv hit = packet_first_root(segment_groups, ov, dv, t0, w, (packet_int)level, start, t_near, t_far, searching,
                                      params[PARAM_EPS], iav_splat(time), &hit_lo, &hit_hi, &counts);
     ia_real o[3][IA_VW], d[3][IA_VW], lo[IA_VW], hi[IA_VW], hits[IA_VW];
     for (int c = 0; c < 3; c++) {
@@ -161,7 +179,7 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
         ia_real n[3], dk[3] = {d[0][k], d[1][k], d[2][k]};
         if (hits[k] != 0) {
             ia_real t = lo[k] * (ia_real)0.5 + hi[k] * (ia_real)0.5;
-            shade_normal(tile_groups_of[tile], o[0][k] + t * dk[0], o[1][k] + t * dk[1], o[2][k] + t * dk[2], time.lo,
+            shade_normal(segment_groups[node_at(t0, w, SEGMENT_LEVEL, t)], o[0][k] + t * dk[0], o[1][k] + t * dk[1], o[2][k] + t * dk[2], time.lo,
                          dk, n);
             shade_surface(params, n, dk, color);
         }

@@ -83,11 +83,11 @@ IA_FN ia_maskv tile_first_leaves(ulong groups, const iav base[3], const iav dir[
     return found;
 }
 
-/* The groups of a union (packet_F) that are not certainly positive in each lane's tile over [t.lo, t.hi] (bit g
- * of groups[lane] for group g): where every box the tile's rays evaluate lies when they start at t.lo (the
- * frame tree's nodes end at the root's end, t.hi). The others cannot change where the union is zero there.
- * All ones for an expression without groups. */
-IA_FN void tile_groups(const iav base[3], const iav dir[3], iav t, iav time, ulong groups[IA_VW]) {
+/* Of the groups of a union set in `among`, those that are not certainly positive in each lane's tile over
+ * [t.lo, t.hi] (bit g of groups[lane] for group g): the others cannot change where the union is zero in the
+ * boxes that the tile's rays evaluate on that part of the tree (packet_F). All ones for an expression without
+ * groups. */
+IA_FN void tile_groups(const iav base[3], const iav dir[3], iav t, iav time, ulong among, ulong groups[IA_VW]) {
     for (int k = 0; k < IA_VW; k++)
         groups[k] = ~(ulong)0;
 #ifdef IACSG_GROUPS
@@ -97,13 +97,15 @@ IA_FN void tile_groups(const iav base[3], const iav dir[3], iav t, iav time, ulo
     for (int k = 0; k < IA_VW; k++)
         groups[k] = 0;
     for (int g = 0; g < IACSG_GROUPS; g++) {
+        if (!(among >> g & 1))
+            continue;
         ia_real lo[IA_VW];
         IAV_STORE(iacsg_Fv_group(g, box[0], box[1], box[2], time).lo, lo);
         for (int k = 0; k < IA_VW; k++)
             groups[k] |= (ulong)!(lo[k] > 0) << g;
     }
 #else
-    (void)base, (void)dir, (void)t, (void)time;
+    (void)base, (void)dir, (void)t, (void)time, (void)among;
 #endif
 }
 #endif

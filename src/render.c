@@ -228,7 +228,7 @@ static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t
     }
     b->tiles = clCreateBuffer(ctx, CL_MEM_READ_WRITE, 2 * tiles_n * real_size, NULL, &rc);
     CLRT_CHECK(err, rc);
-    b->groups = clCreateBuffer(ctx, CL_MEM_READ_WRITE, tiles_n * sizeof(cl_ulong), NULL, &rc);
+    b->groups = clCreateBuffer(ctx, CL_MEM_READ_WRITE, tiles_n * SEGMENTS * sizeof(cl_ulong), NULL, &rc);
     CLRT_CHECK(err, rc);
     if (r->config.stats) {
         b->evals = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint), NULL, &rc);

@@ -174,8 +174,9 @@ typedef struct {
     long through, misses, late;
 } csg_report;
 
-/* Compiles `expr`, renders it, and checks each pixel against the exact first entry. */
-static csg_report check_scene(const char *expr, first_entry entry, const void *scene, const iacsg_view *view) {
+/* Compiles `expr`, renders it, and checks each pixel against the exact first entry; reports under `name`. */
+static csg_report check_scene(const char *name, const char *expr, first_entry entry, const void *scene,
+                              const iacsg_view *view) {
     csg_report rep = {0, 0, 0};
     iacsg_error err = {0};
     iacsg_expr *e = NULL;
@@ -203,21 +204,21 @@ static csg_report check_scene(const char *expr, first_entry entry, const void *s
             double depth = fr.depth[(size_t)j * view->width + i];
             if (!isfinite(depth)) {
                 if (rep.misses++ < 5)
-                    test_note("%s: missed pixel (%d, %d), entry at t = %.9g", expr, i, j, t);
+                    test_note("%s: missed pixel (%d, %d), entry at t = %.9g", name, i, j, t);
             } else if (depth > t * (1 + 1e-12) && rep.late++ < 5) {
-                test_note("%s: pixel (%d, %d) depth %.9g after the entry %.9g", expr, i, j, depth, t);
+                test_note("%s: pixel (%d, %d) depth %.9g after the entry %.9g", name, i, j, depth, t);
             }
         }
     iacsg_frame_free(&fr);
-    test_note("%s: %ld rays through the solid, %ld missed, %ld late", expr, rep.through, rep.misses, rep.late);
-    CHECK(rep.through > 100, "%s: too few rays through the solid (%ld)", expr, rep.through);
-    CHECK(rep.misses == 0 && rep.late == 0, "%s: %ld missed and %ld late pixels", expr, rep.misses, rep.late);
+    test_note("%s: %ld rays through the solid, %ld missed, %ld late", name, rep.through, rep.misses, rep.late);
+    CHECK(rep.through > 100, "%s: too few rays through the solid (%ld)", name, rep.through);
+    CHECK(rep.misses == 0 && rep.late == 0, "%s: %ld missed and %ld late pixels", name, rep.misses, rep.late);
     return rep;
 }
 
 static csg_report check_expr(const char *expr, make_poly fa, make_poly fb, csg_op op, const iacsg_view *view) {
     csg_pair pair = {fa, fb, op};
-    return check_scene(expr, pair_entry, &pair, view);
+    return check_scene(expr, expr, pair_entry, &pair, view);
 }
 
 static iacsg_view view_of(int w, int h, double eps) {
@@ -291,5 +292,5 @@ TEST_FP(render_union_of_many_spheres) {
     }
     snprintf(end, sizeof expr - (size_t)(end - expr), ")");
     iacsg_view v = view_of(160, 160, 1e-5);
-    check_scene(expr, grid_entry, NULL, &v);
+    check_scene("a union of 32 spheres", expr, grid_entry, NULL, &v);
 }
