@@ -1,6 +1,6 @@
-/* kernels/render.cl -- the entry points, run for each band of rows: iacsg_tiles, one work-item per tile, then
- * iacsg_render, one work-item per pixel, in work-groups that are the tiles (neighbouring rays take similar
- * paths through the bisection, so they run together).
+/* kernels/render.cl -- the entry point iacsg_render, run for each band of rows: one work-item per block of 4x4
+ * tiles of 8x8 pixels, which runs the tile pass over its tiles (tile.h), then traces their pixels in packets of
+ * 4x4 rays (neighbouring rays take similar paths through the bisection, so they share SIMD lanes well).
  *
  * Per pixel: the camera ray (camera.h), clipped to the bounds (rays that miss the box cost nothing more); if the
  * tile may hold surface, the first root by stackless bisection (packet.h) from the tile's first coarse leaf on
@@ -15,15 +15,14 @@
 /* Tiles are row-major, tiles_x per row. */
 static inline size_t tile_index(int tx, int ty, int tiles_x) { return (size_t)ty * (size_t)tiles_x + (size_t)tx; }
 
-/* tiles[2k], tiles[2k+1]: the level and index of tile k's first coarse leaf (row-major, tiles_x per row), as
+/* The tile pass over the PACKET_W x PACKET_H tiles from (tx0, ty0), searched in SIMD lanes (tile.h).
+ * tiles[2k], tiles[2k+1]: the level and index of tile k's first coarse leaf (row-major, tiles_x per row), as
  * reals (exact: the index has fewer bits than the mantissa, see traverse.h); level -1 when no ray of the tile
- * can meet the surface. One work-item per PACKET_W x PACKET_H tiles, searched in SIMD lanes (tile.h). */
-__kernel void iacsg_tiles(__constant ia_real *params, int flags, int width, int height, int tile_row0,
-                          __global ia_real *tiles, __global uint *evals, __global ulong *tile_groups_of) {
+ * can meet the surface. tile_groups_of[SEGMENTS k + s]: for a union in groups, those that can matter in tile k
+ * on segment s of the frame's tree. */
+static void block_tiles(__constant ia_real *params, int flags, int width, int height, int tx0, int ty0,
+                        __global ia_real *tiles, __global uint *evals, __global ulong *tile_groups_of) {
     int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
-    int tx0 = (int)get_global_id(0) * PACKET_W, ty0 = tile_row0 + (int)get_global_id(1) * PACKET_H;
-    if (tx0 >= tiles_x || ty0 >= tiles_y)
-        return;
     int ortho = flags & RENDER_ORTHO;
     ia_real base[2][3][IA_VW], dir[2][3][IA_VW], spread[IA_VW], valid[IA_VW];
     for (int k = 0; k < IA_VW; k++) {
@@ -124,12 +123,11 @@ static inline void put_pixel(int i, int j, int width, int height, float color[3]
     }
 }
 
-/* One work-item per packet of PACKET_W x PACKET_H pixels (params.h), its rays traced together in SIMD lanes
- * (packet.h); work-groups are the tiles. Set-up and shading run lane by lane, in scalar code. */
-__kernel void iacsg_render(__constant ia_real *params, int flags, int width, int height, int row0,
-                           __global const ia_real *tiles, __global float *rgb, __global float *depth,
-                           __global float *normal, __global uint *evals, __global const ulong *tile_groups_of) {
-    int i0 = (int)get_global_id(0) * PACKET_W, j0 = row0 + (int)get_global_id(1) * PACKET_H;
+/* The packet of PACKET_W x PACKET_H pixels from (i0, j0) (params.h), its rays traced together in SIMD lanes
+ * (packet.h) after the tile pass of its tile. Set-up and shading run lane by lane, in scalar code. */
+static void trace_packet(__constant ia_real *params, int flags, int width, int height, int i0, int j0,
+                         __global const ia_real *tiles, __global float *rgb, __global float *depth,
+                         __global float *normal, __global uint *evals, __global const ulong *tile_groups_of) {
     if (i0 >= width || j0 >= height)
         return;
     size_t tile = (size_t)(j0 / TILE_SIZE) * (size_t)((width + TILE_SIZE - 1) / TILE_SIZE) + (size_t)(i0 / TILE_SIZE);
@@ -191,4 +189,24 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
         (void)evals;
 #endif
     }
+}
+
+/* One work-item per block of PACKET_W x PACKET_H tiles (32x32 pixels), run for bands of block rows: the tile pass
+ * over its tiles, then their packets. One kernel rather than a tile kernel and a ray kernel: PoCL compiles each
+ * kernel of a program separately at its first launch, so the expression was compiled twice (half of the first
+ * run's time, ~8 s for 1024 spheres). */
+__kernel void iacsg_render(__constant ia_real *params, int flags, int width, int height, int block_row0,
+                           __global ia_real *tiles, __global float *rgb, __global float *depth, __global float *normal,
+                           __global uint *evals, __global uint *tile_evals, __global ulong *tile_groups_of) {
+    int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
+    int tx0 = (int)get_global_id(0) * PACKET_W, ty0 = (block_row0 + (int)get_global_id(1)) * PACKET_H;
+    if (tx0 >= tiles_x || ty0 >= tiles_y)
+        return;
+    block_tiles(params, flags, width, height, tx0, ty0, tiles, tile_evals, tile_groups_of);
+    for (int ty = ty0; ty < min(ty0 + PACKET_H, tiles_y); ty++)
+        for (int tx = tx0; tx < min(tx0 + PACKET_W, tiles_x); tx++)
+            for (int j = 0; j < TILE_SIZE; j += PACKET_H)
+                for (int i = 0; i < TILE_SIZE; i += PACKET_W)
+                    trace_packet(params, flags, width, height, tx * TILE_SIZE + i, ty * TILE_SIZE + j, tiles, rgb,
+                                 depth, normal, evals, tile_groups_of);
 }

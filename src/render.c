@@ -13,16 +13,16 @@
 extern const char iacsg_cl_ia[];      /* the flattened ia/ headers (Makefile: IA_CL_HEADERS) */
 extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNEL_SOURCES) */
 
-/* The work-group is a tile of pixels (kernels/tile.h): neighbouring rays take similar paths through the
- * bisection. A band is a launch of several rows of tiles: narrow ones when progress is reported, otherwise
- * wide enough that launches are few (each wakes the device's threads and waits for the slowest), yet short
- * enough that no launch runs for long (GPU drivers may kill a kernel that holds the display for seconds). */
-enum { BAND_ROWS_PROGRESS = 8 * TILE_SIZE, BAND_ROWS = 64 * TILE_SIZE };
+/* A work-item is a block of PACKET_W x PACKET_H tiles (kernels/render.cl), BLOCK_ROWS pixel rows high. A band is
+ * a launch of several rows of blocks: narrow ones when progress is reported, otherwise wide enough that
+ * launches are few (each wakes the device's threads and waits for the slowest), yet short enough that no
+ * launch runs for long (GPU drivers may kill a kernel that holds the display for seconds). */
+enum { BLOCK_ROWS = PACKET_H * TILE_SIZE, BAND_ROWS_PROGRESS = 2 * BLOCK_ROWS, BAND_ROWS = 64 * BLOCK_ROWS };
 
 struct iacsg_renderer {
     clrt rt;
     cl_program program;
-    cl_kernel kernel, tile_kernel;
+    cl_kernel kernel;
     iacsg_render_config config;
     double build_seconds;
 };
@@ -58,8 +58,6 @@ iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_confi
         cl_int rc = CL_SUCCESS;
         r->kernel = clCreateKernel(r->program, "iacsg_render", &rc);
         CLRT_CHECK(err, rc);
-        r->tile_kernel = clCreateKernel(r->program, "iacsg_tiles", &rc);
-        CLRT_CHECK(err, rc);
     }
     if (st != IACSG_OK) {
         iacsg_renderer_destroy(r);
@@ -77,8 +75,6 @@ void iacsg_renderer_destroy(iacsg_renderer *r) {
         return;
     if (r->kernel)
         clReleaseKernel(r->kernel);
-    if (r->tile_kernel)
-        clReleaseKernel(r->tile_kernel);
     if (r->program)
         clReleaseProgram(r->program);
     clrt_close(&r->rt);
@@ -245,21 +241,18 @@ fail:
 static iacsg_status set_args(iacsg_renderer *r, const iacsg_view *view, frame_buffers *b, iacsg_error *err) {
     cl_int flags = view->camera.ortho_height > 0 ? RENDER_ORTHO : 0;
     cl_int width = view->width, height = view->height;
-    cl_kernel kernels[2] = {r->tile_kernel, r->kernel};
-    for (int k = 0; k < 2; k++) {
-        CLRT_CHECK(err, clSetKernelArg(kernels[k], 0, sizeof(cl_mem), &b->params));
-        CLRT_CHECK(err, clSetKernelArg(kernels[k], 1, sizeof(cl_int), &flags));
-        CLRT_CHECK(err, clSetKernelArg(kernels[k], 2, sizeof(cl_int), &width));
-        CLRT_CHECK(err, clSetKernelArg(kernels[k], 3, sizeof(cl_int), &height));
-        CLRT_CHECK(err, clSetKernelArg(kernels[k], 5, sizeof(cl_mem), &b->tiles));
-    }
-    CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 6, sizeof(cl_mem), b->tile_evals ? &b->tile_evals : NULL));
-    CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 7, sizeof(cl_mem), &b->groups));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 10, sizeof(cl_mem), &b->groups));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 6, sizeof(cl_mem), &b->rgb));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 7, sizeof(cl_mem), b->depth ? &b->depth : NULL));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 8, sizeof(cl_mem), b->normal ? &b->normal : NULL));
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 9, sizeof(cl_mem), b->evals ? &b->evals : NULL));
+    cl_kernel k = r->kernel; /* argument 4, the band's first block row, is set per launch */
+    CLRT_CHECK(err, clSetKernelArg(k, 0, sizeof(cl_mem), &b->params));
+    CLRT_CHECK(err, clSetKernelArg(k, 1, sizeof(cl_int), &flags));
+    CLRT_CHECK(err, clSetKernelArg(k, 2, sizeof(cl_int), &width));
+    CLRT_CHECK(err, clSetKernelArg(k, 3, sizeof(cl_int), &height));
+    CLRT_CHECK(err, clSetKernelArg(k, 5, sizeof(cl_mem), &b->tiles));
+    CLRT_CHECK(err, clSetKernelArg(k, 6, sizeof(cl_mem), &b->rgb));
+    CLRT_CHECK(err, clSetKernelArg(k, 7, sizeof(cl_mem), b->depth ? &b->depth : NULL));
+    CLRT_CHECK(err, clSetKernelArg(k, 8, sizeof(cl_mem), b->normal ? &b->normal : NULL));
+    CLRT_CHECK(err, clSetKernelArg(k, 9, sizeof(cl_mem), b->evals ? &b->evals : NULL));
+    CLRT_CHECK(err, clSetKernelArg(k, 10, sizeof(cl_mem), b->tile_evals ? &b->tile_evals : NULL));
+    CLRT_CHECK(err, clSetKernelArg(k, 11, sizeof(cl_mem), &b->groups));
     return IACSG_OK;
 fail:
     return IACSG_ERR_OPENCL;
@@ -272,15 +265,10 @@ static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacs
     int band = view->progress ? BAND_ROWS_PROGRESS : BAND_ROWS;
     for (cl_int row0 = 0; row0 < view->height; row0 += band) {
         int rows = view->height - row0 < band ? view->height - row0 : band;
-        cl_int tile_row0 = row0 / TILE_SIZE;
-        size_t tile_rows = (size_t)(rows + TILE_SIZE - 1) / TILE_SIZE;
-        /* a work-item per PACKET_W x PACKET_H tiles, then per as many pixels, a tile per work-group */
-        size_t tile_global[2] = {(tiles_x + PACKET_W - 1) / PACKET_W, (tile_rows + PACKET_H - 1) / PACKET_H};
-        CLRT_CHECK(err, clSetKernelArg(r->tile_kernel, 4, sizeof(cl_int), &tile_row0));
-        CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->tile_kernel, 2, NULL, tile_global, NULL, 0, NULL, NULL));
-        size_t local[2] = {TILE_SIZE / PACKET_W, TILE_SIZE / PACKET_H};
-        size_t global[2] = {tiles_x * local[0], tile_rows * local[1]};
-        CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &row0));
+        cl_int block_row0 = row0 / BLOCK_ROWS;
+        size_t global[2] = {(tiles_x + PACKET_W - 1) / PACKET_W, (size_t)(rows + BLOCK_ROWS - 1) / BLOCK_ROWS};
+        CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &block_row0));
+        size_t local[2] = {1, 1}; /* blocks are independent: let the device spread them over all its cores */
         CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
         if (view->progress) {
             CLRT_CHECK(err, clFinish(q));
