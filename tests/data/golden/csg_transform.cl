@@ -8,37 +8,6 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 #endif
-IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
-    ia_interval v9 = ia_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));
-    ia_interval v10 = ia_sqr(v9);
-    ia_interval v11 = ia_sqr(y);
-    ia_interval v12 = ia_add(v10, v11);
-    ia_interval v13 = ia_sqr(z);
-    ia_interval v14 = ia_add(v12, v13);
-    ia_interval v16 = ia_add_r(v14, IACSG_K(-0x1p-2f, -0x1p-2));
-    ia_interval v17 = ia_abs(x);
-    ia_interval v18 = ia_abs(y);
-    ia_interval v19 = ia_abs(z);
-    ia_interval v20 = ia_add_r(v17, IACSG_K(-0x1p+0f, -0x1p+0));
-    ia_interval v21 = ia_add_r(v18, IACSG_K(-0x1p+0f, -0x1p+0));
-    ia_interval v22 = ia_add_r(v19, IACSG_K(-0x1p+0f, -0x1p+0));
-    ia_interval v23 = ia_max(v20, v21);
-    ia_interval v24 = ia_max(v22, v23);
-    ia_interval v30 = ia_mul(x, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
-    ia_interval v32 = ia_mul(y, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
-    ia_interval v33 = ia_add(v30, v32);
-    ia_interval v34 = ia_mul(y, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
-    ia_interval v35 = ia_mul(x, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
-    ia_interval v36 = ia_sub(v34, v35);
-    ia_interval v37 = ia_sqr(v33);
-    ia_interval v38 = ia_sqr(v36);
-    ia_interval v39 = ia_add(v37, v38);
-    ia_interval v41 = ia_add_r(v39, IACSG_K(-0x1p-4f, -0x1p-4));
-    ia_interval v42 = ia_neg(v41);
-    ia_interval v43 = ia_max(v24, v42);
-    ia_interval v44 = ia_min(v16, v43);
-    return v44;
-}
 #ifdef IA_VW
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v9 = iav_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));
@@ -71,7 +40,38 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v44 = iav_min(v16, v43);
     return v44;
 }
-#endif
+#else
+IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    ia_interval v9 = ia_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v10 = ia_sqr(v9);
+    ia_interval v11 = ia_sqr(y);
+    ia_interval v12 = ia_add(v10, v11);
+    ia_interval v13 = ia_sqr(z);
+    ia_interval v14 = ia_add(v12, v13);
+    ia_interval v16 = ia_add_r(v14, IACSG_K(-0x1p-2f, -0x1p-2));
+    ia_interval v17 = ia_abs(x);
+    ia_interval v18 = ia_abs(y);
+    ia_interval v19 = ia_abs(z);
+    ia_interval v20 = ia_add_r(v17, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v21 = ia_add_r(v18, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v22 = ia_add_r(v19, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v23 = ia_max(v20, v21);
+    ia_interval v24 = ia_max(v22, v23);
+    ia_interval v30 = ia_mul(x, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
+    ia_interval v32 = ia_mul(y, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
+    ia_interval v33 = ia_add(v30, v32);
+    ia_interval v34 = ia_mul(y, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
+    ia_interval v35 = ia_mul(x, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
+    ia_interval v36 = ia_sub(v34, v35);
+    ia_interval v37 = ia_sqr(v33);
+    ia_interval v38 = ia_sqr(v36);
+    ia_interval v39 = ia_add(v37, v38);
+    ia_interval v41 = ia_add_r(v39, IACSG_K(-0x1p-4f, -0x1p-4));
+    ia_interval v42 = ia_neg(v41);
+    ia_interval v43 = ia_max(v24, v42);
+    ia_interval v44 = ia_min(v16, v43);
+    return v44;
+}
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v9 = x + IACSG_K(-0x1p+0f, -0x1p+0);
     ia_real v10 = v9 * v9;
@@ -103,6 +103,7 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v44 = fmin(v16, v43);
     return v44;
 }
+#endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v9 = x + IACSG_K(-0x1p+0f, -0x1p+0);
     iacsg_grad v9_d = (iacsg_grad)(1, 0, 0, 0);

@@ -8,18 +8,6 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 #endif
-IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
-    ia_interval v2 = ia_pown(x, 3);
-    ia_interval v5 = ia_sqrt(y);
-    ia_interval v6 = ia_add(v2, v5);
-    ia_interval v10 = ia_pown(z, -2);
-    ia_interval v11 = ia_add(v6, v10);
-    ia_interval v12 = ia_sqr(x);
-    ia_interval v13 = ia_add(v11, v12);
-    ia_interval v15 = ia_pow(y, ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
-    ia_interval v16 = ia_add(v13, v15);
-    return v16;
-}
 #ifdef IA_VW
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v2 = iav_pown(x, 3);
@@ -33,7 +21,19 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v16 = iav_add(v13, v15);
     return v16;
 }
-#endif
+#else
+IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    ia_interval v2 = ia_pown(x, 3);
+    ia_interval v5 = ia_sqrt(y);
+    ia_interval v6 = ia_add(v2, v5);
+    ia_interval v10 = ia_pown(z, -2);
+    ia_interval v11 = ia_add(v6, v10);
+    ia_interval v12 = ia_sqr(x);
+    ia_interval v13 = ia_add(v11, v12);
+    ia_interval v15 = ia_pow(y, ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
+    ia_interval v16 = ia_add(v13, v15);
+    return v16;
+}
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v2 = pown(x, 3);
     ia_real v5 = sqrt(y);
@@ -46,6 +46,7 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v16 = v13 + v15;
     return v16;
 }
+#endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v2 = pown(x, 3);
     iacsg_grad v2_d = (ia_real)3 * pown(x, 3 - 1) * (iacsg_grad)(1, 0, 0, 0);

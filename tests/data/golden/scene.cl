@@ -8,18 +8,6 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 #endif
-IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
-    ia_interval v3 = ia_sqr(x);
-    ia_interval v5 = ia_sqr(y);
-    ia_interval v6 = ia_add(v3, v5);
-    ia_interval v8 = ia_sqr(z);
-    ia_interval v9 = ia_add(v6, v8);
-    ia_interval v11 = ia_sub(v9, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
-    ia_interval v14 = ia_sub(v6, ia_make(IACSG_K(0x1.70a3d2p-4f, 0x1.70a3d70a3d709p-4), IACSG_K(0x1.70a3dap-4f, 0x1.70a3d70a3d70dp-4)));
-    ia_interval v15 = ia_neg(v14);
-    ia_interval v16 = ia_max(v11, v15);
-    return v16;
-}
 #ifdef IA_VW
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v3 = iav_sqr(x);
@@ -33,7 +21,19 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v16 = iav_max(v11, v15);
     return v16;
 }
-#endif
+#else
+IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    ia_interval v3 = ia_sqr(x);
+    ia_interval v5 = ia_sqr(y);
+    ia_interval v6 = ia_add(v3, v5);
+    ia_interval v8 = ia_sqr(z);
+    ia_interval v9 = ia_add(v6, v8);
+    ia_interval v11 = ia_sub(v9, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    ia_interval v14 = ia_sub(v6, ia_make(IACSG_K(0x1.70a3d2p-4f, 0x1.70a3d70a3d709p-4), IACSG_K(0x1.70a3dap-4f, 0x1.70a3d70a3d70dp-4)));
+    ia_interval v15 = ia_neg(v14);
+    ia_interval v16 = ia_max(v11, v15);
+    return v16;
+}
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v3 = x * x;
     ia_real v5 = y * y;
@@ -46,6 +46,7 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v16 = fmax(v11, v15);
     return v16;
 }
+#endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v3 = x * x;
     iacsg_grad v3_d = (ia_real)2 * x * (iacsg_grad)(1, 0, 0, 0);

@@ -8,13 +8,6 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 #endif
-IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
-    ia_interval v1 = ia_sin(x);
-    ia_interval v3 = ia_mul(v1, y);
-    ia_interval v5 = ia_add(v1, ia_make(IACSG_K(0x1.999998p-4f, 0x1.9999999999999p-4), IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4)));
-    ia_interval v6 = ia_min(v3, v5);
-    return v6;
-}
 #ifdef IA_VW
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v1 = iav_sin(x);
@@ -23,7 +16,14 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v6 = iav_min(v3, v5);
     return v6;
 }
-#endif
+#else
+IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    ia_interval v1 = ia_sin(x);
+    ia_interval v3 = ia_mul(v1, y);
+    ia_interval v5 = ia_add(v1, ia_make(IACSG_K(0x1.999998p-4f, 0x1.9999999999999p-4), IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4)));
+    ia_interval v6 = ia_min(v3, v5);
+    return v6;
+}
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v1 = sin(x);
     ia_real v3 = v1 * y;
@@ -31,6 +31,7 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v6 = fmin(v3, v5);
     return v6;
 }
+#endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v1 = sin(x);
     iacsg_grad v1_d = cos(x) * (iacsg_grad)(1, 0, 0, 0);

@@ -8,15 +8,6 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 #endif
-IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
-    ia_interval v3 = ia_sqr(x);
-    ia_interval v5 = ia_sqr(y);
-    ia_interval v6 = ia_add(v3, v5);
-    ia_interval v8 = ia_sqr(z);
-    ia_interval v9 = ia_add(v6, v8);
-    ia_interval v11 = ia_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
-    return v11;
-}
 #ifdef IA_VW
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v3 = iav_sqr(x);
@@ -27,7 +18,16 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v11 = iav_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
     return v11;
 }
-#endif
+#else
+IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    ia_interval v3 = ia_sqr(x);
+    ia_interval v5 = ia_sqr(y);
+    ia_interval v6 = ia_add(v3, v5);
+    ia_interval v8 = ia_sqr(z);
+    ia_interval v9 = ia_add(v6, v8);
+    ia_interval v11 = ia_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
+    return v11;
+}
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v3 = x * x;
     ia_real v5 = y * y;
@@ -37,6 +37,7 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v11 = v9 + IACSG_K(-0x1p+0f, -0x1p+0);
     return v11;
 }
+#endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v3 = x * x;
     iacsg_grad v3_d = (ia_real)2 * x * (iacsg_grad)(1, 0, 0, 0);

@@ -8,44 +8,6 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 #endif
-IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
-    ia_interval v2 = ia_sqr(x);
-    ia_interval v4 = ia_sqr(y);
-    ia_interval v5 = ia_add(v2, v4);
-    ia_interval v8 = ia_sub(v5, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
-    ia_interval v9 = ia_sqr(v8);
-    ia_interval v11 = ia_sqr(z);
-    ia_interval v14 = ia_add_r(v11, IACSG_K(-0x1p+0f, -0x1p+0));
-    ia_interval v15 = ia_sqr(v14);
-    ia_interval v16 = ia_add(v9, v15);
-    ia_interval v17 = ia_add(v4, v11);
-    ia_interval v18 = ia_sub(v17, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
-    ia_interval v19 = ia_sqr(v18);
-    ia_interval v20 = ia_add_r(v2, IACSG_K(-0x1p+0f, -0x1p+0));
-    ia_interval v21 = ia_sqr(v20);
-    ia_interval v22 = ia_add(v19, v21);
-    ia_interval v23 = ia_mul(v16, v22);
-    ia_interval v24 = ia_add(v2, v11);
-    ia_interval v25 = ia_sub(v24, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
-    ia_interval v26 = ia_sqr(v25);
-    ia_interval v27 = ia_add_r(v4, IACSG_K(-0x1p+0f, -0x1p+0));
-    ia_interval v28 = ia_sqr(v27);
-    ia_interval v29 = ia_add(v26, v28);
-    ia_interval v30 = ia_mul(v23, v29);
-    ia_interval v32 = ia_sub(v30, ia_make(IACSG_K(0x1.47ae14p-6f, 0x1.47ae147ae147ap-6), IACSG_K(0x1.47ae16p-6f, 0x1.47ae147ae147bp-6)));
-    ia_interval v33 = ia_add(v5, v11);
-    ia_interval v34 = ia_add_r(v33, IACSG_K(-0x1p+0f, -0x1p+0));
-    ia_interval v40 = ia_add_r(t, IACSG_K(-0x1p-1f, -0x1p-1));
-    ia_interval v41 = ia_mul_r(v40, IACSG_K(-0x1.8p+3f, -0x1.8p+3));
-    ia_interval v42 = ia_exp(v41);
-    ia_interval v43 = ia_add_r(v42, IACSG_K(0x1p+0f, 0x1p+0));
-    ia_interval v44 = ia_recip(v43);
-    ia_interval v45 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v44);
-    ia_interval v46 = ia_mul(v32, v45);
-    ia_interval v47 = ia_mul(v34, v44);
-    ia_interval v48 = ia_add(v46, v47);
-    return v48;
-}
 #ifdef IA_VW
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v2 = iav_sqr(x);
@@ -85,7 +47,45 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v48 = iav_add(v46, v47);
     return v48;
 }
-#endif
+#else
+IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    ia_interval v2 = ia_sqr(x);
+    ia_interval v4 = ia_sqr(y);
+    ia_interval v5 = ia_add(v2, v4);
+    ia_interval v8 = ia_sub(v5, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    ia_interval v9 = ia_sqr(v8);
+    ia_interval v11 = ia_sqr(z);
+    ia_interval v14 = ia_add_r(v11, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v15 = ia_sqr(v14);
+    ia_interval v16 = ia_add(v9, v15);
+    ia_interval v17 = ia_add(v4, v11);
+    ia_interval v18 = ia_sub(v17, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    ia_interval v19 = ia_sqr(v18);
+    ia_interval v20 = ia_add_r(v2, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v21 = ia_sqr(v20);
+    ia_interval v22 = ia_add(v19, v21);
+    ia_interval v23 = ia_mul(v16, v22);
+    ia_interval v24 = ia_add(v2, v11);
+    ia_interval v25 = ia_sub(v24, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    ia_interval v26 = ia_sqr(v25);
+    ia_interval v27 = ia_add_r(v4, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v28 = ia_sqr(v27);
+    ia_interval v29 = ia_add(v26, v28);
+    ia_interval v30 = ia_mul(v23, v29);
+    ia_interval v32 = ia_sub(v30, ia_make(IACSG_K(0x1.47ae14p-6f, 0x1.47ae147ae147ap-6), IACSG_K(0x1.47ae16p-6f, 0x1.47ae147ae147bp-6)));
+    ia_interval v33 = ia_add(v5, v11);
+    ia_interval v34 = ia_add_r(v33, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v40 = ia_add_r(t, IACSG_K(-0x1p-1f, -0x1p-1));
+    ia_interval v41 = ia_mul_r(v40, IACSG_K(-0x1.8p+3f, -0x1.8p+3));
+    ia_interval v42 = ia_exp(v41);
+    ia_interval v43 = ia_add_r(v42, IACSG_K(0x1p+0f, 0x1p+0));
+    ia_interval v44 = ia_recip(v43);
+    ia_interval v45 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v44);
+    ia_interval v46 = ia_mul(v32, v45);
+    ia_interval v47 = ia_mul(v34, v44);
+    ia_interval v48 = ia_add(v46, v47);
+    return v48;
+}
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v2 = x * x;
     ia_real v4 = y * y;
@@ -124,6 +124,7 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v48 = v46 + v47;
     return v48;
 }
+#endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v2 = x * x;
     iacsg_grad v2_d = (ia_real)2 * x * (iacsg_grad)(1, 0, 0, 0);

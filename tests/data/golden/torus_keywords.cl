@@ -8,18 +8,6 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 #endif
-IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
-    ia_interval v4 = ia_sqr(x);
-    ia_interval v6 = ia_sqr(y);
-    ia_interval v7 = ia_add(v4, v6);
-    ia_interval v8 = ia_sqrt(v7);
-    ia_interval v10 = ia_sqr(z);
-    ia_interval v11 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
-    ia_interval v12 = ia_sqr(v11);
-    ia_interval v13 = ia_add(v10, v12);
-    ia_interval v16 = ia_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
-    return v16;
-}
 #ifdef IA_VW
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v4 = iav_sqr(x);
@@ -33,7 +21,19 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v16 = iav_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
     return v16;
 }
-#endif
+#else
+IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    ia_interval v4 = ia_sqr(x);
+    ia_interval v6 = ia_sqr(y);
+    ia_interval v7 = ia_add(v4, v6);
+    ia_interval v8 = ia_sqrt(v7);
+    ia_interval v10 = ia_sqr(z);
+    ia_interval v11 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
+    ia_interval v12 = ia_sqr(v11);
+    ia_interval v13 = ia_add(v10, v12);
+    ia_interval v16 = ia_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
+    return v16;
+}
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v4 = x * x;
     ia_real v6 = y * y;
@@ -46,6 +46,7 @@ IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
     ia_real v16 = v13 + IACSG_K(-0x1p-4f, -0x1p-4);
     return v16;
 }
+#endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v4 = x * x;
     iacsg_grad v4_d = (ia_real)2 * x * (iacsg_grad)(1, 0, 0, 0);
