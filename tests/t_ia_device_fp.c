@@ -11,6 +11,13 @@
 
 extern const char iacsg_cl_ia[], iacsg_cl_tests[];
 
+/* The precision this twin is compiled for (the device programs are built to match). */
+#ifdef IA_FP64
+enum { TWIN_FP64 = 1 };
+#else
+enum { TWIN_FP64 = 0 };
+#endif
+
 static struct {
     int tried, ok;
     clrt rt;
@@ -96,13 +103,8 @@ static int dev_open(char *err, size_t size) {
         snprintf(err, size, "%s", dev.err);
         return -1;
     }
-#ifdef IA_FP64
-    const int fp64 = 1;
-#else
-    const int fp64 = 0;
-#endif
     for (int mode = 0; mode < 2; mode++)
-        if (build_mode(mode, fp64, dev.err, sizeof dev.err)) {
+        if (build_mode(mode, TWIN_FP64, dev.err, sizeof dev.err)) {
             snprintf(err, size, "%s", dev.err);
             return -1;
         }
@@ -230,13 +232,8 @@ static int find_built(int mode, const char *extra, char *err, size_t size) {
         snprintf(err, size, "too many test program builds, or options too long: %s", extra);
         return -1;
     }
-#ifdef IA_FP64
-    const int fp64 = 1;
-#else
-    const int fp64 = 0;
-#endif
     char opt[512];
-    if (build_program(mode, fp64, extra, opt, sizeof opt, &built[nbuilt].prog, err, size))
+    if (build_program(mode, TWIN_FP64, extra, opt, sizeof opt, &built[nbuilt].prog, err, size))
         return -1;
     built[nbuilt].mode = mode;
     snprintf(built[nbuilt].extra, sizeof built[nbuilt].extra, "%s", extra);
