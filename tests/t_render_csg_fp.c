@@ -192,12 +192,10 @@ static csg_report check_scene(const char *name, const char *expr, first_entry en
     CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
     ia_real p[PARAM_COUNT];
     view_params(view, p);
-    int ortho = view->camera.ortho_height > 0;
     for (int j = 0; j < view->height; j++)
         for (int i = 0; i < view->width; i++) {
-            ia_real of[3], df[3];
-            camera_ray(p, ortho, i, j, view->width, view->height, of, df);
-            double o[3] = {of[0], of[1], of[2]}, d[3] = {df[0], df[1], df[2]}, tn, tf, t, piece;
+            double o[3], d[3], tn, tf, t, piece;
+            pixel_ray(p, view, i, j, o, d);
             if (!box_span(view->bounds, o, d, &tn, &tf) || !entry(scene, o, d, tn, tf, &t, &piece) || piece < 1e-6)
                 continue;
             rep.through++;

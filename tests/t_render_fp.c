@@ -77,12 +77,10 @@ static depth_report check_spheres(sphere A, sphere B, solid_op op, const iacsg_v
 
     ia_real p[PARAM_COUNT];
     view_params(view, p);
-    int ortho = view->camera.ortho_height > 0;
     for (int j = 0; j < view->height; j++)
         for (int i = 0; i < view->width; i++) {
-            ia_real of[3], df[3];
-            camera_ray(p, ortho, i, j, view->width, view->height, of, df);
-            double o[3] = {of[0], of[1], of[2]}, d[3] = {df[0], df[1], df[2]}, t, piece;
+            double o[3], d[3], t, piece;
+            pixel_ray(p, view, i, j, o, d);
             int which;
             double depth = fr.depth[(size_t)j * view->width + i];
             int hit = solid_first_root(A, B, op, o, d, &t, &piece, &which);

@@ -83,6 +83,18 @@ static inline void view_params(const iacsg_view *view, ia_real p[PARAM_COUNT]) {
         p[k] = (ia_real)pd[k];
 }
 
+/* Pixel (i, j)'s float ray, exactly as the device traced it (camera.h over the same parameter block), in
+ * double for the exact intersections. */
+static inline void pixel_ray(const ia_real p[PARAM_COUNT], const iacsg_view *view, int i, int j, double o[3],
+                             double d[3]) {
+    ia_real of[3], df[3];
+    camera_ray(p, view->camera.ortho_height > 0, i, j, view->width, view->height, of, df);
+    for (int k = 0; k < 3; k++) {
+        o[k] = of[k];
+        d[k] = df[k];
+    }
+}
+
 /* Builds the hand-written expression `cl` and renders it; failures end the test. */
 static inline void render_cl(const char *cl, const iacsg_render_config *config, const iacsg_view *view,
                              iacsg_frame *frame) {
