@@ -17,6 +17,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #ifdef IA_FP64
@@ -672,6 +673,41 @@ static inline void ulp_report_add(ulp_report *rep, int fn, int table_ulps, const
               (rep).bad >= 0 ? oracle_fn_name[(rep).bad] : "", (rep).bad_u, (rep).bad_bound,                  \
               oracle_hex((rep).bad_x), oracle_hex((rep).bad_y));                                               \
     } while (0)
+
+/* An evaluator of op on count cases into out (two reals a case); returns 0, or nonzero with a message. */
+typedef int (*pt_evaluator)(int op, const ia_case *k, long count, ia_real *out, char *msg, size_t size);
+
+/* The IA_FTZ check of the host (MXCSR FTZ+DAZ) and of the device: every op on count random cases without
+ * subnormal bounds (IA_FTZ's precondition), evaluated by eval and checked for containment with pt_ftz's
+ * allowances. Returns 0 with *checks counted, or nonzero with the first violation in msg. */
+static inline int pt_check_ftz_ops(test_rng_t *r, long count, pt_evaluator eval, const char *who, long *checks,
+                                   char *msg, size_t size) {
+    const int np = 10;
+    ia_case *k = calloc((size_t)count, sizeof *k);
+    ia_real *out = malloc(sizeof *out * 2 * (size_t)count);
+    if (!k || !out) {
+        free(k), free(out);
+        snprintf(msg, size, "out of memory");
+        return 1;
+    }
+    pt_t p[PT_MAX];
+    pt_init(p, np);
+    int saved = pt_ftz, bad = 0;
+    pt_ftz = 1;
+    for (int op = 0; op < ORACLE_NOPS && !bad; op++) {
+        for (long i = 0; i < count; i++)
+            k[i] = gen_case(r, GEN_NO_SUBNORMAL);
+        bad = eval(op, k, count, out, msg, size);
+        for (long i = 0; !bad && i < count; i++) {
+            pt_draw(op, &k[i], p, np, r);
+            bad = pt_check(op, &k[i], p, np, out + 2 * i, who, msg, size, checks);
+        }
+    }
+    pt_ftz = saved;
+    pt_clear(p, np);
+    free(k), free(out);
+    return bad;
+}
 
 /* ---- the device (tests/t_ia_device_fp.c): one OpenCL device, the ia/ test program built once per format with
  * the options of clrt_ia_options, in a mode: 0 rigorous, 1 fast (IA_FAST), 2 rigorous with IA_FTZ forced.

@@ -394,34 +394,14 @@ TEST_FP(ia_device_fast_caught) {
 
 /* ---- the IA_FTZ build (what a device without subnormals gets) compiles and stays rigorous here */
 
+static int device_ftz_eval(int op, const ia_case *k, long count, ia_real *out, char *msg, size_t size) {
+    return FP_NAME(ia_dev_ops)(2, op, k, count, out, msg, size);
+}
+
 TEST_FP(ia_device_ftz_build) {
-    test_rng_t *r = test_rng();
-    long count = test_iters(2000), checks = 0;
-    const int np = 10;
-    ia_case *k = calloc((size_t)count, sizeof *k);
-    ia_real *out = malloc(sizeof *out * 2 * (size_t)count);
-    CHECK(k && out, "out of memory");
-    pt_t p[PT_MAX];
-    pt_init(p, np);
+    long checks = 0;
     char msg[2048];
-    pt_ftz = 1;
-    for (int op = 0; op < ORACLE_NOPS; op++) {
-        for (long i = 0; i < count; i++)
-            k[i] = gen_case(r, GEN_NO_SUBNORMAL);
-        int bad = FP_NAME(ia_dev_ops)(2, op, k, count, out, msg, sizeof msg);
-        for (long i = 0; !bad && i < count; i++) {
-            pt_draw(op, &k[i], p, np, r);
-            bad = pt_check(op, &k[i], p, np, out + 2 * i, "device IA_FTZ", msg, sizeof msg, &checks);
-        }
-        if (bad) {
-            pt_clear(p, np);
-            free(k), free(out);
-            pt_ftz = 0;
-            CHECK(0, "%s", msg);
-        }
-    }
-    pt_ftz = 0;
-    pt_clear(p, np);
-    free(k), free(out);
+    CHECK(!pt_check_ftz_ops(test_rng(), test_iters(2000), device_ftz_eval, "device IA_FTZ", &checks, msg, sizeof msg),
+          "%s", msg);
     test_note("%s: %ld checks over all ops, 0 violations", FP_NAME(ia_dev_describe)(2), checks);
 }

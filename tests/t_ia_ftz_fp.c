@@ -16,13 +16,15 @@
 #ifdef __GNUC__
 __attribute__((noinline))
 #endif
-static void
-eval_ftz(int op, const ia_case *k, long count, ia_real *out) {
+static int
+eval_ftz(int op, const ia_case *k, long count, ia_real *out, char *msg, size_t size) {
+    (void)msg, (void)size;
     unsigned int saved = _mm_getcsr();
     _mm_setcsr(saved | _MM_FLUSH_ZERO_ON | _MM_DENORMALS_ZERO_ON);
     for (long i = 0; i < count; i++)
         ia_apply(op, &k[i], out + 2 * i);
     _mm_setcsr(saved);
+    return 0;
 }
 #endif
 
@@ -40,30 +42,10 @@ TEST_FP(ia_ftz_host) {
         _mm_setcsr(saved);
         CHECK(res == 0, "FTZ is not in effect: MIN/2 = %s", oracle_hex(res));
     }
-    test_rng_t *r = test_rng();
-    long count = test_iters(3000), total = 0;
-    const int np = 10;
-    ia_case *k = calloc((size_t)count, sizeof *k);
-    ia_real *out = malloc(sizeof *out * 2 * (size_t)count);
-    CHECK(k && out, "out of memory");
-    pt_t p[PT_MAX];
-    pt_init(p, np);
+    long total = 0;
     char msg[2048];
-    for (int op = 0; op < ORACLE_NOPS; op++) {
-        for (long i = 0; i < count; i++)
-            k[i] = gen_case(r, GEN_NO_SUBNORMAL);
-        eval_ftz(op, k, count, out);
-        for (long i = 0; i < count; i++) {
-            pt_draw(op, &k[i], p, np, r);
-            if (pt_check(op, &k[i], p, np, out + 2 * i, "host FTZ/DAZ", msg, sizeof msg, &total)) {
-                pt_clear(p, np);
-                free(k), free(out);
-                CHECK(0, "case %ld: %s", i, msg);
-            }
-        }
-    }
-    pt_clear(p, np);
-    free(k), free(out);
+    CHECK(!pt_check_ftz_ops(test_rng(), test_iters(3000), eval_ftz, "host FTZ/DAZ", &total, msg, sizeof msg), "%s",
+          msg);
     test_note("IA_FTZ with MXCSR FTZ+DAZ " FMT_NAME ": %ld checks over all ops, 0 violations", total);
 #endif
 }
