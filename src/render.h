@@ -31,7 +31,8 @@ void iacsg_renderer_destroy(iacsg_renderer *r);
 iacsg_status iacsg_renderer_create_expr(const iacsg_expr *e, const iacsg_render_config *config,
                                         iacsg_renderer **out, iacsg_error *err);
 
-/* Seconds spent in clBuildProgram, and the device's name (owned by the renderer). */
+/* Seconds the build took (clBuildProgram and the device compiling the kernel, see render.c: compile_now), and
+ * the device's name (owned by the renderer). */
 double iacsg_renderer_build_seconds(const iacsg_renderer *r);
 const char *iacsg_renderer_device_name(const iacsg_renderer *r);
 
