@@ -11,9 +11,10 @@
  * inclusion under the same rounding arguments (ia/round.h), bounds never NaN, and the same tightness.
  * A NaN that reaches the end fails iav_contains_zero, as an empty interval would.
  *
- * The polynomial operations (neg + - * sqr pown sqrt abs min max, add_r, mul_r) and log are vector code. The
- * others (/ recip exp sin cos tan atan pow, and pown with a negative or very large exponent) run ia/'s scalar
- * operation lane by lane: correct, not faster; a lane with a NaN bound is passed to them as empty.
+ * The polynomial operations (neg + - * sqr pown sqrt abs min max, add_r, mul_r), / and recip away from their
+ * poles, and log are vector code. The others (exp sin cos tan atan pow, / and recip by an interval holding 0,
+ * and pown with a negative or very large exponent) run ia/'s scalar operation lane by lane: correct, not
+ * faster; a lane with a NaN bound is passed to them as empty.
  */
 #ifndef IA_VEC_H
 #define IA_VEC_H
@@ -164,17 +165,44 @@ IA_FN ia_interval iav__lane(ia_real lo, ia_real hi) { return isnan(lo) || isnan(
     }
 #define IAV_BINARY_BY_LANE(name)                                                                               \
     IA_FN iav iav_##name(iav a, iav b) { IAV_LANEWISE(ia_##name(A, B)); }
-IAV_UNARY_BY_LANE(recip)
+IA_FN iav iav__recip_by_lane(iav a) {
+    iav b = a;
+    IAV_LANEWISE(ia_recip(A));
+}
+IA_FN iav iav__div_by_lane(iav a, iav b) { IAV_LANEWISE(ia_div(A, B)); }
 IAV_UNARY_BY_LANE(exp)
 IAV_UNARY_BY_LANE(atan)
 IAV_UNARY_BY_LANE(sin)
 IAV_UNARY_BY_LANE(cos)
 IAV_UNARY_BY_LANE(tan)
-IAV_BINARY_BY_LANE(div)
 IAV_BINARY_BY_LANE(pow)
 IA_FN iav iav__pown_by_lane(iav a, int n) {
     iav b = a;
     IAV_LANEWISE(ia_pown(A, n));
+}
+
+/* 1 / a and a / b, as ia_recip and ia_div, in vector code when no lane's divisor holds or touches 0 (the usual
+ * case: a scale by a constant, a positive denominator); otherwise, for the poles' half-lines and entire
+ * results, lane by lane. */
+IA_FN ia_maskv iav__has_pole(iav b) { return b.lo <= 0 && b.hi >= 0; }
+IA_FN iav iav_recip(iav a) {
+    if (any(iav__has_pole(a)))
+        return iav__recip_by_lane(a);
+    return iav_make(iav_lo_k(1 / a.hi, IA_ULP_DIV), iav_hi_k(1 / a.lo, IA_ULP_DIV));
+}
+/* x / y with inf / inf = 0, as ia_div's corners. */
+IA_FN ia_realv iav__quot0(ia_realv x, ia_realv y) {
+    ia_realv q = x / y;
+    return select(q, IAV_R(0), isnan(q));
+}
+IA_FN iav iav_div(iav a, iav b) {
+    if (any(iav__has_pole(b)))
+        return iav__div_by_lane(a, b);
+    ia_realv q1 = iav__quot0(a.lo, b.lo), q2 = iav__quot0(a.lo, b.hi);
+    ia_realv q3 = iav__quot0(a.hi, b.lo), q4 = iav__quot0(a.hi, b.hi);
+    ia_maskv zero = a.lo == 0 && a.hi == 0; /* exactly [0, 0] */
+    return iav_make(select(iav_lo_k(fmin(fmin(q1, q2), fmin(q3, q4)), IA_ULP_DIV), IAV_R(0), zero),
+                    select(iav_hi_k(fmax(fmax(q1, q2), fmax(q3, q4)), IA_ULP_DIV), IAV_R(0), zero));
 }
 
 /* log, as ia_log: a.hi <= 0 is outside the domain (any value); a.lo <= 0 reaches down to -inf. PoCL's vector

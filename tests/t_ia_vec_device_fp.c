@@ -70,6 +70,18 @@ static long vec_count(int op) {
     return (count + GROUP - 1) / GROUP * GROUP;
 }
 
+/* A divisor moved off 0: the half of it on the side of its larger end ([1, 1] for [0, 0]). */
+static void pole_free(ia_interval *d) {
+    if (!(d->lo <= 0 && d->hi >= 0))
+        return;
+    if (d->hi > 0)
+        d->lo = fmax(d->hi / 2, IA_REAL_TRUE_MIN);
+    else if (d->lo < 0)
+        d->hi = fmin(d->lo / 2, -IA_REAL_TRUE_MIN);
+    else
+        *d = ia_point(1);
+}
+
 /* The cases of op: with `edges`, every pair of edge intervals (one of each lane's neighbours differs) and the
  * regressions, then random; pown's exponents as said above. count is a multiple of GROUP. */
 static void vec_cases(int op, int edges, test_rng_t *r, ia_case *k, long count) {
@@ -87,6 +99,11 @@ static void vec_cases(int op, int edges, test_rng_t *r, ia_case *k, long count) 
     long regress_end = i;
     for (; i < count; i++)
         k[i] = gen_case(r, 0);
+    if (op == ORACLE_DIV || op == ORACLE_RECIP) /* every other group: divisors away from 0 in every lane, so
+                                                    * that whole vectors take iav_div's and iav_recip's vector path */
+        for (long g = 1; g < count / GROUP; g += 2)
+            for (int j = 0; j < GROUP; j++)
+                pole_free(op == ORACLE_DIV ? &k[g * GROUP + j].b : &k[g * GROUP + j].a);
     if (op == ORACLE_POWN)
         for (long g = 0; g < count / GROUP; g += 2) {
             if (g * GROUP < regress_end && (g + 1) * GROUP > regress)
