@@ -210,7 +210,8 @@ IA_FN iav iav_div(iav a, iav b) {
  * function's measured error bound (tests/t_ia_device_fp.c) covers it. Its vector exp and atan are not (they
  * differ in about 1 lane in 300 to 10000), so those run lane by lane. */
 IA_FN iav iav_log(iav a) {
-    return iav_make(select(iav_lo_k(log(a.lo), IA_ULP_LOG), IAV_R(-IA_INF), a.lo <= 0), iav_hi_k(log(a.hi), IA_ULP_LOG));
+    return iav_make(select(iav_lo_k(log(a.lo), IA_ULP_LOG), IAV_R(-IA_INF), a.lo <= 0),
+                    iav_hi_k(log(a.hi), IA_ULP_LOG));
 }
 
 /* a^n for an integer constant n. Even n: |a|'s ends; odd n: increasing, each end's sign chooses the

@@ -24,28 +24,24 @@
 #include "traverse.h"
 #if IA_DEVICE && defined(IA_VW)
 
+/* Per-lane integers of the width of ia_maskv (so that select takes them), and conversions between the lane
+ * types (OpenCL's convert_ functions are overloaded on the source type). */
 #ifdef IA_FP64
-typedef IAV_CAT(long, IA_VW) packet_int;   /* a level per lane: the width of ia_maskv, for select */
+typedef IAV_CAT(long, IA_VW) packet_int;    /* a level per lane */
 typedef IAV_CAT(ulong, IA_VW) packet_index; /* bisect_index per lane */
+#define packet_to_real IAV_CAT(convert_double, IA_VW)
+#define packet_to_int IAV_CAT(convert_long, IA_VW)
+#define packet_to_index IAV_CAT(convert_ulong, IA_VW)
 #define packet_as_real IAV_CAT(as_double, IA_VW)
-#define packet_index_to_real IAV_CAT(convert_double, IA_VW)
-#define packet_int_to_index IAV_CAT(convert_ulong, IA_VW)
-#define packet_index_to_int IAV_CAT(convert_long, IA_VW)
-#define packet_int_to_real IAV_CAT(convert_double, IA_VW)
-#define packet_ints IAV_CAT(convert_long, IA_VW)
-#define packet_real_to_index IAV_CAT(convert_ulong, IA_VW)
 #define PACKET_EXP_BIAS 1023
 #define PACKET_MANT_BITS 52
 #else
 typedef IAV_CAT(int, IA_VW) packet_int;
 typedef IAV_CAT(uint, IA_VW) packet_index;
+#define packet_to_real IAV_CAT(convert_float, IA_VW)
+#define packet_to_int IAV_CAT(convert_int, IA_VW)
+#define packet_to_index IAV_CAT(convert_uint, IA_VW)
 #define packet_as_real IAV_CAT(as_float, IA_VW)
-#define packet_index_to_real IAV_CAT(convert_float, IA_VW)
-#define packet_int_to_index IAV_CAT(convert_uint, IA_VW)
-#define packet_index_to_int IAV_CAT(convert_int, IA_VW)
-#define packet_int_to_real IAV_CAT(convert_float, IA_VW)
-#define packet_ints IAV_CAT(convert_int, IA_VW)
-#define packet_real_to_index IAV_CAT(convert_uint, IA_VW)
 #define PACKET_EXP_BIAS 127
 #define PACKET_MANT_BITS 23
 #endif
@@ -53,21 +49,22 @@ typedef IAV_CAT(uint, IA_VW) packet_index;
 /* Interval evaluations are counted per lane only in a kernel built with -D KERNEL_STATS: the normal kernel
  * pays nothing. A true lane of a mask is -1. */
 #ifdef KERNEL_STATS
-#define PACKET_COUNT(counts, lanes) ((counts) -= packet_int_to_index(lanes))
+#define PACKET_COUNT(counts, lanes) ((counts) -= packet_to_index(lanes))
 #else
 #define PACKET_COUNT(counts, lanes) ((void)(counts))
 #endif
 
 /* node_bound lane by lane: t0 + w * (i * 2^-level), 2^-level from its exponent bits (node_scale). */
 IA_FN ia_realv packet_node_bound(ia_real t0, ia_real w, packet_int level, packet_index i) {
-    ia_realv scale = packet_as_real(packet_int_to_index(PACKET_EXP_BIAS - level) << PACKET_MANT_BITS);
-    return t0 + w * (packet_index_to_real(i) * scale);
+    ia_realv scale = packet_as_real(packet_to_index(PACKET_EXP_BIAS - level) << PACKET_MANT_BITS);
+    return t0 + w * (packet_to_real(i) * scale);
 }
 
 /* F over the groups of a union set in `groups` (bit g for group g): the min of their enclosures, exact (min
- * rounds nothing). The tile pass leaves out only groups certainly positive (> 0) on every box of the block
- * (tile.h), so there the union is < 0, = 0 or > 0 exactly where the min of the groups kept is: the roots, and
- * the walk's decisions, are the same. An expression emitted without groups (no IACSG_GROUPS) is iacsg_Fv. */
+ * rounds nothing). The tile pass leaves out of a tile's segment only groups certainly positive (> 0) on every
+ * box its rays evaluate there (tile.h), so there the union is < 0, = 0 or > 0 exactly where the min of the groups
+ * kept is: the roots, and the walk's decisions, are the same. An expression emitted without groups (no
+ * IACSG_GROUPS) is iacsg_Fv. */
 IA_FN iav packet_F(ulong groups, iav x, iav y, iav z, iav t) {
 #ifdef IACSG_GROUPS
     iav r = iav_point(IA_INF); /* the identity of min */
@@ -100,7 +97,7 @@ IA_FN ulong packet_groups(const __global ulong *segment_groups, ia_maskv live, p
     int lv[IA_VW];
     IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
     IAV_STORE(i, index);
-    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(level), 0, lv);
+    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(level), 0, lv); /* packet_int is long in double */
     ulong groups = 0;
     for (int k = 0; k < IA_VW; k++)
         if (on[k] != 0)
@@ -121,14 +118,14 @@ IA_FN packet_int packet_lane_numbers(void) {
     int k[IA_VW];
     for (int n = 0; n < IA_VW; n++)
         k[n] = n;
-    return packet_ints(IAV_LOAD(k));
+    return packet_to_int(IAV_LOAD(k));
 }
 
 /* camera_ray for the pixels (i, j) of the lanes (in range). */
 IA_FN void packet_rays(const KERNEL_CONSTANT ia_real *p, int ortho, packet_int i, packet_int j, int width, int height,
                        ia_realv o[3], ia_realv d[3]) {
-    ia_realv s = (packet_int_to_real(2 * i + 1) / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];
-    ia_realv v = ((ia_real)1 - packet_int_to_real(2 * j + 1) / (ia_real)height) * p[PARAM_SCALE_V];
+    ia_realv s = (packet_to_real(2 * i + 1) / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];
+    ia_realv v = ((ia_real)1 - packet_to_real(2 * j + 1) / (ia_real)height) * p[PARAM_SCALE_V];
     for (int k = 0; k < 3; k++) {
         ia_realv offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
         o[k] = ortho ? p[PARAM_EYE + k] + offset : IAV_R(p[PARAM_EYE + k]);
@@ -171,7 +168,7 @@ IA_FN ia_maskv packet_clip(const KERNEL_CONSTANT ia_real *p, const ia_realv o[3]
 IA_FN packet_index packet_node_at(ia_real t0, ia_real w, int level, ia_realv t) {
     bisect_index last = (((bisect_index)1) << level) - 1;
     ia_realv u = (t - t0) / w / node_scale(level);
-    packet_index j = packet_real_to_index(fmin(fmax(u, IAV_R(0)), (ia_real)last)); /* u > 0 ? u : 0, truncated */
+    packet_index j = packet_to_index(fmin(fmax(u, IAV_R(0)), (ia_real)last)); /* u > 0 ? u : 0, truncated */
     packet_int lv = (packet_int)level;
     while (1) {
         ia_maskv back = (j > 0) & (packet_node_bound(t0, w, lv, j) > t);
@@ -200,8 +197,8 @@ IA_FN iav packet_extent(ia_realv o, ia_realv d, iav t) {
 IA_FN void packet_advance(ia_maskv *searching, ia_maskv down, packet_int *level, packet_index *i) {
     ia_maskv next = *searching & ~down;
     packet_index i1 = *i + 1;
-    packet_int up = min(packet_index_to_int(popcount((i1 & (0 - i1)) - 1)), *level);
-    *i = select(select(*i, *i << 1, down), i1 >> packet_int_to_index(up), next);
+    packet_int up = min(packet_to_int(popcount((i1 & (0 - i1)) - 1)), *level);
+    *i = select(select(*i, *i << 1, down), i1 >> packet_to_index(up), next);
     *level = select(select(*level, *level + 1, down), *level - up, next);
     *searching &= ~(next & (*level == 0));
 }
@@ -209,9 +206,10 @@ IA_FN void packet_advance(ia_maskv *searching, ia_maskv down, packet_int *level,
 /* The first root of each lane of `searching` in [t_near, t_far] of its ray o + t*d, from its node (level, i) on
  * (no node before it may hold a root): the first clipped node whose enclosure holds 0 and that is no wider than
  * eps, or at the deepest level. Returns the lanes that hit, with their leaves in [*hit_lo, *hit_hi]. */
-IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_realv o[3], const ia_realv d[3], ia_real t0, ia_real w,
-                                 packet_int level, packet_index i, ia_realv t_near, ia_realv t_far, ia_maskv searching,
-                                 ia_real eps, iav time, ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
+IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_realv o[3], const ia_realv d[3],
+                                 ia_real t0, ia_real w, packet_int level, packet_index i, ia_realv t_near,
+                                 ia_realv t_far, ia_maskv searching, ia_real eps, iav time, ia_realv *hit_lo,
+                                 ia_realv *hit_hi, packet_index *evals) {
     ia_maskv hit = (ia_maskv)0;
     while (any(searching)) {
         ia_realv lo = packet_node_bound(t0, w, level, i), hi = packet_node_bound(t0, w, level, i + 1);
@@ -220,8 +218,7 @@ IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_
         ia_maskv live = searching & (a <= b);
         iav t = iav_make(a, b);
         iav f = packet_F(packet_groups(segment_groups, live, level, i), packet_extent(o[0], d[0], t),
-                         packet_extent(o[1], d[1], t),
-                         packet_extent(o[2], d[2], t), time);
+                         packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t), time);
         PACKET_COUNT(*evals, live);
         ia_maskv zero = live & iav_contains_zero(f);
         ia_maskv leaf = zero & ((b - a <= eps) | (level == BISECT_MAX_LEVEL));

@@ -15,6 +15,14 @@
 /* Tiles are row-major, tiles_x per row. */
 static inline size_t tile_index(int tx, int ty, int tiles_x) { return (size_t)ty * (size_t)tiles_x + (size_t)tx; }
 
+/* The union of the group masks of the lanes whose tile is in the image. */
+static inline ulong in_image(const ulong groups[IA_VW], const ia_real valid[IA_VW]) {
+    ulong all = 0;
+    for (int k = 0; k < IA_VW; k++)
+        all |= valid[k] != 0 ? groups[k] : 0;
+    return all;
+}
+
 /* The tile pass over the PACKET_W x PACKET_H tiles from (tx0, ty0), searched in SIMD lanes (tile.h).
  * tiles[2k], tiles[2k+1]: the level and index of tile k's first coarse leaf (row-major, tiles_x per row), as
  * reals (exact: the index has fewer bits than the mantissa, see traverse.h); level -1 when no ray of the tile
@@ -54,12 +62,11 @@ static void block_tiles(__constant ia_real *params, int flags, int width, int he
     iav time = iav_point(params[PARAM_TIME]);
     /* The groups of a union that matter in any of the tiles, over the whole tree, for their common search; then
      * each tile's own from its first leaf on, for its rays. */
-    ulong groups[IA_VW], any_tile = 0;
+    ulong groups[IA_VW];
     iav root = iav_make(packet_node_bound(t0, w, (packet_int)0, (packet_index)0),
                         packet_node_bound(t0, w, (packet_int)0, (packet_index)1));
     tile_groups(base_v, dir_v, root, time, ~(ulong)0, groups);
-    for (int k = 0; k < IA_VW; k++)
-        any_tile |= valid[k] != 0 ? groups[k] : 0;
+    ulong any_tile = in_image(groups, valid);
     packet_int level = (packet_int)0;
     packet_index leaf = (packet_index)0, counts = (packet_index)0;
     ia_maskv found = tile_first_leaves(any_tile, base_v, dir_v, IAV_LOAD(spread), ortho, t0, w, params[PARAM_EPS],
@@ -67,9 +74,7 @@ static void block_tiles(__constant ia_real *params, int flags, int width, int he
     tile_groups(base_v, dir_v, iav_make(select(root.lo, packet_node_bound(t0, w, level, leaf), found), root.hi),
                 time, any_tile, groups);
     /* then per segment of the tree (params.h), among the tile's own */
-    ulong in_tiles = 0;
-    for (int k = 0; k < IA_VW; k++)
-        in_tiles |= valid[k] != 0 ? groups[k] : 0;
+    ulong in_tiles = in_image(groups, valid);
     for (int s = 0; s < SEGMENTS; s++) {
         ulong segment[IA_VW];
         tile_groups(base_v, dir_v,
@@ -83,8 +88,8 @@ static void block_tiles(__constant ia_real *params, int flags, int width, int he
     }
     ia_real level_r[IA_VW], leaf_r[IA_VW];
     bisect_index count[IA_VW];
-    IAV_STORE(select((ia_realv)-1, packet_int_to_real(level), found), level_r);
-    IAV_STORE(packet_index_to_real(leaf), leaf_r);
+    IAV_STORE(select((ia_realv)-1, packet_to_real(level), found), level_r);
+    IAV_STORE(packet_to_real(leaf), leaf_r);
     IAV_STORE(counts, count);
     for (int k = 0; k < IA_VW; k++) {
         if (valid[k] == 0)
@@ -130,55 +135,44 @@ static void trace_packet(__constant ia_real *params, int flags, int width, int h
                          __global float *normal, __global uint *evals, __global const ulong *tile_groups_of) {
     if (i0 >= width || j0 >= height)
         return;
-    size_t tile = (size_t)(j0 / TILE_SIZE) * (size_t)((width + TILE_SIZE - 1) / TILE_SIZE) + (size_t)(i0 / TILE_SIZE);
+    size_t tile = tile_index(i0 / TILE_SIZE, j0 / TILE_SIZE, (width + TILE_SIZE - 1) / TILE_SIZE);
     int level = (int)tiles[2 * tile];
-    float color[3];
-    if (level < 0) { /* the tile pass proved the whole tile empty: no ray to set up */
-        for (int k = 0; k < IA_VW; k++) {
-            int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
-            if (i < width && j < height) {
-                put_pixel(i, j, width, height, color, 0, NULL, rgb, depth, normal);
-#ifdef KERNEL_STATS
-                evals[(size_t)j * (size_t)width + (size_t)i] = 0;
-#endif
-            }
-        }
-        return;
-    }
-    bisect_index leaf = (bisect_index)tiles[2 * tile + 1];
-    ia_interval time = ia_point(params[PARAM_TIME]);
-    ia_real t0, w;
-    frame_root(params, &t0, &w);
-    /* Each lane's ray, its part inside the bounds and its first node. */
-    packet_int lanes = packet_lane_numbers();
-    packet_int col = i0 + lanes % PACKET_W, row = j0 + lanes / PACKET_W;
-    ia_realv ov[3], dv[3], t_near, t_far, hit_lo = IAV_R(0), hit_hi = IAV_R(0);
-    packet_rays(params, flags & RENDER_ORTHO, min(col, width - 1), min(row, height - 1), width, height, ov, dv);
-    ia_maskv searching = (col < width) & (row < height) & packet_clip(params, ov, dv, &t_near, &t_far);
-    packet_index start = max((packet_index)leaf, packet_node_at(t0, w, level, t_near));
-    packet_index counts = (packet_index)0;
     const __global ulong *segment_groups = tile_groups_of + tile * SEGMENTS;
-    ia_maskv hit = packet_first_root(segment_groups, ov, dv, t0, w, (packet_int)level, start, t_near, t_far, searching,
-                                     params[PARAM_EPS], iav_splat(time), &hit_lo, &hit_hi, &counts);
-    ia_real o[3][IA_VW], d[3][IA_VW], lo[IA_VW], hi[IA_VW], hits[IA_VW];
-    for (int c = 0; c < 3; c++) {
-        IAV_STORE(ov[c], o[c]);
-        IAV_STORE(dv[c], d[c]);
+    ia_real t0, w, time = params[PARAM_TIME];
+    frame_root(params, &t0, &w);
+    ia_real o[3][IA_VW], d[3][IA_VW], lo[IA_VW] = {0}, hi[IA_VW], hits[IA_VW] = {0};
+    bisect_index count[IA_VW] = {0};
+    if (level >= 0) { /* else the tile pass proved the whole tile empty: no ray to set up */
+        /* Each lane's ray, its part inside the bounds and its first node. */
+        packet_int lanes = packet_lane_numbers();
+        packet_int col = i0 + lanes % PACKET_W, row = j0 + lanes / PACKET_W;
+        ia_realv ov[3], dv[3], t_near, t_far, hit_lo = IAV_R(0), hit_hi = IAV_R(0);
+        packet_rays(params, flags & RENDER_ORTHO, min(col, width - 1), min(row, height - 1), width, height, ov, dv);
+        ia_maskv searching = (col < width) & (row < height) & packet_clip(params, ov, dv, &t_near, &t_far);
+        bisect_index leaf = (bisect_index)tiles[2 * tile + 1];
+        packet_index start = max((packet_index)leaf, packet_node_at(t0, w, level, t_near));
+        packet_index counts = (packet_index)0;
+        ia_maskv hit = packet_first_root(segment_groups, ov, dv, t0, w, (packet_int)level, start, t_near, t_far,
+                                         searching, params[PARAM_EPS], iav_point(time), &hit_lo, &hit_hi, &counts);
+        for (int c = 0; c < 3; c++) {
+            IAV_STORE(ov[c], o[c]);
+            IAV_STORE(dv[c], d[c]);
+        }
+        IAV_STORE(hit_lo, lo);
+        IAV_STORE(hit_hi, hi);
+        IAV_STORE(select(IAV_R(0), IAV_R(1), hit), hits);
+        IAV_STORE(counts, count);
     }
-    bisect_index count[IA_VW];
-    IAV_STORE(hit_lo, lo);
-    IAV_STORE(hit_hi, hi);
-    IAV_STORE(select(IAV_R(0), IAV_R(1), hit), hits);
-    IAV_STORE(counts, count);
     for (int k = 0; k < IA_VW; k++) {
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
         if (i >= width || j >= height)
             continue;
-        ia_real n[3], dk[3] = {d[0][k], d[1][k], d[2][k]};
+        ia_real n[3];
+        float color[3];
         if (hits[k] != 0) {
-            ia_real t = lo[k] * (ia_real)0.5 + hi[k] * (ia_real)0.5;
-            shade_normal(segment_groups[node_at(t0, w, SEGMENT_LEVEL, t)], o[0][k] + t * dk[0], o[1][k] + t * dk[1], o[2][k] + t * dk[2], time.lo,
-                         dk, n);
+            ia_real t = lo[k] * (ia_real)0.5 + hi[k] * (ia_real)0.5, dk[3] = {d[0][k], d[1][k], d[2][k]};
+            shade_normal(segment_groups[node_at(t0, w, SEGMENT_LEVEL, t)], o[0][k] + t * dk[0], o[1][k] + t * dk[1],
+                         o[2][k] + t * dk[2], time, dk, n);
             shade_surface(params, n, dk, color);
         }
         put_pixel(i, j, width, height, color, lo[k], hits[k] != 0 ? n : NULL, rgb, depth, normal);

@@ -89,8 +89,6 @@ IA_FN ia_maskv tile_first_leaves(ulong groups, const iav base[3], const iav dir[
  * boxes that the tile's rays evaluate on that part of the tree (packet_F). All ones for an expression without
  * groups. */
 IA_FN void tile_groups(const iav base[3], const iav dir[3], iav t, iav time, ulong among, ulong groups[IA_VW]) {
-    for (int k = 0; k < IA_VW; k++)
-        groups[k] = ~(ulong)0;
 #ifdef IACSG_GROUPS
     iav box[3];
     for (int k = 0; k < 3; k++) /* tile_box */
@@ -107,6 +105,8 @@ IA_FN void tile_groups(const iav base[3], const iav dir[3], iav t, iav time, ulo
     }
 #else
     (void)base, (void)dir, (void)t, (void)time, (void)among;
+    for (int k = 0; k < IA_VW; k++)
+        groups[k] = ~(ulong)0;
 #endif
 }
 #endif
