@@ -33,25 +33,7 @@ static double now_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* PoCL compiles a kernel's code for the CPU at its first launch, not in clBuildProgram: for a large expression
- * most of the build. One launch over an empty image (every work-item returns at once, before touching a buffer)
- * makes that happen here, where it counts as build time, and not inside the first frame's render time. The
- * launch has the local size of the real ones (launch_bands), which is what PoCL compiles for. */
-static iacsg_status compile_now(iacsg_renderer *r, iacsg_error *err) {
-    cl_int zero = 0;
-    cl_mem none = NULL;
-    for (cl_uint k = 0; k < 12; k++) {
-        int is_int = k >= 1 && k <= 4; /* flags, width, height, first block row */
-        CLRT_CHECK(err, clSetKernelArg(r->kernel, k, is_int ? sizeof(cl_int) : sizeof(cl_mem), is_int ? (void *)&zero
-                                                                                                    : (void *)&none));
-    }
-    size_t one[2] = {1, 1};
-    CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, r->kernel, 2, NULL, one, one, 0, NULL, NULL));
-    CLRT_CHECK(err, clFinish(r->rt.queue));
-    return IACSG_OK;
-fail:
-    return IACSG_ERR_OPENCL;
-}
+static iacsg_status compile_now(iacsg_renderer *r, iacsg_error *err);
 
 iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,
                                    iacsg_error *err) {
@@ -68,7 +50,8 @@ iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_confi
     char options[512];
     st = clrt_ia_options(&r->rt, config->fp64, config->fast, options, sizeof options - 32, err);
     if (st == IACSG_OK) {
-        snprintf(options + strlen(options), 32, " -D IA_VW=%d%s", PACKET_LANES, config->stats ? " -D KERNEL_STATS" : "");
+        snprintf(options + strlen(options), 32, " -D IA_VW=%d%s", PACKET_LANES,
+                 config->stats ? " -D KERNEL_STATS" : "");
         const char *sources[] = {iacsg_cl_ia, expr_cl, iacsg_cl_kernels};
         double t0 = now_seconds();
         st = clrt_build(&r->rt, sources, 3, options, &r->program, err);
@@ -281,7 +264,28 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* Each band of rows: its tiles, then its pixels. With a progress callback, waits for each band. */
+/* PoCL compiles a kernel's code for the CPU at its first launch, not in clBuildProgram: for a large expression
+ * most of the build. One launch over an empty image (every work-item returns at once, before touching a buffer,
+ * all of which are NULL) makes that happen here, where it counts as build time, and not inside the first frame's
+ * render time. The launch has the local size of the real ones (launch_bands), which is what PoCL compiles for. */
+static iacsg_status compile_now(iacsg_renderer *r, iacsg_error *err) {
+    iacsg_view empty = {0};
+    frame_buffers none = {0};
+    cl_int first_row = 0;
+    iacsg_status st = set_args(r, &empty, &none, err);
+    if (st != IACSG_OK)
+        return st;
+    size_t one[2] = {1, 1};
+    CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &first_row));
+    CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, r->kernel, 2, NULL, one, one, 0, NULL, NULL));
+    CLRT_CHECK(err, clFinish(r->rt.queue));
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+/* Each band of rows, one launch (each block's tiles, then its pixels). With a progress callback, waits for each
+ * band. */
 static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
     size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
