@@ -146,8 +146,8 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
     }
 }
 
-/* A union (min) of at least this many parts is emitted in groups that the kernels can skip per block of
- * tiles (kernels/packet.h); at most EMIT_MAX_GROUPS groups (a 64-bit mask), about sqrt(parts) of them. */
+/* A union (min) of at least this many parts is emitted in groups that the kernels can skip per tile and segment
+ * of the frame's tree (kernels/packet.h); at most EMIT_MAX_GROUPS groups (a 64-bit mask), about sqrt(parts). */
 #define EMIT_GROUP_MIN_PARTS 16
 #define EMIT_MAX_GROUPS 64
 
@@ -220,10 +220,11 @@ static int group_nodes(const emitter *em, const int *parts, int first, int last,
 
 /* A union in groups, for the interval code over lanes (r = AS_VECTOR) or the point value and gradient
  * (AS_DERIV): a function of the group's number, not inlined, each case computing the nodes its parts need
- * (shared ones once per group) and their min; then the whole function as the min over the groups. The kernels
- * evaluate only the groups that can matter in a tile (kernels/packet.h); and smaller straight-line blocks keep
- * LLVM's compile time, which grows faster than linearly in a block's length, down (the gradient of 1024
- * spheres as one block took 8 of the 18 s). Returns 0 on out of memory. */
+ * (shared ones once per group) and their min. The kernels take the min over the groups that can matter in a
+ * tile (kernels/packet.h, shade.h), so there is no whole iacsg_Fv; the whole gradient, the min over all groups,
+ * is for the other programs (device evaluation). Smaller straight-line blocks also keep LLVM's compile time,
+ * which grows faster than linearly in a block's length, down (the gradient of 1024 spheres as one block took 8
+ * of the 18 s). Returns 0 on out of memory. */
 static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *parts, int nparts,
                              const char *prefix, role r) {
     grouping gr = group_parts(nparts);
@@ -282,14 +283,10 @@ static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *
     free(order);
     if (vector) {
         strbuf_printf(b, "    }\n    return iav_point(IA_INF);\n}\n");
-        strbuf_printf(b, "IA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n    iav r = %s_Fv_group(0, x, y, z, t);\n"
-                         "    for (int group = 1; group < IACSG_GROUPS; group++)\n"
-                         "        r = iav_min(r, %s_Fv_group(group, x, y, z, t));\n    return r;\n}\n",
-                      prefix, prefix, prefix);
     } else {
         strbuf_printf(b, "    }\n    *g = (iacsg_grad)0;\n    return (ia_real)INFINITY;\n}\n");
-        strbuf_printf(b, "IA_FN ia_real %s_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, "
-                         "ia_real *gz) {\n"
+        strbuf_printf(b, "IA_FN ia_real %s_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, "
+                         "ia_real *gy, ia_real *gz) {\n"
                          "    iacsg_grad g, gv;\n    ia_real r = %s_f_grad_group(0, x, y, z, t, &g);\n"
                          "    for (int group = 1; group < %d; group++) {\n"
                          "        ia_real v = %s_f_grad_group(group, x, y, z, t, &gv);\n"
