@@ -112,24 +112,60 @@ static inline float depth_round_down(ia_real t) {
     return (ia_real)f > t ? nextafter(f, -INFINITY) : f;
 }
 
-/* Writes pixel (i, j)'s outputs (depth and normal only where the host asked for them, non-NULL): a miss
- * (background) when n is NULL. */
-static inline void put_pixel(int i, int j, int width, int height, float color[3], ia_real depth_t, const ia_real *n,
-                             __global float *rgb, __global float *depth, __global float *normal) {
-    size_t pixel = (size_t)j * (size_t)width + (size_t)i;
-    if (!n)
-        shade_background(j, height, color);
-    if (depth)
-        depth[pixel] = n ? depth_round_down(depth_t) : INFINITY;
+/* The gradients at the points o + t d of the lanes of `hit` (0 in the others), lane by lane: the emitted point
+ * code is scalar. For a union in groups, over the groups of the segment of the frame's tree each point is on. */
+static void packet_gradients(const __global ulong *segment_groups, ia_real t0, ia_real w, ia_maskv hit,
+                             const ia_realv o[3], const ia_realv d[3], ia_realv t, ia_real time, ia_realv g[3]) {
+    ia_real on[IA_VW], tk[IA_VW], p[3][IA_VW], gk[3][IA_VW] = {{0}};
+    IAV_STORE(select(IAV_R(0), IAV_R(1), hit), on);
+    IAV_STORE(t, tk);
+    for (int c = 0; c < 3; c++)
+        IAV_STORE(o[c] + t * d[c], p[c]);
+    for (int k = 0; k < IA_VW; k++) {
+        if (on[k] == 0)
+            continue;
+        ia_real gradient[3];
+        shade_gradient(segment_groups[node_at(t0, w, SEGMENT_LEVEL, tk[k])], p[0][k], p[1][k], p[2][k], time,
+                       gradient);
+        for (int c = 0; c < 3; c++)
+            gk[c][k] = gradient[c];
+    }
+    for (int c = 0; c < 3; c++)
+        g[c] = IAV_LOAD(gk[c]);
+}
+
+/* Writes the outputs of the lanes' pixels (col, row) that are in the image: the colours, and where the host
+ * asked for them (non-NULL) the depths (the leaf's start, +inf on a miss) and the normals (0 on a miss). */
+static void put_pixels(packet_int col, packet_int row, int width, int height, ia_maskv hit, const shade_colorv rgb[3],
+                       ia_realv t_start, const ia_realv n[3], __global float *rgb_out, __global float *depth,
+                       __global float *normal) {
+    int i[IA_VW], j[IA_VW];
+    float color[3][IA_VW], normal_k[3][IA_VW];
+    ia_real on[IA_VW], start[IA_VW];
+    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(col), 0, i);
+    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(row), 0, j);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), hit), on);
+    IAV_STORE(t_start, start);
     for (int c = 0; c < 3; c++) {
-        rgb[3 * pixel + c] = color[c];
-        if (normal)
-            normal[3 * pixel + c] = n ? (float)n[c] : 0.0f;
+        IAV_CAT(vstore, IA_VW)(rgb[c], 0, color[c]);
+        IAV_CAT(vstore, IA_VW)(shade_to_color(select(IAV_R(0), n[c], hit)), 0, normal_k[c]);
+    }
+    for (int k = 0; k < IA_VW; k++) {
+        if (i[k] >= width || j[k] >= height)
+            continue;
+        size_t pixel = (size_t)j[k] * (size_t)width + (size_t)i[k];
+        if (depth)
+            depth[pixel] = on[k] != 0 ? depth_round_down(start[k]) : INFINITY;
+        for (int c = 0; c < 3; c++) {
+            rgb_out[3 * pixel + c] = color[c][k];
+            if (normal)
+                normal[3 * pixel + c] = normal_k[c][k];
+        }
     }
 }
 
 /* The packet of PACKET_W x PACKET_H pixels from (i0, j0) (params.h), its rays traced together in SIMD lanes
- * (packet.h) after the tile pass of its tile. Set-up and shading run lane by lane, in scalar code. */
+ * (packet.h) after the tile pass of its tile, and shaded in lanes (shade.h). */
 static void trace_packet(__constant ia_real *params, int flags, int width, int height, int i0, int j0,
                          __global const ia_real *tiles, __global float *rgb, __global float *depth,
                          __global float *normal, __global uint *evals, __global const ulong *tile_groups_of) {
@@ -140,49 +176,41 @@ static void trace_packet(__constant ia_real *params, int flags, int width, int h
     const __global ulong *segment_groups = tile_groups_of + tile * SEGMENTS;
     ia_real t0, w, time = params[PARAM_TIME];
     frame_root(params, &t0, &w);
-    ia_real o[3][IA_VW], d[3][IA_VW], lo[IA_VW] = {0}, hi[IA_VW], hits[IA_VW] = {0};
-    bisect_index count[IA_VW] = {0};
+    packet_int lanes = packet_lane_numbers();
+    packet_int col = i0 + lanes % PACKET_W, row = j0 + lanes / PACKET_W;
+    ia_realv d[3] = {IAV_R(0), IAV_R(0), IAV_R(0)}, n[3] = {IAV_R(0), IAV_R(0), IAV_R(0)};
+    ia_realv hit_lo = IAV_R(0), hit_hi = IAV_R(0);
+    ia_maskv hit = (ia_maskv)0;
+    packet_index counts = (packet_index)0;
     if (level >= 0) { /* else the tile pass proved the whole tile empty: no ray to set up */
         /* Each lane's ray, its part inside the bounds and its first node. */
-        packet_int lanes = packet_lane_numbers();
-        packet_int col = i0 + lanes % PACKET_W, row = j0 + lanes / PACKET_W;
-        ia_realv ov[3], dv[3], t_near, t_far, hit_lo = IAV_R(0), hit_hi = IAV_R(0);
-        packet_rays(params, flags & RENDER_ORTHO, min(col, width - 1), min(row, height - 1), width, height, ov, dv);
-        ia_maskv searching = (col < width) & (row < height) & packet_clip(params, ov, dv, &t_near, &t_far);
+        ia_realv o[3], t_near, t_far;
+        packet_rays(params, flags & RENDER_ORTHO, min(col, width - 1), min(row, height - 1), width, height, o, d);
+        ia_maskv searching = (col < width) & (row < height) & packet_clip(params, o, d, &t_near, &t_far);
         bisect_index leaf = (bisect_index)tiles[2 * tile + 1];
         packet_index start = max((packet_index)leaf, packet_node_at(t0, w, level, t_near));
-        packet_index counts = (packet_index)0;
-        ia_maskv hit = packet_first_root(segment_groups, ov, dv, t0, w, (packet_int)level, start, t_near, t_far,
-                                         searching, params[PARAM_EPS], iav_point(time), &hit_lo, &hit_hi, &counts);
-        for (int c = 0; c < 3; c++) {
-            IAV_STORE(ov[c], o[c]);
-            IAV_STORE(dv[c], d[c]);
+        hit = packet_first_root(segment_groups, o, d, t0, w, (packet_int)level, start, t_near, t_far, searching,
+                                params[PARAM_EPS], iav_point(time), &hit_lo, &hit_hi, &counts);
+        if (any(hit)) {
+            ia_realv g[3];
+            packet_gradients(segment_groups, t0, w, hit, o, d, hit_lo * (ia_real)0.5 + hit_hi * (ia_real)0.5, time,
+                             g);
+            shade_normals(g, d, n);
         }
-        IAV_STORE(hit_lo, lo);
-        IAV_STORE(hit_hi, hi);
-        IAV_STORE(select(IAV_R(0), IAV_R(1), hit), hits);
-        IAV_STORE(counts, count);
     }
-    for (int k = 0; k < IA_VW; k++) {
-        int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
-        if (i >= width || j >= height)
-            continue;
-        ia_real n[3];
-        float color[3];
-        if (hits[k] != 0) {
-            ia_real t = lo[k] * (ia_real)0.5 + hi[k] * (ia_real)0.5, dk[3] = {d[0][k], d[1][k], d[2][k]};
-            shade_normal(segment_groups[node_at(t0, w, SEGMENT_LEVEL, t)], o[0][k] + t * dk[0], o[1][k] + t * dk[1],
-                         o[2][k] + t * dk[2], time, dk, n);
-            shade_surface(params, n, dk, color);
-        }
-        put_pixel(i, j, width, height, color, lo[k], hits[k] != 0 ? n : NULL, rgb, depth, normal);
+    shade_colorv color[3];
+    shade_pixels(params, hit, n, d, row, height, color);
+    put_pixels(col, row, width, height, hit, color, hit_lo, n, rgb, depth, normal);
 #ifdef KERNEL_STATS
-        evals[(size_t)j * (size_t)width + (size_t)i] = (uint)count[k];
+    bisect_index count[IA_VW];
+    IAV_STORE(counts, count);
+    for (int k = 0; k < IA_VW; k++)
+        if (i0 + k % PACKET_W < width && j0 + k / PACKET_W < height)
+            evals[(size_t)(j0 + k / PACKET_W) * (size_t)width + (size_t)(i0 + k % PACKET_W)] = (uint)count[k];
 #else
-        (void)count;
-        (void)evals;
+    (void)counts;
+    (void)evals;
 #endif
-    }
 }
 
 /* One work-item per block of PACKET_W x PACKET_H tiles (32x32 pixels), run for bands of block rows: the tile pass

@@ -1,12 +1,21 @@
-/* kernels/shade.h -- the colour of a pixel: Blinn-Phong with a key light and a fill light, the lights fixed to
- * the camera (upper left and right of the eye), over a vertical gradient background. Colours are linear and
- * are encoded for display with gamma 2 at the end (a square root: pow() cost a tenth of the whole render).
+/* kernels/shade.h -- the colours of a packet's pixels, in SIMD lanes: Blinn-Phong with a key light and a fill
+ * light, the lights fixed to the camera (upper left and right of the eye), over a vertical gradient background.
+ * Colours are linear and are encoded for display with gamma 2 at the end (a square root: pow() cost a tenth of
+ * the whole render). Only the gradient runs lane by lane, as the emitted point code is scalar; the rest ran so
+ * too once and was three quarters of a frame's fixed cost.
  *
  * Needs iacsg_f_grad, the point value and gradient of the expression, or its groups (the emitted source).
  */
 #ifndef KERNELS_SHADE_H
 #define KERNELS_SHADE_H
-#include "params.h"
+#include "packet.h"
+
+typedef IAV_CAT(float, IA_VW) shade_colorv;
+#ifdef IA_FP64
+#define shade_to_color IAV_CAT(convert_float, IA_VW)
+#else
+#define shade_to_color(v) (v)
+#endif
 
 /* The gradient at p. For a union emitted in groups, over the groups set in `groups` (the tile's, packet_F): the
  * others are certainly positive around p, so the part that is 0 there is among these. */
@@ -30,61 +39,63 @@ IA_FN void shade_gradient(ulong groups, ia_real x, ia_real y, ia_real z, ia_real
 #endif
 }
 
-/* The unit normal at p, from the gradient (f < 0 inside, so it points out), turned to face the ray direction d.
- * Returns 0 when the gradient vanishes or is not finite there; n is then -d. */
-IA_FN int shade_normal(ulong groups, ia_real x, ia_real y, ia_real z, ia_real time, const ia_real d[3], ia_real n[3]) {
-    shade_gradient(groups, x, y, z, time, n);
-    ia_real len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    int ok = len > 0 && isfinite(len);
-    ia_real facing = n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0 ? (ia_real)-1 : (ia_real)1;
+/* The unit normals from the gradients g (f < 0 inside, so they point out), turned to face the ray directions d;
+ * -d in the lanes where the gradient vanishes or is not finite. */
+IA_FN void shade_normals(const ia_realv g[3], const ia_realv d[3], ia_realv n[3]) {
+    ia_realv len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    ia_maskv ok = (len > 0) & isfinite(len);
+    ia_realv facing = select(IAV_R(1), IAV_R(-1), g[0] * d[0] + g[1] * d[1] + g[2] * d[2] > 0);
     for (int k = 0; k < 3; k++)
-        n[k] = ok ? facing * n[k] / len : -d[k];
-    return ok;
+        n[k] = select(-d[k], facing * g[k] / len, ok);
 }
 
-/* One light's diffuse and specular terms for unit normal n, view direction d (from the eye) and a light
- * direction l0 + l1 + l2 (not yet unit). */
-IA_FN void shade_light(const ia_real n[3], const ia_real d[3], const ia_real l[3], ia_real *diffuse,
-                       ia_real *specular) {
-    ia_real ll = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-    ia_real h[3], hh = 0, nl = 0, nh = 0;
+/* The unit direction l0 + l1 + l2 of a light fixed to the camera: -forward + a right + b up. */
+IA_FN void shade_light_direction(const KERNEL_CONSTANT ia_real *p, ia_real a, ia_real b, ia_real l[3]) {
+    for (int k = 0; k < 3; k++)
+        l[k] = -p[PARAM_FORWARD + k] + a * p[PARAM_RIGHT + k] + b * p[PARAM_UP + k];
+    ia_real len = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    for (int k = 0; k < 3; k++)
+        l[k] /= len;
+}
+
+/* One light's diffuse and specular terms for unit normals n, view directions d (from the eye) and the unit light
+ * direction l. */
+IA_FN void shade_light(const ia_realv n[3], const ia_realv d[3], const ia_real l[3], ia_realv *diffuse,
+                       ia_realv *specular) {
+    ia_realv h[3], hh = IAV_R(0), nl = IAV_R(0), nh = IAV_R(0);
     for (int k = 0; k < 3; k++) {
-        nl += n[k] * l[k] / ll;
-        h[k] = l[k] / ll - d[k]; /* half vector between the light and the eye */
+        nl += n[k] * l[k];
+        h[k] = l[k] - d[k]; /* half vector between the light and the eye */
         hh += h[k] * h[k];
     }
     for (int k = 0; k < 3; k++)
         nh += n[k] * h[k];
-    nh = hh > 0 ? fmax(nh / sqrt(hh), (ia_real)0) : (ia_real)0;
-    ia_real nh4 = (nh * nh) * (nh * nh), nh16 = (nh4 * nh4) * (nh4 * nh4); /* shininess 48 = 16 + 32 */
-    *diffuse = fmax(nl, (ia_real)0);
-    *specular = nl > 0 ? nh16 * (nh16 * nh16) : (ia_real)0;
+    nh = select(IAV_R(0), fmax(nh / sqrt(hh), IAV_R(0)), hh > 0);
+    ia_realv nh4 = (nh * nh) * (nh * nh), nh16 = (nh4 * nh4) * (nh4 * nh4); /* shininess 48 = 16 + 32 */
+    *diffuse = fmax(nl, IAV_R(0));
+    *specular = select(IAV_R(0), nh16 * (nh16 * nh16), nl > 0);
 }
 
-/* The displayed colour of a surface point with unit normal n seen along d. */
-IA_FN void shade_surface(const KERNEL_CONSTANT ia_real *p, const ia_real n[3], const ia_real d[3], float rgb[3]) {
-    ia_real key[3], fill[3], kd, ks, fd, fs;
-    for (int k = 0; k < 3; k++) {
-        ia_real f = p[PARAM_FORWARD + k], r = p[PARAM_RIGHT + k], u = p[PARAM_UP + k];
-        key[k] = -f - (ia_real)0.6 * r + (ia_real)0.8 * u;
-        fill[k] = -f + (ia_real)0.9 * r - (ia_real)0.2 * u;
-    }
+/* The displayed colours rgb of the lanes: surface points with unit normals n seen along d in the lanes of
+ * `surface`, the background of their rows j of `height` in the others. */
+IA_FN void shade_pixels(const KERNEL_CONSTANT ia_real *p, ia_maskv surface, const ia_realv n[3], const ia_realv d[3],
+                        packet_int j, int height, shade_colorv rgb[3]) {
+    ia_real key[3], fill[3];
+    shade_light_direction(p, (ia_real)-0.6, (ia_real)0.8, key);
+    shade_light_direction(p, (ia_real)0.9, (ia_real)-0.2, fill);
+    ia_realv kd, ks, fd, fs;
     shade_light(n, d, key, &kd, &ks);
     shade_light(n, d, fill, &fd, &fs);
-    const float base[3] = {0.80f, 0.52f, 0.28f};
+    shade_colorv key_d = shade_to_color(kd), key_s = shade_to_color(ks);
+    shade_colorv fill_d = shade_to_color(fd), fill_s = shade_to_color(fs);
+    /* the background: a gradient from a light grey-blue at the top to a dark one below */
+    shade_colorv v = IAV_CAT(convert_float, IA_VW)(j) / (float)(height > 1 ? height - 1 : 1);
+    IAV_CAT(int, IA_VW) on_surface = IAV_CAT(convert_int, IA_VW)(surface) != 0;
+    const float base[3] = {0.80f, 0.52f, 0.28f}, top[3] = {0.42f, 0.46f, 0.52f}, bottom[3] = {0.13f, 0.14f, 0.17f};
     for (int c = 0; c < 3; c++) {
-        float lin = base[c] * (0.10f + 0.85f * (float)kd + 0.30f * (float)fd) + 0.45f * (float)ks +
-                    0.10f * (float)fs;
-        rgb[c] = sqrt(fmin(lin, 1.0f));
+        shade_colorv lin = base[c] * (0.10f + 0.85f * key_d + 0.30f * fill_d) + 0.45f * key_s + 0.10f * fill_s;
+        rgb[c] = select(top[c] + (bottom[c] - top[c]) * v, sqrt(fmin(lin, 1.0f)), on_surface);
     }
-}
-
-/* The background of row j of `height`: a gradient from a light grey-blue at the top to a dark one below. */
-IA_FN void shade_background(int j, int height, float rgb[3]) {
-    float v = (float)j / (float)(height > 1 ? height - 1 : 1);
-    const float top[3] = {0.42f, 0.46f, 0.52f}, bottom[3] = {0.13f, 0.14f, 0.17f};
-    for (int c = 0; c < 3; c++)
-        rgb[c] = top[c] + (bottom[c] - top[c]) * v;
 }
 
 #endif
