@@ -33,6 +33,10 @@ typedef IAV_CAT(ulong, IA_VW) packet_index; /* bisect_index per lane */
 #define packet_to_int IAV_CAT(convert_long, IA_VW)
 #define packet_to_index IAV_CAT(convert_ulong, IA_VW)
 #define packet_as_real IAV_CAT(as_double, IA_VW)
+#define packet_as_int IAV_CAT(as_long, IA_VW)
+typedef long8 packet_mask8;
+typedef long4 packet_mask4;
+typedef long2 packet_mask2;
 #define PACKET_EXP_BIAS 1023
 #define PACKET_MANT_BITS 52
 #else
@@ -42,9 +46,32 @@ typedef IAV_CAT(uint, IA_VW) packet_index;
 #define packet_to_int IAV_CAT(convert_int, IA_VW)
 #define packet_to_index IAV_CAT(convert_uint, IA_VW)
 #define packet_as_real IAV_CAT(as_float, IA_VW)
+#define packet_as_int IAV_CAT(as_int, IA_VW)
+typedef int8 packet_mask8;
+typedef int4 packet_mask4;
+typedef int2 packet_mask2;
 #define PACKET_EXP_BIAS 127
 #define PACKET_MANT_BITS 23
 #endif
+
+/* any(m) as a tree of ORs of halves: PoCL's any() tested the lanes one by one, a fifth of a walk step's
+ * instructions outside F. */
+IA_FN int packet_any(ia_maskv m) {
+#if IA_VW == 16
+    packet_mask8 m8 = m.lo | m.hi;
+#else
+    packet_mask8 m8 = m;
+#endif
+    packet_mask4 m4 = m8.lo | m8.hi;
+    packet_mask2 m2 = m4.lo | m4.hi;
+    return (m2.x | m2.y) < 0;
+}
+
+/* log2 of powers of two p > 0, lane by lane: the exponent of p converted to a real (exactly). There is no vector
+ * popcount or count of trailing zeros before AVX-512 VPOPCNTDQ; PoCL ran them lane by lane. */
+IA_FN packet_int packet_log2_of_power(packet_index p) {
+    return (packet_as_int(packet_to_real(p)) >> PACKET_MANT_BITS) - PACKET_EXP_BIAS;
+}
 
 /* Interval evaluations are counted per lane only in a kernel built with -D KERNEL_STATS: the normal kernel
  * pays nothing. A true lane of a mask is -1. */
@@ -65,7 +92,7 @@ IA_FN ia_realv packet_node_bound(ia_real t0, ia_real w, packet_int level, packet
  * box its rays evaluate there (tile.h), so there the union is < 0, = 0 or > 0 exactly where the min of the groups
  * kept is: the roots, and the walk's decisions, are the same. An expression emitted without groups (no
  * IACSG_GROUPS) is iacsg_Fv. */
-IA_FN iav packet_F(ulong groups, iav x, iav y, iav z, iav t) {
+IAV_INLINE iav packet_F(ulong groups, iav x, iav y, iav z, iav t) {
 #ifdef IACSG_GROUPS
     iav r = iav_point(IA_INF); /* the identity of min */
     for (int g = 0; g < IACSG_GROUPS; g++)
@@ -172,13 +199,13 @@ IA_FN packet_index packet_node_at(ia_real t0, ia_real w, int level, ia_realv t) 
     packet_int lv = (packet_int)level;
     while (1) {
         ia_maskv back = (j > 0) & (packet_node_bound(t0, w, lv, j) > t);
-        if (!any(back))
+        if (!packet_any(back))
             break;
         j = select(j, j - 1, back);
     }
     while (1) {
         ia_maskv forward = (j < last) & (packet_node_bound(t0, w, lv, j + 1) <= t);
-        if (!any(forward))
+        if (!packet_any(forward))
             return j;
         j = select(j, j + 1, forward);
     }
@@ -197,7 +224,7 @@ IA_FN iav packet_extent(ia_realv o, ia_realv d, iav t) {
 IA_FN void packet_advance(ia_maskv *searching, ia_maskv down, packet_int *level, packet_index *i) {
     ia_maskv next = *searching & ~down;
     packet_index i1 = *i + 1;
-    packet_int up = min(packet_to_int(popcount((i1 & (0 - i1)) - 1)), *level);
+    packet_int up = min(packet_log2_of_power(i1 & (0 - i1)), *level); /* trailing zeros of i1 */
     *i = select(select(*i, *i << 1, down), i1 >> packet_to_index(up), next);
     *level = select(select(*level, *level + 1, down), *level - up, next);
     *searching &= ~(next & (*level == 0));
@@ -211,7 +238,7 @@ IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_
                                  ia_realv t_far, ia_maskv searching, ia_real eps, iav time, ia_realv *hit_lo,
                                  ia_realv *hit_hi, packet_index *evals) {
     ia_maskv hit = (ia_maskv)0;
-    while (any(searching)) {
+    while (packet_any(searching)) {
         ia_realv lo = packet_node_bound(t0, w, level, i), hi = packet_node_bound(t0, w, level, i + 1);
         searching &= ~(lo > t_far); /* so is every node after it: a miss */
         ia_realv a = fmax(lo, t_near), b = fmin(hi, t_far);

@@ -191,7 +191,7 @@ static void trace_packet(__constant ia_real *params, int flags, int width, int h
         packet_index start = max((packet_index)leaf, packet_node_at(t0, w, level, t_near));
         hit = packet_first_root(segment_groups, o, d, t0, w, (packet_int)level, start, t_near, t_far, searching,
                                 params[PARAM_EPS], iav_point(time), &hit_lo, &hit_hi, &counts);
-        if (any(hit)) {
+        if (packet_any(hit)) {
             ia_realv g[3];
             packet_gradients(segment_groups, t0, w, hit, o, d, hit_lo * (ia_real)0.5 + hit_hi * (ia_real)0.5, time,
                              g);
