@@ -23,7 +23,9 @@ OPT = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-o
 endif
 CFLAGS_ALL = -std=c11 $(WARN) $(OPT) -I. -Isrc -I$(BUILD) -D_POSIX_C_SOURCE=200809L $(CFLAGS)
 CXXFLAGS_ALL = -std=c++17 -Wall -Wextra -Werror $(OPT) -I. -Isrc $(CXXFLAGS)
-LIBS = -lOpenCL -lOpenImageIO -lOpenImageIO_Util -lmpfr -lgmp -lm -lstdc++
+IMAGE_LIBS = -lOpenImageIO -lOpenImageIO_Util
+LIBS = -lOpenCL $(IMAGE_LIBS) -lmpfr -lgmp -lm -lstdc++
+CLI_LIBS = -lOpenCL -lm -ldl
 LDFLAGS_ALL = $(OPT) $(LDFLAGS)
 
 DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev
@@ -61,8 +63,13 @@ deps:
 $(BUILD)/libiacsg.a: $(LIB_OBJ)
 	ar rcs $@ $^
 
-$(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a
-	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(LIBS)
+# The command is not linked with OpenImageIO: it loads libiacsg_image.so, beside it, in a child process
+# (src/cli_writer.c), so that the ~180 ms of linking OpenImageIO's libraries overlap the render.
+$(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so
+	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(CLI_LIBS)
+
+$(BUILD)/libiacsg_image.so: $(BUILD)/pic/src/image_oiio.o $(BUILD)/pic/src/error.o
+	$(CXX) $(LDFLAGS_ALL) -shared -o $@ $^ $(IMAGE_LIBS)
 
 $(BUILD)/iacsg-tests: $(TEST_OBJ) $(BUILD)/libiacsg.a
 	$(CC) $(LDFLAGS_ALL) -o $@ $(TEST_OBJ) $(BUILD)/libiacsg.a $(LIBS)
@@ -73,6 +80,12 @@ $(BUILD)/%.o: %.c
 $(BUILD)/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(CXXFLAGS_ALL) -MMD -MP -c $< -o $@
+$(BUILD)/pic/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -fPIC -MMD -MP -c $< -o $@
+$(BUILD)/pic/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS_ALL) -fPIC -MMD -MP -c $< -o $@
 $(BUILD)/%.o: $(BUILD)/%.c
 	$(CC) $(CFLAGS_ALL) -c $< -o $@
 

@@ -1,6 +1,7 @@
 /* src/cli_render.c -- `iacsg EXPR|SCENE [options]`: render to image files; and `iacsg devices`. The options
  * are documented in cli_main.c's usage text and the README. */
 #include "cli.h"
+#include "cli_writer.h"
 #include "clrt.h"
 #include "iacsg.h"
 #include <errno.h>
@@ -267,7 +268,8 @@ static void show_progress(double done, void *ctx) {
     bar->shown = 1;
 }
 
-static iacsg_status write_frame(const render_options *o, const iacsg_frame *fr, int frame, iacsg_error *err) {
+static iacsg_status write_frame(cli_writer *writer, const render_options *o, const iacsg_frame *fr, int frame,
+                                iacsg_error *err) {
     const char *paths[3] = {o->output, o->depth_file, o->normals_file};
     const float *data[3] = {fr->rgb, fr->depth, fr->normal};
     const int channels[3] = {3, 1, 3};
@@ -277,7 +279,7 @@ static iacsg_status write_frame(const render_options *o, const iacsg_frame *fr, 
         char *path = o->frames ? numbered(paths[k], frame) : strdup(paths[k]);
         if (!path)
             return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
-        iacsg_status st = iacsg_image_write(path, fr->width, fr->height, channels[k], data[k], k > 0, err);
+        iacsg_status st = cli_writer_write(writer, path, fr->width, fr->height, channels[k], data[k], k > 0, err);
         if (st == IACSG_OK)
             printf("wrote %s\n", path);
         free(path);
@@ -346,11 +348,15 @@ int cli_render(int argc, char **argv) {
     iacsg_error err = {0};
     iacsg_expr *e = NULL;
     iacsg_renderer *r = NULL;
-    iacsg_status st = IACSG_OK;
+    cli_writer *writer = NULL;
+    /* first, so that the writer loads while OpenCL starts */
+    iacsg_status st = cli_writer_start((size_t)o.view.width * (size_t)o.view.height * 3, &writer, &err);
     const char *outputs[3] = {o.output, o.depth_file, o.normals_file};
     for (int k = 0; k < 3 && st == IACSG_OK; k++)
-        if (outputs[k] && (st = iacsg_image_check_format(outputs[k], &err)) == IACSG_OK)
+        if (outputs[k]) {
+            cli_writer_check(writer, outputs[k]);
             st = check_directory_writable(outputs[k], &err);
+        }
     if (st == IACSG_OK && name == o.input) /* a scene file */
         st = check_outputs_spare_input(o.input, outputs, &err);
     if (st == IACSG_OK)
@@ -369,6 +375,8 @@ int cli_render(int argc, char **argv) {
         o.view.progress = show_progress;
         o.view.progress_ctx = &bar;
     }
+    if (st == IACSG_OK) /* the formats are known before a render that may be long */
+        st = cli_writer_checked(writer, &err);
     int frames = o.frames ? o.frames : 1;
     for (int k = 0; k < frames && st == IACSG_OK; k++) {
         if (o.frames)
@@ -382,13 +390,14 @@ int cli_render(int argc, char **argv) {
         }
         if (st != IACSG_OK)
             break;
-        st = write_frame(&o, &fr, k, &err);
+        st = write_frame(writer, &o, &fr, k, &err);
         if (st == IACSG_OK && o.config.stats)
             print_stats(r, &fr);
         iacsg_frame_free(&fr);
     }
     if (st != IACSG_OK)
         print_error(&err, name);
+    cli_writer_stop(writer);
     iacsg_renderer_destroy(r);
     iacsg_expr_destroy(e);
     free(text);

@@ -15,6 +15,10 @@ extern "C" {
 iacsg_status iacsg_image_write(const char *path, int width, int height, int channels, const float *pixels,
                                int as_float, iacsg_error *err);
 
+/* The same for pixels already in 8 bits (0 to 255). */
+iacsg_status iacsg_image_write_bytes(const char *path, int width, int height, int channels,
+                                     const unsigned char *pixels, iacsg_error *err);
+
 /* IACSG_OK if `path` names a format OpenImageIO can write (by its extension), checked before a long render. */
 iacsg_status iacsg_image_check_format(const char *path, iacsg_error *err);
 

@@ -27,19 +27,20 @@ static std::string temporary_name(const std::string &path) {
     return path.substr(0, base) + "." + stem + ".tmp-" + std::to_string(static_cast<long>(getpid())) + ext;
 }
 
-extern "C" iacsg_status iacsg_image_write(const char *path, int width, int height, int channels,
-                                          const float *pixels, int as_float, iacsg_error *err) {
+// Writes pixels of type `in` to `path` as `stored`, through a temporary file renamed over `path` once complete.
+static iacsg_status write_image(const char *path, int width, int height, int channels, TypeDesc in,
+                                const void *pixels, TypeDesc stored, iacsg_error *err) {
     try {
         auto out = ImageOutput::create(path);
         if (!out)
             return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: no image format for this file name (%s)", path,
                                    OIIO::geterror().c_str());
-        ImageSpec spec(width, height, channels, as_float ? TypeDesc::FLOAT : TypeDesc::UINT8);
+        ImageSpec spec(width, height, channels, stored);
         /* zlib level 1: a rendered frame compresses nearly as well, and level 6 (the default) cost ~70 ms of a
          * 1024x1024 command. Other formats ignore the attribute. */
         spec.attribute("png:compressionLevel", 1);
         std::string tmp = temporary_name(path);
-        bool ok = out->open(tmp, spec) && out->write_image(TypeDesc::FLOAT, pixels) && out->close();
+        bool ok = out->open(tmp, spec) && out->write_image(in, pixels) && out->close();
         if (!ok) {
             std::string msg = out->geterror();
             out.reset();
@@ -57,6 +58,17 @@ extern "C" iacsg_status iacsg_image_write(const char *path, int width, int heigh
     } catch (const std::exception &e) {
         return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: %s", path, e.what());
     }
+}
+
+extern "C" iacsg_status iacsg_image_write(const char *path, int width, int height, int channels,
+                                          const float *pixels, int as_float, iacsg_error *err) {
+    return write_image(path, width, height, channels, TypeDesc::FLOAT, pixels,
+                       as_float ? TypeDesc::FLOAT : TypeDesc::UINT8, err);
+}
+
+extern "C" iacsg_status iacsg_image_write_bytes(const char *path, int width, int height, int channels,
+                                                const unsigned char *pixels, iacsg_error *err) {
+    return write_image(path, width, height, channels, TypeDesc::UINT8, pixels, TypeDesc::UINT8, err);
 }
 
 extern "C" iacsg_status iacsg_image_check_format(const char *path, iacsg_error *err) {
