@@ -218,69 +218,82 @@ static int group_nodes(const emitter *em, const int *parts, int first, int last,
     return count;
 }
 
-/* A union in groups, for the interval code over lanes (r = AS_VECTOR) or the point value and gradient
- * (AS_DERIV): a function of the group's number, not inlined, each case computing the nodes its parts need
- * (shared ones once per group) and their min. The kernels take the min over the groups that can matter in a
- * tile (kernels/packet.h, shade.h), so there is no whole iacsg_Fv; the whole gradient, the min over all groups,
- * is for the other programs (device evaluation). Smaller straight-line blocks also keep LLVM's compile time,
- * which grows faster than linearly in a block's length, down (the gradient of 1024 spheres as one block took 8
- * of the 18 s). Returns 0 on out of memory. */
+/* One group of a union as a function (not inlined) of its own: the nodes its parts need, shared ones computed
+ * once, and their min; for the interval code over lanes (r = AS_VECTOR) or the point value and gradient
+ * (AS_DERIV). Returns 0 on out of memory. */
+static int emit_group(strbuf *b, const emitter *em, int root, const int *parts, int first, int last, int g,
+                      const char *prefix, role r, unsigned char *needed, int *order) {
+    int count = group_nodes(em, parts, first, last, needed, root, order);
+    if (count < 0)
+        return 0;
+    int vector = r == AS_VECTOR;
+    if (vector)
+        strbuf_printf(b, "__attribute__((noinline)) iav %s_Fv_g%d(iav x, iav y, iav z, iav t) {\n", prefix, g);
+    else
+        strbuf_printf(b, "__attribute__((noinline)) ia_real %s_f_grad_g%d(ia_real x, ia_real y, ia_real z, "
+                         "ia_real t, iacsg_grad *g) {\n",
+                      prefix, g);
+    body(b, em, order, count, r);
+    strbuf_printf(b, vector ? "    iav r = " : "    ia_real r = ");
+    put_operand(b, em, parts[first], vector ? AS_VECTOR : AS_POINT);
+    if (!vector) {
+        strbuf_printf(b, ";\n    iacsg_grad rg = ");
+        put_operand(b, em, parts[first], AS_DERIV);
+    }
+    strbuf_printf(b, ";\n");
+    for (int c = first + 1; c < last; c++) {
+        if (vector) {
+            strbuf_printf(b, "    r = iav_min(r, ");
+            put_operand(b, em, parts[c], AS_VECTOR);
+            strbuf_printf(b, ");\n");
+            continue;
+        }
+        /* as MIN's point and derivative templates: fmin, and the first operand's gradient when r <= v */
+        strbuf_printf(b, "    rg = r <= ");
+        put_operand(b, em, parts[c], AS_POINT);
+        strbuf_printf(b, " ? rg : ");
+        put_operand(b, em, parts[c], AS_DERIV);
+        strbuf_printf(b, ";\n    r = fmin(r, ");
+        put_operand(b, em, parts[c], AS_POINT);
+        strbuf_printf(b, ");\n");
+    }
+    strbuf_printf(b, vector ? "    return r;\n}\n" : "    *g = rg;\n    return r;\n}\n");
+    return 1;
+}
+
+/* A union in groups (see emit_group), and the function of a group's number that calls them. The kernels take
+ * the min over the groups that can matter in a tile (kernels/packet.h, shade.h), so there is no whole iacsg_Fv;
+ * the whole gradient, the min over all groups, is for the other programs (device evaluation). A function per
+ * group keeps LLVM's compile time down, which grows faster than linearly in a function's length: 1024 spheres
+ * built in 5.5-5.7 s instead of 7-8 s with one function holding every group (and 18 s as one block). Returns 0
+ * on out of memory. */
 static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *parts, int nparts,
                              const char *prefix, role r) {
     grouping gr = group_parts(nparts);
     unsigned char *needed = malloc((size_t)root + 1);
     int *order = malloc(((size_t)root + 1) * sizeof *order);
-    if (!needed || !order) {
-        free(needed);
-        free(order);
-        return 0;
-    }
-    int vector = r == AS_VECTOR;
-    if (vector)
-        strbuf_printf(b, "#define IACSG_GROUPS %d\n__attribute__((noinline)) iav %s_Fv_group(int group, iav x, iav y, "
-                         "iav z, iav t) {\n",
-                      gr.count, prefix);
-    else
-        strbuf_printf(b, "__attribute__((noinline)) ia_real %s_f_grad_group(int group, ia_real x, ia_real y, "
-                         "ia_real z, ia_real t, iacsg_grad *g) {\n",
-                      prefix);
-    strbuf_printf(b, "    switch (group) {\n");
-    int ok = 1;
+    int ok = needed && order;
     for (int g = 0; g < gr.count && ok; g++) {
         int first = g * gr.per_group, last = first + gr.per_group < nparts ? first + gr.per_group : nparts;
-        int count = group_nodes(em, parts, first, last, needed, root, order);
-        ok = count >= 0;
-        if (!ok)
-            break;
-        strbuf_printf(b, "    case %d: {\n", g);
-        body(b, em, order, count, r);
-        strbuf_printf(b, vector ? "        iav r = " : "        ia_real r = ");
-        put_operand(b, em, parts[first], vector ? AS_VECTOR : AS_POINT);
-        if (!vector) {
-            strbuf_printf(b, ";\n        iacsg_grad rg = ");
-            put_operand(b, em, parts[first], AS_DERIV);
-        }
-        strbuf_printf(b, ";\n");
-        for (int c = first + 1; c < last; c++) {
-            if (vector) {
-                strbuf_printf(b, "        r = iav_min(r, ");
-                put_operand(b, em, parts[c], AS_VECTOR);
-                strbuf_printf(b, ");\n");
-                continue;
-            }
-            /* as MIN's point and derivative templates: fmin, and the first operand's gradient when r <= v */
-            strbuf_printf(b, "        rg = r <= ");
-            put_operand(b, em, parts[c], AS_POINT);
-            strbuf_printf(b, " ? rg : ");
-            put_operand(b, em, parts[c], AS_DERIV);
-            strbuf_printf(b, ";\n        r = fmin(r, ");
-            put_operand(b, em, parts[c], AS_POINT);
-            strbuf_printf(b, ");\n");
-        }
-        strbuf_printf(b, vector ? "        return r;\n    }\n" : "        *g = rg;\n        return r;\n    }\n");
+        ok = emit_group(b, em, root, parts, first, last, g, prefix, r, needed, order);
     }
     free(needed);
     free(order);
+    if (!ok)
+        return 0;
+    int vector = r == AS_VECTOR;
+    if (vector)
+        strbuf_printf(b, "#define IACSG_GROUPS %d\nIA_FN iav %s_Fv_group(int group, iav x, iav y, iav z, iav t) {\n"
+                         "    switch (group) {\n",
+                      gr.count, prefix);
+    else
+        strbuf_printf(b, "IA_FN ia_real %s_f_grad_group(int group, ia_real x, ia_real y, ia_real z, ia_real t, "
+                         "iacsg_grad *g) {\n    switch (group) {\n",
+                      prefix);
+    for (int g = 0; g < gr.count; g++)
+        strbuf_printf(b, vector ? "    case %d: return %s_Fv_g%d(x, y, z, t);\n"
+                                : "    case %d: return %s_f_grad_g%d(x, y, z, t, g);\n",
+                      g, prefix, g);
     if (vector) {
         strbuf_printf(b, "    }\n    return iav_point(IA_INF);\n}\n");
     } else {
@@ -294,7 +307,7 @@ static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *
                          "    *gx = g.x;\n    *gy = g.y;\n    *gz = g.z;\n    return r;\n}\n",
                       prefix, prefix, gr.count, prefix);
     }
-    return ok;
+    return 1;
 }
 
 iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, iacsg_error *err) {
