@@ -98,6 +98,20 @@ IA_FN ia_interval ia_hull(ia_interval a, ia_interval b) {
     return ia_make(fmin(a.lo, b.lo), fmax(a.hi, b.hi));
 }
 
+/* Enclosures of the derivatives of |a|, min(a, b) and max(a, b) from enclosures da, db of the operands'
+ * derivatives, a and b being the operands' enclosures over the same box (the interval derivative code of
+ * implicits/ops.def, for interval Newton). Where the box does not decide which side holds, the hull of both:
+ * Clarke's generalized derivative, for which the mean value theorem Newton relies on still holds. */
+IA_FN ia_interval ia_dabs(ia_interval a, ia_interval da) {
+    return a.lo > 0 ? da : a.hi < 0 ? ia_neg(da) : ia_hull(da, ia_neg(da));
+}
+IA_FN ia_interval ia_dmin(ia_interval a, ia_interval b, ia_interval da, ia_interval db) {
+    return a.hi < b.lo ? da : b.hi < a.lo ? db : ia_hull(da, db);
+}
+IA_FN ia_interval ia_dmax(ia_interval a, ia_interval b, ia_interval da, ia_interval db) {
+    return a.lo > b.hi ? da : b.lo > a.hi ? db : ia_hull(da, db);
+}
+
 /* The common part; empty when they are disjoint. */
 IA_FN ia_interval ia_intersect(ia_interval a, ia_interval b) {
     ia_interval r = ia_make(fmax(a.lo, b.lo), fmin(a.hi, b.hi));

@@ -77,6 +77,43 @@ IA_FN iav iav_abs(iav a) {
 IA_FN iav iav_min(iav a, iav b) { return iav_make(fmin(a.lo, b.lo), fmin(a.hi, b.hi)); }
 IA_FN iav iav_max(iav a, iav b) { return iav_make(fmax(a.lo, b.lo), fmax(a.hi, b.hi)); }
 
+/* any(m): a tree of ORs of halves (PoCL's any() tests the lanes one by one). */
+IA_FN int iav_any(ia_maskv m) {
+#ifdef IA_FP64
+    long8 m8;
+    long4 m4;
+    long2 m2;
+#else
+    int8 m8;
+    int4 m4;
+    int2 m2;
+#endif
+#if IA_VW == 16
+    m8 = m.lo | m.hi;
+#else
+    m8 = m;
+#endif
+    m4 = m8.lo | m8.hi;
+    m2 = m4.lo | m4.hi;
+    return (m2.x | m2.y) < 0;
+}
+
+/* ia_hull of nonempty operands, and ia_dabs, ia_dmin, ia_dmax lane by lane (the same choices, as selects). */
+IA_FN iav iav_hull(iav a, iav b) { return iav_make(fmin(a.lo, b.lo), fmax(a.hi, b.hi)); }
+IA_FN iav iav__pick(iav when_false, iav when_true, ia_maskv m) {
+    return iav_make(select(when_false.lo, when_true.lo, m), select(when_false.hi, when_true.hi, m));
+}
+IA_FN iav iav_dabs(iav a, iav da) {
+    iav n = iav_neg(da);
+    return iav__pick(iav__pick(iav_hull(da, n), n, a.hi < 0), da, a.lo > 0);
+}
+IA_FN iav iav_dmin(iav a, iav b, iav da, iav db) {
+    return iav__pick(iav__pick(iav_hull(da, db), db, b.hi < a.lo), da, a.hi < b.lo);
+}
+IA_FN iav iav_dmax(iav a, iav b, iav da, iav db) {
+    return iav__pick(iav__pick(iav_hull(da, db), db, b.lo > a.hi), da, a.lo > b.hi);
+}
+
 /* ---- rounded operations. Nonempty operands have lo < +inf and hi > -inf, so a.lo + b.lo and a.lo - b.hi
  * are never inf - inf: no test needed where ia_add has one. */
 IA_FN iav iav_add(iav a, iav b) { return iav_make(iav_lo(a.lo + b.lo), iav_hi(a.hi + b.hi)); }
@@ -186,7 +223,7 @@ IA_FN iav iav__pown_by_lane(iav a, int n) {
  * results, lane by lane. */
 IA_FN ia_maskv iav__has_pole(iav b) { return b.lo <= 0 && b.hi >= 0; }
 IA_FN iav iav_recip(iav a) {
-    if (any(iav__has_pole(a)))
+    if (iav_any(iav__has_pole(a)))
         return iav__recip_by_lane(a);
     return iav_make(iav_lo_k(1 / a.hi, IA_ULP_DIV), iav_hi_k(1 / a.lo, IA_ULP_DIV));
 }
@@ -196,7 +233,7 @@ IA_FN ia_realv iav__quot0(ia_realv x, ia_realv y) {
     return select(q, IAV_R(0), isnan(q));
 }
 IA_FN iav iav_div(iav a, iav b) {
-    if (any(iav__has_pole(b)))
+    if (iav_any(iav__has_pole(b)))
         return iav__div_by_lane(a, b);
     ia_realv q1 = iav__quot0(a.lo, b.lo), q2 = iav__quot0(a.lo, b.hi);
     ia_realv q3 = iav__quot0(a.hi, b.lo), q4 = iav__quot0(a.hi, b.hi);

@@ -8,19 +8,21 @@
 #include <string.h>
 
 #define STR(x) #x
+#define LEAF {"", 0, 0, "", "", "", ""}
 const dag_op_info dag_ops[OP_COUNT] = {
-    [OP_X] = {"", 0, 0, "", "", ""},     [OP_Y] = {"", 0, 0, "", "", ""},     [OP_Z] = {"", 0, 0, "", "", ""},
-    [OP_T] = {"", 0, 0, "", "", ""},     [OP_CONST] = {"", 0, 0, "", "", ""}, [OP_PI] = {"", 0, 0, "", "", ""},
-    [OP_E] = {"", 0, 0, "", "", ""},     [OP_PARAM] = {"", 0, 0, "", "", ""},
-#define OP(id, name, arity, nary, iv, pt, d, oracle) [OP_##id] = {name, arity, nary, STR(iv), STR(pt), STR(d)},
+    [OP_X] = LEAF, [OP_Y] = LEAF, [OP_Z] = LEAF, [OP_T] = LEAF, [OP_CONST] = LEAF, [OP_PI] = LEAF, [OP_E] = LEAF,
+    [OP_PARAM] = LEAF,
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle)                                                          \
+    [OP_##id] = {name, arity, nary, STR(iv), STR(pt), STR(d), STR(td)},
 #include "ops.def"
 #undef OP
 };
+#undef LEAF
 
 const char *dag_op_id(dag_op op) {
     static const char *const ids[OP_COUNT] = {
         "X", "Y", "Z", "T", "CONST", "PI", "E", "PARAM",
-#define OP(id, name, arity, nary, iv, pt, d, oracle) #id,
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle) #id,
 #include "ops.def"
 #undef OP
     };

@@ -17,15 +17,17 @@ static const char kernel_head[] =
     "    size_t i = get_global_id(0);\n"
     "    if (i >= n)\n"
     "        return;\n"
-    "    __global const ia_real *v = in + 8 * i;\n"
+    "    __global const ia_real *v = in + 11 * i;\n"
     "    ia_interval x = ia_make(v[0], v[1]), y = ia_make(v[2], v[3]), z = ia_make(v[4], v[5]);\n"
     "    ia_interval t = ia_make(v[6], v[7]);\n"
-    "    ia_interval r = ia_empty();\n"
+    "    ia_interval r = ia_empty(), dr = ia_empty();\n"
+    "    ia_interval dx = ia_point(v[8]), dy = ia_point(v[9]), dz = ia_point(v[10]);\n"
     "    ia_real f = 0, gx = 0, gy = 0, gz = 0;\n"
     "    switch (which[i]) {\n";
 static const char kernel_tail[] = "    }\n"
-                                  "    __global ia_real *o = out + 6 * i;\n"
+                                  "    __global ia_real *o = out + 8 * i;\n"
                                   "    o[0] = r.lo; o[1] = r.hi; o[2] = f; o[3] = gx; o[4] = gy; o[5] = gz;\n"
+                                  "    o[6] = dr.lo; o[7] = dr.hi;\n"
                                   "}\n";
 
 static char *program_source(const iacsg_expr *const *exprs, int nexprs, iacsg_error *err) {
@@ -44,8 +46,8 @@ static char *program_source(const iacsg_expr *const *exprs, int nexprs, iacsg_er
     for (int k = 0; k < nexprs; k++)
         strbuf_printf(&b,
                       "    case %d: r = e%d_F(x, y, z, t); f = e%d_f_grad(v[0], v[2], v[4], v[6], &gx, &gy, &gz); "
-                      "break;\n",
-                      k, k, k);
+                      "e%d_Fd(x, y, z, t, dx, dy, dz, &dr); break;\n",
+                      k, k, k, k);
     strbuf_printf(&b, "%s", kernel_tail);
     char *s = strbuf_finish(&b);
     if (!s)
@@ -75,18 +77,21 @@ iacsg_status device_eval(clrt *rt, const iacsg_expr *const *exprs, int nexprs, i
     cl_int rc = CL_SUCCESS;
     size_t real = fp64 ? sizeof(double) : sizeof(float);
     cl_uint count = (cl_uint)n;
-    void *host_in = malloc(8 * n * real), *host_out = malloc(6 * n * real);
+    void *host_in = malloc(DEVICE_EVAL_IN * n * real), *host_out = malloc(DEVICE_EVAL_OUT * n * real);
     char *src = program_source(exprs, nexprs, err);
     iacsg_status st = IACSG_ERR_OPENCL;
     if (!host_in || !host_out || !src) {
         st = src ? iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory") : err->status;
         goto done;
     }
-    for (size_t i = 0; i < 8 * n; i++) {
+    for (size_t i = 0; i < DEVICE_EVAL_IN * n; i++) {
+        size_t k = i % DEVICE_EVAL_IN;
         if (fp64)
             ((double *)host_in)[i] = in[i];
+        else if (k >= 8) /* the direction */
+            ((float *)host_in)[i] = (float)in[i];
         else /* the corner x0, y0, z0, t0 is also the point: round it down with the box */
-            ((float *)host_in)[i] = to_float(in[i], i % 2 == 0);
+            ((float *)host_in)[i] = to_float(in[i], k % 2 == 0);
     }
     if ((st = clrt_ia_options(rt, fp64, 0, options, sizeof options, err)) != IACSG_OK)
         goto done;
@@ -99,9 +104,10 @@ iacsg_status device_eval(clrt *rt, const iacsg_expr *const *exprs, int nexprs, i
     bufs[0] = clCreateBuffer(rt->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(int), (void *)which,
                              &rc);
     CLRT_CHECK(err, rc);
-    bufs[1] = clCreateBuffer(rt->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, 8 * n * real, host_in, &rc);
+    bufs[1] = clCreateBuffer(rt->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, DEVICE_EVAL_IN * n * real, host_in,
+                             &rc);
     CLRT_CHECK(err, rc);
-    bufs[2] = clCreateBuffer(rt->context, CL_MEM_WRITE_ONLY, 6 * n * real, NULL, &rc);
+    bufs[2] = clCreateBuffer(rt->context, CL_MEM_WRITE_ONLY, DEVICE_EVAL_OUT * n * real, NULL, &rc);
     CLRT_CHECK(err, rc);
     for (cl_uint k = 0; k < 3; k++)
         CLRT_CHECK(err, clSetKernelArg(kernel, k, sizeof(cl_mem), &bufs[k]));
@@ -110,8 +116,9 @@ iacsg_status device_eval(clrt *rt, const iacsg_expr *const *exprs, int nexprs, i
      * expressions inlined then overflows its thread's stack. */
     size_t group = LOCAL_SIZE, global = (n + LOCAL_SIZE - 1) / LOCAL_SIZE * LOCAL_SIZE;
     CLRT_CHECK(err, clEnqueueNDRangeKernel(rt->queue, kernel, 1, NULL, &global, &group, 0, NULL, NULL));
-    CLRT_CHECK(err, clEnqueueReadBuffer(rt->queue, bufs[2], CL_TRUE, 0, 6 * n * real, host_out, 0, NULL, NULL));
-    for (size_t i = 0; i < 6 * n; i++)
+    CLRT_CHECK(err, clEnqueueReadBuffer(rt->queue, bufs[2], CL_TRUE, 0, DEVICE_EVAL_OUT * n * real, host_out, 0, NULL,
+                                        NULL));
+    for (size_t i = 0; i < DEVICE_EVAL_OUT * n; i++)
         out[i] = fp64 ? ((double *)host_out)[i] : ((float *)host_out)[i];
     st = IACSG_OK;
 fail:

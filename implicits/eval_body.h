@@ -20,7 +20,7 @@ static ia_real up(double v) {
 static ia_interval apply(int op, ia_interval A, ia_interval B, int N, ia_real KB) {
     (void)B, (void)N, (void)KB;
     switch (op) {
-#define OP(id, name, arity, nary, iv, pt, d, oracle)                                                          \
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle)                                                          \
     case OP_##id: return iv;
 #include "ops.def"
 #undef OP

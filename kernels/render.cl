@@ -189,9 +189,13 @@ static void trace_packet(__constant ia_real *params, int flags, int width, int h
         ia_maskv searching = (col < width) & (row < height) & packet_clip(params, o, d, &t_near, &t_far);
         bisect_index leaf = (bisect_index)tiles[2 * tile + 1];
         packet_index start = max((packet_index)leaf, packet_node_at(t0, w, level, t_near));
+        /* a pixel's footprint at distance t: 2 tan(fov/2) t / height, or 2 (HEIGHT/2) / height orthographic */
+        ia_real pixel = (ia_real)2 * params[PARAM_SCALE_V] / (ia_real)height;
+        int ortho = flags & RENDER_ORTHO;
         hit = packet_first_root(segment_groups, o, d, t0, w, (packet_int)level, start, t_near, t_far, searching,
-                                params[PARAM_EPS], iav_point(time), &hit_lo, &hit_hi, &counts);
-        if (packet_any(hit)) {
+                                params[PARAM_EPS], ortho ? pixel : 0, ortho ? 0 : pixel, iav_point(time), &hit_lo,
+                                &hit_hi, &counts);
+        if (iav_any(hit)) {
             ia_realv g[3];
             packet_gradients(segment_groups, t0, w, hit, o, d, hit_lo * (ia_real)0.5 + hit_hi * (ia_real)0.5, time,
                              g);

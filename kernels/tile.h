@@ -65,7 +65,7 @@ IA_FN ia_maskv tile_first_leaves(ulong groups, const iav base[3], const iav dir[
     ia_maskv found = (ia_maskv)0;
     packet_int level = (packet_int)0;
     packet_index i = (packet_index)0;
-    while (packet_any(searching)) {
+    while (iav_any(searching)) {
         ia_realv lo = packet_node_bound(t0, w, level, i), hi = packet_node_bound(t0, w, level, i + 1);
         iav t = iav_make(lo, hi), box[3];
         for (int k = 0; k < 3; k++) /* tile_box */

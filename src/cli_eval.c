@@ -177,12 +177,13 @@ static int eval_on_device(const eval_options *o, const iacsg_expr *e, double out
     clrt rt;
     iacsg_error err = {0};
     int which = 0;
-    double result[6];
+    double in[DEVICE_EVAL_IN] = {0}, result[DEVICE_EVAL_OUT];
+    memcpy(in, o->vars, 8 * sizeof(double));
     if (clrt_open(&rt, o->device_index, &err) != IACSG_OK) {
         fprintf(stderr, "iacsg: %s\n", err.message);
         return 1;
     }
-    iacsg_status st = device_eval(&rt, &e, 1, o->fp64, 1, &which, o->vars, result, &err);
+    iacsg_status st = device_eval(&rt, &e, 1, o->fp64, 1, &which, in, result, &err);
     clrt_close(&rt);
     if (st != IACSG_OK) {
         fprintf(stderr, "iacsg: %s\n", err.message);

@@ -20,7 +20,7 @@ static int oracle_pow(mpfr_ptr r, mpfr_srcptr a, mpfr_srcptr b, mpfr_rnd_t rnd) 
 static void apply(int op, mpfr_ptr R, mpfr_srcptr A, mpfr_srcptr B, long N) {
     (void)B, (void)N;
     switch (op) {
-#define OP(id, name, arity, nary, iv, pt, d, oracle)                                                          \
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle)                                                          \
     case OP_##id: oracle; break;
 #include "implicits/ops.def"
 #undef OP
@@ -28,7 +28,7 @@ static void apply(int op, mpfr_ptr R, mpfr_srcptr A, mpfr_srcptr B, long N) {
     }
 }
 
-int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y) {
+static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
     const dag *d = &e->raw;
     int *order;
     int count = dag_reachable(d, e->raw_root, &order);
@@ -41,7 +41,7 @@ int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y) {
         const dag_node *n = &d->nodes[i];
         mpfr_init2(v[i], EXPR_ORACLE_PREC);
         if (n->op <= OP_T)
-            mpfr_set_d(v[i], p[n->op], RN);
+            mpfr_set(v[i], p[n->op], RN);
         else if (n->op == OP_CONST && n->n >= 0)
             mpfr_set_str(v[i], d->texts[n->n], 10, RN);
         else if (n->op == OP_CONST) /* exact values without text (lo == hi) */
@@ -61,6 +61,49 @@ int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y) {
         mpfr_clear(v[order[k]]);
     free(v);
     free(order);
+    return ok;
+}
+
+int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y) {
+    mpfr_t q[4];
+    mpfr_srcptr qp[4];
+    for (int k = 0; k < 4; k++) {
+        mpfr_init2(q[k], 64);
+        mpfr_set_d(q[k], p[k], RN);
+        qp[k] = q[k];
+    }
+    int ok = oracle_at(e, qp, y);
+    for (int k = 0; k < 4; k++)
+        mpfr_clear(q[k]);
+    return ok;
+}
+
+int expr_oracle_slope(const iacsg_expr *e, const double p[4], const double dir[3], mpfr_ptr slope) {
+    mpfr_t q[4], f1;
+    mpfr_srcptr qp[4];
+    for (int k = 0; k < 4; k++) {
+        mpfr_init2(q[k], EXPR_ORACLE_PREC);
+        qp[k] = q[k];
+    }
+    mpfr_init2(f1, EXPR_ORACLE_PREC);
+    int ok = 1;
+    for (int side = 0; side < 2 && ok; side++) {
+        for (int k = 0; k < 4; k++) { /* p +- 2^-80 dir, exact in EXPR_ORACLE_PREC bits */
+            mpfr_set_d(q[k], k < 3 ? dir[k] : 0, RN);
+            mpfr_mul_2si(q[k], q[k], -80, RN);
+            if (side)
+                mpfr_neg(q[k], q[k], RN);
+            mpfr_add_d(q[k], q[k], p[k], RN);
+        }
+        ok = oracle_at(e, qp, side ? slope : f1);
+    }
+    if (ok) { /* (f(p + h dir) - f(p - h dir)) / 2h */
+        mpfr_sub(slope, f1, slope, RN);
+        mpfr_mul_2si(slope, slope, 79, RN);
+    }
+    for (int k = 0; k < 4; k++)
+        mpfr_clear(q[k]);
+    mpfr_clear(f1);
     return ok;
 }
 

@@ -14,6 +14,11 @@
  * undefined or infinite (the point is outside the expression's domain), else 1. */
 int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y);
 
+/* The derivative at p along dir (x, y, z) of the same, by a central difference of step 2^-80 at
+ * EXPR_ORACLE_PREC bits (exact arguments; its error is far below a double's ulp wherever the expression is
+ * smooth, and between the one-sided derivatives at a kink), into slope. Returns 0 where a side is undefined. */
+int expr_oracle_slope(const iacsg_expr *e, const double p[4], const double dir[3], mpfr_ptr slope);
+
 /* A random expression text of at most `depth` levels into buf (size >= 4096): variables, decimal constants,
  * pi and e, + - * / ^, every named function of ops.def, CSG, primitives, blends and transforms. */
 void expr_random_text(test_rng_t *r, int depth, char *buf, size_t size);

@@ -21,6 +21,29 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v16 = iav_max(v11, v15);
     return v16;
 }
+#define IACSG_FDV 1
+IA_FN iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt) {
+    iav v3 = iav_sqr(x);
+    iav v3_t = iav_mul(iav_mul_r(x, 2), dx);
+    iav v5 = iav_sqr(y);
+    iav v5_t = iav_mul(iav_mul_r(y, 2), dy);
+    iav v6 = iav_add(v3, v5);
+    iav v6_t = iav_add(v3_t, v5_t);
+    iav v8 = iav_sqr(z);
+    iav v8_t = iav_mul(iav_mul_r(z, 2), dz);
+    iav v9 = iav_add(v6, v8);
+    iav v9_t = iav_add(v6_t, v8_t);
+    iav v11 = iav_sub(v9, iav_const(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    iav v11_t = iav_sub(v9_t, iav_point(0));
+    iav v14 = iav_sub(v6, iav_const(IACSG_K(0x1.70a3d2p-4f, 0x1.70a3d70a3d709p-4), IACSG_K(0x1.70a3dap-4f, 0x1.70a3d70a3d70dp-4)));
+    iav v14_t = iav_sub(v6_t, iav_point(0));
+    iav v15 = iav_neg(v14);
+    iav v15_t = iav_neg(v14_t);
+    iav v16 = iav_max(v11, v15);
+    iav v16_t = iav_dmax(v11, v15, v11_t, v15_t);
+    *dt = v16_t;
+    return v16;
+}
 #else
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     ia_interval v3 = ia_sqr(x);
@@ -32,6 +55,28 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v14 = ia_sub(v6, ia_make(IACSG_K(0x1.70a3d2p-4f, 0x1.70a3d70a3d709p-4), IACSG_K(0x1.70a3dap-4f, 0x1.70a3d70a3d70dp-4)));
     ia_interval v15 = ia_neg(v14);
     ia_interval v16 = ia_max(v11, v15);
+    return v16;
+}
+IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
+    ia_interval v3 = ia_sqr(x);
+    ia_interval v3_t = ia_mul(ia_mul_r(x, 2), dx);
+    ia_interval v5 = ia_sqr(y);
+    ia_interval v5_t = ia_mul(ia_mul_r(y, 2), dy);
+    ia_interval v6 = ia_add(v3, v5);
+    ia_interval v6_t = ia_add(v3_t, v5_t);
+    ia_interval v8 = ia_sqr(z);
+    ia_interval v8_t = ia_mul(ia_mul_r(z, 2), dz);
+    ia_interval v9 = ia_add(v6, v8);
+    ia_interval v9_t = ia_add(v6_t, v8_t);
+    ia_interval v11 = ia_sub(v9, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    ia_interval v11_t = ia_sub(v9_t, ia_point(0));
+    ia_interval v14 = ia_sub(v6, ia_make(IACSG_K(0x1.70a3d2p-4f, 0x1.70a3d70a3d709p-4), IACSG_K(0x1.70a3dap-4f, 0x1.70a3d70a3d70dp-4)));
+    ia_interval v14_t = ia_sub(v6_t, ia_point(0));
+    ia_interval v15 = ia_neg(v14);
+    ia_interval v15_t = ia_neg(v14_t);
+    ia_interval v16 = ia_max(v11, v15);
+    ia_interval v16_t = ia_dmax(v11, v15, v11_t, v15_t);
+    *dt = v16_t;
     return v16;
 }
 IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
