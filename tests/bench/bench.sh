@@ -52,9 +52,9 @@ fi
 mkdir -p "$BUILD_DIR" || exit 1
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/iacsg-bench.XXXXXX") || exit 1
 trap 'rm -rf "$WORK"' EXIT INT TERM
-# A private copy of the binary (kernels and ia/ are embedded in it): others may rebuild build/iacsg meanwhile,
-# and every row should measure the same program.
-cp "$IACSG" "$WORK/iacsg" || exit 1
+# A private copy of the binary (kernels and ia/ are embedded in it) and of the image library it loads from its
+# own directory: others may rebuild build/iacsg meanwhile, and every row should measure the same program.
+cp "$IACSG" "$WORK/iacsg" && cp "$(dirname "$IACSG")/libiacsg_image.so" "$WORK/" || exit 1
 IACSG_SRC=$IACSG
 IACSG=$WORK/iacsg
 RAW=$BUILD_DIR/raw.tsv         # one line per row: table label ok render rmin evals-mean evals-max build1 build render1 wall1 wall runs cpu1 cpu
