@@ -429,10 +429,13 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     body(&b, &em, order, count, AS_POINT);
     strbuf_printf(&b, "    return ");
     put_operand(&b, &em, root, AS_POINT);
-    strbuf_printf(&b, ";\n}\n#endif\n");
-    if (nparts >= EMIT_GROUP_MIN_PARTS) {
+    strbuf_printf(&b, ";\n}\n");
+    /* a union in groups: the kernels shade it by differences of iacsg_Fv (kernels/shade.h), its gradient code
+     * would be a quarter of their build */
+    if (nparts >= EMIT_GROUP_MIN_PARTS)
         ok = ok && emit_union_groups(&b, &em, root, parts, nparts, prefix, AS_DERIV);
-    } else {
+    strbuf_printf(&b, "#endif\n");
+    if (nparts < EMIT_GROUP_MIN_PARTS) {
         strbuf_printf(&b, "IA_FN ia_real %s_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, "
                           "ia_real *gy, ia_real *gz) {\n",
                       prefix);

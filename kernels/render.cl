@@ -112,26 +112,38 @@ static inline float depth_round_down(ia_real t) {
     return (ia_real)f > t ? nextafter(f, -INFINITY) : f;
 }
 
-/* The gradients at the points o + t d of the lanes of `hit` (0 in the others), lane by lane: the emitted point
- * code is scalar. For a union in groups, over the groups of the segment of the frame's tree each point is on. */
+/* The gradients at the points o + t d of the lanes of `hit` (anything in the others). For a union in groups, by
+ * differences over the groups of the segments of the frame's tree the points are on; else lane by lane, with the
+ * emitted (scalar) point code. */
 static void packet_gradients(const __global ulong *segment_groups, ia_real t0, ia_real w, ia_maskv hit,
                              const ia_realv o[3], const ia_realv d[3], ia_realv t, ia_real time, ia_realv g[3]) {
-    ia_real on[IA_VW], tk[IA_VW], p[3][IA_VW], gk[3][IA_VW] = {{0}};
+    ia_real on[IA_VW], tk[IA_VW];
     IAV_STORE(select(IAV_R(0), IAV_R(1), hit), on);
     IAV_STORE(t, tk);
+    ia_realv p[3];
     for (int c = 0; c < 3; c++)
-        IAV_STORE(o[c] + t * d[c], p[c]);
+        p[c] = o[c] + t * d[c];
+#ifdef IACSG_GROUPS
+    ulong groups = 0;
+    for (int k = 0; k < IA_VW; k++)
+        groups |= on[k] != 0 ? segment_groups[node_at(t0, w, SEGMENT_LEVEL, tk[k])] : 0;
+    shade_gradients_by_differences(groups, p, iav_point(time), g);
+#else
+    (void)segment_groups, (void)t0, (void)w;
+    ia_real pk[3][IA_VW], gk[3][IA_VW] = {{0}};
+    for (int c = 0; c < 3; c++)
+        IAV_STORE(p[c], pk[c]);
     for (int k = 0; k < IA_VW; k++) {
         if (on[k] == 0)
             continue;
         ia_real gradient[3];
-        shade_gradient(segment_groups[node_at(t0, w, SEGMENT_LEVEL, tk[k])], p[0][k], p[1][k], p[2][k], time,
-                       gradient);
+        shade_gradient(pk[0][k], pk[1][k], pk[2][k], time, gradient);
         for (int c = 0; c < 3; c++)
             gk[c][k] = gradient[c];
     }
     for (int c = 0; c < 3; c++)
         g[c] = IAV_LOAD(gk[c]);
+#endif
 }
 
 /* Writes the outputs of the lanes' pixels (col, row) that are in the image: the colours, and where the host

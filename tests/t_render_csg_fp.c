@@ -280,6 +280,56 @@ static int grid_entry(const void *scene, const double o[3], const double d[3], d
     return found;
 }
 
+/* The normals of the union in groups, which the kernels compute by differences (kernels/shade.h), against the
+ * exact ones at the entry points (the spheres are disjoint: no edges to blend across). */
+static void check_grid_normals(const char *expr, const iacsg_view *view) {
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s", err.message);
+    iacsg_render_config config = {.fp64 = FP64};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    iacsg_frame fr;
+    st = iacsg_render(r, view, &fr, &err);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    ia_real p[PARAM_COUNT];
+    view_params(view, p);
+    long checked = 0;
+    double worst = 0;
+    for (int j = 0; j < view->height; j++)
+        for (int i = 0; i < view->width; i++) {
+            double o[3], d[3], tn, tf, best = INFINITY, piece = 0, centre[3] = {0, 0, 0};
+            pixel_ray(p, view, i, j, o, d);
+            if (!box_span(view->bounds, o, d, &tn, &tf))
+                continue;
+            for (int n = 0; n < GRID_X * GRID_Y * GRID_Z; n++) {
+                double c[3], roots[MAX_ROOTS];
+                grid_centre(n, c);
+                ray_poly poly = sphere_poly(c, 0.3, o, d);
+                if (poly_roots(poly.c, poly.degree, tn, tf, roots) == 2 && roots[0] < best)
+                    best = roots[0], piece = roots[1] - roots[0], memcpy(centre, c, sizeof c);
+            }
+            /* away from silhouettes, where the normal turns fastest */
+            if (!isfinite(best) || piece < 0.05 || !isfinite(fr.depth[(size_t)j * view->width + i]))
+                continue;
+            double err2 = 0;
+            for (int k = 0; k < 3; k++) {
+                double exact = (o[k] + best * d[k] - centre[k]) / 0.3;
+                double got = fr.normal[3 * ((size_t)j * view->width + i) + k];
+                err2 += (got - exact) * (got - exact);
+            }
+            worst = fmax(worst, sqrt(err2));
+            checked++;
+        }
+    iacsg_frame_free(&fr);
+    test_note("normals by differences: %ld pixels, largest error %.2g", checked, worst);
+    CHECK(checked > 1000, "only %ld pixels checked", checked);
+    CHECK(worst < 2e-3, "a normal %.3g from the exact one", worst);
+}
+
 TEST_FP(render_union_of_many_spheres) {
     char expr[4096] = "min(", *end = expr + strlen(expr);
     for (int n = 0; n < GRID_X * GRID_Y * GRID_Z; n++) {
@@ -291,4 +341,5 @@ TEST_FP(render_union_of_many_spheres) {
     snprintf(end, sizeof expr - (size_t)(end - expr), ")");
     iacsg_view v = view_of(160, 160, 1e-5);
     check_scene("a union of 32 spheres", expr, grid_entry, NULL, &v);
+    check_grid_normals(expr, &v);
 }
