@@ -93,10 +93,10 @@ static void floats_to_bytes(const float *in, unsigned char *out, size_t n) {
     }
 }
 
-static int send_all(int fd, const void *data, size_t size) {
-    const char *p = data;
+/* Sends (or receives) all `size` bytes, through interruptions; 0 when the other end is gone. */
+static int transfer_all(int fd, char *p, size_t size, int sending) {
     while (size > 0) {
-        ssize_t n = send(fd, p, size, MSG_NOSIGNAL);
+        ssize_t n = sending ? send(fd, p, size, MSG_NOSIGNAL) : recv(fd, p, size, 0);
         if (n < 0 && errno == EINTR)
             continue;
         if (n <= 0)
@@ -106,20 +106,8 @@ static int send_all(int fd, const void *data, size_t size) {
     }
     return 1;
 }
-
-static int recv_all(int fd, void *data, size_t size) {
-    char *p = data;
-    while (size > 0) {
-        ssize_t n = recv(fd, p, size, 0);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0)
-            return 0;
-        p += n;
-        size -= (size_t)n;
-    }
-    return 1;
-}
+static int send_all(int fd, const void *data, size_t size) { return transfer_all(fd, (char *)data, size, 1); }
+static int recv_all(int fd, void *data, size_t size) { return transfer_all(fd, data, size, 0); }
 
 /* The child: answers requests until the parent closes its end. Never returns. */
 static void child_serve(int sock, const void *shared) {
