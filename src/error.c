@@ -28,6 +28,7 @@ const char *iacsg_status_name(iacsg_status status) {
     case IACSG_ERR_OPENCL: return "OpenCL error";
     case IACSG_ERR_BUILD: return "OpenCL build error";
     case IACSG_ERR_NOMEM: return "out of memory";
+    case IACSG_ERR_CANCELLED: return "cancelled";
     }
     return "unknown error";
 }

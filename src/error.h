@@ -13,7 +13,8 @@ typedef enum {
     IACSG_ERR_IO,      /* a file could not be read or written */
     IACSG_ERR_OPENCL,  /* no platform or device, or an OpenCL call failed */
     IACSG_ERR_BUILD,   /* the OpenCL program failed to build */
-    IACSG_ERR_NOMEM    /* out of host memory */
+    IACSG_ERR_NOMEM,   /* out of host memory */
+    IACSG_ERR_CANCELLED /* the caller's cancel callback stopped a render */
 } iacsg_status;
 
 /* line and column are 1-based positions in the input text, 0 when the error has no place. */

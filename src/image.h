@@ -19,7 +19,7 @@ iacsg_status iacsg_image_write(const char *path, int width, int height, int chan
 iacsg_status iacsg_image_write_bytes(const char *path, int width, int height, int channels,
                                      const unsigned char *pixels, iacsg_error *err);
 
-/* IACSG_OK if `path` names a format OpenImageIO can write (by its extension), checked before a long render. */
+/* IACSG_OK if `path` names a format OpenImageIO can write (by its extension): to refuse a name early. */
 iacsg_status iacsg_image_check_format(const char *path, iacsg_error *err);
 
 /* Reads an image as floats (8-bit files give values in [0, 1]). *pixels is malloc'ed; the caller free()s it. */

@@ -284,8 +284,8 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* Each band of rows, one launch (each block's tiles, then its pixels). With a progress callback, waits for each
- * band. */
+/* Each band of rows, one launch (each block's tiles, then its pixels). With a progress or cancel callback, waits
+ * for each band. */
 static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
     size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
@@ -297,10 +297,12 @@ static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacs
         CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &block_row0));
         size_t local[2] = {1, 1}; /* blocks are independent: let the device spread them over all its cores */
         CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
-        if (view->progress) {
+        if (view->progress || view->cancel)
             CLRT_CHECK(err, clFinish(q));
+        if (view->progress)
             view->progress((double)(row0 + rows) / view->height, view->progress_ctx);
-        }
+        if (view->cancel && view->cancel(view->cancel_ctx))
+            return iacsg_error_set(err, IACSG_ERR_CANCELLED, 0, 0, "render cancelled");
     }
     return IACSG_OK;
 fail:

@@ -47,6 +47,10 @@ typedef struct {
     /* Called after each band of rows with the fraction done, when not NULL. */
     void (*progress)(double done, void *ctx);
     void *progress_ctx;
+    /* Called after each band of rows, when not NULL: a nonzero return stops the render, which then returns
+     * IACSG_ERR_CANCELLED and no frame. */
+    int (*cancel)(void *ctx);
+    void *cancel_ctx;
 } iacsg_view;
 
 typedef struct {

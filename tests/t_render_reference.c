@@ -76,3 +76,34 @@ TEST(render_reference_images) {
         CHECK(far_off <= n * 3 / 500, "%s: %ld values differ by more than 0.1", s->name, far_off);
     }
 }
+
+static int cancel_calls;
+static int cancel_at_second(void *ctx) {
+    (void)ctx;
+    return ++cancel_calls >= 2;
+}
+
+/* A cancel callback is asked after each band of rows; its nonzero answer stops the render, with no frame. */
+TEST(render_cancel_stops) {
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse("sphere", "<test>", &e, &err) == IACSG_OK, "%s", err.message);
+    iacsg_render_config config = {0};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    iacsg_view v = {.width = 8, .height = 6144, .eps = 1e-3, .bounds = {-2, -2, -2, 2, 2, 2}, /* 3 bands */
+                    .camera = {.eye = {0, -4, 0}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 40},
+                    .cancel = cancel_at_second};
+    iacsg_frame fr = {0};
+    cancel_calls = 0;
+    st = iacsg_render(r, &v, &fr, &err);
+    CHECK(st == IACSG_ERR_CANCELLED && !fr.rgb && !fr.depth, "status %d (%s)", st, err.message);
+    CHECK(cancel_calls == 2, "asked %d times before stopping", cancel_calls);
+    v.cancel = NULL;
+    st = iacsg_render(r, &v, &fr, &err);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK && fr.rgb, "%s", err.message);
+    iacsg_frame_free(&fr);
+}
