@@ -15,7 +15,6 @@
 #include "image.h"
 #include <dlfcn.h>
 #include <errno.h>
-#include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -192,30 +191,18 @@ void cli_writer_check(cli_writer *w, const char *path) {
         w->unanswered++;
 }
 
-/* Reads the answers to the checks asked, until the first refusal; without `wait`, only those already come. */
-static void read_answers(cli_writer *w, int wait) {
-    struct pollfd ready = {.fd = w->sock, .events = POLLIN};
-    while (w->unanswered > 0 && w->check.status == IACSG_OK && (wait || poll(&ready, 1, 0) == 1)) {
+iacsg_status cli_writer_checked(cli_writer *w, iacsg_error *err) {
+    while (w->unanswered > 0 && w->check.status == IACSG_OK) {
         w->unanswered--;
         iacsg_error answer = {0};
         if (child_answer(w, &answer) != IACSG_OK)
             w->check = answer;
     }
-}
-
-iacsg_status cli_writer_checked(cli_writer *w, iacsg_error *err) {
-    read_answers(w, 1);
     if (w->check.status != IACSG_OK) {
         *err = w->check;
         return err->status;
     }
     return IACSG_OK;
-}
-
-int cli_writer_refused(void *ctx) {
-    cli_writer *w = ctx;
-    read_answers(w, 0);
-    return w->check.status != IACSG_OK;
 }
 
 iacsg_status cli_writer_write(cli_writer *w, const char *path, int width, int height, int channels,

@@ -19,10 +19,6 @@ void cli_writer_check(cli_writer *w, const char *path);
 /* The answers to the questions asked so far: the first failure, or IACSG_OK. Waits for them. */
 iacsg_status cli_writer_checked(cli_writer *w, iacsg_error *err);
 
-/* Whether an answer that has already come says no, without waiting (a render's cancel callback: a render need not
- * wait for the library to load, nor run on once a format has been refused). ctx is the writer. */
-int cli_writer_refused(void *ctx);
-
 /* iacsg_image_write through the writer; waits until the file is written (or has failed). */
 iacsg_status cli_writer_write(cli_writer *w, const char *path, int width, int height, int channels,
                               const float *pixels, int as_float, iacsg_error *err);
