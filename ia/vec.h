@@ -77,25 +77,33 @@ IA_FN iav iav_abs(iav a) {
 IA_FN iav iav_min(iav a, iav b) { return iav_make(fmin(a.lo, b.lo), fmin(a.hi, b.hi)); }
 IA_FN iav iav_max(iav a, iav b) { return iav_make(fmax(a.lo, b.lo), fmax(a.hi, b.hi)); }
 
-/* any(m): a tree of ORs of halves (PoCL's any() tests the lanes one by one). */
-IA_FN int iav_any(ia_maskv m) {
+/* any(m) and the number of true lanes, by trees of ORs and sums of halves: PoCL's any() tests the lanes one by
+ * one. A true lane of a mask is -1. */
 #ifdef IA_FP64
-    long8 m8;
-    long4 m4;
-    long2 m2;
+typedef long8 iav__mask8;
+typedef long4 iav__mask4;
+typedef long2 iav__mask2;
 #else
-    int8 m8;
-    int4 m4;
-    int2 m2;
+typedef int8 iav__mask8;
+typedef int4 iav__mask4;
+typedef int2 iav__mask2;
 #endif
 #if IA_VW == 16
-    m8 = m.lo | m.hi;
+#define IAV__HALVES(m, op) ((m).lo op(m).hi)
 #else
-    m8 = m;
+#define IAV__HALVES(m, op) (m)
 #endif
-    m4 = m8.lo | m8.hi;
-    m2 = m4.lo | m4.hi;
+IA_FN int iav_any(ia_maskv m) {
+    iav__mask8 m8 = IAV__HALVES(m, |);
+    iav__mask4 m4 = m8.lo | m8.hi;
+    iav__mask2 m2 = m4.lo | m4.hi;
     return (m2.x | m2.y) < 0;
+}
+IA_FN int iav_count(ia_maskv m) {
+    iav__mask8 m8 = IAV__HALVES(m, +);
+    iav__mask4 m4 = m8.lo + m8.hi;
+    iav__mask2 m2 = m4.lo + m4.hi;
+    return -(int)(m2.x + m2.y);
 }
 
 /* ia_hull of nonempty operands, and ia_dabs, ia_dmin, ia_dmax lane by lane (the same choices, as selects). */

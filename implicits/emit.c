@@ -142,6 +142,7 @@ static int valid_prefix(const char *p) {
  * structure (of nodes that depend on none of x, y, z) are not computed. */
 static void body(strbuf *b, const emitter *em, const int *order, int count, role r) {
     role value = r == AS_INTERVAL_DT ? AS_INTERVAL : r == AS_VECTOR_DT ? AS_VECTOR : r;
+    int with_derivative = r == AS_DERIV || r == AS_INTERVAL_DT || r == AS_VECTOR_DT;
     for (int k = 0; k < count; k++) {
         int i = order[k];
         const dag_node *n = &em->d->nodes[i];
@@ -151,7 +152,7 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
         strbuf_printf(b, "    %s v%d = ", type, i);
         expand(b, em, i, is_interval(r) ? dag_ops[n->op].interval : dag_ops[n->op].point, value);
         strbuf_printf(b, ";\n");
-        if ((r != AS_DERIV && r == value) || !em->axes[i])
+        if (!with_derivative || !em->axes[i])
             continue;
         if (r == AS_DERIV) {
             strbuf_printf(b, "    iacsg_grad v%d_d = ", i);

@@ -35,9 +35,6 @@ typedef IAV_CAT(ulong, IA_VW) packet_index; /* bisect_index per lane */
 #define packet_to_index IAV_CAT(convert_ulong, IA_VW)
 #define packet_as_real IAV_CAT(as_double, IA_VW)
 #define packet_as_int IAV_CAT(as_long, IA_VW)
-typedef long8 packet_mask8;
-typedef long4 packet_mask4;
-typedef long2 packet_mask2;
 #define PACKET_EXP_BIAS 1023
 #define PACKET_MANT_BITS 52
 #else
@@ -48,24 +45,9 @@ typedef IAV_CAT(uint, IA_VW) packet_index;
 #define packet_to_index IAV_CAT(convert_uint, IA_VW)
 #define packet_as_real IAV_CAT(as_float, IA_VW)
 #define packet_as_int IAV_CAT(as_int, IA_VW)
-typedef int8 packet_mask8;
-typedef int4 packet_mask4;
-typedef int2 packet_mask2;
 #define PACKET_EXP_BIAS 127
 #define PACKET_MANT_BITS 23
 #endif
-
-/* The number of true lanes of m (a tree of sums of halves, as iav_any). */
-IA_FN int packet_count(ia_maskv m) {
-#if IA_VW == 16
-    packet_mask8 m8 = m.lo + m.hi;
-#else
-    packet_mask8 m8 = m;
-#endif
-    packet_mask4 m4 = m8.lo + m8.hi;
-    packet_mask2 m2 = m4.lo + m4.hi;
-    return -(int)(m2.x + m2.y);
-}
 
 /* log2 of powers of two p > 0, lane by lane: the exponent of p converted to a real (exactly). There is no vector
  * popcount or count of trailing zeros before AVX-512 VPOPCNTDQ; PoCL ran them lane by lane. */
@@ -249,8 +231,8 @@ IA_FN void packet_advance_some(ia_maskv *searching, ia_maskv moving, ia_maskv do
  * along the ray over the box of the segment, Clarke's at kinks), so the first one is neither lost nor passed;
  * when N misses [a, b] or F([a, b]) misses 0 the node is root-free; when F' holds 0 or a step does not halve the
  * width, the ray goes back to bisecting (that node and every later one: a second try rarely paid). Near a simple
- * root the width squares at each step: on the reference view at eps 1e-5, 12.27 evaluations per ray became 6.81
- * (3.2 steps per hit) and the frame 49 -> 39 ms. Not with IA_FAST: unrounded, N can miss the root it holds.
+ * root the width squares at each step: on the reference view at eps 1e-5, 12.27 evaluations per ray became 5.54
+ * (~3 steps per hit) and the frame 49 -> 39 ms. Not with IA_FAST: unrounded, N can miss the root it holds.
  * Measured choices: 8, 32, 128 footprints gave 43, 39, 40 ms; below 64 leaves bisection is as cheap. */
 #if defined(IACSG_FDV) && !defined(IA_FAST)
 #define PACKET_NEWTON 1
@@ -276,7 +258,7 @@ IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_
         ia_maskv bisecting = searching & ~newton;
 #ifdef PACKET_NEWTON
         /* one kind of step at a time, for the lanes that are the majority: a lane waits while the others step */
-        int newton_turn = packet_count(searching & newton) >= packet_count(bisecting);
+        int newton_turn = iav_count(searching & newton) >= iav_count(bisecting);
 #else
         int newton_turn = 0;
 #endif
