@@ -3,7 +3,7 @@
  * Why a process: linked into the command, OpenImageIO's dependency closure (some 260 shared libraries) cost
  * ~180 ms of dynamic linking before main, half of the whole command for a render with a cached kernel. The
  * command is not linked with it; a child forked at start loads libiacsg_image.so (beside the binary) while
- * the parent starts OpenCL, builds and renders, and the parent hands it each image through shared memory. A
+ * the parent starts OpenCL and builds, and the parent hands it each image through shared memory. A
  * thread could not overlap the two: glibc's dlopen holds one lock, which PoCL's own dlopens wait for.
  *
  * Protocol, over a socket pair (MSG_NOSIGNAL: a dead child is an error, not a SIGPIPE): a writer_request and
