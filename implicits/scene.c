@@ -1,0 +1,156 @@
+/* implicits/scene.c -- the scene structure (scene.h): the builder the front ends call, destruction, and the host's
+ * evaluation of a tree. Parsing the scene language is in scene_parse.c. */
+#include "scene.h"
+#include <stdlib.h>
+#include <string.h>
+
+iacsg_scene *scene_create(void) { return calloc(1, sizeof(iacsg_scene)); }
+
+void iacsg_scene_destroy(iacsg_scene *s) {
+    if (!s)
+        return;
+    for (int k = 0; k < s->nmaterials; k++)
+        free(s->materials[k].name);
+    for (int k = 0; k < s->nsolids; k++) {
+        free(s->solids[k].name);
+        iacsg_expr_destroy(s->solids[k].expr);
+    }
+    for (int k = 0; k < s->nitems; k++)
+        free(s->items[k].name);
+    free(s->materials);
+    free(s->solids);
+    free(s->items);
+    free(s->nodes);
+    iacsg_expr_destroy(s->expr);
+    free(s);
+}
+
+/* Makes room for one more element of an array (*items, *count, *cap); 0 when out of memory. */
+static int grow(void **items, int count, int *cap, size_t size, int more) {
+    if (count + more <= *cap)
+        return 1;
+    int n = *cap ? *cap : 16;
+    while (n < count + more)
+        n *= 2;
+    void *p = realloc(*items, (size_t)n * size);
+    if (!p)
+        return 0;
+    *items = p;
+    *cap = n;
+    return 1;
+}
+
+static int out_of_memory(iacsg_error *err) {
+    iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory building the scene");
+    return -1;
+}
+
+/* A copy of name, or NULL for NULL; *ok is cleared when out of memory. */
+static char *copy_name(const char *name, int *ok) {
+    if (!name)
+        return NULL;
+    char *c = malloc(strlen(name) + 1);
+    if (!c)
+        *ok = 0;
+    else
+        strcpy(c, name);
+    return c;
+}
+
+int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iacsg_error *err) {
+    int ok = grow((void **)&s->materials, s->nmaterials, &s->cap_materials, sizeof *s->materials, 1);
+    scene_material m = {copy_name(name, &ok), {rgb[0], rgb[1], rgb[2]}, SCENE_DEFAULT_SPECULAR,
+                        SCENE_DEFAULT_SHININESS};
+    if (!ok) {
+        free(m.name);
+        return out_of_memory(err);
+    }
+    s->materials[s->nmaterials] = m;
+    return s->nmaterials++;
+}
+
+int scene_add_solid(iacsg_scene *s, const char *name, iacsg_expr *e, iacsg_error *err) {
+    int ok = grow((void **)&s->solids, s->nsolids, &s->cap_solids, sizeof *s->solids, 1);
+    scene_solid solid = {copy_name(name, &ok), e, 0, 0};
+    if (!ok) {
+        free(solid.name);
+        iacsg_expr_destroy(e);
+        return out_of_memory(err);
+    }
+    s->solids[s->nsolids] = solid;
+    return s->nsolids++;
+}
+
+int scene_add_tree(iacsg_scene *s, const uint32_t *nodes, int n, iacsg_error *err) {
+    if ((uint32_t)s->nnodes + (uint32_t)n > CSG_ARG_MAX)
+        return iacsg_error_set(err, IACSG_ERR_LIMIT, 0, 0, "too many boolean nodes in the scene (at most %u)",
+                               (unsigned)CSG_ARG_MAX),
+               -1;
+    if (!grow((void **)&s->nodes, s->nnodes, &s->cap_nodes, sizeof *s->nodes, n))
+        return out_of_memory(err);
+    int root = s->nnodes;
+    for (int k = 0; k < n; k++) {
+        int op = CSG_NODE_OP(nodes[k]);
+        int binary = op == CSG_UNION || op == CSG_INTERSECT || op == CSG_DIFFERENCE;
+        s->nodes[root + k] = binary ? CSG_NODE(op, CSG_NODE_ARG(nodes[k]) + (uint32_t)root) : nodes[k];
+    }
+    s->nnodes += n;
+    return root;
+}
+
+static int add_item(iacsg_scene *s, scene_item item, const char *name, iacsg_error *err) {
+    int ok = grow((void **)&s->items, s->nitems, &s->cap_items, sizeof *s->items, 1);
+    item.name = copy_name(name, &ok);
+    if (!ok) {
+        free(item.name);
+        return out_of_memory(err);
+    }
+    s->items[s->nitems] = item;
+    return s->nitems++;
+}
+
+int scene_add_region(iacsg_scene *s, const char *name, int tree, int material, iacsg_error *err) {
+    scene_item item = {SCENE_REGION, NULL, material, tree, -1, 0, 0};
+    return add_item(s, item, name, err);
+}
+
+int scene_add_surface(iacsg_scene *s, const char *name, int solid, int condition, int material, iacsg_error *err) {
+    scene_item item = {SCENE_SURFACE, NULL, material, condition, solid, 0, 0};
+    return add_item(s, item, name, err);
+}
+
+int scene_tree_size(const iacsg_scene *s, int root) {
+    int end = root; /* follow the rightmost path: its leaf is the subtree's last node */
+    for (;;) {
+        int op = CSG_NODE_OP(s->nodes[end]);
+        if (op == CSG_INSIDE || op == CSG_OUTSIDE)
+            return end + 1 - root;
+        end = op == CSG_NOT ? end + 1 : (int)CSG_NODE_ARG(s->nodes[end]);
+    }
+}
+
+int scene_tree_eval(const iacsg_scene *s, int root, const signed char *sign) {
+    int n = scene_tree_size(s, root);
+    unsigned char small[64], *value = n <= 64 ? small : malloc((size_t)n);
+    if (!value)
+        return -1;
+    /* Children come after their parent: one pass from the last node back to the root. */
+    for (int k = root + n - 1; k >= root; k--) {
+        uint32_t node = s->nodes[k];
+        int arg = (int)CSG_NODE_ARG(node), left = k + 1 < root + n ? value[k + 1 - root] : 0;
+        int right = arg - root >= 0 && arg - root < n ? value[arg - root] : 0, v = 0;
+        switch (CSG_NODE_OP(node)) {
+        case CSG_INSIDE: v = sign[arg] < 0; break;
+        case CSG_OUTSIDE: v = sign[arg] > 0; break;
+        case CSG_UNION: v = left || right; break;
+        case CSG_INTERSECT: v = left && right; break;
+        case CSG_DIFFERENCE: v = left && !right; break;
+        case CSG_NOT: v = !left; break;
+        }
+        value[k - root] = (unsigned char)v;
+    }
+    int result = value[0];
+    if (value != small)
+        free(value);
+    return result;
+}

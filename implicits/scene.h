@@ -1,0 +1,87 @@
+/* implicits/scene.h -- a multi-material scene: materials, solids, regions (booleans over solids) and surfaces
+ * (level sets kept where a condition over solids holds), the data both front ends build (the scene language,
+ * implicits/scene_parse.c; later the BRL-CAD reader) and the segment path renders. Neither front end knows how
+ * it is rendered.
+ *
+ *   front end --scene_add_*--> iacsg_scene (solids each a compiled iacsg_expr, trees as 32-bit nodes,
+ *   kernels/csg_node.h) --> renderer (the segment path)
+ *
+ * A scene file without `region` or `surface` statements is a plain scene: it has no items, and its final
+ * expression is rendered by the first-root path as before (iacsg_scene.expr).
+ *
+ * Ownership: the scene owns every name, expression and array in it; iacsg_scene_destroy frees them all.
+ */
+#ifndef IACSG_SCENE_H
+#define IACSG_SCENE_H
+#include "error.h"
+#include "expr.h"
+#include "kernels/csg_node.h"
+#include <stdint.h>
+
+typedef struct {
+    char *name;
+    float rgb[3];              /* linear albedo in [0, 1] */
+    float specular, shininess; /* optional keywords; defaults SCENE_DEFAULT_SPECULAR, _SHININESS */
+} scene_material;
+
+#define SCENE_DEFAULT_SPECULAR 0.25f
+#define SCENE_DEFAULT_SHININESS 32.0f
+
+typedef struct {
+    char *name;       /* NULL for an expression written inline in a region or a condition */
+    iacsg_expr *expr; /* f < 0 inside */
+    int line, column; /* where it is declared (or written inline), for messages */
+} scene_solid;
+
+typedef enum { SCENE_REGION, SCENE_SURFACE } scene_item_kind;
+
+/* A region or a surface; its id is its index in iacsg_scene.items (the order of declaration). */
+typedef struct {
+    scene_item_kind kind;
+    char *name;
+    int material; /* index into materials, or -1: the palette colour of the item's id */
+    int tree;     /* region: the root of its boolean tree in nodes; surface: the root of its condition, or -1 */
+    int solid;    /* surface: the solid whose zero set it is; region: -1 */
+    int line, column;
+} scene_item;
+
+struct iacsg_scene {
+    scene_material *materials;
+    int nmaterials, cap_materials;
+    scene_solid *solids;
+    int nsolids, cap_solids;
+    scene_item *items;
+    int nitems, cap_items;
+    uint32_t *nodes; /* every tree and condition, kernels/csg_node.h */
+    int nnodes, cap_nodes;
+    iacsg_expr *expr; /* a plain scene's final expression (then nitems == 0), else NULL */
+};
+typedef struct iacsg_scene iacsg_scene;
+
+/* Parses a scene file's text or an expression (name is used in messages). A text with regions or surfaces has
+ * items and no final expression; any other has expr set, as iacsg_expr_parse would make it. On failure *out is
+ * NULL and err holds the message, line and column. Destroy with iacsg_scene_destroy. */
+iacsg_status iacsg_scene_parse(const char *text, const char *name, iacsg_scene **out, iacsg_error *err);
+void iacsg_scene_destroy(iacsg_scene *s);
+
+/* The builder, for front ends and tests. Each returns the new entry's index, or -1 when out of memory (err set).
+ * Names are copied (NULL allowed for inline solids and for items); expressions are taken over by the scene (also
+ * on failure). */
+iacsg_scene *scene_create(void);
+int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iacsg_error *err);
+int scene_add_solid(iacsg_scene *s, const char *name, iacsg_expr *e, iacsg_error *err);
+/* Appends a tree of n nodes whose operands of binary nodes are indices relative to its first node (as a front
+ * end builds one on its own); returns the index of its root in s->nodes, operands rebased. */
+int scene_add_tree(iacsg_scene *s, const uint32_t *nodes, int n, iacsg_error *err);
+int scene_add_region(iacsg_scene *s, const char *name, int tree, int material, iacsg_error *err);
+int scene_add_surface(iacsg_scene *s, const char *name, int solid, int condition, int material, iacsg_error *err);
+
+/* The value (0 or 1) of the tree or condition at node `root` at a point where solid k's f has the sign of
+ * sign[k] (< 0 inside, > 0 outside, 0 on its boundary, where neither an INSIDE nor an OUTSIDE leaf holds). The
+ * host's reference for the device's classification; no recursion. */
+int scene_tree_eval(const iacsg_scene *s, int root, const signed char *sign);
+
+/* The number of nodes of the tree at `root` (its extent in s->nodes). */
+int scene_tree_size(const iacsg_scene *s, int root);
+
+#endif
