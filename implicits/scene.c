@@ -131,7 +131,7 @@ int scene_tree_size(const iacsg_scene *s, int root) {
 
 int scene_tree_eval(const iacsg_scene *s, int root, const signed char *sign) {
     int n = scene_tree_size(s, root);
-    unsigned char small[64], *value = n <= 64 ? small : malloc((size_t)n);
+    unsigned char small[64] = {0}, *value = n <= 64 ? small : calloc((size_t)n, 1);
     if (!value)
         return -1;
     /* Children come after their parent: one pass from the last node back to the root. */
