@@ -2,6 +2,9 @@
  * these and returns; only the CLI prints or exits. */
 #ifndef IACSG_ERROR_H
 #define IACSG_ERROR_H
+#include "api.h"
+
+IACSG_API_BEGIN
 
 typedef enum {
     IACSG_OK = 0,
@@ -35,4 +38,5 @@ iacsg_status iacsg_error_set(iacsg_error *err, iacsg_status status, int line, in
 /* A short name for a status, e.g. "syntax error". */
 const char *iacsg_status_name(iacsg_status status);
 
+IACSG_API_END
 #endif

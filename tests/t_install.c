@@ -1,0 +1,295 @@
+/* tests/t_install.c -- `make install` and `make uninstall` (issue 13), into temporary prefixes: what is
+ * installed, that a program builds against it with pkg-config (shared, and static) and renders what the
+ * installed command renders, that the shared library exports only the iacsg_ API, that the command runs from
+ * a prefix with no build tree, that uninstall leaves the prefix empty, and that an unwritable prefix is refused
+ * in one line. Also: the man page carries every word of `iacsg --help`.
+ *
+ * The tests run make on the build they were compiled in (IACSG_INSTALL_BUILD_DEFAULT, the plain build for a
+ * sanitizer build's tests); `make check` and `make test` build everything make install copies first, so
+ * make only copies here. */
+#include "image.h"
+#include "test.h"
+#include <dirent.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define SCENE "fig2_cube_sphere_difference.csg" /* an installed example, independent of t */
+
+/* Where the test writes: a fresh /tmp/iacsg-install-XXXXXX. */
+static void make_tmp(char *dir, size_t size) {
+    snprintf(dir, size, "/tmp/iacsg-install-XXXXXX");
+    CHECK(mkdtemp(dir), "mkdtemp failed");
+}
+static void remove_tmp(const char *dir) {
+    char cmd[1100];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0, "cannot clean %s", dir);
+}
+
+/* Runs a shell command (printf-style) with its output in tmp/log; returns its exit status. On a failure the
+ * log's last lines are in `log_tail`. */
+static char log_tail[1024];
+static int shell(const char *tmp, const char *fmt, ...) {
+    char cmd[8192];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(cmd, sizeof cmd, fmt, ap);
+    va_end(ap);
+    CHECK(n > 0 && (size_t)n < sizeof cmd - 200, "command too long");
+    char full[8192 + 256];
+    snprintf(full, sizeof full, "( %s ) > '%s/log' 2>&1", cmd, tmp);
+    int rc = system(full);
+    rc = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    snprintf(full, sizeof full, "%s/log", tmp);
+    char *text = test_read_file(full, NULL);
+    size_t len = text ? strlen(text) : 0;
+    snprintf(log_tail, sizeof log_tail, "%s", text ? text + (len > 900 ? len - 900 : 0) : "");
+    free(text);
+    return rc;
+}
+
+/* `make TARGET VARS` on this build, in the source tree, as a fresh make (not a child of the one running the
+ * tests, whose jobserver it must not inherit). */
+#define MAKE_FMT "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s -C '%s' BUILD='%s' "
+#define MAKE_ARGS test_source_dir(), install_build()
+static const char *install_build(void) {
+    const char *b = getenv("IACSG_INSTALL_BUILD");
+    return b && *b ? b : IACSG_INSTALL_BUILD_DEFAULT;
+}
+
+static int exists(const char *dir, const char *name) {
+    char path[1200];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return access(path, F_OK) == 0;
+}
+
+/* The names in a directory, other than . and ..; -1 if it cannot be read. */
+static int entries(const char *dir) {
+    DIR *d = opendir(dir);
+    if (!d)
+        return -1;
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        n += strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0;
+    closedir(d);
+    return n;
+}
+
+/* What make install puts under the prefix (the Makefile's install block lists the same). */
+static const char *const installed[] = {
+    "bin/iacsg",
+    "lib/libiacsg.so",
+    "lib/libiacsg.so.0",
+    "lib/libiacsg.a",
+    "lib/iacsg/libiacsg_image.so",
+    "lib/pkgconfig/iacsg.pc",
+    "include/iacsg/iacsg.h",
+    "share/man/man1/iacsg.1",
+    "share/man/man7/iacsg-language.7",
+    "share/doc/iacsg/examples/embed.c",
+    "share/doc/iacsg/examples/" SCENE,
+};
+
+static void install_into(const char *tmp, const char *prefix) {
+    CHECK(shell(tmp, MAKE_FMT "PREFIX='%s' install", MAKE_ARGS, prefix) == 0, "make install: %s", log_tail);
+    for (size_t k = 0; k < sizeof installed / sizeof *installed; k++)
+        CHECK(exists(prefix, installed[k]), "%s/%s is not installed", prefix, installed[k]);
+}
+
+static void uninstall_from(const char *tmp, const char *prefix) {
+    CHECK(shell(tmp, MAKE_FMT "PREFIX='%s' uninstall", MAKE_ARGS, prefix) == 0, "make uninstall: %s", log_tail);
+    int left = entries(prefix);
+    CHECK(left == 0, "%d entries left in %s after make uninstall", left, prefix);
+}
+
+/* Builds the installed examples/embed.c against `prefix` with pkg-config (LINK is `shared` or `static`) into
+ * tmp/embed, runs it on the installed scene, and checks its image against the installed command's rendering of
+ * the same scene (the same default view): pixel for pixel, and not a blank image. */
+static void check_embed(const char *tmp, const char *prefix, const char *link) {
+    const char *pc = "PKG_CONFIG_PATH='%s/lib/pkgconfig'; export PKG_CONFIG_PATH; ";
+    char pc_env[1200];
+    snprintf(pc_env, sizeof pc_env, pc, prefix);
+    /* With both libraries installed, -liacsg picks the shared one: a static link asks for the archive. */
+    const char *libs = strcmp(link, "static") == 0
+                           ? "$(pkg-config --static --libs iacsg | sed 's/-liacsg/-Wl,-Bstatic -liacsg -Wl,-Bdynamic/')"
+                           : "$(pkg-config --libs iacsg)";
+    CHECK(shell(tmp, "%s cc -std=c11 -Wall -Wextra -pedantic -Werror -o '%s/embed' '%s/share/doc/iacsg/examples/embed.c'"
+                     " $(pkg-config --cflags iacsg) %s",
+                pc_env, tmp, prefix, libs) == 0,
+          "building embed.c (%s): %s", link, log_tail);
+    CHECK(shell(tmp, "readelf -d '%s/embed' | grep -q 'NEEDED.*libiacsg.so.0'", tmp) == (strcmp(link, "shared") == 0 ? 0 : 1),
+          "embed (%s) %s libiacsg.so.0", link, strcmp(link, "shared") == 0 ? "does not need" : "needs");
+    CHECK(shell(tmp, "cd '%s' && LD_LIBRARY_PATH='%s/lib' ./embed embed.png 40 1 '%s/share/doc/iacsg/examples/" SCENE "'",
+                tmp, prefix, prefix) == 0,
+          "embed (%s): %s", link, log_tail);
+    CHECK(shell(tmp, "cd '%s' && '%s/bin/iacsg' '%s/share/doc/iacsg/examples/" SCENE "' -size 40x40 -o cli.png", tmp,
+                prefix, prefix) == 0,
+          "the installed iacsg: %s", log_tail);
+
+    float *pixels[2] = {NULL, NULL};
+    const char *names[2] = {"embed.png", "cli.png"};
+    int w[2], h[2], ch[2];
+    iacsg_error err = {0};
+    for (int k = 0; k < 2; k++) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/%s", tmp, names[k]);
+        CHECK(iacsg_image_read(path, &w[k], &h[k], &ch[k], &pixels[k], &err) == IACSG_OK, "%s", err.message);
+        CHECK(w[k] == 40 && h[k] == 40 && ch[k] == 3, "%s is %dx%dx%d", names[k], w[k], h[k], ch[k]);
+    }
+    long differ = 0, unlike_corner = 0;
+    for (long k = 0; k < 40 * 40 * 3; k++) {
+        differ += pixels[0][k] != pixels[1][k];
+        unlike_corner += pixels[0][k] != pixels[0][k % 3];
+    }
+    free(pixels[0]);
+    free(pixels[1]);
+    CHECK(differ == 0, "%ld channel values differ between embed (%s) and the installed command", differ, link);
+    CHECK(unlike_corner > 40 * 3, "embed's image is nearly uniform: %ld values unlike its corner", unlike_corner);
+}
+
+/* Install, build embed.c against the shared library with pkg-config, run it, check its image and what the
+ * library exports, uninstall: the prefix is empty again. */
+TEST(install_shared_library) {
+    char tmp[64], prefix[128];
+    make_tmp(tmp, sizeof tmp);
+    snprintf(prefix, sizeof prefix, "%s/prefix", tmp);
+    install_into(tmp, prefix);
+    CHECK(shell(tmp, "readelf -d '%s/lib/libiacsg.so' | grep -q 'Library soname: \\[libiacsg.so.0\\]'", prefix) == 0,
+          "libiacsg.so has no SONAME libiacsg.so.0");
+    CHECK(shell(tmp, "nm -D --defined-only '%s/lib/libiacsg.so' | awk '{ print $3 }' > '%s/exports'", prefix, tmp) == 0,
+          "nm: %s", log_tail);
+    char path[200];
+    snprintf(path, sizeof path, "%s/exports", tmp);
+    char *exports = test_read_file(path, NULL);
+    CHECK(exports, "no exports list");
+    int count = 0, public = 1, has_version = 0, has_render = 0;
+    char other[128] = "";
+    for (char *name = strtok(exports, "\n"); name; name = strtok(NULL, "\n"), count++) {
+        if (strncmp(name, "iacsg_", 6) != 0 && public) {
+            public = 0;
+            snprintf(other, sizeof other, "%s", name);
+        }
+        has_version |= strcmp(name, "iacsg_version") == 0;
+        has_render |= strcmp(name, "iacsg_render") == 0;
+    }
+    free(exports);
+    CHECK(public, "libiacsg.so exports %s, not an iacsg_ name", other);
+    CHECK(has_version && has_render, "iacsg_version or iacsg_render is not exported (%d symbols)", count);
+    test_note("libiacsg.so exports %d symbols, all iacsg_", count);
+    check_embed(tmp, prefix, "shared");
+    uninstall_from(tmp, prefix);
+    remove_tmp(tmp);
+}
+
+/* The same program linked with the static library (pkg-config --static). */
+TEST(install_static_library) {
+    char tmp[64], prefix[128];
+    make_tmp(tmp, sizeof tmp);
+    snprintf(prefix, sizeof prefix, "%s/prefix", tmp);
+    install_into(tmp, prefix);
+    check_embed(tmp, prefix, "static");
+    uninstall_from(tmp, prefix);
+    remove_tmp(tmp);
+}
+
+/* DESTDIR stages the files for PREFIX elsewhere; the staged command runs there, far from the build tree and
+ * from PREFIX (it finds its image library relative to itself). */
+TEST(install_destdir) {
+    char tmp[64], stage[128], prefix[200];
+    make_tmp(tmp, sizeof tmp);
+    snprintf(stage, sizeof stage, "%s/stage", tmp);
+    snprintf(prefix, sizeof prefix, "%s/opt/iacsg", stage);
+    CHECK(shell(tmp, MAKE_FMT "DESTDIR='%s' PREFIX=/opt/iacsg install", MAKE_ARGS, stage) == 0, "make install: %s",
+          log_tail);
+    for (size_t k = 0; k < sizeof installed / sizeof *installed; k++)
+        CHECK(exists(prefix, installed[k]), "%s/%s is not installed", prefix, installed[k]);
+    CHECK(shell(tmp, "grep -qx 'prefix=/opt/iacsg' '%s/lib/pkgconfig/iacsg.pc'", prefix) == 0,
+          "iacsg.pc does not say prefix=/opt/iacsg");
+    CHECK(shell(tmp, "cd '%s' && '%s/bin/iacsg' sphere -size 16x16 -o staged.png", tmp, prefix) == 0,
+          "the staged iacsg: %s", log_tail);
+    CHECK(exists(tmp, "staged.png"), "the staged iacsg wrote no image");
+    CHECK(shell(tmp, MAKE_FMT "DESTDIR='%s' PREFIX=/opt/iacsg uninstall", MAKE_ARGS, stage) == 0, "make uninstall: %s",
+          log_tail);
+    int left = entries(prefix);
+    CHECK(left == 0, "%d entries left in %s after make uninstall", left, prefix);
+    remove_tmp(tmp);
+}
+
+/* A prefix its user cannot write to is refused before anything is done, in one line. As root, the install is
+ * run as the user nobody (setpriv) from a copy of the Makefile it can read. */
+TEST(install_unwritable_prefix) {
+    char tmp[64], path[200];
+    make_tmp(tmp, sizeof tmp);
+    CHECK(shell(tmp, "chmod 755 '%s' && mkdir '%s/locked' && chmod 555 '%s/locked' && cp '%s/Makefile' '%s/'", tmp,
+                tmp, tmp, test_source_dir(), tmp) == 0,
+          "setup: %s", log_tail);
+    const char *as_user = geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups" : "";
+    int rc = shell(tmp, "%s env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s -C '%s' PREFIX='%s/locked/prefix' install",
+                   as_user, tmp, tmp);
+    snprintf(path, sizeof path, "%s/log", tmp);
+    char *out = test_read_file(path, NULL);
+    CHECK(out, "no output");
+    int lines = 0;
+    for (const char *p = out; *p; p++)
+        lines += *p == '\n';
+    int says = strstr(out, "no write access to") != NULL && strstr(out, "/locked") != NULL;
+    free(out);
+    CHECK(rc != 0, "make install into an unwritable prefix succeeded");
+    CHECK(lines == 1 && says, "expected one line naming the prefix: %s", log_tail);
+    CHECK(!exists(tmp, "locked/prefix"), "the prefix was created");
+    remove_tmp(tmp);
+}
+
+/* The next word of a text (separated by white space), without a trailing ':' (the page's headings drop it). */
+static int next_word(const char **p, char *word, size_t size) {
+    while (**p == ' ' || **p == '\n' || **p == '\t')
+        (*p)++;
+    size_t n = 0;
+    while (**p && **p != ' ' && **p != '\n' && **p != '\t' && n + 1 < size)
+        word[n++] = *(*p)++;
+    if (n > 1 && word[n - 1] == ':')
+        n--;
+    word[n] = '\0';
+    return n > 0;
+}
+
+/* iacsg(1) is made from `iacsg --help`: check that the page as man shows it carries every word of the help in
+ * the same order (the page adds headings and sections, never drops a word), and that groff formats both pages
+ * without a warning. */
+TEST(install_man_page_carries_help) {
+    char tmp[64], path[200];
+    make_tmp(tmp, sizeof tmp);
+    CHECK(shell(tmp, "cd '%s' && '%s/iacsg' --help > '%s/help.txt'", test_source_dir(), install_build(), tmp) == 0,
+          "iacsg --help: %s", log_tail);
+    const char *pages[] = {"man1/iacsg.1", "man7/iacsg-language.7"};
+    for (int k = 0; k < 2; k++) {
+        CHECK(shell(tmp, "cd '%s' && groff -k -man -Tascii -rcR=1 -P-cbou -ww '%s/man/%s' > '%s/page%d.txt' && "
+                         "test ! -s '%s/log'",
+                    test_source_dir(), install_build(), strchr(pages[k], '/') + 1, tmp, k, tmp) == 0,
+              "groff on %s: %s", pages[k], log_tail);
+    }
+    snprintf(path, sizeof path, "%s/help.txt", tmp);
+    char *help = test_read_file(path, NULL);
+    snprintf(path, sizeof path, "%s/page0.txt", tmp);
+    char *page = test_read_file(path, NULL);
+    CHECK(help && page, "no help or page text");
+    const char *h = help, *p = page;
+    char hw[256], pw[256];
+    int words = 0, found = 1;
+    next_word(&h, hw, sizeof hw); /* "usage:", which the SYNOPSIS heading replaces */
+    while (found && next_word(&h, hw, sizeof hw)) {
+        found = 0;
+        while (!found && next_word(&p, pw, sizeof pw))
+            found = strcmp(hw, pw) == 0;
+        words += found;
+    }
+    free(help);
+    free(page);
+    CHECK(found, "word %d of the help, '%s', is missing from the man page (or out of order)", words + 1, hw);
+    test_note("the man page carries the help's %d words in order", words);
+    remove_tmp(tmp);
+}
