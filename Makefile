@@ -205,7 +205,7 @@ installable: $(INSTALLABLE)
 
 # The shared library: position-independent objects (build/pic/) with hidden visibility, so that only the
 # declarations of the public headers (between IACSG_API_BEGIN and IACSG_API_END, src/api.h) are exported;
-# src/libiacsg.map also hides what the C++ runtime's headers mark default.
+# src/libiacsg.map also hides what OpenImageIO's headers mark default (its inline members).
 PIC_OBJ = $(LIB_OBJ:$(BUILD)/%=$(BUILD)/pic/%)
 $(BUILD)/pic/%.o: CFLAGS += -fvisibility=hidden
 $(BUILD)/pic/%.o: CXXFLAGS += -fvisibility=hidden
@@ -235,20 +235,22 @@ ifneq ($(filter install uninstall,$(MAKECMDGOALS)),)
 INSTALL_ROOT_DENIED := $(shell d='$(DESTDIR)$(PREFIX)'; while [ ! -e "$$d" ]; do d=$$(dirname "$$d"); done; \
                                [ -w "$$d" ] || echo "$$d")
 ifneq ($(INSTALL_ROOT_DENIED),)
-$(error make $(filter install uninstall,$(MAKECMDGOALS)): no write access to $(INSTALL_ROOT_DENIED) (PREFIX=$(PREFIX)); choose another PREFIX, or run it as root)
+$(error make $(filter install uninstall,$(MAKECMDGOALS)): no write access to $(INSTALL_ROOT_DENIED) \
+    (PREFIX=$(PREFIX)); choose another PREFIX, or run it as root)
 endif
 endif
 
 install: installable
-	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(IMAGE_HELPER_DIR) $(DESTDIR)$(INCLUDEDIR)/iacsg \
-	    $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man7 $(DESTDIR)$(DOCDIR)/examples
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(IMAGE_HELPER_DIR) \
+	    $(DESTDIR)$(INCLUDEDIR)/iacsg $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man7 $(DESTDIR)$(DOCDIR)/examples
 	install -m 755 $(BUILD)/iacsg $(DESTDIR)$(BINDIR)/
 	install -m 755 $(SHARED_LIB) $(DESTDIR)$(LIBDIR)/
 	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(LIBDIR)/$(SONAME)
 	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libiacsg.so
 	install -m 644 $(BUILD)/libiacsg.a $(DESTDIR)$(LIBDIR)/
 	install -m 755 $(BUILD)/libiacsg_image.so $(DESTDIR)$(IMAGE_HELPER_DIR)/
-	install -m 644 $(addprefix $(BUILD)/include/iacsg/,$(notdir $(PUBLIC_HEADERS))) $(DESTDIR)$(INCLUDEDIR)/iacsg/
+	install -m 644 $(addprefix $(BUILD)/include/iacsg/,$(notdir $(PUBLIC_HEADERS))) \
+	    $(DESTDIR)$(INCLUDEDIR)/iacsg/
 	sed -e 's|@PREFIX@|$(PREFIX)|; s|@LIBDIR@|$(LIBDIR)|; s|@INCLUDEDIR@|$(INCLUDEDIR)|' \
 	    -e 's|@VERSION@|$(VERSION)|; s|@LIBS_PRIVATE@|$(PC_LIBS_PRIVATE)|' src/iacsg.pc.in \
 	    > $(DESTDIR)$(LIBDIR)/pkgconfig/iacsg.pc
@@ -259,11 +261,12 @@ install: installable
 
 # Standard directories (bin, lib, share/man, ...) go only when nothing else is left in them.
 uninstall:
-	rm -f $(DESTDIR)$(BINDIR)/iacsg $(DESTDIR)$(LIBDIR)/$(notdir $(SHARED_LIB)) $(DESTDIR)$(LIBDIR)/$(SONAME) \
-	    $(DESTDIR)$(LIBDIR)/libiacsg.so $(DESTDIR)$(LIBDIR)/libiacsg.a $(DESTDIR)$(IMAGE_HELPER_DIR)/libiacsg_image.so \
-	    $(addprefix $(DESTDIR)$(INCLUDEDIR)/iacsg/,$(notdir $(PUBLIC_HEADERS))) $(DESTDIR)$(LIBDIR)/pkgconfig/iacsg.pc \
-	    $(DESTDIR)$(MANDIR)/man1/iacsg.1 $(DESTDIR)$(MANDIR)/man7/iacsg-language.7 $(DESTDIR)$(DOCDIR)/README.md \
-	    $(addprefix $(DESTDIR)$(DOCDIR)/examples/,$(notdir $(EXAMPLES)))
+	rm -f $(DESTDIR)$(BINDIR)/iacsg $(DESTDIR)$(LIBDIR)/$(notdir $(SHARED_LIB)) \
+	    $(DESTDIR)$(LIBDIR)/$(SONAME) $(DESTDIR)$(LIBDIR)/libiacsg.so $(DESTDIR)$(LIBDIR)/libiacsg.a \
+	    $(DESTDIR)$(IMAGE_HELPER_DIR)/libiacsg_image.so $(DESTDIR)$(LIBDIR)/pkgconfig/iacsg.pc \
+	    $(addprefix $(DESTDIR)$(INCLUDEDIR)/iacsg/,$(notdir $(PUBLIC_HEADERS))) \
+	    $(DESTDIR)$(MANDIR)/man1/iacsg.1 $(DESTDIR)$(MANDIR)/man7/iacsg-language.7 \
+	    $(DESTDIR)$(DOCDIR)/README.md $(addprefix $(DESTDIR)$(DOCDIR)/examples/,$(notdir $(EXAMPLES)))
 	@for d in $(DOCDIR)/examples $(DOCDIR) $(PREFIX)/share/doc $(MANDIR)/man1 $(MANDIR)/man7 $(MANDIR) \
 	    $(PREFIX)/share $(INCLUDEDIR)/iacsg $(INCLUDEDIR) $(IMAGE_HELPER_DIR) $(LIBDIR)/pkgconfig $(LIBDIR) \
 	    $(BINDIR); do [ ! -d "$(DESTDIR)$$d" ] || rmdir --ignore-fail-on-non-empty "$(DESTDIR)$$d"; done

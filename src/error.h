@@ -35,7 +35,7 @@ iacsg_status iacsg_error_set(iacsg_error *err, iacsg_status status, int line, in
 #endif
     ;
 
-/* A short name for a status, e.g. "syntax error". */
+/* A short name for a status, e.g. "syntax error" (a static string, not to be freed). */
 const char *iacsg_status_name(iacsg_status status);
 
 IACSG_API_END

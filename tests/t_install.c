@@ -2,12 +2,12 @@
  * installed, that a program builds against it with pkg-config (shared, and static) and renders what the
  * installed command renders, that the shared library exports only the iacsg_ API, that the command runs from
  * a prefix with no build tree, that uninstall leaves the prefix empty, and that an unwritable prefix is refused
- * in one line. Also: the man page carries every word of `iacsg --help`.
+ * in one line. Also: the man page carries every word of `iacsg --help`, and the version macros agree.
  *
  * The tests run make on the build they were compiled in (IACSG_INSTALL_BUILD_DEFAULT, the plain build for a
  * sanitizer build's tests); `make check` and `make test` build everything make install copies first, so
  * make only copies here. */
-#include "image.h"
+#include "iacsg.h"
 #include "test.h"
 #include <dirent.h>
 #include <stdarg.h>
@@ -110,24 +110,22 @@ static void uninstall_from(const char *tmp, const char *prefix) {
  * tmp/embed, runs it on the installed scene, and checks its image against the installed command's rendering of
  * the same scene (the same default view): pixel for pixel, and not a blank image. */
 static void check_embed(const char *tmp, const char *prefix, const char *link) {
-    const char *pc = "PKG_CONFIG_PATH='%s/lib/pkgconfig'; export PKG_CONFIG_PATH; ";
-    char pc_env[1200];
-    snprintf(pc_env, sizeof pc_env, pc, prefix);
+    int shared = strcmp(link, "shared") == 0;
     /* With both libraries installed, -liacsg picks the shared one: a static link asks for the archive. */
-    const char *libs = strcmp(link, "static") == 0
-                           ? "$(pkg-config --static --libs iacsg | sed 's/-liacsg/-Wl,-Bstatic -liacsg -Wl,-Bdynamic/')"
-                           : "$(pkg-config --libs iacsg)";
-    CHECK(shell(tmp, "%s cc -std=c11 -Wall -Wextra -pedantic -Werror -o '%s/embed' '%s/share/doc/iacsg/examples/embed.c'"
-                     " $(pkg-config --cflags iacsg) %s",
-                pc_env, tmp, prefix, libs) == 0,
+    const char *libs = shared ? "$(pkg-config --libs iacsg)"
+                              : "$(pkg-config --static --libs iacsg"
+                                " | sed 's/-liacsg/-Wl,-Bstatic -liacsg -Wl,-Bdynamic/')";
+    CHECK(shell(tmp, "export PKG_CONFIG_PATH='%s/lib/pkgconfig'; cc -std=c11 -Wall -Wextra -pedantic -Werror"
+                     " -o '%s/embed' '%s/share/doc/iacsg/examples/embed.c' $(pkg-config --cflags iacsg) %s",
+                prefix, tmp, prefix, libs) == 0,
           "building embed.c (%s): %s", link, log_tail);
-    CHECK(shell(tmp, "readelf -d '%s/embed' | grep -q 'NEEDED.*libiacsg.so.0'", tmp) == (strcmp(link, "shared") == 0 ? 0 : 1),
-          "embed (%s) %s libiacsg.so.0", link, strcmp(link, "shared") == 0 ? "does not need" : "needs");
-    CHECK(shell(tmp, "cd '%s' && LD_LIBRARY_PATH='%s/lib' ./embed embed.png 40 1 '%s/share/doc/iacsg/examples/" SCENE "'",
-                tmp, prefix, prefix) == 0,
+    int needs_shared = shell(tmp, "readelf -d '%s/embed' | grep -q 'NEEDED.*libiacsg.so.0'", tmp) == 0;
+    CHECK(needs_shared == shared, "embed (%s) %s libiacsg.so.0", link, shared ? "does not need" : "needs");
+    CHECK(shell(tmp, "cd '%s' && LD_LIBRARY_PATH='%s/lib' ./embed embed.png 40 1 '%s/share/doc/iacsg/examples/%s'",
+                tmp, prefix, prefix, SCENE) == 0,
           "embed (%s): %s", link, log_tail);
-    CHECK(shell(tmp, "cd '%s' && '%s/bin/iacsg' '%s/share/doc/iacsg/examples/" SCENE "' -size 40x40 -o cli.png", tmp,
-                prefix, prefix) == 0,
+    CHECK(shell(tmp, "cd '%s' && '%s/bin/iacsg' '%s/share/doc/iacsg/examples/%s' -size 40x40 -o cli.png", tmp,
+                prefix, prefix, SCENE) == 0,
           "the installed iacsg: %s", log_tail);
 
     float *pixels[2] = {NULL, NULL};
@@ -292,4 +290,13 @@ TEST(install_man_page_carries_help) {
     CHECK(found, "word %d of the help, '%s', is missing from the man page (or out of order)", words + 1, hw);
     test_note("the man page carries the help's %d words in order", words);
     remove_tmp(tmp);
+}
+
+/* The version macros say one version, and the library reports the one its headers say. */
+TEST(install_version_macros_agree) {
+    char joined[64];
+    snprintf(joined, sizeof joined, "%d.%d.%d", IACSG_VERSION_MAJOR, IACSG_VERSION_MINOR, IACSG_VERSION_PATCH);
+    CHECK(strcmp(joined, IACSG_VERSION) == 0, "IACSG_VERSION is %s, the parts say %s", IACSG_VERSION, joined);
+    CHECK(strcmp(iacsg_version(), IACSG_VERSION) == 0, "iacsg_version() is %s, IACSG_VERSION %s", iacsg_version(),
+          IACSG_VERSION);
 }
