@@ -66,8 +66,9 @@ deps:
 $(BUILD)/libiacsg.a: $(LIB_OBJ)
 	ar rcs $@ $^
 
-# The command is not linked with OpenImageIO: it loads libiacsg_image.so, beside it, in a child process
-# (src/cli_writer.c), so that the ~180 ms of linking OpenImageIO's libraries overlap OpenCL's start.
+# The command is not linked with OpenImageIO: it loads libiacsg_image.so, beside it (installed: ../lib/iacsg/),
+# in a child process (src/cli_writer.c), so that the ~180 ms of linking OpenImageIO's libraries overlap OpenCL's
+# start.
 $(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so
 	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(CLI_LIBS)
 
