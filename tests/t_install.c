@@ -79,7 +79,7 @@ static int entries(const char *dir) {
     return n;
 }
 
-/* What make install puts under the prefix (the Makefile's install block lists the same). */
+/* Under the prefix after make install: each kind of file the Makefile's install block puts there. */
 static const char *const installed[] = {
     "bin/iacsg",
     "lib/libiacsg.so",
@@ -94,16 +94,22 @@ static const char *const installed[] = {
     "share/doc/iacsg/examples/" SCENE,
 };
 
-static void install_into(const char *tmp, const char *prefix) {
-    CHECK(shell(tmp, MAKE_FMT "PREFIX='%s' install", MAKE_ARGS, prefix) == 0, "make install: %s", log_tail);
+static void check_installed(const char *prefix) {
     for (size_t k = 0; k < sizeof installed / sizeof *installed; k++)
         CHECK(exists(prefix, installed[k]), "%s/%s is not installed", prefix, installed[k]);
 }
-
-static void uninstall_from(const char *tmp, const char *prefix) {
-    CHECK(shell(tmp, MAKE_FMT "PREFIX='%s' uninstall", MAKE_ARGS, prefix) == 0, "make uninstall: %s", log_tail);
+static void check_empty(const char *prefix) {
     int left = entries(prefix);
     CHECK(left == 0, "%d entries left in %s after make uninstall", left, prefix);
+}
+
+static void install_into(const char *tmp, const char *prefix) {
+    CHECK(shell(tmp, MAKE_FMT "PREFIX='%s' install", MAKE_ARGS, prefix) == 0, "make install: %s", log_tail);
+    check_installed(prefix);
+}
+static void uninstall_from(const char *tmp, const char *prefix) {
+    CHECK(shell(tmp, MAKE_FMT "PREFIX='%s' uninstall", MAKE_ARGS, prefix) == 0, "make uninstall: %s", log_tail);
+    check_empty(prefix);
 }
 
 /* Builds the installed examples/embed.c against `prefix` with pkg-config (LINK is `shared` or `static`) into
@@ -149,8 +155,8 @@ static void check_embed(const char *tmp, const char *prefix, const char *link) {
     CHECK(unlike_corner > 40 * 3, "embed's image is nearly uniform: %ld values unlike its corner", unlike_corner);
 }
 
-/* The first function that the headers in include_dir declare (an iacsg_ name followed by '(', outside
- * comments) and that is not a line of `exports` (newline-framed names); 0 if every one is there. `count`
+/* 1 if a function that the headers in include_dir declare (an iacsg_ name followed by '(', outside comments)
+ * is not a line of `exports` (newline-framed names), and its name in `name`; 0 if every one is there. `count`
  * receives how many declarations were checked. */
 static int first_unexported(const char *include_dir, const char *exports, char *name, size_t size, int *count) {
     DIR *d = opendir(include_dir);
@@ -240,8 +246,7 @@ TEST(install_destdir) {
     snprintf(prefix, sizeof prefix, "%s/opt/iacsg", stage);
     CHECK(shell(tmp, MAKE_FMT "DESTDIR='%s' PREFIX=/opt/iacsg install", MAKE_ARGS, stage) == 0, "make install: %s",
           log_tail);
-    for (size_t k = 0; k < sizeof installed / sizeof *installed; k++)
-        CHECK(exists(prefix, installed[k]), "%s/%s is not installed", prefix, installed[k]);
+    check_installed(prefix);
     CHECK(shell(tmp, "grep -qx 'prefix=/opt/iacsg' '%s/lib/pkgconfig/iacsg.pc'", prefix) == 0,
           "iacsg.pc does not say prefix=/opt/iacsg");
     CHECK(shell(tmp, "cd '%s' && '%s/bin/iacsg' sphere -size 16x16 -o staged.png", tmp, prefix) == 0,
@@ -249,8 +254,7 @@ TEST(install_destdir) {
     CHECK(exists(tmp, "staged.png"), "the staged iacsg wrote no image");
     CHECK(shell(tmp, MAKE_FMT "DESTDIR='%s' PREFIX=/opt/iacsg uninstall", MAKE_ARGS, stage) == 0, "make uninstall: %s",
           log_tail);
-    int left = entries(prefix);
-    CHECK(left == 0, "%d entries left in %s after make uninstall", left, prefix);
+    check_empty(prefix);
     remove_tmp(tmp);
 }
 
