@@ -6,7 +6,7 @@
  * Each scene is rendered CELL x CELL pixels from the default view of the command line (azimuth 35, elevation
  * 25, the whole bounds in view), at t = 1/2 if it depends on time. The library never prints: every call
  * returns a status and fills an iacsg_error, and this program decides what to say. */
-#include "iacsg.h"
+#include <iacsg/iacsg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

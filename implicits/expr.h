@@ -14,6 +14,8 @@
 #define IACSG_EXPR_H
 #include "error.h"
 
+IACSG_API_BEGIN
+
 typedef struct iacsg_expr iacsg_expr; /* a compiled expression or scene (opaque) */
 
 /* Parses an expression or a scene file's text (name is used in messages, e.g. the file name or "<expr>"). On
@@ -41,4 +43,5 @@ int iacsg_expr_bounds(const iacsg_expr *e, double box[6]);
 iacsg_status iacsg_expr_eval_box(const iacsg_expr *e, int fp64, const double lo[3], const double hi[3], double t,
                                  double out[2], iacsg_error *err);
 
+IACSG_API_END
 #endif

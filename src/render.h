@@ -11,6 +11,8 @@
 #include "error.h"
 #include "implicits/expr.h"
 
+IACSG_API_BEGIN
+
 typedef struct iacsg_renderer iacsg_renderer;
 
 typedef struct {
@@ -69,4 +71,5 @@ typedef struct {
 iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
 void iacsg_frame_free(iacsg_frame *frame);
 
+IACSG_API_END
 #endif
