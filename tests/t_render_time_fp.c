@@ -79,7 +79,7 @@ TEST_FP(render_time_encloses_the_real_time) {
 /* The same through the command: -time 0.7 is the real 7/10. */
 TEST_FP(render_time_cli_encloses_the_real_time) {
     char dir[256], cmd[2048], path[512];
-    snprintf(dir, sizeof dir, "/tmp/iacsg-time-%ld", (long)getpid());
+    snprintf(dir, sizeof dir, "/tmp/iacsg-time%d-%ld", FP64, (long)getpid());
     CHECK(mkdir(dir, 0700) == 0, "cannot create %s", dir);
     snprintf(cmd, sizeof cmd,
              "cd '%s' && '%s' '%s' -time 0.7 -eye 0,0,3 -at 0,0,0 -up 0,1,0 -ortho 1 -bounds -1,-1,-2,1,1,2 "
