@@ -402,7 +402,7 @@ void iacsg_frame_free(iacsg_frame *frame) {
 }
 
 void iacsg_frame_time(int k, int n, double time[2]) {
-    double q = (double)k / n, r = fma(q, n, -(double)k); /* q n - k exactly: its sign says where q lies */
+    double q = (double)k / n, r = fma(q, n, -(double)k); /* q n - k, rounded once: its sign is exact */
     time[0] = r > 0 ? nextafter(q, -INFINITY) : q;
     time[1] = r < 0 ? nextafter(q, INFINITY) : q;
 }
