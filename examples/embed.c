@@ -44,12 +44,12 @@ static iacsg_status render_cell(const char *path, int cell, float *sheet, int sh
         st = iacsg_renderer_create_expr(e, &config, &r, err);
     if (st == IACSG_OK) {
         iacsg_view view = {.width = cell, .height = cell, .eps = 0x1p-16, .camera = {.up = {0, 0, 1}, .fov = 40}};
-        if (!iacsg_expr_bounds(e, view.bounds))
+        view.time[0] = view.time[1] = iacsg_expr_uses_time(e) ? 0.5 : 0;
+        if (!iacsg_expr_bounds(e, view.time, view.bounds))
             memcpy(view.bounds, (double[6]){-2, -2, -2, 2, 2, 2}, sizeof view.bounds);
         for (int k = 0; k < 3; k++)
             view.camera.at[k] = 0.5 * (view.bounds[k] + view.bounds[k + 3]);
         iacsg_camera_fit_azel(&view.camera, view.bounds, 35, 25);
-        view.time = iacsg_expr_uses_time(e) ? 0.5 : 0;
         iacsg_frame frame;
         st = iacsg_render(r, &view, &frame, err);
         if (st == IACSG_OK) {

@@ -34,8 +34,21 @@ iacsg_status iacsg_expr_emit_cl(const iacsg_expr *e, const char *prefix, char **
 /* 1 if the expression depends on the time variable t. */
 int iacsg_expr_uses_time(const iacsg_expr *e);
 
-/* A box proven to contain the solid's surface, as x0,y0,z0,x1,y1,z1; returns 0 if none could be found. */
-int iacsg_expr_bounds(const iacsg_expr *e, double box[6]);
+/* What iacsg_expr_bounds proved about the box it wrote. */
+typedef enum {
+    IACSG_BOUNDS_NONE = 0,  /* nothing: no box was found (box untouched) */
+    IACSG_BOUNDS_IN_CUBE,   /* no zero of f in [-IACSG_BOUNDS_CUBE, IACSG_BOUNDS_CUBE]^3 outside the box; nothing
+                             * is known beyond that cube */
+    IACSG_BOUNDS_EVERYWHERE /* no zero of f anywhere outside the box */
+} iacsg_bounds_proof;
+#define IACSG_BOUNDS_CUBE 1024.0
+
+/* A box, as x0,y0,z0,x1,y1,z1, proven (by double interval evaluation, implicits/bounds.c) to hold every zero of
+ * f at every time t in [time[0], time[1]] (finite, time[0] <= time[1]; {t, t} for one time; an enclosure of a
+ * real that no double equals, as ia_decimal_double gives; for an animation, the hull of its frames' times).
+ * Outside the box f has no zero in the region the result names; returns IACSG_BOUNDS_NONE (0) when no box
+ * could be proven. The boxes are per expression, so a scene's solids each get their own. */
+iacsg_bounds_proof iacsg_expr_bounds(const iacsg_expr *e, const double time[2], double box[6]);
 
 /* Host evaluation with the same ia/ code: an enclosure of the expression over the box lo..hi at time t (fp64
  * selects double intervals, else float intervals with the box rounded outward to floats). Box bounds are exact

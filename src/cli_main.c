@@ -30,7 +30,7 @@ static const char usage[] =
     "  -depth FILE        also write the depth: float32, one channel, distance from the eye along the ray,\n"
     "                     +inf where the ray misses\n"
     "  -normals FILE      also write the unit normals: float32, three channels, 0 where the ray misses\n"
-    "  -time T            value of the variable t [0]\n"
+    "  -time T            value of the variable t, the real the decimal denotes (enclosed) [0]\n"
     "  -frames N          render N frames for t = 0, 1/N, ..., (N-1)/N into numbered files (name_0000.png)\n"
     "  -fp64              double precision intervals and rays [float]\n"
     "  -fast              no outward rounding: NOT rigorous, may miss surfaces; for measuring the cost of rigor\n"

@@ -3,6 +3,7 @@
  * examples/embed.c shows the whole use.
  *
  *   iacsg_expr_parse / iacsg_expr_destroy            implicits/expr.h   text -> compiled expression
+ *   iacsg_expr_bounds                                implicits/expr.h   expression, times -> a box proven to hold it
  *   iacsg_renderer_create_expr / _destroy            src/render.h       expression -> device program
  *   iacsg_render / iacsg_frame_free                  src/render.h       one view at one time -> images in memory
  *   iacsg_image_write                                src/image.h        images -> files

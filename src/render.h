@@ -43,7 +43,11 @@ typedef struct {
     iacsg_camera camera;
     double bounds[6]; /* x0, y0, z0, x1, y1, z1: rays are clipped to this box */
     double eps;       /* leaf width of the bisection along the ray (world units) */
-    double time;      /* the value of t in the expression */
+    /* The value of t in the expression, as an interval that encloses it: {v, v} for a double v; for a real
+     * that no double equals, the doubles around it (ia_decimal_double for a decimal text, iacsg_frame_time for
+     * k/n). The kernel gets it rounded outward to its precision, as every constant of the expression, so the
+     * guarantees hold for the real time. */
+    double time[2];
     /* Leave frame.depth or frame.normal NULL: the kernel then writes 4 or 12 bytes a pixel fewer. */
     int no_depth, no_normals;
     /* Called after each band of rows with the fraction done, when not NULL. */
@@ -70,6 +74,10 @@ typedef struct {
 /* Renders one frame into *frame (its images are allocated here; free them with iacsg_frame_free). */
 iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
 void iacsg_frame_free(iacsg_frame *frame);
+
+/* The time of frame k of an animation of n frames, k/n, enclosed for iacsg_view.time: time[0] <= k/n <=
+ * time[1], the two equal when k/n is a double. */
+void iacsg_frame_time(int k, int n, double time[2]);
 
 IACSG_API_END
 #endif
