@@ -17,6 +17,10 @@ static int oracle_pow(mpfr_ptr r, mpfr_srcptr a, mpfr_srcptr b, mpfr_rnd_t rnd) 
     return mpfr_pow(r, a, b, rnd);
 }
 
+/* The compiler turns a power whose exponent is a constant integer of at most 65536 into pown
+ * (implicits/simplify.c), defined for a negative base too: x^-1 is 1/x, x^3 is x*x*x. */
+static int oracle_pown_exponent(mpfr_srcptr b) { return mpfr_integer_p(b) && mpfr_cmpabs_ui(b, 65536) <= 0; }
+
 static void apply(int op, mpfr_ptr R, mpfr_srcptr A, mpfr_srcptr B, long N) {
     (void)B, (void)N;
     switch (op) {
@@ -34,12 +38,14 @@ static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
     int count = dag_reachable(d, e->raw_root, &order);
     CHECK(count > 0, "out of memory");
     mpfr_t *v = malloc(((size_t)e->raw_root + 1) * sizeof *v);
-    CHECK(v != NULL, "out of memory");
+    char *varies = malloc((size_t)e->raw_root + 1); /* the node depends on x, y, z or t */
+    CHECK(v != NULL && varies != NULL, "out of memory");
     int ok = 1;
     for (int k = 0; k < count; k++) {
         int i = order[k];
         const dag_node *n = &d->nodes[i];
         mpfr_init2(v[i], EXPR_ORACLE_PREC);
+        varies[i] = n->op <= OP_T || (n->a >= 0 && varies[n->a]) || (n->b >= 0 && varies[n->b]);
         if (n->op <= OP_T)
             mpfr_set(v[i], p[n->op], RN);
         else if (n->op == OP_CONST && n->n >= 0)
@@ -52,6 +58,8 @@ static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
             mpfr_set_ui(v[i], 1, RN), mpfr_exp(v[i], v[i], RN);
         else if (!mpfr_number_p(v[n->a]) || (n->b >= 0 && !mpfr_number_p(v[n->b])))
             mpfr_set_nan(v[i]); /* undefined operands make the whole expression undefined at p */
+        else if (n->op == OP_POW && !varies[n->b] && oracle_pown_exponent(v[n->b]))
+            mpfr_pow(v[i], v[n->a], v[n->b], RN); /* pown: +-inf at a pole, so undefined there */
         else
             apply(n->op, v[i], v[n->a], n->b >= 0 ? v[n->b] : v[n->a], n->n);
     }
@@ -60,6 +68,7 @@ static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
     for (int k = 0; k < count; k++)
         mpfr_clear(v[order[k]]);
     free(v);
+    free(varies);
     free(order);
     return ok;
 }
