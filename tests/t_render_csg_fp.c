@@ -138,23 +138,6 @@ static int csg_first_entry(ray_poly pa, ray_poly pb, csg_op op, double tn, doubl
     return 0;
 }
 
-/* The exact (double) part of the ray inside the bounds, t >= 0. */
-static int box_span(const double b[6], const double o[3], const double d[3], double *tn, double *tf) {
-    *tn = 0;
-    *tf = INFINITY;
-    for (int k = 0; k < 3; k++) {
-        if (d[k] == 0) {
-            if (o[k] < b[k] || o[k] > b[k + 3])
-                return 0;
-            continue;
-        }
-        double t1 = (b[k] - o[k]) / d[k], t2 = (b[k + 3] - o[k]) / d[k];
-        *tn = fmax(*tn, fmin(t1, t2));
-        *tf = fmin(*tf, fmax(t1, t2));
-    }
-    return *tn < *tf;
-}
-
 typedef ray_poly (*make_poly)(const double o[3], const double d[3]);
 /* The distance from a point to a primitive's surface. */
 typedef double (*surface_distance)(const double p[3]);
@@ -219,9 +202,10 @@ static csg_report check_scene(const char *name, const char *expr, first_entry en
                 double q[3] = {o[0] + depth * d[0], o[1] + depth * d[1], o[2] + depth * d[2]}, gap = distance(scene, q);
                 rep.worst_gap = fmax(rep.worst_gap, gap);
                 if (gap > margin && rep.ghosts++ < 5)
-                    test_note("%s: ghost pixel (%d, %d): depth %.9g is %.3g from every surface", name, i, j, depth, gap);
+                    test_note("%s: ghost pixel (%d, %d): depth %.9g is %.3g from every surface", name, i, j, depth,
+                              gap);
             }
-            if (!box_span(view->bounds, o, d, &tn, &tf) || !entry(scene, o, d, tn, tf, &t, &piece) || piece < 1e-6)
+            if (!ray_box_span(view->bounds, o, d, &tn, &tf) || !entry(scene, o, d, tn, tf, &t, &piece) || piece < 1e-6)
                 continue;
             rep.through++;
             if (!isfinite(depth)) {
@@ -348,7 +332,7 @@ static void check_grid_normals(const char *expr, const iacsg_view *view) {
         for (int i = 0; i < view->width; i++) {
             double o[3], d[3], tn, tf, best = INFINITY, piece = 0, centre[3] = {0, 0, 0};
             pixel_ray(p, view, i, j, o, d);
-            if (!box_span(view->bounds, o, d, &tn, &tf))
+            if (!ray_box_span(view->bounds, o, d, &tn, &tf))
                 continue;
             for (int n = 0; n < GRID_X * GRID_Y * GRID_Z; n++) {
                 double c[3], roots[MAX_ROOTS];

@@ -90,6 +90,23 @@ static inline double sphere_surface_distance(sphere s, const double p[3]) {
  * surfaces, so the nearest primitive surface is never farther than the solid's. */
 static inline double ghost_margin(double eps) { return 2 * eps + 1e-5; }
 
+/* The exact (double) part of the ray inside the bounds, t >= 0. */
+static inline int ray_box_span(const double b[6], const double o[3], const double d[3], double *tn, double *tf) {
+    *tn = 0;
+    *tf = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        if (d[k] == 0) {
+            if (o[k] < b[k] || o[k] > b[k + 3])
+                return 0;
+            continue;
+        }
+        double t1 = (b[k] - o[k]) / d[k], t2 = (b[k + 3] - o[k]) / d[k];
+        *tn = fmax(*tn, fmin(t1, t2));
+        *tf = fmin(*tf, fmax(t1, t2));
+    }
+    return *tn < *tf;
+}
+
 /* The camera part of the parameter block, in the working precision, as src/render.c fills it. */
 static inline void view_params(const iacsg_view *view, ia_real p[PARAM_COUNT]) {
     double pd[PARAM_COUNT] = {0};
