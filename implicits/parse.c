@@ -433,13 +433,18 @@ static long parse_material_ref(parser *p) {
     return p->pos++;
 }
 
-/* The expression of a region or surface NAME, which must not be missing. */
+static int declaration_at(parser *p);
+
+/* The expression of a region or surface NAME, which must not be missing (it may start on the next line, as
+ * after any '='; not with the next declaration). */
 static int parse_item_expr(parser *p, const char *kind, long name) {
-    if (at_statement_end(p) || at_punct(p, ':') || at_word(p, p->pos, "where")) {
+    const token *equals = &p->a->toks[p->pos - 1];
+    skip_newlines(p);
+    if (at_statement_end(p) || at_punct(p, ':') || at_word(p, p->pos, "where") || declaration_at(p) >= 0) {
         char text[LEX_MAX_NAME + 1], message[160];
         snprintf(message, sizeof message, "%s '%s' has no expression after '='", kind,
                  ast_token_text(p->a, name, text, sizeof text));
-        return fail_here(p, peek(p), message);
+        return fail_here(p, equals, message);
     }
     return parse_expr(p);
 }
@@ -481,7 +486,7 @@ static const char *const declaration_words[] = {"material", "solid", "region", "
 
 /* The declaration at p->pos (its keyword's index in declaration_words), or -1 for another statement. */
 static int declaration_at(parser *p) {
-    if (p->a->toks[p->pos + 1].kind != TOK_NAME)
+    if (peek(p)->kind != TOK_NAME || p->a->toks[p->pos + 1].kind != TOK_NAME)
         return -1;
     for (int k = 0; k < 4; k++)
         if (at_word(p, p->pos, declaration_words[k]))
@@ -528,7 +533,7 @@ static int parse_scene(parser *p) {
             return fail_at(p, &p->a->toks[last_tok], IACSG_ERR_SYNTAX,
                            "only the last statement of a scene may be an expression; expected 'name = ...'");
         last_tok = p->pos;
-        int which = peek(p)->kind == TOK_NAME ? declaration_at(p) : -1;
+        int which = declaration_at(p);
         if (which >= 0) {
             last = parse_declaration(p, which);
             items += which >= 2;

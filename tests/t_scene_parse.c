@@ -169,6 +169,10 @@ TEST(scene_parse_operands) {
     check_solid_value(s, 1, p, -0.25); /* the parenthesised arithmetic is one solid */
     iacsg_scene_destroy(s);
 
+    s = parse_ok("region r =\n  sphere |\n  box");
+    CHECK(s->nsolids == 2 && s->solids[1].line == 3, "a region's expression over three lines");
+    iacsg_scene_destroy(s);
+
     /* | loosest, then &, then \ (as in expressions); parentheses group; calls and arithmetic are operands */
     s = parse_ok("solid a = sphere\nsolid b = box\nsolid c = x\n"
                  "region r = a | sphere(2) & y \\ c\n"
@@ -270,10 +274,12 @@ TEST(scene_parse_errors) {
     expect_error("region a = sphere\nsurface a = box", IACSG_ERR_NAME, 2, 9, "'a' is already declared as a region (line 1)");
     expect_error("solid sphere = box\nbox", IACSG_ERR_NAME, 1, 7, "cannot name a solid 'sphere': it is a built-in name");
     /* missing parts */
-    expect_error("region body =\n", IACSG_ERR_SYNTAX, 1, 14, "region 'body' has no expression after '='");
-    expect_error("material m = rgb(1, 1, 1)\nregion body = : m", IACSG_ERR_SYNTAX, 2, 15,
+    expect_error("region body =\n", IACSG_ERR_SYNTAX, 1, 13, "region 'body' has no expression after '='");
+    expect_error("region body =\nregion plug = sphere", IACSG_ERR_SYNTAX, 1, 13,
                  "region 'body' has no expression after '='");
-    expect_error("surface s = where x < 0", IACSG_ERR_SYNTAX, 1, 13, "surface 's' has no expression after '='");
+    expect_error("material m = rgb(1, 1, 1)\nregion body = : m", IACSG_ERR_SYNTAX, 2, 13,
+                 "region 'body' has no expression after '='");
+    expect_error("surface s = where x < 0", IACSG_ERR_SYNTAX, 1, 11, "surface 's' has no expression after '='");
     expect_error("surface s = plane where", IACSG_ERR_SYNTAX, 1, 19, "'where' without a condition: write e.g. 'where ball < 0'");
     expect_error("material g = rgb(1, 1, 1)\nsurface s = plane where : g", IACSG_ERR_SYNTAX, 2, 19,
                  "'where' without a condition: write e.g. 'where ball < 0'");
