@@ -370,3 +370,69 @@ TEST(scene_parse_many_regions) {
     iacsg_scene_destroy(s);
     test_note("%d regions and %d solids parsed in %.0f ms", N, N + 1, ms);
 }
+
+/* The sign of solid k at point p from its enclosure: 0 where the enclosure straddles 0. */
+static signed char solid_sign(const iacsg_scene *s, int k, const double p[3]) {
+    double out[2];
+    CHECK(iacsg_expr_eval_box(s->solids[k].expr, 1, p, p, 0, out, NULL) == IACSG_OK, "evaluation of solid %d", k);
+    return (signed char)(out[1] < 0 ? -1 : out[0] > 0 ? 1 : 0);
+}
+
+static iacsg_scene *parse_example(const char *file) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/examples/%s", test_source_dir(), file);
+    char *text = test_read_file(path, NULL);
+    CHECK(text, "cannot read %s", path);
+    iacsg_scene *s = parse_ok(text);
+    free(text);
+    return s;
+}
+
+/* The multi-material examples: their items, and the regions each point of a grid lies in (the solids' signs at
+ * the point through the trees): the machined part's regions never overlap, and named points are where the
+ * comments say. */
+TEST(scene_parse_examples) {
+    iacsg_scene *s = parse_example("fig2_cube_sphere_regions.csg");
+    CHECK(s->nitems == 2 && s->nsolids == 2 && s->items[0].material == 0 && s->items[1].material == 1,
+          "fig2 regions: %d items", s->nitems);
+    iacsg_scene_destroy(s);
+
+    s = parse_example("machined_part.csg");
+    static const char *const names[] = {"flange", "bushing", "seal", "bolt_a", "bolt_b", "bolt_c", "bolt_d"};
+    CHECK(s->nitems == 7 && s->nsolids == 10 && s->nmaterials == 4, "%d items, %d solids", s->nitems, s->nsolids);
+    for (int k = 0; k < 7; k++)
+        CHECK(strcmp(s->items[k].name, names[k]) == 0 && s->items[k].kind == SCENE_REGION, "item %d", k);
+    static const struct {
+        double p[3];
+        int region; /* -1: none */
+    } points[] = {{{1.0, 0, 0}, 0}, {{0.5, 0.1, 0.4}, 0}, {{0.3, 0, 0}, 1}, {{0, 0, 0}, -1}, {{0.48, 0, 0.5}, 2},
+                  {{0, 0.5, 0.47}, 2},  {{0.9, 0.9, 0.23}, 3}, {{-0.9, -0.9, 0.25}, 5}, {{1.1, 1.1, 0.3}, -1}};
+    signed char sign[10];
+    for (int i = 0; i < (int)(sizeof points / sizeof points[0]); i++) {
+        for (int k = 0; k < s->nsolids; k++)
+            sign[k] = solid_sign(s, k, points[i].p);
+        for (int r = 0; r < s->nitems; r++)
+            CHECK(scene_tree_eval(s, s->items[r].tree, sign) == (r == points[i].region),
+                  "point (%g, %g, %g): in region %s is %d", points[i].p[0], points[i].p[1], points[i].p[2],
+                  s->items[r].name, scene_tree_eval(s, s->items[r].tree, sign));
+    }
+    int claimed = 0, decided = 0;
+    const int n = 24;
+    for (int i = 0; i < n * n * n; i++) {
+        double p[3] = {-1.3 + 2.6 * (i % n + 0.37) / n, -1.3 + 2.6 * (i / n % n + 0.41) / n,
+                       -0.7 + 1.4 * (i / (n * n) + 0.43) / n};
+        int undecided = 0, regions = 0;
+        for (int k = 0; k < s->nsolids; k++)
+            undecided |= (sign[k] = solid_sign(s, k, p)) == 0;
+        if (undecided)
+            continue;
+        decided++;
+        for (int r = 0; r < s->nitems; r++)
+            regions += scene_tree_eval(s, s->items[r].tree, sign);
+        CHECK(regions <= 1, "(%g, %g, %g) is in %d regions", p[0], p[1], p[2], regions);
+        claimed += regions;
+    }
+    CHECK(claimed > decided / 10, "only %d of %d points in a region", claimed, decided);
+    iacsg_scene_destroy(s);
+    test_note("machined part: %d grid points, %d in one region, none in two", decided, claimed);
+}
