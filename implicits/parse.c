@@ -611,7 +611,7 @@ char *ast_dump(const ast *a) {
         case AST_BIND: strbuf_printf(&b, "bind %s = n%d", ast_token_text(a, n->tok, name, sizeof name), n->a); break;
         case AST_CALL:
         case AST_MATERIAL:
-            strbuf_printf(&b, "%s %s(", n->kind == AST_CALL ? "call" : "material rgb",
+            strbuf_printf(&b, n->kind == AST_CALL ? "call %s(" : "material %s = rgb(",
                           ast_token_text(a, n->tok, name, sizeof name));
             for (int k = 0; k < n->nargs; k++) {
                 const ast_arg *g = &a->args[n->first + k];

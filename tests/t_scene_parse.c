@@ -2,6 +2,7 @@
  * issue's example scene, how operands are split into solids, conditions, the trees' meaning (scene_tree_eval over
  * every sign combination against the intended boolean function), the 32-bit node encoding, plain scenes, and
  * every error with its message and place. */
+#include "implicits/expr_internal.h"
 #include "implicits/scene.h"
 #include "test.h"
 #include <math.h>
@@ -169,6 +170,17 @@ TEST(scene_parse_operands) {
     check_solid_value(s, 1, p, -0.25); /* the parenthesised arithmetic is one solid */
     iacsg_scene_destroy(s);
 
+    /* solids no region or surface uses are dropped, the others keep their order */
+    s = parse_ok("solid a = sphere\nsolid b = box\nsolid c = a | b\nsolid d = y\nregion r = c & x\nsurface s = d");
+    CHECK(s->nsolids == 3 && strcmp(s->solids[0].name, "c") == 0 && strcmp(s->solids[1].name, "d") == 0 &&
+              s->solids[2].name == NULL && s->solids[2].line == 5,
+          "%d solids after dropping the unused ones", s->nsolids);
+    CHECK(s->nodes[1] == CSG_NODE(CSG_INSIDE, 0) && s->nodes[2] == CSG_NODE(CSG_INSIDE, 2) && s->items[1].solid == 1,
+          "the trees and the surface name the renumbered solids");
+    const double q[3] = {0.5, 0.25, 0};
+    check_solid_value(s, 0, q, fmin(0.25 + 0.0625 - 1, fmax(-0.5, -0.75)));
+    iacsg_scene_destroy(s);
+
     s = parse_ok("region r =\n  sphere |\n  box");
     CHECK(s->nsolids == 2 && s->solids[1].line == 3, "a region's expression over three lines");
     iacsg_scene_destroy(s);
@@ -322,6 +334,22 @@ TEST(scene_parse_errors) {
     expect_error("sphere < 0", IACSG_ERR_SYNTAX, 1, 8, "expected an operator or the end of the statement, found '<'");
     expect_error("region r = sphere < 0", IACSG_ERR_SYNTAX, 1, 19,
                  "expected an operator or the end of the statement, found '<'");
+}
+
+/* The AST dump shows the declarations and the set operations, conditions and operands. */
+TEST(scene_parse_dump) {
+    iacsg_error err = {0};
+    char *dump = iacsg_expr_dump("material m = rgb(1, 0.5, 0) specular 0.2\nsolid a = sphere\n"
+                                 "region r = a & box \\ (x + 1) : m\nsurface s = a where !(a < 0) | y > 0",
+                                 "ast", &err);
+    CHECK(dump, "%s", err.message);
+    static const char *const lines[] = {"n4 = material m = rgb(n0, n1, n2, specular=n3)\n", "n6 = solid a = n5\n",
+                                        "n7 = name a (operand)\n", "n12 = set n8 \\ n11\n", "n13 = set n7 & n12\n",
+                                        "n14 = region r = n13 : m\n", "n18 = not n17\n", "n20 = cmp n19 > 0\n",
+                                        "n21 = cond n18 | n20\n", "n22 = surface s = n15 where n21\n"};
+    for (int k = 0; k < (int)(sizeof lines / sizeof lines[0]); k++)
+        CHECK(strstr(dump, lines[k]), "the dump lacks \"%.*s\":\n%s", (int)strlen(lines[k]) - 1, lines[k], dump);
+    free(dump);
 }
 
 /* iacsg_expr_parse reads one expression (with bindings): a region or surface is refused at its keyword. */
