@@ -284,6 +284,7 @@ static int parse_number(parser *p, const char *what) {
 /* rgb(R, G, B) { KEYWORD number }, after "material NAME ="; the values become the node's arguments. */
 static int parse_material(parser *p, long name) {
     int base = p->npending;
+    skip_newlines(p);
     if (!at_word(p, p->pos, "rgb") || p->a->toks[p->pos + 1].kind != TOK_PUNCT || p->a->toks[p->pos + 1].ch != '(')
         return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected rgb(R, G, B), the material's colour");
     p->pos += 2;
@@ -305,7 +306,8 @@ static int parse_material(parser *p, long name) {
             return -1;
     }
     if (!at_statement_end(p))
-        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected a material keyword and its number, or the end of the statement");
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX,
+                       "expected a material keyword and its number, or the end of the statement");
     int first = commit_args(p, base);
     int m = first < 0 ? -1 : add_node(p, AST_MATERIAL, name, 0, -1, -1);
     if (m >= 0) {
@@ -392,7 +394,8 @@ static int parse_comparison(parser *p) {
     const token *zero = peek(p);
     char num[LEX_MAX_NUMBER + 1];
     if (zero->kind != TOK_NUM || strtod(ast_token_text(p->a, p->pos, num, sizeof num), NULL) != 0)
-        return fail_at(p, zero, IACSG_ERR_SYNTAX, "a condition compares with 0 ('E < 0' or 'E > 0'; write 'E - c < 0')");
+        return fail_at(p, zero, IACSG_ERR_SYNTAX,
+                       "a condition compares with 0 ('E < 0' or 'E > 0'; write 'E - c < 0')");
     p->pos++;
     return add_node(p, AST_CMP, op, p->a->toks[op].ch, e, -1);
 }
