@@ -1,6 +1,8 @@
 /* implicits/lower.c -- stage 3: AST to DAG (see lower.h). The AST array is walked in order (children before
  * parents, statements in source order), so this is a loop. Library texts (library.c) are lowered the same way,
- * once per compile, with their parameters as OP_PARAM leaves; a call substitutes the arguments. */
+ * once per compile, with their parameters as OP_PARAM leaves; a call substitutes the arguments. A scene's names
+ * (bindings and declarations) share one table (names.c); each declaration is handed to the front end's hook
+ * (scene_parse.c) when its expressions are lowered. */
 #include "lower.h"
 #include "library.h"
 #include "names.h"
