@@ -243,8 +243,11 @@ static int declare_material(builder *b, const ast_node *n, const char *name) {
             if (s.best)
                 return fail_at(b, g->keyword, IACSG_ERR_NAME, "unknown material keyword '%s', did you mean '%s'?",
                                word, s.best);
-            return fail_at(b, g->keyword, IACSG_ERR_NAME, "unknown material keyword '%s' (%s, %s)", word,
-                           material_keywords[0].name, material_keywords[1].name);
+            char known[160] = "";
+            for (j = 0; j < NKEYWORDS; j++)
+                snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", j ? ", " : "",
+                         material_keywords[j].name);
+            return fail_at(b, g->keyword, IACSG_ERR_NAME, "unknown material keyword '%s' (%s)", word, known);
         }
         if (given[j] >= 0)
             return fail_at(b, g->keyword, IACSG_ERR_ARG, "'%s' is given twice for material '%s'", word, name);
