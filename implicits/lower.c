@@ -88,6 +88,9 @@ static const char *lib_kind_name(lib_kind k) {
 
 /* "unknown primitive 'tours', did you mean 'torus'?"; an operand of a region or condition is an unknown solid. */
 static int fail_unknown(lowering *l, long tok, const char *name, int called, int operand) {
+    int later = called || l->what[0] ? 0 : ast_declaration_line(l->a, name, tok);
+    if (later)
+        return fail(l, tok, IACSG_ERR_NAME, "'%s' is used before its declaration (line %d)", name, later);
     suggestion s;
     suggest_init(&s, name);
     for (int op = 0; op < OP_COUNT; op++)

@@ -589,6 +589,17 @@ void ast_free(ast *a) {
     memset(a, 0, sizeof *a);
 }
 
+int ast_declaration_line(const ast *a, const char *name, long tok) {
+    char text[LEX_MAX_NAME + 1];
+    for (int i = 0; i < a->count; i++) {
+        const ast_node *n = &a->nodes[i];
+        if ((n->kind == AST_BIND || (n->kind >= AST_MATERIAL && n->kind <= AST_SURFACE)) && n->tok > tok &&
+            strcmp(ast_token_text(a, n->tok, text, sizeof text), name) == 0)
+            return a->toks[n->tok].line;
+    }
+    return 0;
+}
+
 const char *ast_token_text(const ast *a, long tok, char *buf, size_t size) {
     const token *t = &a->toks[tok];
     size_t n = t->len < size - 1 ? t->len : size - 1;

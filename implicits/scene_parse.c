@@ -191,6 +191,9 @@ static int material_ref(builder *b, long tok) {
         return e->index;
     if (e)
         return fail_at(b, tok, IACSG_ERR_NAME, "'%s' is a %s, not a material", name, name_kind_word(e->kind));
+    int later = ast_declaration_line(b->a, name, tok);
+    if (later)
+        return fail_at(b, tok, IACSG_ERR_NAME, "'%s' is used before its declaration (line %d)", name, later);
     suggestion s;
     suggest_init(&s, name);
     for (int i = 0; i < b->names->nslots; i++)

@@ -274,6 +274,10 @@ TEST(scene_parse_errors) {
     expect_error("material red = rgb(1, 0, 0)\nregion r = sphere : rde", IACSG_ERR_NAME, 2, 21,
                  "unknown material 'rde', did you mean 'red'?");
     expect_error("region r = sphere : gold", IACSG_ERR_NAME, 1, 21, "unknown material 'gold'");
+    expect_error("region r = sphere : gold\nmaterial gold = rgb(1, 1, 0)", IACSG_ERR_NAME, 1, 21,
+                 "'gold' is used before its declaration (line 2)");
+    expect_error("region r = ball\nsolid ball = sphere", IACSG_ERR_NAME, 1, 12,
+                 "'ball' is used before its declaration (line 2)");
     expect_error("solid ball = sphere\nregion r = sphere : ball", IACSG_ERR_NAME, 2, 21,
                  "'ball' is a solid, not a material");
     expect_error("material red = rgb(1, 0, 0)\nregion r = red", IACSG_ERR_NAME, 2, 12,
