@@ -474,3 +474,74 @@ TEST(scene_parse_examples) {
     iacsg_scene_destroy(s);
     test_note("machined part: %d grid points, %d in one region, none in two", decided, claimed);
 }
+
+/* A random boolean expression over the solids s0..s4, written fully parenthesised into text, and its value at
+ * the signs sign[]: a region's (| & \ over names) or a condition's (& | ! over comparisons < 0, > 0). */
+typedef struct {
+    char text[4096];
+    size_t len;
+} text_buf;
+
+static int random_bool(test_rng_t *rng, text_buf *t, int depth, int condition, const signed char *sign) {
+    int leaf = depth == 0 || test_rand_u64(rng) % 3 == 0;
+    if (leaf) {
+        int k = (int)(test_rand_u64(rng) % 5);
+        int above = condition && test_rand_u64(rng) % 2;
+        t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, condition ? "s%d %c 0" : "s%d", k,
+                                   above ? '>' : '<');
+        return above ? sign[k] > 0 : sign[k] < 0;
+    }
+    if (condition && test_rand_u64(rng) % 4 == 0) {
+        t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, "!(");
+        int v = !random_bool(rng, t, depth - 1, condition, sign);
+        t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, ")");
+        return v;
+    }
+    char op = "|&\\"[test_rand_u64(rng) % (condition ? 2 : 3)];
+    t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, "(");
+    int l = random_bool(rng, t, depth - 1, condition, sign);
+    t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, " %c ", op);
+    int r = random_bool(rng, t, depth - 1, condition, sign);
+    t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, ")");
+    return op == '|' ? l || r : op == '&' ? l && r : l && !r;
+}
+
+/* Random regions and conditions: their trees compute, on every combination of the solids' signs, what the
+ * text says. The text is regenerated from the same random state for each combination. */
+TEST(scene_parse_random_trees) {
+    test_rng_t *rng = test_rng();
+    long n = test_iters(150), combos = 0;
+    for (long i = 0; i < n; i++) {
+        int condition = (int)(i % 2);
+        test_rng_t start = *rng;
+        signed char sign[5] = {0};
+        text_buf t = {.len = 0};
+        t.len = (size_t)snprintf(t.text, sizeof t.text, "solid s0 = x\nsolid s1 = y\nsolid s2 = z\n"
+                                                         "solid s3 = x + y\nsolid s4 = sphere\n%s",
+                                 condition ? "surface s = s0 + s1 + s2 + s3 + s4 where " : "region r = ");
+        size_t prefix = t.len;
+        random_bool(rng, &t, 5, condition, sign);
+        test_rng_t end = *rng;
+        iacsg_scene *s = parse_ok(t.text);
+        /* solids keep their declaration order; the surface's own solid comes last */
+        for (int c = 0; c < 243; c++, combos++) {
+            for (int k = 0, r = c; k < 5; k++, r /= 3)
+                sign[k] = (signed char)(r % 3 - 1);
+            int used[5] = {0};
+            for (int k = 0; k < s->nsolids; k++)
+                if (s->solids[k].name)
+                    used[s->solids[k].name[1] - '0'] = 1;
+            signed char mapped[6] = {0};
+            for (int k = 0, m = 0; k < 5; k++)
+                if (used[k])
+                    mapped[m++] = sign[k];
+            *rng = start;
+            t.len = prefix;
+            int want = random_bool(rng, &t, 5, condition, sign);
+            CHECK(scene_tree_eval(s, s->items[0].tree, mapped) == want, "combination %d of\n%s", c, t.text);
+        }
+        *rng = end;
+        iacsg_scene_destroy(s);
+    }
+    test_note("%ld random trees, %ld sign combinations", n, combos);
+}
