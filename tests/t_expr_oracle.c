@@ -20,7 +20,7 @@ static int oracle_pow(mpfr_ptr r, mpfr_srcptr a, mpfr_srcptr b, mpfr_rnd_t rnd) 
 static void apply(int op, mpfr_ptr R, mpfr_srcptr A, mpfr_srcptr B, long N) {
     (void)B, (void)N;
     switch (op) {
-#define OP(id, name, arity, nary, iv, pt, d, td, oracle)                                                          \
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle, undef, empty)                                               \
     case OP_##id: oracle; break;
 #include "implicits/ops.def"
 #undef OP
@@ -34,12 +34,14 @@ static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
     int count = dag_reachable(d, e->raw_root, &order);
     CHECK(count > 0, "out of memory");
     mpfr_t *v = malloc(((size_t)e->raw_root + 1) * sizeof *v);
-    CHECK(v != NULL, "out of memory");
+    unsigned char *varies = malloc((size_t)e->raw_root + 1); /* depends on x, y, z or t */
+    CHECK(v != NULL && varies != NULL, "out of memory");
     int ok = 1;
     for (int k = 0; k < count; k++) {
         int i = order[k];
         const dag_node *n = &d->nodes[i];
         mpfr_init2(v[i], EXPR_ORACLE_PREC);
+        varies[i] = n->op <= OP_T || (n->op > OP_PARAM && (varies[n->a] || (n->b >= 0 && varies[n->b])));
         if (n->op <= OP_T)
             mpfr_set(v[i], p[n->op], RN);
         else if (n->op == OP_CONST && n->n >= 0)
@@ -50,8 +52,12 @@ static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
             mpfr_const_pi(v[i], RN);
         else if (n->op == OP_E)
             mpfr_set_ui(v[i], 1, RN), mpfr_exp(v[i], v[i], RN);
+        else if (n->op == OP_MIN && (!mpfr_number_p(v[n->a]) || !mpfr_number_p(v[n->b])))
+            mpfr_set(v[i], mpfr_number_p(v[n->a]) ? v[n->a] : v[n->b], RN); /* undefined is outside (ia/ia.h) */
         else if (!mpfr_number_p(v[n->a]) || (n->b >= 0 && !mpfr_number_p(v[n->b])))
-            mpfr_set_nan(v[i]); /* undefined operands make the whole expression undefined at p */
+            mpfr_set_nan(v[i]); /* undefined operands make the rest undefined at p */
+        else if (n->op == OP_POW && !varies[n->b] && mpfr_integer_p(v[n->b]) && mpfr_cmpabs_ui(v[n->b], 65536) <= 0)
+            mpfr_pow(v[i], v[n->a], v[n->b], RN); /* a constant integer power is pown (implicits/simplify.c) */
         else
             apply(n->op, v[i], v[n->a], n->b >= 0 ? v[n->b] : v[n->a], n->n);
     }
@@ -60,6 +66,7 @@ static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
     for (int k = 0; k < count; k++)
         mpfr_clear(v[order[k]]);
     free(v);
+    free(varies);
     free(order);
     return ok;
 }
