@@ -42,8 +42,8 @@ static char *program_source(const iacsg_expr *const *exprs, int nexprs, iacsg_er
     }
     strbuf_printf(&b, "%s", kernel_head);
     for (int k = 0; k < nexprs; k++)
-        strbuf_printf(&b,
-                      "    case %d: r = e%d_F(x, y, z, t); f = e%d_f_grad(v[0], v[2], v[4], v[6], &gx, &gy, &gz); break;\n",
+        strbuf_printf(&b, "    case %d: r = e%d_F(x, y, z, t); f = e%d_f_grad(v[0], v[2], v[4], v[6], &gx, &gy, &gz); "
+                          "break;\n",
                       k, k, k);
     strbuf_printf(&b, "%s", kernel_tail);
     char *s = strbuf_finish(&b);

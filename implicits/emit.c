@@ -10,7 +10,11 @@
  * one pass instead of six evaluations, and has no step size to tune (a step that suits a unit sphere fails on
  * x^500 or near the tiny features of a blend). The three travel as one 4-vector (iacsg_grad): one statement
  * per node instead of three, which also spares LLVM's SLP vectoriser, whose search over three parallel scalar
- * chains made most of the compile time of large expressions. */
+ * chains made most of the compile time of large expressions.
+ *
+ * Undefined operands follow the rule at the top of ia/ia.h: nodes that may be undefined carry flags (see
+ * op_may_be_undefined), a union of them is ia_union, and the value of the whole expression is read through
+ * ia_or_outside. */
 #include "emit.h"
 #include "strbuf.h"
 #include <math.h>

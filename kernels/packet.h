@@ -233,13 +233,14 @@ IA_FN void packet_advance_some(ia_maskv *searching, ia_maskv moving, ia_maskv do
  * When a step is valid: only where F' is BOUNDED (both ends finite). Proof sketch. iacsg_Fdv reports
  * [-inf, +inf] wherever an operation of the expression may be undefined on the box (implicits/emit.c: a pole of
  * 1/x, tan or a negative power, the domain edge of sqrt, log or pow), so a bounded F' means every operation is
- * defined on the whole segment; all of them are continuous where defined, so F is continuous there, and
- * differentiable but at finitely many kinks with the derivative in F' (the inclusion property of the derivative
- * code): F is Lipschitz on [a, b], and Lebourg's mean value theorem gives F(m) - F(r) in F' (m - r) for every
- * point r of [a, b]. At a root r, F(r) = 0, so r is in m - F(m) / F' when 0 is not in F': N keeps every root of
- * [a, b], the first one is neither lost nor passed. Over a node that holds a pole the derivative is unbounded
- * in any case (F is unbounded near it, so F' cannot be bounded by the inclusion property); the old test, "F'
- * holds 0", let through F' = [-inf, -c] over a pole, and the step kept the wrong side of it.
+ * defined on the whole segment; all of them are continuous where defined, so F is continuous there, with its
+ * derivative along the ray (Clarke's generalized one at the kinks) in the bounded F' (the inclusion property of
+ * the derivative code): F is Lipschitz on [a, b], and Lebourg's mean value theorem gives F(m) - F(r) in
+ * F' (m - r) for every point r of [a, b]. At a root r, F(r) = 0, so r is in m - F(m) / F' when 0 is not in
+ * F': N keeps every root of [a, b], the first one is neither lost nor passed. Over a node that holds a pole the
+ * derivative is unbounded in any case (F is unbounded near it, so F' cannot be bounded by the inclusion
+ * property); the old test, "F' holds 0", let through F' = [-inf, -c] over a pole, and the step kept the wrong
+ * side of it (tests/t_newton_pole_fp.c).
  *
  * When N misses [a, b] or F([a, b]) misses 0 the node is root-free; when F' holds 0 or is unbounded, or a step
  * does not halve the width, the ray goes back to bisecting (that node and every later one: a second try rarely

@@ -288,8 +288,8 @@ static void check_agreement(const char *text, int is_union) {
         CHECK(iacsg_expr_eval_vars(e, FP64, v, host, &err) == IACSG_OK, "%s", err.message);
         if (k == 0) /* the box: the sphere's surface is there, at x = -1 */
             CHECK(may_hold_zero(host) == is_union && may_hold_zero(d) == is_union && may_hold_zero(l) == is_union,
-                  "'%s' over [-1.01, -0.99] x {0} x {0}: host [%a, %a], F [%a, %a], lanes [%a, %a] (the sphere alone is "
-                  "[-0.0199, 0.0201])",
+                  "'%s' over [-1.01, -0.99] x {0} x {0}: host [%a, %a], F [%a, %a], lanes [%a, %a] (the sphere "
+                  "alone is [-0.0199, 0.0201])",
                   text, host[0], host[1], d[0], d[1], l[0], l[1]);
         for (int s = 0; s < 6; s++) {
             double p[4];
@@ -298,8 +298,8 @@ static void check_agreement(const char *text, int is_union) {
                 continue;
             checked++;
             CHECK(holds(y, host) && holds(y, d) && holds(y, l),
-                  "'%s' over x [%a, %a] y [%a, %a] z [%a, %a]: host [%a, %a], F [%a, %a], lanes [%a, %a], but at (%a, %a, "
-                  "%a) the value is %.17g",
+                  "'%s' over x [%a, %a] y [%a, %a] z [%a, %a]: host [%a, %a], F [%a, %a], lanes [%a, %a], but at "
+                  "(%a, %a, %a) the value is %.17g",
                   text, v[0], v[1], v[2], v[3], v[4], v[5], host[0], host[1], d[0], d[1], l[0], l[1], p[0], p[1],
                   p[2], mpfr_get_d(y, MPFR_RNDN));
         }

@@ -63,8 +63,9 @@ static void check_first_root(const char *expr, double x_root) {
     iacsg_frame_free(&fr);
     test_note("%s: first root at depth %.9g; %d pixels, worst |depth - root| %.3g", expr, x_root + 3,
               view.width * view.height, worst);
-    CHECK(missed == 0 && late == 0 && early == 0, "%s: %ld pixels missed, %ld after the first root, %ld more than 2 eps "
-          "before it (worst |depth - root| %.6g)", expr, missed, late, early, worst);
+    CHECK(missed == 0 && late == 0 && early == 0,
+          "%s: %ld pixels missed, %ld after the first root, %ld more than 2 eps before it (worst |depth - root| %.6g)",
+          expr, missed, late, early, worst);
 }
 
 TEST_FP(newton_pole_power) { check_first_root("(x+0.52)^-1 - 1000*(x+0.52)", -0.52 - 1 / sqrt(1000.0)); }
