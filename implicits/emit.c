@@ -535,9 +535,10 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
                       "#ifndef IACSG_K\n#ifdef IA_FP64\n#define IACSG_K(f, d) (d)\ntypedef double4 iacsg_grad;\n#else\n"
                       "#define IACSG_K(f, d) (f)\ntypedef float4 iacsg_grad;\n#endif\n#endif\n",
                   count);
-    /* Over IA_VW lanes (ia/vec.h) for the renderer's kernels, a large union in groups; the scalar interval and
-     * point functions for other programs (device evaluation). A program gets only what it uses: clang parses
-     * every function it is given, and for 1024 spheres each of these is 3400 statements. */
+    /* Over IA_VW lanes (ia/vec.h) for the renderer's kernels, a large union in groups; the scalar interval
+     * function for other programs (device evaluation); the point value and gradient for both. A program gets
+     * only what it uses: clang parses every function it is given, and for 1024 spheres each of these is 3400
+     * statements. */
     int *parts;
     int nparts = union_parts(d, root, &parts);
     strbuf_printf(&b, "#ifdef IA_VW\n");
@@ -560,11 +561,6 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     body(&b, &em, order, count, AS_INTERVAL);
     strbuf_printf(&b, "    return ");
     put_solid_value(&b, &em, root, AS_INTERVAL);
-    strbuf_printf(&b, ";\n}\n");
-    strbuf_printf(&b, "IA_FN ia_real %s_f(ia_real x, ia_real y, ia_real z, ia_real t) {\n", prefix);
-    body(&b, &em, order, count, AS_POINT);
-    strbuf_printf(&b, "    return ");
-    put_operand(&b, &em, root, AS_POINT);
     strbuf_printf(&b, ";\n}\n");
     /* a union in groups: the kernels shade it by differences of iacsg_Fv (kernels/shade.h), its gradient code
      * would be a quarter of their build */

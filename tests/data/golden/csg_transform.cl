@@ -133,37 +133,6 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v44 = ia_min(v16, v43);
     return v44;
 }
-IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
-    ia_real v9 = x + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v10 = v9 * v9;
-    ia_real v11 = y * y;
-    ia_real v12 = v10 + v11;
-    ia_real v13 = z * z;
-    ia_real v14 = v12 + v13;
-    ia_real v16 = v14 + IACSG_K(-0x1p-2f, -0x1p-2);
-    ia_real v17 = fabs(x);
-    ia_real v18 = fabs(y);
-    ia_real v19 = fabs(z);
-    ia_real v20 = v17 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v21 = v18 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v22 = v19 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v23 = ia_real_max(v20, v21);
-    ia_real v24 = ia_real_max(v22, v23);
-    ia_real v30 = x * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1);
-    ia_real v32 = y * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1);
-    ia_real v33 = v30 + v32;
-    ia_real v34 = y * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1);
-    ia_real v35 = x * IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1);
-    ia_real v36 = v34 - v35;
-    ia_real v37 = v33 * v33;
-    ia_real v38 = v36 * v36;
-    ia_real v39 = v37 + v38;
-    ia_real v41 = v39 + IACSG_K(-0x1p-4f, -0x1p-4);
-    ia_real v42 = -v41;
-    ia_real v43 = ia_real_max(v24, v42);
-    ia_real v44 = fmin(v16, v43);
-    return v44;
-}
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v9 = x + IACSG_K(-0x1p+0f, -0x1p+0);

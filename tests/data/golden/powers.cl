@@ -55,21 +55,6 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     int v16_u = v13_u || v15_u;
     return ia_or_outside(v16, v16_u);
 }
-IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
-    ia_real v2 = pown(x, 3);
-    ia_real v5 = sqrt(y);
-    v5 = y < 0 ? (ia_real)NAN : v5;
-    ia_real v6 = v2 + v5;
-    ia_real v10 = pown(z, -2);
-    v10 = -2 < 0 && z <= 0 && z >= 0 ? (ia_real)NAN : v10;
-    ia_real v11 = v6 + v10;
-    ia_real v12 = x * x;
-    ia_real v13 = v11 + v12;
-    ia_real v15 = pow(y, IACSG_K(0x1.8p+0f, 0x1.8p+0));
-    v15 = y < 0 || (y <= 0 && IACSG_K(0x1.8p+0f, 0x1.8p+0) <= 0) ? (ia_real)NAN : v15;
-    ia_real v16 = v13 + v15;
-    return v16;
-}
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v2 = pown(x, 3);

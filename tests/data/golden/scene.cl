@@ -57,18 +57,6 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v16 = ia_max(v11, v15);
     return v16;
 }
-IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
-    ia_real v3 = x * x;
-    ia_real v5 = y * y;
-    ia_real v6 = v3 + v5;
-    ia_real v8 = z * z;
-    ia_real v9 = v6 + v8;
-    ia_real v11 = v9 - IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1);
-    ia_real v14 = v6 - IACSG_K(0x1.70a3d8p-4f, 0x1.70a3d70a3d70bp-4);
-    ia_real v15 = -v14;
-    ia_real v16 = ia_real_max(v11, v15);
-    return v16;
-}
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v3 = x * x;

@@ -24,13 +24,6 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v6 = ia_min(v3, v5);
     return v6;
 }
-IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
-    ia_real v1 = sin(x);
-    ia_real v3 = v1 * y;
-    ia_real v5 = v1 + IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4);
-    ia_real v6 = fmin(v3, v5);
-    return v6;
-}
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v1 = sin(x);

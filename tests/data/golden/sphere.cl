@@ -45,15 +45,6 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v11 = ia_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
     return v11;
 }
-IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
-    ia_real v3 = x * x;
-    ia_real v5 = y * y;
-    ia_real v6 = v3 + v5;
-    ia_real v8 = z * z;
-    ia_real v9 = v6 + v8;
-    ia_real v11 = v9 + IACSG_K(-0x1p+0f, -0x1p+0);
-    return v11;
-}
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v3 = x * x;

@@ -182,45 +182,6 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     int v48_u = v46_u || v47_u;
     return ia_or_outside(v48, v48_u);
 }
-IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
-    ia_real v2 = x * x;
-    ia_real v4 = y * y;
-    ia_real v5 = v2 + v4;
-    ia_real v8 = v5 - IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1);
-    ia_real v9 = v8 * v8;
-    ia_real v11 = z * z;
-    ia_real v14 = v11 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v15 = v14 * v14;
-    ia_real v16 = v9 + v15;
-    ia_real v17 = v4 + v11;
-    ia_real v18 = v17 - IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1);
-    ia_real v19 = v18 * v18;
-    ia_real v20 = v2 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v21 = v20 * v20;
-    ia_real v22 = v19 + v21;
-    ia_real v23 = v16 * v22;
-    ia_real v24 = v2 + v11;
-    ia_real v25 = v24 - IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1);
-    ia_real v26 = v25 * v25;
-    ia_real v27 = v4 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v28 = v27 * v27;
-    ia_real v29 = v26 + v28;
-    ia_real v30 = v23 * v29;
-    ia_real v32 = v30 - IACSG_K(0x1.47ae14p-6f, 0x1.47ae147ae147bp-6);
-    ia_real v33 = v5 + v11;
-    ia_real v34 = v33 + IACSG_K(-0x1p+0f, -0x1p+0);
-    ia_real v40 = t + IACSG_K(-0x1p-1f, -0x1p-1);
-    ia_real v41 = v40 * IACSG_K(-0x1.8p+3f, -0x1.8p+3);
-    ia_real v42 = exp(v41);
-    ia_real v43 = v42 + IACSG_K(0x1p+0f, 0x1p+0);
-    ia_real v44 = 1 / v43;
-    v44 = v43 <= 0 && v43 >= 0 ? (ia_real)NAN : v44;
-    ia_real v45 = IACSG_K(0x1p+0f, 0x1p+0) - v44;
-    ia_real v46 = v32 * v45;
-    ia_real v47 = v34 * v44;
-    ia_real v48 = v46 + v47;
-    return v48;
-}
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v2 = x * x;

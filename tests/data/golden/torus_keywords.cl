@@ -84,19 +84,6 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     int v16_u = v13_u;
     return ia_or_outside(v16, v16_u);
 }
-IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
-    ia_real v4 = x * x;
-    ia_real v6 = y * y;
-    ia_real v7 = v4 + v6;
-    ia_real v8 = sqrt(v7);
-    v8 = v7 < 0 ? (ia_real)NAN : v8;
-    ia_real v10 = z * z;
-    ia_real v11 = IACSG_K(0x1p+0f, 0x1p+0) - v8;
-    ia_real v12 = v11 * v11;
-    ia_real v13 = v10 + v12;
-    ia_real v16 = v13 + IACSG_K(-0x1p-4f, -0x1p-4);
-    return v16;
-}
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v4 = x * x;
