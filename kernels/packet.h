@@ -330,6 +330,11 @@ IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_
                 empty |= step & ~(a <= b);
                 step &= a <= b;
                 stuck |= step & (b - a > (ia_real)0.5 * (nb - na)); /* no longer converging: bisect instead */
+                /* Never narrower than half a leaf: the step after this one is the leaf's test, F over it, and
+                 * unrounded (IA_FAST) F over a box far below the widths at which its rounding errors show missed
+                 * the root in a fifth of the reference view's rays. [a, b] grows inside [na, nb], so it keeps
+                 * every root; the leaf's start is still at or before the first one. */
+                b = fmin(nb, fmax(b, a + (ia_real)0.5 * eps));
                 na = select(na, a, step);
                 nb = select(nb, b, step);
             }
