@@ -37,13 +37,17 @@
  *     - min(a, b) is b where a is undefined and a where b is (undefined counts as outside, +inf, in a union),
  *       undefined where both are; max(a, b) is undefined where either is (outside: an intersection with
  *       nothing is nothing);
- *     - where the whole expression is undefined, the point is outside the solid and not on its surface.
+ *     - where the whole expression is undefined, the point is outside the solid: the solid is where the
+ *       expression is defined and < 0, and its boundary is the surface f = 0 and the edge of the domain where
+ *       the defined side is inside.
  *   As intervals: an enclosure holds the values at the points of the box where the expression is defined (the
  *   set-based rule above), and the emitted code carries beside each interval that can be undefined a flag,
- *   "may be undefined somewhere on the box", made by the `undefined` column of implicits/ops.def. A union with a
- *   flagged operand is ia_union, which takes that operand as [lo, +inf]. (C's fmin already drops a NaN; the
- *   point max is ia_real_max.) Interval Newton needs F defined and continuous on the whole node, so the derivative code
- *   reports an unbounded derivative wherever any flag is raised (kernels/packet.h).
+ *   "may be undefined somewhere on the box", made by the `undefined` column of implicits/ops.def (the vector
+ *   code a second one, "undefined on all of it": ia/vec.h). A union with a flagged operand is ia_union, which
+ *   takes that operand as [lo, +inf] (ia_or_outside), and so is the value of the whole expression read. (C's
+ *   fmin already drops a NaN; the point max is ia_real_max.) Interval Newton needs F defined and continuous on
+ *   the whole node, so the derivative code reports an unbounded derivative wherever a flag is raised
+ *   (kernels/packet.h).
  *
  *   Fast mode (IA_FAST) drops the widening: the Hijazi seed's arithmetic, for measuring the cost of rigor.
  *
