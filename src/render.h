@@ -22,7 +22,7 @@ typedef struct {
     int stats;  /* count the interval evaluations of each ray (a kernel built with -D KERNEL_STATS) */
 } iacsg_render_config;
 
-/* Builds the render program for `expr_cl`, the OpenCL C source of iacsg_F, iacsg_f and iacsg_f_grad (as
+/* Builds the render program for `expr_cl`, the OpenCL C source of iacsg_Fv, iacsg_f_grad and so on (as
  * iacsg_expr_emit_cl writes it with the prefix "iacsg"). The source is copied. Destroy with
  * iacsg_renderer_destroy. */
 iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,

@@ -24,7 +24,7 @@ static int oracle_pown_exponent(mpfr_srcptr b) { return mpfr_integer_p(b) && mpf
 static void apply(int op, mpfr_ptr R, mpfr_srcptr A, mpfr_srcptr B, long N) {
     (void)B, (void)N;
     switch (op) {
-#define OP(id, name, arity, nary, iv, pt, d, td, oracle)                                                          \
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle, undef, empty)                                               \
     case OP_##id: oracle; break;
 #include "implicits/ops.def"
 #undef OP
@@ -57,6 +57,8 @@ static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y, mp
             mpfr_const_pi(v[i], RN);
         else if (n->op == OP_E)
             mpfr_set_ui(v[i], 1, RN), mpfr_exp(v[i], v[i], RN);
+        else if (n->op == OP_MIN && (!mpfr_number_p(v[n->a]) || !mpfr_number_p(v[n->b])))
+            mpfr_set(v[i], mpfr_number_p(v[n->a]) ? v[n->a] : v[n->b], RN); /* undefined is outside (ia/ia.h) */
         else if (!mpfr_number_p(v[n->a]) || (n->b >= 0 && !mpfr_number_p(v[n->b])))
             mpfr_set_nan(v[i]); /* undefined operands make the whole expression undefined at p */
         else if (n->op == OP_POW && !varies[n->b] && oracle_pown_exponent(v[n->b]))

@@ -10,8 +10,9 @@
 #define EXPR_ORACLE_PREC 256
 
 /* The value at (x, y, z, t) of the expression as written (its unsimplified DAG, decimal constants read exactly
- * to EXPR_ORACLE_PREC bits), into y (initialised by the caller). Returns 0 where some subexpression is
- * undefined or infinite (the point is outside the expression's domain), else 1. */
+ * to EXPR_ORACLE_PREC bits), into y (initialised by the caller). A subexpression undefined or infinite at p is
+ * undefined, and follows the rule of ia/ia.h: a union is its other operand there, any other operation is
+ * undefined. Returns 0 where the whole expression is undefined, else 1. */
 int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y);
 
 /* The derivative at p along dir (x, y, z) of the same, by a central difference of step 2^-80 at
