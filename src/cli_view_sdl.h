@@ -11,7 +11,6 @@
 /* X(return type, name, parameter types) */
 #define VIEW_SDL_FUNCTIONS                                                                                     \
     X(int, Init, (Uint32))                                                                                     \
-    X(void, Quit, (void))                                                                                      \
     X(const char *, GetError, (void))                                                                          \
     X(SDL_Window *, CreateWindow, (const char *, int, int, int, int, Uint32))                                  \
     X(void, DestroyWindow, (SDL_Window *))                                                                     \

@@ -3,8 +3,10 @@
  *   wait for a scene, a request not yet done, or stop -> build the scene's renderer (a failure is kept for
  *   view_worker_take_build_error, and the last good renderer stays) -> render the newest request, cancelled
  *   when anything newer arrives -> publish the frame. */
+#define _XOPEN_SOURCE 700 /* sigaltstack */
 #include "cli_view_worker.h"
 #include <pthread.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -62,6 +64,11 @@ static void build_scene(view_worker *w, view_scene *s) {
 
 static void *worker_main(void *arg) {
     view_worker *w = arg;
+    /* LLVM, compiling kernels inside PoCL, installs an alternate signal stack of its own (malloc'ed) on the
+     * first thread that compiles; the sanitizers' runtime unmaps whatever alternate stack a thread has when
+     * it ends, and aborts on that one. The thread's own goes back before it ends. */
+    stack_t own_signal_stack;
+    int have_signal_stack = sigaltstack(NULL, &own_signal_stack) == 0;
     pthread_mutex_lock(&w->lock);
     for (;;) {
         while (!w->stop && !w->new_scene && (w->done == w->wanted || !w->wanted || !w->renderer))
@@ -98,6 +105,8 @@ static void *worker_main(void *arg) {
         w->have_result = 1;
     }
     pthread_mutex_unlock(&w->lock);
+    if (have_signal_stack)
+        sigaltstack(&own_signal_stack, NULL);
     return NULL;
 }
 

@@ -377,6 +377,6 @@ TEST(view_no_display) {
     const char *last = strrchr(text, '\n');
     CHECK(last && last > text, "no output: %s", text);
     const char *first_newline = strchr(text, '\n');
-    CHECK(strstr(text, "iacsg view: no display") == text, "the message is not about the display: %s", text);
+    CHECK(strstr(text, "iacsg: no display") == text, "the message is not about the display: %s", text);
     CHECK(strcmp(first_newline + 1, "1\n") == 0, "not one line and exit status 1: %s", text);
 }
