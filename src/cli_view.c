@@ -307,9 +307,8 @@ static void collect(viewer *v) {
     v->frame_factor = res.tag;
     v->frame_seconds = res.seconds;
     v->frame_final = res.request == v->wanted && !v->wanted_preview;
-    if (res.scene == v->scenes_sent && v->scene_reported != res.scene) {
-        if (v->scene_reported)
-            printf("reloaded %s\n", v->name);
+    int reloaded = res.scene == v->scenes_sent && v->scene_reported != res.scene && v->scene_reported;
+    if (res.scene == v->scenes_sent) {
         v->scene_reported = res.scene;
         v->error[0] = '\0';
     }
@@ -318,6 +317,8 @@ static void collect(viewer *v) {
         v->quit = 1;
         return;
     }
+    if (reloaded)
+        printf("reloaded %s\n", v->name);
     if (v->frame_final && v->screenshot_pending)
         save_screenshot(v);
 }

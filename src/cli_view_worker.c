@@ -18,6 +18,7 @@ struct view_worker {
     iacsg_render_config config;
     int stop;
     view_scene *new_scene;        /* handed over, not yet built */
+    unsigned scenes_given;        /* scenes handed over so far: new_scene is the last */
     iacsg_view view;              /* the newest request */
     int tag;
     unsigned wanted, done;        /* the newest request's number (0: none yet), and the last one rendered */
@@ -27,7 +28,7 @@ struct view_worker {
     iacsg_error build_error;
     /* the thread's own */
     iacsg_renderer *renderer;
-    unsigned scenes_built;
+    unsigned renderer_scene;      /* which scene the renderer draws (n: the n-th handed over) */
 };
 
 static double now_seconds(void) {
@@ -45,7 +46,7 @@ static int superseded(void *ctx) {
     return yes;
 }
 
-static void build_scene(view_worker *w, view_scene *s) {
+static void build_scene(view_worker *w, view_scene *s, unsigned number) {
     iacsg_renderer *r = NULL;
     iacsg_error err = {0};
     iacsg_status st = view_scene_renderer(s, &w->config, &r, &err);
@@ -54,7 +55,7 @@ static void build_scene(view_worker *w, view_scene *s) {
     if (st == IACSG_OK) {
         iacsg_renderer_destroy(w->renderer);
         w->renderer = r;
-        w->scenes_built++;
+        w->renderer_scene = number;
         w->done = w->wanted - 1; /* the newest request again, with the new scene */
     } else {
         w->build_error = err;
@@ -77,9 +78,10 @@ static void *worker_main(void *arg) {
             break;
         if (w->new_scene) {
             view_scene *s = w->new_scene;
+            unsigned number = w->scenes_given;
             w->new_scene = NULL;
             pthread_mutex_unlock(&w->lock);
-            build_scene(w, s); /* returns with the lock held */
+            build_scene(w, s, number); /* returns with the lock held */
             continue;
         }
         unsigned request = w->rendering = w->wanted;
@@ -90,7 +92,7 @@ static void *worker_main(void *arg) {
         view.progress = NULL;
         view.cancel = superseded;
         view.cancel_ctx = w;
-        view_result res = {.request = request, .tag = tag, .scene = w->scenes_built};
+        view_result res = {.request = request, .tag = tag, .scene = w->renderer_scene};
         double start = now_seconds();
         res.status = iacsg_render(w->renderer, &view, &res.frame, &res.err);
         res.seconds = now_seconds() - start;
@@ -132,6 +134,7 @@ void view_worker_set_scene(view_worker *w, view_scene *s) {
     pthread_mutex_lock(&w->lock);
     view_scene_destroy(w->new_scene);
     w->new_scene = s;
+    w->scenes_given++;
     pthread_cond_signal(&w->wake);
     pthread_mutex_unlock(&w->lock);
 }

@@ -11,7 +11,8 @@ typedef struct view_worker view_worker;
 typedef struct {
     unsigned request;      /* the number view_worker_request returned for it */
     int tag;               /* as given with the request */
-    unsigned scene;        /* how many scenes had been built when it was rendered: 1 for the first */
+    unsigned scene;        /* the scene it shows: n for the n-th handed over (one that failed to build is
+                              never shown) */
     iacsg_status status;   /* IACSG_OK: frame holds the images (the receiver frees them) */
     iacsg_error err;
     iacsg_frame frame;

@@ -1,7 +1,8 @@
 /* tests/t_view.c -- `iacsg view` in a real window: an X server of the test's own (Xvfb, on a display number it
  * picks), input through xdotool, screenshots through the viewer's `s` key. The viewer's image of a dragged,
  * zoomed view must be the render command's image of the command line `p` printed; an edit of the scene file
- * must reach the window; a syntax error must leave the viewer running, reporting it, on the last good scene.
+ * must reach the window; a syntax error must leave the viewer running, reporting it, on the last good scene,
+ * until the file is mended.
  * Every wait is bounded, and the viewer and the X server are killed whatever happens. */
 #define _DEFAULT_SOURCE /* setenv, unsetenv */
 #include "iacsg.h"
@@ -183,11 +184,19 @@ static const char *session_text(const session *s, const char *name) {
     return text;
 }
 
-/* Waits up to `seconds` for `needle` in the session's file; 0 when it came. Gives up when the viewer died. */
-static int wait_for_text(session *s, const char *name, const char *needle, double seconds) {
+static int count_text(const char *text, const char *needle) {
+    int n = 0;
+    for (const char *p = strstr(text, needle); p; p = strstr(p + 1, needle))
+        n++;
+    return n;
+}
+
+/* Waits up to `seconds` for the count-th `needle` in the session's file; 0 when it came. Gives up when the
+ * viewer died. */
+static int wait_for_nth(session *s, const char *name, const char *needle, int count, double seconds) {
     double deadline = now_seconds() + seconds;
     for (;;) {
-        if (strstr(session_text(s, name), needle))
+        if (count_text(session_text(s, name), needle) >= count)
             return 0;
         int status;
         if (s->viewer > 0 && waitpid(s->viewer, &status, WNOHANG) == s->viewer) {
@@ -200,6 +209,24 @@ static int wait_for_text(session *s, const char *name, const char *needle, doubl
                         session_text(s, "err.txt"));
         nap();
     }
+}
+
+static int wait_for_text(session *s, const char *name, const char *needle, double seconds) {
+    return wait_for_nth(s, name, needle, 1, seconds);
+}
+
+/* Waits up to 10 s until the window's title has `needle` (or, with absent, has it not); 0 when so. */
+static int wait_for_title(session *s, const char *needle, int absent) {
+    char cmd[64], title[512] = "";
+    snprintf(cmd, sizeof cmd, "getwindowname %s", s->window);
+    double deadline = now_seconds() + 10;
+    do {
+        xdo(s, cmd, title, sizeof title);
+        if ((strstr(title, needle) == NULL) == absent)
+            return 0;
+        nap();
+    } while (now_seconds() < deadline);
+    return fail(s, "the window's title %s '%s' after 10 s: '%s'", absent ? "still has" : "has no", needle, title);
 }
 
 /* Replaces the scene file at once (a rename), as editors save. */
@@ -321,16 +348,16 @@ static int view_session(session *s) {
     /* A syntax error: on stderr and in the title, the viewer alive, the last good scene on screen. */
     if (write_scene(s, broken_scene) || wait_for_text(s, "err.txt", "iacsg: scene.csg:", 30))
         return -1;
-    char cmd[64], title[512];
-    snprintf(cmd, sizeof cmd, "getwindowname %s", s->window);
-    xdo(s, cmd, title, sizeof title);
-    if (!strstr(title, "ERROR scene.csg:"))
-        return fail(s, "the window's title does not report the error: '%s'", title);
-    if (send(s, "key s") || wait_for_text(s, "out.txt", "wrote shot_0002.png", 30))
+    if (wait_for_title(s, "ERROR scene.csg:", 0) || send(s, "key s") || wait_for_text(s, "out.txt", "wrote shot_0002.png", 30))
         return -1;
     double kept = differing_fraction(s, "shot_0001.png", "shot_0002.png", 0);
     if (kept != 0)
         return kept < 0 ? -1 : fail(s, "after the syntax error the window changed (%.2f%% of pixels)", 100 * kept);
+
+    /* The error mended: reloaded again, the title clear. */
+    if (write_scene(s, first_scene) || wait_for_nth(s, "out.txt", "reloaded scene.csg", 2, 60) ||
+        wait_for_title(s, "ERROR", 1))
+        return -1;
 
     /* q quits, with status 0. */
     if (send(s, "key q"))
