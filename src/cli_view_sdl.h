@@ -16,10 +16,8 @@
     X(void, DestroyWindow, (SDL_Window *))                                                                     \
     X(void, SetWindowTitle, (SDL_Window *, const char *))                                                      \
     X(void, SetWindowMaximumSize, (SDL_Window *, int, int))                                                    \
-    X(void, GetWindowSize, (SDL_Window *, int *, int *))                                                       \
     X(SDL_Renderer *, CreateRenderer, (SDL_Window *, int, Uint32))                                             \
     X(void, DestroyRenderer, (SDL_Renderer *))                                                                 \
-    X(int, GetRendererOutputSize, (SDL_Renderer *, int *, int *))                                              \
     X(SDL_Texture *, CreateTexture, (SDL_Renderer *, Uint32, int, int, int))                                   \
     X(void, DestroyTexture, (SDL_Texture *))                                                                   \
     X(int, UpdateTexture, (SDL_Texture *, const SDL_Rect *, const void *, int))                                \

@@ -8,7 +8,6 @@
 #include <pthread.h>
 #include <signal.h>
 #include <stdlib.h>
-#include <string.h>
 #include <time.h>
 
 struct view_worker {
@@ -20,7 +19,7 @@ struct view_worker {
     view_scene *new_scene;        /* handed over, not yet built */
     unsigned scenes_given;        /* scenes handed over so far: new_scene is the last */
     iacsg_view view;              /* the newest request */
-    int tag;
+    int tag;                      /* the newest request's, given back with its frame */
     unsigned wanted, done;        /* the newest request's number (0: none yet), and the last one rendered */
     unsigned rendering;           /* the request in progress */
     int have_result, have_build_error;
@@ -46,6 +45,7 @@ static int superseded(void *ctx) {
     return yes;
 }
 
+/* Builds the renderer of scene `number` (unlocked: seconds) and installs it; returns with the lock held. */
 static void build_scene(view_worker *w, view_scene *s, unsigned number) {
     iacsg_renderer *r = NULL;
     iacsg_error err = {0};
