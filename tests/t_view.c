@@ -312,7 +312,7 @@ static int view_session(session *s) {
     while (!s->window[0]) {
         if (now_seconds() > deadline)
             return fail(s, "no viewer window within 30 s; stderr: %s", session_text(s, "err.txt"));
-        xdo(s, "search --name '^iacsg view'", s->window, sizeof s->window);
+        xdo(s, "search --onlyvisible --name '^iacsg view'", s->window, sizeof s->window);
         nap();
     }
     /* A drag to orbit, a wheel step to zoom, eps doubled: then the command line and a screenshot. */
@@ -348,7 +348,8 @@ static int view_session(session *s) {
     /* A syntax error: on stderr and in the title, the viewer alive, the last good scene on screen. */
     if (write_scene(s, broken_scene) || wait_for_text(s, "err.txt", "iacsg: scene.csg:", 30))
         return -1;
-    if (wait_for_title(s, "ERROR scene.csg:", 0) || send(s, "key s") || wait_for_text(s, "out.txt", "wrote shot_0002.png", 30))
+    if (wait_for_title(s, "ERROR scene.csg:", 0) || send(s, "key s") ||
+        wait_for_text(s, "out.txt", "wrote shot_0002.png", 30))
         return -1;
     double kept = differing_fraction(s, "shot_0001.png", "shot_0002.png", 0);
     if (kept != 0)
@@ -376,7 +377,8 @@ static int view_session(session *s) {
 }
 
 TEST(view_window) {
-    CHECK(on_path("Xvfb") && on_path("xdotool"), "the viewer's test needs Xvfb and xdotool (make deps installs them)");
+    CHECK(on_path("Xvfb") && on_path("xdotool"),
+          "the viewer's test needs Xvfb and xdotool (make deps installs them)");
     session s = {.xvfb = 0};
     snprintf(s.dir, sizeof s.dir, "/tmp/iacsg-view-%ld", (long)getpid());
     CHECK(mkdir(s.dir, 0700) == 0, "cannot create %s", s.dir);
