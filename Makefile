@@ -27,11 +27,11 @@ CFLAGS_ALL = -std=c11 $(WARN) $(OPT) -I. -Isrc -I$(BUILD) -D_POSIX_C_SOURCE=2008
 CXXFLAGS_ALL = -std=c++17 -Wall -Wextra -Werror $(OPT) -I. -Isrc $(CXXFLAGS)
 IMAGE_LIBS = -lOpenImageIO -lOpenImageIO_Util
 LIBS = -lOpenCL $(IMAGE_LIBS) -lmpfr -lgmp -lm -lstdc++
-CLI_LIBS = -lOpenCL -lm -ldl
+CLI_LIBS = -lOpenCL -lm -ldl -lpthread
 LDFLAGS_ALL = $(OPT) $(LDFLAGS)
 
 DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev \
-               pkg-config groff-base
+               pkg-config groff-base libsdl2-dev xvfb xdotool
 
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec.h
@@ -71,6 +71,10 @@ $(BUILD)/libiacsg.a: $(LIB_OBJ)
 # start.
 $(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so
 	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(CLI_LIBS)
+
+# `iacsg view` (src/cli_view*.c) loads SDL2 with dlopen (src/cli_view_sdl.h): only its headers are used here.
+SDL_CFLAGS = $(shell pkg-config --cflags sdl2 2>/dev/null || echo -I/usr/include/SDL2)
+$(BUILD)/src/cli_view.o $(BUILD)/src/cli_view_%.o: CFLAGS += $(SDL_CFLAGS)
 
 $(BUILD)/libiacsg_image.so: $(BUILD)/pic/src/image_oiio.o $(BUILD)/pic/src/error.o
 	$(CXX) $(LDFLAGS_ALL) -shared -o $@ $^ $(IMAGE_LIBS)

@@ -7,5 +7,6 @@ int cli_render(int argc, char **argv);  /* iacsg EXPR|SCENE [options]   (src/cli
 int cli_eval(int argc, char **argv);    /* iacsg eval EXPR [options]     (src/cli_eval.c) */
 int cli_compile(int argc, char **argv); /* iacsg compile EXPR            (src/cli_eval.c) */
 int cli_devices(int argc, char **argv); /* iacsg devices                 (src/cli_render.c) */
+int cli_view(int argc, char **argv);    /* iacsg view EXPR|SCENE [options] (src/cli_view.c) */
 
 #endif

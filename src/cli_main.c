@@ -8,6 +8,7 @@ static const char usage[] =
     "usage: iacsg EXPR|SCENE [options]    render an implicit solid (f < 0 inside) to an image\n"
     "       iacsg eval EXPR [options]     evaluate the expression's enclosure over a box on the host\n"
     "       iacsg compile EXPR            print the OpenCL C the compiler emits for it\n"
+    "       iacsg view EXPR|SCENE [options]  open a window on it (see Viewer below)\n"
     "       iacsg devices                 list the OpenCL devices (numbers for -device)\n"
     "       iacsg --help | --version\n"
     "\n"
@@ -43,7 +44,17 @@ static const char usage[] =
     "HEIGHT/2) and goes along f. Only t >= 0 is traced.\n"
     "\n"
     "Guarantees (without -fast): a surface that a pixel's ray crosses inside the bounds is never missed, and the\n"
-    "depth is never after the ray's first root there.\n";
+    "depth is never after the ray's first root there.\n"
+    "\n"
+    "Viewer: iacsg view takes the render options but -depth, -normals and -frames; -size is the window's size,\n"
+    "-o names the screenshots (numbered: iacsg_0000.png, ...). Drag to orbit about the point looked at, wheel to\n"
+    "zoom, right-drag or shift-drag to pan; it renders at a quarter of the resolution while the view moves. Keys:\n"
+    "  r reset the view    [ ] halve, double eps    a antialiasing (2x2 rays a pixel) on/off\n"
+    "  1 2 3 4 show colour, depth, normals, ids    s save a screenshot    q, Esc quit\n"
+    "  p print the iacsg command line that renders this view to the same image\n"
+    "A scene file is reloaded when it changes; an error in it is shown in the title and on stderr, and the last\n"
+    "good scene stays. The title shows the frame time and interval evaluations per ray. Needs a display (X11 or\n"
+    "Wayland) and SDL2 (libsdl2-2.0-0), which only the viewer loads.\n";
 
 int main(int argc, char **argv) {
     if (argc < 2) {
@@ -63,6 +74,8 @@ int main(int argc, char **argv) {
         return cli_eval(argc - 1, argv + 1);
     if (strcmp(cmd, "compile") == 0)
         return cli_compile(argc - 1, argv + 1);
+    if (strcmp(cmd, "view") == 0)
+        return cli_view(argc - 1, argv + 1);
     if (strcmp(cmd, "devices") == 0)
         return cli_devices(argc - 1, argv + 1);
     return cli_render(argc, argv);

@@ -1,6 +1,7 @@
 /* src/cli_render.c -- `iacsg EXPR|SCENE [options]`: render to image files; and `iacsg devices`. The options
  * are documented in cli_main.c's usage text and the README. */
 #include "cli.h"
+#include "cli_render.h"
 #include "cli_writer.h"
 #include "clrt.h"
 #include "iacsg.h"
@@ -13,14 +14,6 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
-
-typedef struct {
-    const char *input, *output, *depth_file, *normals_file, *time_text;
-    iacsg_view view;
-    iacsg_render_config config;
-    int have_bounds, have_eye, have_at, have_azel, have_time, frames;
-    double az, el;
-} render_options;
 
 static double now_seconds(void) {
     struct timespec ts;
@@ -64,7 +57,7 @@ static int bad_value(const char *option, const char *value, const char *expected
 }
 
 /* Fills *o from the command line; returns 0, or the exit status after printing the problem. */
-static int parse_options(int argc, char **argv, render_options *o) {
+int parse_options(int argc, char **argv, render_options *o) {
     memset(o, 0, sizeof *o);
     o->output = "iacsg.png";
     o->view.width = o->view.height = 1024;
@@ -185,7 +178,7 @@ static int looks_like_path(const char *input) {
 
 /* The text of a scene file when `input` names a file, else the input itself as an expression. The result is
  * malloc'ed; NULL (after a message) when the file cannot be read. */
-static char *read_input(const char *input, const char **name) {
+char *read_input(const char *input, const char **name) {
     FILE *f = fopen(input, "rb");
     if (!f) {
         /* Decided by existence, not by fopen's errno: a long expression fails with ENAMETOOLONG. */
@@ -236,7 +229,7 @@ static void rendered_times(const render_options *o, double t[2]) {
 
 /* The bounds (given, found by the compiler for the times rendered, or the default) and a phrase saying which
  * and what was proven (in `phrase`). */
-static const char *choose_bounds(render_options *o, const iacsg_expr *e, char *phrase, size_t size) {
+const char *choose_bounds(render_options *o, const iacsg_expr *e, char *phrase, size_t size) {
     if (o->have_bounds)
         return "given";
     double t[2];
@@ -263,7 +256,7 @@ static const char *choose_bounds(render_options *o, const iacsg_expr *e, char *p
 }
 
 /* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. */
-static void place_camera(render_options *o) {
+void place_camera(render_options *o) {
     iacsg_camera *c = &o->view.camera;
     if (!o->have_at)
         for (int k = 0; k < 3; k++)
@@ -273,7 +266,7 @@ static void place_camera(render_options *o) {
 }
 
 /* "dir/name.png", 7 -> "dir/name_0007.png" (malloc'ed). */
-static char *numbered(const char *path, int frame) {
+char *numbered(const char *path, int frame) {
     const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
     size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - path) : strlen(path);
     size_t size = strlen(path) + 16;
@@ -361,7 +354,7 @@ static iacsg_status check_outputs_spare_input(const char *input, const char *con
     return IACSG_OK;
 }
 
-static void print_error(const iacsg_error *err, const char *name) {
+void print_error(const iacsg_error *err, const char *name) {
     if (err->line > 0)
         fprintf(stderr, "iacsg: %s:%d:%d: %s\n", name, err->line, err->column, err->message);
     else

@@ -14,7 +14,8 @@ extern const char iacsg_cl_ia[];      /* the flattened ia/ headers (Makefile: IA
 extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNEL_SOURCES) */
 
 /* A work-item is a block of PACKET_W x PACKET_H tiles (kernels/render.cl), BLOCK_ROWS pixel rows high. A band is
- * a launch of several rows of blocks: narrow ones when progress is reported, otherwise wide enough that
+ * a launch of several rows of blocks: narrow ones when progress is reported or the render can be cancelled (a
+ * cancel is seen between bands: `iacsg view` drops a frame when the view moves), otherwise wide enough that
  * launches are few (each wakes the device's threads and waits for the slowest), yet short enough that no
  * launch runs for long (GPU drivers may kill a kernel that holds the display for seconds). */
 enum { BLOCK_ROWS = PACKET_H * TILE_SIZE, BAND_ROWS_PROGRESS = 2 * BLOCK_ROWS, BAND_ROWS = 64 * BLOCK_ROWS };
@@ -291,7 +292,7 @@ fail:
 static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
     size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
-    int band = view->progress ? BAND_ROWS_PROGRESS : BAND_ROWS;
+    int band = view->progress || view->cancel ? BAND_ROWS_PROGRESS : BAND_ROWS;
     for (cl_int row0 = 0; row0 < view->height; row0 += band) {
         int rows = view->height - row0 < band ? view->height - row0 : band;
         cl_int block_row0 = row0 / BLOCK_ROWS;

@@ -54,7 +54,8 @@ typedef struct {
     void (*progress)(double done, void *ctx);
     void *progress_ctx;
     /* Called after each band of rows, when not NULL: a nonzero return stops the render, which then returns
-     * IACSG_ERR_CANCELLED and no frame. */
+     * IACSG_ERR_CANCELLED and no frame. With it (or progress) the bands are narrow (64 rows), so that a frame
+     * stops soon after. */
     int (*cancel)(void *ctx);
     void *cancel_ctx;
 } iacsg_view;

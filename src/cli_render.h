@@ -1,0 +1,38 @@
+/* src/cli_render.h -- the render command's options and the steps from them to a view, shared by `iacsg EXPR`
+ * (src/cli_render.c, which defines them) and `iacsg view` (src/cli_view.c), so that both read the same
+ * options the same way. */
+#ifndef IACSG_CLI_RENDER_H
+#define IACSG_CLI_RENDER_H
+#include "iacsg.h"
+#include <stddef.h>
+
+typedef struct {
+    const char *input, *output, *depth_file, *normals_file, *time_text;
+    iacsg_view view;
+    iacsg_render_config config;
+    int have_bounds, have_eye, have_at, have_azel, have_time, frames;
+    double az, el;
+} render_options;
+
+/* Fills *o from the command line (argv[0] is the command's name); returns 0, or the exit status after
+ * printing the problem. */
+int parse_options(int argc, char **argv, render_options *o);
+
+/* The text of a scene file when `input` names a file (*name = input), else the input itself as an expression
+ * (*name = "<expr>"). The result is malloc'ed; NULL (after a message) when the file cannot be read. */
+char *read_input(const char *input, const char **name);
+
+/* Sets o->view.bounds (given, found by the compiler for the times rendered, or the default) and returns a
+ * phrase saying which and what was proven (in `phrase`, or a constant). */
+const char *choose_bounds(render_options *o, const iacsg_expr *e, char *phrase, size_t size);
+
+/* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. */
+void place_camera(render_options *o);
+
+/* "dir/name.png", 7 -> "dir/name_0007.png" (malloc'ed). */
+char *numbered(const char *path, int frame);
+
+/* One line on stderr: "iacsg: NAME:LINE:COL: message", or "iacsg: message" without a place. */
+void print_error(const iacsg_error *err, const char *name);
+
+#endif
