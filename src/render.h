@@ -57,7 +57,14 @@ typedef struct {
      * IACSG_ERR_CANCELLED and no frame. */
     int (*cancel)(void *ctx);
     void *cancel_ctx;
+    /* Trace only rows [row_first, row_first + row_count) of the image (row_count 0: all of them), as a band of
+     * a frame shared among processes; the frame's other rows are then unspecified. row_first is a multiple of
+     * IACSG_ROW_ALIGN, so that each pixel comes out exactly as in the whole frame. */
+    int row_first, row_count;
 } iacsg_view;
+
+/* The rows of a band start at multiples of this (a block of the kernel's tiles, src/render.c). */
+#define IACSG_ROW_ALIGN 32
 
 typedef struct {
     int width, height;
