@@ -89,54 +89,52 @@ static int take_item(int rank) {
     return next;
 }
 
-static int band_rows_of(int band) {
-    int left = job.gather.height - band * job.band_rows;
-    return left < job.band_rows ? left : job.band_rows;
-}
-
 /* The floats of image k of band `band` in `im`: where they start, and how many. */
 static float *band_floats(const cli_mpi_images *im, int k, int band, int *count) {
     size_t row = (size_t)im->width * (size_t)im->channels[k];
-    *count = (int)(row * (size_t)band_rows_of(band));
+    int left = im->height - band * job.band_rows;
+    *count = (int)(row * (size_t)(left < job.band_rows ? left : job.band_rows));
     return im->planes[k] + row * (size_t)band * (size_t)job.band_rows;
 }
 
+/* Answers one ask (waiting for it, a millisecond between polls). */
+static void serve_one(void) {
+    int flag = 0;
+    MPI_Status status;
+    while (MPI_Iprobe(MPI_ANY_SOURCE, TAG_ASK, MPI_COMM_WORLD, &flag, &status), !flag)
+        nanosleep(&(struct timespec){0, 1000000}, NULL);
+    int src = status.MPI_SOURCE, ask[2];
+    MPI_Recv(ask, 2, MPI_INT, src, TAG_ASK, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (ask[1]) {
+        char text[FAILURE_TEXT];
+        MPI_Recv(text, FAILURE_TEXT, MPI_CHAR, src, TAG_FAILURE, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        text[FAILURE_TEXT - 1] = '\0';
+        pthread_mutex_lock(&job.lock);
+        record_failure(src, ask[0], text);
+        pthread_mutex_unlock(&job.lock);
+        job.asking--;
+        return;
+    }
+    if (ask[0] >= 0 && job.band_rows)
+        for (int k = 0; k < 3; k++) {
+            int count;
+            float *to = band_floats(&job.gather, k, ask[0], &count);
+            if (job.gather.channels[k])
+                MPI_Recv(to, count, MPI_FLOAT, src, TAG_ROWS, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        }
+    pthread_mutex_lock(&job.lock);
+    int reply = take_item(src);
+    pthread_mutex_unlock(&job.lock);
+    MPI_Send(&reply, 1, MPI_INT, src, TAG_REPLY, MPI_COMM_WORLD);
+    if (reply < 0)
+        job.asking--;
+}
+
+/* Rank 0's dispatcher thread: answers until every other rank has been told to finish (or has failed). */
 static void *dispatch(void *unused) {
     (void)unused;
-    while (job.asking > 0) {
-        int flag = 0;
-        MPI_Status status;
-        MPI_Iprobe(MPI_ANY_SOURCE, TAG_ASK, MPI_COMM_WORLD, &flag, &status);
-        if (!flag) {
-            nanosleep(&(struct timespec){0, 1000000}, NULL);
-            continue;
-        }
-        int src = status.MPI_SOURCE, ask[2];
-        MPI_Recv(ask, 2, MPI_INT, src, TAG_ASK, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        if (ask[1]) {
-            char text[FAILURE_TEXT];
-            MPI_Recv(text, FAILURE_TEXT, MPI_CHAR, src, TAG_FAILURE, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-            text[FAILURE_TEXT - 1] = '\0';
-            pthread_mutex_lock(&job.lock);
-            record_failure(src, ask[0], text);
-            pthread_mutex_unlock(&job.lock);
-            job.asking--;
-            continue;
-        }
-        if (ask[0] >= 0 && job.band_rows)
-            for (int k = 0; k < 3; k++) {
-                int count;
-                float *to = band_floats(&job.gather, k, ask[0], &count);
-                if (job.gather.channels[k])
-                    MPI_Recv(to, count, MPI_FLOAT, src, TAG_ROWS, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-            }
-        pthread_mutex_lock(&job.lock);
-        int reply = take_item(src);
-        pthread_mutex_unlock(&job.lock);
-        MPI_Send(&reply, 1, MPI_INT, src, TAG_REPLY, MPI_COMM_WORLD);
-        if (reply < 0)
-            job.asking--;
-    }
+    while (job.asking > 0)
+        serve_one();
     return NULL;
 }
 
@@ -177,15 +175,31 @@ static int mpi_start(const int *items, int count, int band_rows, const cli_mpi_i
         job.current[r] = -1;
     update_stop_line();
     signal(SIGTERM, on_sigterm);
-    if (pthread_create(&job.dispatcher, NULL, dispatch, NULL) != 0) {
-        snprintf(why, why_size, "cannot start the dispatcher thread");
-        return 1;
-    }
-    job.dispatching = 1;
     return 0;
 }
 
+/* The ranks start taking items together, once each has built its kernel (or failed): otherwise a rank that is
+ * up first takes the first frames while the others, slowed by its render, still build; and which rank renders
+ * what would depend on that race. Each rank calls it at its first next or fail; rank 0 then starts answering. */
+static void start_together(void) {
+    static int started;
+    if (started)
+        return;
+    started = 1;
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (job.rank == 0) {
+        if (pthread_create(&job.dispatcher, NULL, dispatch, NULL) == 0) {
+            job.dispatching = 1;
+        } else {
+            pthread_mutex_lock(&job.lock);
+            record_failure(0, -1, "cannot start the thread that hands out the work");
+            pthread_mutex_unlock(&job.lock);
+        }
+    }
+}
+
 static int mpi_next(int finished, const cli_mpi_images *rows) {
+    start_together();
     if (job.rank == 0) {
         if (finished >= 0 && job.band_rows)
             for (int k = 0; k < 3; k++) {
@@ -215,6 +229,7 @@ static int mpi_next(int finished, const cli_mpi_images *rows) {
 static int failed_here;
 
 static void mpi_fail(int item, const char *message) {
+    start_together();
     failed_here = 1;
     if (job.rank == 0) {
         pthread_mutex_lock(&job.lock);
@@ -234,6 +249,8 @@ static int mpi_end(char *failure, size_t size) {
     if (job.rank == 0) {
         if (job.dispatching)
             pthread_join(job.dispatcher, NULL);
+        else
+            dispatch(NULL); /* it could not start: answer the others now (told to stop) */
         failed = job.failed;
         snprintf(failure, size, "%s", job.failure);
         signal(SIGTERM, SIG_DFL);
