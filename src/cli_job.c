@@ -77,7 +77,7 @@ static int alloc_whole(cli_job *j, int width, const char *const outputs[3]) {
 static int start_mpi(cli_job *j, int width, const char *const outputs[3]) {
     iacsg_error err = {0};
     /* RTLD_GLOBAL: Open MPI's own plugins resolve their symbols against libmpi */
-    void *lib = cli_library_open(CLI_MPI_LIBRARY, RTLD_NOW | RTLD_GLOBAL, &err);
+    void *lib = cli_library_open(CLI_MPI_LIBRARY, "the MPI layer", RTLD_NOW | RTLD_GLOBAL, &err);
     if (!lib) {
         fprintf(stderr, "iacsg: running under mpirun, but %s\n", err.message);
         return 0;

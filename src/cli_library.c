@@ -8,11 +8,11 @@
 
 #define INSTALLED_DIR "../lib/iacsg/" /* from bin/ */
 
-void *cli_library_open(const char *name, int dlopen_flags, iacsg_error *err) {
+void *cli_library_open(const char *name, const char *what, int dlopen_flags, iacsg_error *err) {
     char path[4096];
     ssize_t n = readlink("/proc/self/exe", path, sizeof path - 256);
     if (n <= 0 || strlen(name) > 128) {
-        iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "cannot find %s: %s", name, strerror(errno));
+        iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "cannot load %s: cannot find %s: %s", what, name, strerror(errno));
         return NULL;
     }
     path[n] = '\0';
@@ -23,6 +23,6 @@ void *cli_library_open(const char *name, int dlopen_flags, iacsg_error *err) {
         snprintf(file, 256, INSTALLED_DIR "%s", name);
     void *handle = dlopen(path, dlopen_flags);
     if (!handle)
-        iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "cannot load %s: %s", name, dlerror());
+        iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "cannot load %s: %s", what, dlerror());
     return handle;
 }

@@ -6,7 +6,7 @@
 
 /* dlopen()s `name` from beside the running binary (the build tree), else from ../lib/iacsg/ relative to it (an
  * installed prefix: the Makefile's IMAGE_HELPER_DIR), so that a copied or relocated prefix still finds it.
- * NULL, with the reason in *err, when it cannot. */
-void *cli_library_open(const char *name, int dlopen_flags, iacsg_error *err);
+ * NULL when it cannot, with "cannot load WHAT: why" in *err. */
+void *cli_library_open(const char *name, const char *what, int dlopen_flags, iacsg_error *err);
 
 #endif

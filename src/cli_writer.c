@@ -55,7 +55,7 @@ struct cli_writer {
 /* Loads the library (cli_library_open). RTLD_LAZY: the command calls three functions of it, so binding the rest
  * would be wasted. */
 static iacsg_status library_load(image_library *lib, iacsg_error *err) {
-    lib->handle = cli_library_open(WRITER_LIBRARY, RTLD_LAZY | RTLD_LOCAL, err);
+    lib->handle = cli_library_open(WRITER_LIBRARY, "the image library", RTLD_LAZY | RTLD_LOCAL, err);
     if (!lib->handle)
         return err->status;
     *(void **)&lib->check_format = dlsym(lib->handle, "iacsg_image_check_format");
