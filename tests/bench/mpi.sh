@@ -1,0 +1,69 @@
+#!/bin/sh
+# tests/bench/mpi.sh BINARY -- the MPI scale-out of the render command on this machine (issue 15), by hand:
+# frames per minute with 1 and 2 ranks, PoCL's threads against ranks, and the serial parts of a job (start-up,
+# kernel build per rank, gathering bands). Prints markdown rows; BENCHMARKS.md's section "MPI scale-out" holds
+# a run of it. Every time is the median of RUNS whole commands, wall clock, process start to exit.
+set -eu
+bin=$(realpath "${1:-build/iacsg}")
+runs=${RUNS:-5}
+frames=${FRAMES:-32}
+size=${SIZE:-1024x1024}
+scene='min(move(sphere(0.6), t, 0, 0), torus)'
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpirun="mpirun -q --oversubscribe"
+
+# median WALL of `runs` runs of the command "$@" (output discarded), in seconds
+median() {
+    for k in $(seq "$runs"); do
+        rm -f ./*.png ./*.exr
+        s=$(date +%s.%N)
+        "$@" >/dev/null 2>&1
+        e=$(date +%s.%N)
+        echo "$e - $s" | bc -l
+    done | sort -n | awk '{ t[NR] = $1 } END { printf "%.3f", t[int((NR + 1) / 2)] }'
+}
+
+"$bin" "$scene" -size 64x64 -eps 1e-5 -frames 1 -o warm.png >/dev/null # the kernel in PoCL's cache
+
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo
+echo "| how ($frames frames of $size, eps 1e-5) | wall s | frames per minute |"
+echo "|---|---|---|"
+row() {
+    label=$1
+    shift
+    t=$(median "$@")
+    echo "| $label | $t | $(echo "60 * $frames / $t" | bc -l | xargs printf '%.0f') |"
+}
+row "plain command, PoCL 2 threads" sh -c "\"$bin\" '$scene' -size $size -eps 1e-5 -frames $frames -o f.png"
+row "mpirun -np 1, PoCL 2 threads" sh -c "$mpirun -np 1 \"$bin\" '$scene' -size $size -eps 1e-5 -frames $frames -o f.png"
+row "mpirun -np 2, PoCL 2 threads each" sh -c "$mpirun -np 2 \"$bin\" '$scene' -size $size -eps 1e-5 -frames $frames -o f.png"
+row "plain command, PoCL 1 thread" sh -c "POCL_MAX_PTHREAD_COUNT=1 \"$bin\" '$scene' -size $size -eps 1e-5 -frames $frames -o f.png"
+row "mpirun -np 2, PoCL 1 thread each" sh -c "POCL_MAX_PTHREAD_COUNT=1 $mpirun -np 2 \"$bin\" '$scene' -size $size -eps 1e-5 -frames $frames -o f.png"
+
+echo
+echo "| serial part | s |"
+echo "|---|---|"
+tiny="'$scene' -size 32x32 -frames 2 -o t.png"
+plain=$(median sh -c "\"$bin\" $tiny")
+one=$(median sh -c "$mpirun -np 1 \"$bin\" $tiny")
+two=$(median sh -c "$mpirun -np 2 \"$bin\" $tiny")
+echo "| whole command, 2 tiny frames, plain (start-up, kernel build cached, writer) | $plain |"
+echo "| the same under mpirun -np 1 (+ mpirun's launch, MPI_Init, MPI_Finalize) | $one |"
+echo "| the same under mpirun -np 2 (+ a second rank starting and building on the same 2 cores) | $two |"
+build=$("$bin" "$scene" -size 32x32 -o t.png -stats | sed -n 's/^kernel build: \([0-9.]*\) s/\1/p')
+echo "| kernel build, cached (-stats), one process | $build |"
+cold=$(POCL_CACHE_DIR=$(mktemp -d -p "$work") "$bin" "$scene" -size 32x32 -o t.png -stats | sed -n 's/^kernel build: \([0-9.]*\) s/\1/p')
+echo "| kernel build, not cached (an empty POCL_CACHE_DIR), one process | $cold |"
+# Gathering: a frame whose rays all miss (the bounds out of view) costs little to trace, so what 2 ranks add
+# to one is handing out the bands and sending rank 1's rows to rank 0 (3 floats a pixel).
+empty="sphere -bounds 5,5,5,6,6,6 -at 0,0,0 -eye 0,-4,0 -size 4096x4096 -o g.png"
+g1=$(median sh -c "$mpirun -np 1 \"$bin\" $empty")
+g2=$(median sh -c "$mpirun -np 2 \"$bin\" $empty")
+echo "| one 4096x4096 frame with nothing to trace, mpirun -np 1 (the PNG write dominates) | $g1 |"
+echo "| the same in bands over 2 ranks (+ the bands sent to rank 0: 192 MiB of floats) | $g2 |"
+echo
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
