@@ -30,10 +30,10 @@ wall() {
 }
 # median of column $2 (1: wall, 2: CPU) of the numbers in file $1
 median_of() { awk -v c="${2:-1}" '{ print $c }' "$1" | sort -n | awk '{ t[NR] = $1 } END { printf "%.3f", t[int((NR + 1) / 2)] }'; }
-# median wall of `runs` runs of "$@"
+# "WALL | CPU": the medians of `runs` runs of "$@"
 median() {
     for k in $(seq "$runs"); do wall "$@"; done >"$work/one"
-    median_of "$work/one"
+    echo "$(median_of "$work/one" 1) | $(median_of "$work/one" 2)"
 }
 
 "$bin" "$scene" -size 64x64 -eps 1e-5 -frames 1 -o warm.png >/dev/null # the kernels in PoCL's cache
@@ -64,8 +64,8 @@ for config in "$@"; do
     echo "| ${config%%|*} | $t | $(echo "60 * $frames / $t" | bc -l | xargs printf '%.0f') | $(median_of "$work/config$n" 2) |"
 done
 echo
-echo "| serial part | s |"
-echo "|---|---|"
+echo "| serial part | wall s | CPU s |"
+echo "|---|---|---|"
 tiny="'$scene' -size 64x64 -eps 1e-5 -frames 2 -o t.png"
 plain=$(median sh -c "\"$bin\" $tiny")
 one=$(median sh -c "$mpirun -np 1 \"$bin\" $tiny")
@@ -74,9 +74,9 @@ echo "| whole command, 2 tiny frames, plain (start-up, kernel build cached, writ
 echo "| the same under mpirun -np 1 (+ mpirun's launch, MPI_Init, MPI_Finalize) | $one |"
 echo "| the same under mpirun -np 2 (+ a second rank starting and building on the same 2 cores) | $two |"
 build=$("$bin" "$scene" -size 64x64 -eps 1e-5 -o t.png -stats | sed -n 's/^kernel build: \([0-9.]*\) s/\1/p')
-echo "| kernel build, cached (-stats), one process | $build |"
+echo "| kernel build, cached (-stats), one process | $build | |"
 cold=$(POCL_CACHE_DIR=$(mktemp -d -p "$work") "$bin" "$scene" -size 64x64 -eps 1e-5 -o t.png -stats | sed -n 's/^kernel build: \([0-9.]*\) s/\1/p')
-echo "| kernel build, not cached (an empty POCL_CACHE_DIR), one process | $cold |"
+echo "| kernel build, not cached (an empty POCL_CACHE_DIR), one process | $cold | |"
 # Gathering: a frame whose rays all miss (the bounds out of view) costs little to trace, so what 2 ranks add
 # to one is handing out the bands and sending rank 1's rows to rank 0 (3 floats a pixel).
 empty="sphere -bounds 5,5,5,6,6,6 -at 0,0,0 -eye 0,-4,0 -size 4096x4096 -o g.png"
