@@ -83,6 +83,6 @@ empty="sphere -bounds 5,5,5,6,6,6 -at 0,0,0 -eye 0,-4,0 -size 4096x4096 -o g.png
 g1=$(median sh -c "$mpirun -np 1 \"$bin\" $empty")
 g2=$(median sh -c "$mpirun -np 2 \"$bin\" $empty")
 echo "| one 4096x4096 frame with nothing to trace, mpirun -np 1 (the PNG write dominates) | $g1 |"
-echo "| the same in bands over 2 ranks (+ the bands sent to rank 0: 192 MiB of floats) | $g2 |"
+echo "| the same in bands over 2 ranks (+ rank 1's share of the 192 MiB of floats sent to rank 0) | $g2 |"
 echo
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
