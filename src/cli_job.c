@@ -13,8 +13,8 @@
 struct cli_job {
     const cli_mpi_api *mpi; /* NULL when run plainly */
     int rank, size, frames, height, band_rows; /* band_rows > 0: the ranks share one frame in bands */
-    int *items, count, next;                    /* run plainly: the frames to do, and the next one */
-    int last;                                   /* the item last handed out (-1: none) */
+    int *items, count, next; /* the frames (or bands) to do: all of them on rank 0; next: run plainly */
+    int last;                /* the item last handed out, or CLI_MPI_DONE (also before the first) */
     int failed, taken;
     iacsg_frame whole; /* rank 0 in band mode: the frame the bands are gathered into */
 };
@@ -95,13 +95,12 @@ static int start_mpi(cli_job *j, int width, const char *const outputs[3]) {
         if (j->rank == 0) {
             j->count = j->count ? (j->height + j->band_rows - 1) / j->band_rows : 0;
             int *bands = realloc(j->items, (j->count ? j->count : 1) * sizeof(int));
+            if (bands)
+                j->items = bands;
             if (!bands || !alloc_whole(j, width, outputs)) {
-                free(bands);
-                j->items = NULL;
                 fprintf(stderr, "iacsg: out of memory for a %dx%d image\n", width, j->height);
                 return 0;
             }
-            j->items = bands;
             for (int k = 0; k < j->count; k++)
                 bands[k] = k;
         }
@@ -192,7 +191,7 @@ int cli_job_next(cli_job *j, iacsg_frame *done, cli_job_item *item) {
 int cli_job_writes_frames(const cli_job *j) { return !j->band_rows; }
 
 const iacsg_frame *cli_job_gathered(cli_job *j) {
-    return j->band_rows && j->rank == 0 && j->count && !j->failed ? &j->whole : NULL;
+    return j->band_rows && j->rank == 0 && j->count && !j->failed && j->last == CLI_MPI_DONE ? &j->whole : NULL;
 }
 
 void cli_job_fail(cli_job *j, int frame, const char *line) {

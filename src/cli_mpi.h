@@ -32,7 +32,8 @@ typedef struct {
     int (*start)(const int *items, int count, int band_rows, const cli_mpi_images *gather,
                  cli_mpi_describe_fn describe, void *describe_ctx, char *why, size_t why_size);
     /* Reports the item this rank has just rendered (-1: none yet) with its rows in band mode, and returns the
-     * next item, CLI_MPI_DONE, or CLI_MPI_STOPPED when another rank failed. */
+     * next item, CLI_MPI_DONE, or CLI_MPI_STOPPED when another rank failed. Rank 0 gets DONE only once every
+     * rank has finished (its rows gathered), STOPPED if one failed. */
     int (*next)(int finished, const cli_mpi_images *rows);
     /* Reports that this rank failed on `item` (message: one line, without "iacsg: "); it takes no more. */
     void (*fail)(int item, const char *message);

@@ -211,6 +211,13 @@ static int mpi_next(int finished, const cli_mpi_images *rows) {
         pthread_mutex_lock(&job.lock);
         int next = take_item(0);
         pthread_mutex_unlock(&job.lock);
+        if (next < 0 && job.dispatching) {
+            /* the others may still be on their last items (in band mode, rows rank 0 is about to write):
+             * wait for all of them, and for whether one failed */
+            pthread_join(job.dispatcher, NULL);
+            job.dispatching = 0;
+            next = job.stopped ? CLI_MPI_STOPPED : CLI_MPI_DONE;
+        }
         return next;
     }
     int ask[2] = {finished, 0}, reply;
