@@ -89,8 +89,8 @@ static int error_lines(const char *dir, char *first, size_t size) {
     return count;
 }
 
-/* The names in dir other than the expected frames s_NNNN.png and m_NNNN.png, stderr.txt (a partial file, a
- * temporary one left behind) : their count, and the first. */
+/* The names in dir other than the expected frames s_NNNN.png and m_NNNN.png, s.png and stderr.txt (a partial
+ * file, a temporary one left behind): their count, and the first. */
 static int stray_files(const char *dir, char *first, size_t size) {
     DIR *d = opendir(dir);
     int count = 0;
@@ -99,6 +99,7 @@ static int stray_files(const char *dir, char *first, size_t size) {
         int frame;
         char tail[8];
         if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0 || strcmp(e->d_name, "stderr.txt") == 0 ||
+            strcmp(e->d_name, "s.png") == 0 ||
             (sscanf(e->d_name, "%*1[sm]_%4d%7s", &frame, tail) == 2 && strcmp(tail, ".png") == 0))
             continue;
         if (count++ == 0)
@@ -149,15 +150,15 @@ TEST(mpi_bands_match_single_process) {
     remove_dir(dir);
 }
 
-/* Rank 1 is killed (SIGKILL) when handed its second frame: the job fails with one line naming rank 1 and that
+/* Rank 1 is killed (SIGKILL) when handed its first frame (the ranks start together, so it gets one): the job fails with one line naming rank 1 and that
  * frame, leaves only complete frames, and the same command with -resume renders the rest, as an uninterrupted
  * run would. */
 TEST(mpi_killed_rank_then_resume) {
     char dir[256], line[512], stray[256];
     make_dir(dir, sizeof dir, "mpi-kill");
-    int rc = run_in(dir, "", SCENE " -size 160x120 -frames 8 -o s.png");
+    int rc = run_in(dir, "", SCENE " -size 320x240 -frames 8 -o s.png");
     CHECK(rc == 0, "the single-process render exited with %d", rc);
-    rc = run_in(dir, "IACSG_TEST_KILL=1:2 " MPIRUN, SCENE " -size 160x120 -frames 8 -o m.png");
+    rc = run_in(dir, "IACSG_TEST_KILL=1:1 " MPIRUN, SCENE " -size 320x240 -frames 8 -o m.png");
     CHECK(rc != 0 && rc != 124, "a killed rank: mpirun exited with %d", rc);
     int lines = error_lines(dir, line, sizeof line);
     int frame = -1;
@@ -166,7 +167,7 @@ TEST(mpi_killed_rank_then_resume) {
           "expected one line naming rank 1 and its frame, got %d lines, the first '%s'", lines, line);
     CHECK(!frame_exists(dir, "m", frame), "the frame of the killed rank, %d, was written", frame);
     CHECK(stray_files(dir, stray, sizeof stray) == 0, "a file other than a frame was left: %s", stray);
-    rc = run_in(dir, MPIRUN, SCENE " -size 160x120 -frames 8 -o m.png -resume");
+    rc = run_in(dir, MPIRUN, SCENE " -size 320x240 -frames 8 -o m.png -resume");
     CHECK(rc == 0, "-resume exited with %d", rc);
     check_frames_equal(dir);
     remove_dir(dir);
@@ -182,5 +183,23 @@ TEST(mpi_device_failure_one_line) {
     CHECK(lines == 1 && strstr(line, "iacsg: rank ") == line && strstr(line, " failed"),
           "expected one line naming the failed rank, got %d lines, the first '%s'", lines, line);
     CHECK(stray_files(dir, stray, sizeof stray) == 0 && !frame_exists(dir, "m", 0), "a file was left: %s", stray);
+    remove_dir(dir);
+}
+
+/* Rank 1 killed on its first band of a frame shared in bands: no image at all (rank 0 never writes a frame with a
+ * band missing), one line naming rank 1's rows; the rerun writes the whole frame. */
+TEST(mpi_bands_killed_rank_leaves_no_file) {
+    char dir[256], line[512], stray[256];
+    make_dir(dir, sizeof dir, "mpi-bands-kill");
+    int rc = run_in(dir, "IACSG_TEST_KILL=1:1 " MPIRUN, "'min(sphere, torus)' -size 512x512 -o m.png");
+    CHECK(rc != 0 && rc != 124, "a killed rank: mpirun exited with %d", rc);
+    int lines = error_lines(dir, line, sizeof line);
+    CHECK(lines == 1 && strstr(line, "rank 1 was on rows "), "expected one line naming rank 1's rows, got %d, '%s'",
+          lines, line);
+    CHECK(stray_files(dir, stray, sizeof stray) == 0, "a file was left: %s", stray);
+    rc = run_in(dir, "", "'min(sphere, torus)' -size 512x512 -o s.png");
+    CHECK(rc == 0, "the single-process render exited with %d", rc);
+    rc = run_in(dir, MPIRUN, "'min(sphere, torus)' -size 512x512 -o m.png -resume");
+    CHECK(rc == 0 && same_bytes(dir, "s.png", "m.png"), "the rerun (exit %d) differs from the single process", rc);
     remove_dir(dir);
 }
