@@ -160,8 +160,8 @@ static iacsg_status check_view(const iacsg_view *v, iacsg_error *err) {
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "image size %dx%d is out of range", v->width, v->height);
     if (v->row_first < 0 || v->row_count < 0 || v->row_first % IACSG_ROW_ALIGN != 0 ||
         v->row_first + (long long)v->row_count > v->height || (v->row_count == 0 && v->row_first != 0))
-        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "rows %d + %d of a %d-row image: not a band of it", v->row_first,
-                               v->row_count, v->height);
+        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "rows %d + %d of a %d-row image: not a band of it",
+                               v->row_first, v->row_count, v->height);
     if (!(v->eps > 0) || !isfinite(v->eps))
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "eps must be positive (got %g)", v->eps);
     for (int k = 0; k < 3; k++)
@@ -388,9 +388,14 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
         st = read_back(r, &buffers, n, tiles_n, evals, tile_evals, err);
     if (st == IACSG_OK) {
         frame->render_seconds = now_seconds() - t0;
-        frame->rays = (long long)n;
+        /* the rays of the rows traced, and their tiles' counts (a band's rows start on whole tiles) */
+        size_t first = (size_t)view->row_first, rows = view->row_count ? (size_t)view->row_count : (size_t)view->height;
+        size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
+        frame->rays = (long long)(rows * (size_t)view->width);
         if (evals)
-            summarize_evals(evals, n, tile_evals, tiles_n, frame);
+            summarize_evals(evals + first * (size_t)view->width, rows * (size_t)view->width,
+                            tile_evals + first / TILE_SIZE * tiles_x, (rows + TILE_SIZE - 1) / TILE_SIZE * tiles_x,
+                            frame);
     }
     release_buffers(&buffers);
     free(evals);

@@ -71,7 +71,8 @@ typedef struct {
     float *rgb;    /* 3 floats a pixel, display-encoded in [0, 1], row 0 at the top */
     float *depth;  /* 1 float a pixel: distance from the eye (ray parameter) at the hit, +inf on a miss (or NULL) */
     float *normal; /* 3 floats a pixel: the unit normal facing the eye, 0 on a miss (or NULL) */
-    /* Statistics: rays traced, and with config.stats interval evaluations per ray (mean over all rays, max). */
+    /* Statistics: rays traced (those of the rows traced), and with config.stats interval evaluations per ray
+     * (mean over those rays, max). */
     long long rays;
     double evals_mean;
     unsigned evals_max;

@@ -150,9 +150,9 @@ TEST(mpi_bands_match_single_process) {
     remove_dir(dir);
 }
 
-/* Rank 1 is killed (SIGKILL) when handed its first frame (the ranks start together, so it gets one): the job fails with one line naming rank 1 and that
- * frame, leaves only complete frames, and the same command with -resume renders the rest, as an uninterrupted
- * run would. */
+/* Rank 1 is killed (SIGKILL) when handed its first frame (the ranks start together, so it gets one): the job
+ * fails with one line naming rank 1 and that frame, leaves only complete frames, and the same command with
+ * -resume renders the rest, as an uninterrupted run would. */
 TEST(mpi_killed_rank_then_resume) {
     char dir[256], line[512], stray[256];
     make_dir(dir, sizeof dir, "mpi-kill");

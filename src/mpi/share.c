@@ -2,9 +2,10 @@
  * src/cli_mpi.h). The only file that includes mpi.h.
  *
  * Stages: init (MPI_Init_thread, serialized: rank 0 calls MPI from its dispatcher thread, and from its main
- * thread only before and after that thread runs) -> start (rank 0: the dispatcher thread, and a SIGTERM handler
- * that says which frames were under way when mpirun stops the job) -> next / fail per item -> end (rank 0 joins
- * the dispatcher once every other rank has been told to finish; MPI_Finalize).
+ * thread only before and after that thread runs) -> start (rank 0: the items, and a SIGTERM handler that says
+ * which frames were under way when mpirun stops the job) -> start_together, at a rank's first next or fail (a
+ * barrier; rank 0 then starts its dispatcher thread) -> next / fail per item -> end (rank 0 has joined the
+ * dispatcher once every other rank was told to finish; MPI_Finalize).
  *
  * Messages, all to or from rank 0: a rank sends TAG_ASK {finished item or -1, failed}; in band mode the
  * finished band's rows follow (TAG_ROWS, one message an image), on a failure its line (TAG_FAILURE); rank 0
@@ -32,8 +33,8 @@ static struct {
     /* rank 0: guarded by lock */
     pthread_mutex_t lock;
     const int *items;
-    int count, next, stopped, failed, asking; /* asking: ranks not yet told to finish */
-    int *current;                            /* the item each rank is on, -1 when none */
+    int count, next, failed, asking; /* asking: ranks not yet told to finish */
+    int *current;                   /* the item each rank is on, -1 when none */
     char failure[FAILURE_TEXT + 256];
     pthread_t dispatcher;
     int dispatching;
@@ -64,7 +65,8 @@ static void update_stop_line(void) {
         n += (size_t)snprintf(line + n, STOP_LINE - n, "%s rank %d was on %s", any ? "," : "", r, what);
         any = 1;
     }
-    snprintf(line + n, STOP_LINE - n, "%s; run the same command with -resume to finish\n", any ? "" : " no rank was rendering");
+    snprintf(line + n, STOP_LINE - n, "%s; run the same command with -resume to finish\n",
+             any ? "" : " no rank was rendering");
     job.stop_current = !job.stop_current;
 }
 
@@ -76,14 +78,14 @@ static void record_failure(int rank, int item, const char *text) {
         snprintf(job.failure, sizeof job.failure, "rank %d failed%s%s: %s", rank, item >= 0 ? " on " : "", what,
                  text);
     }
-    job.failed = job.stopped = 1;
+    job.failed = 1;
     job.current[rank] = -1;
     update_stop_line();
 }
 
 /* The next item for `rank`; under the lock. */
 static int take_item(int rank) {
-    int next = job.stopped ? CLI_MPI_STOPPED : job.next < job.count ? job.items[job.next++] : CLI_MPI_DONE;
+    int next = job.failed ? CLI_MPI_STOPPED : job.next < job.count ? job.items[job.next++] : CLI_MPI_DONE;
     job.current[rank] = next >= 0 ? next : -1;
     update_stop_line();
     return next;
@@ -216,7 +218,7 @@ static int mpi_next(int finished, const cli_mpi_images *rows) {
              * wait for all of them, and for whether one failed */
             pthread_join(job.dispatcher, NULL);
             job.dispatching = 0;
-            next = job.stopped ? CLI_MPI_STOPPED : CLI_MPI_DONE;
+            next = job.failed ? CLI_MPI_STOPPED : CLI_MPI_DONE;
         }
         return next;
     }
