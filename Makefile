@@ -31,7 +31,7 @@ CLI_LIBS = -lOpenCL -lm -ldl -lpthread
 LDFLAGS_ALL = $(OPT) $(LDFLAGS)
 
 DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev \
-               pkg-config groff-base libsdl2-dev xvfb xdotool
+               pkg-config groff-base libsdl2-dev xvfb xdotool openmpi-bin libopenmpi-dev
 
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec.h
@@ -69,7 +69,7 @@ $(BUILD)/libiacsg.a: $(LIB_OBJ)
 # The command is not linked with OpenImageIO: it loads libiacsg_image.so, beside it (installed: ../lib/iacsg/),
 # in a child process (src/cli_writer.c), so that the ~180 ms of linking OpenImageIO's libraries overlap OpenCL's
 # start.
-$(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so
+$(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so $(BUILD)/libiacsg_mpi.so
 	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(CLI_LIBS)
 
 # `iacsg view` (src/cli_view*.c) loads SDL2 with dlopen (src/cli_view_sdl.h): only its headers are used here.
@@ -78,6 +78,13 @@ $(BUILD)/src/cli_view.o $(BUILD)/src/cli_view_%.o: CFLAGS += $(SDL_CFLAGS)
 
 $(BUILD)/libiacsg_image.so: $(BUILD)/pic/src/image_oiio.o $(BUILD)/pic/src/error.o
 	$(CXX) $(LDFLAGS_ALL) -shared -o $@ $^ $(IMAGE_LIBS)
+
+# The command's MPI layer, which it loads only under mpirun (src/cli_mpi.h): a plain render does not link MPI.
+MPI_CFLAGS = $(shell mpicc --showme:compile 2>/dev/null)
+MPI_LIBS = $(shell mpicc --showme:link 2>/dev/null)
+$(BUILD)/pic/src/mpi/share.o: CFLAGS += $(MPI_CFLAGS)
+$(BUILD)/libiacsg_mpi.so: $(BUILD)/pic/src/mpi/share.o
+	$(CC) $(LDFLAGS_ALL) -shared -o $@ $^ $(MPI_LIBS) -lpthread
 
 $(BUILD)/iacsg-tests: $(TEST_OBJ) $(BUILD)/libiacsg.a
 	$(CC) $(LDFLAGS_ALL) -o $@ $(TEST_OBJ) $(BUILD)/libiacsg.a $(LIBS)
@@ -177,6 +184,7 @@ fuzz: deps
 #   lib/libiacsg.so.VERSION            the shared library, SONAME libiacsg.so.MAJOR, links .so.MAJOR and .so
 #   lib/libiacsg.a                     the static library
 #   lib/iacsg/libiacsg_image.so        the command's image writer, found from bin/ as ../lib/iacsg/ (cli_writer.c)
+#   lib/iacsg/libiacsg_mpi.so          the command's MPI layer, loaded the same way under mpirun (cli_job.c)
 #   lib/pkgconfig/iacsg.pc             from src/iacsg.pc.in
 #   include/iacsg/*.h                  PUBLIC_HEADERS, flat: #include <iacsg/iacsg.h>
 #   share/man/man1/iacsg.1             made from `iacsg --help`, so the two say the same
@@ -201,7 +209,7 @@ SONAME = libiacsg.so.$(firstword $(subst ., ,$(VERSION)))
 SHARED_LIB = $(BUILD)/libiacsg.so.$(VERSION)
 PC_LIBS_PRIVATE = -lOpenCL $(IMAGE_LIBS) -lstdc++ -lm
 MAN_PAGES = $(BUILD)/man/iacsg.1 $(BUILD)/man/iacsg-language.7
-INSTALLABLE = $(BUILD)/iacsg $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so $(SHARED_LIB) \
+INSTALLABLE = $(BUILD)/iacsg $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so $(BUILD)/libiacsg_mpi.so $(SHARED_LIB) \
               $(BUILD)/include/iacsg.stamp $(MAN_PAGES)
 
 .PHONY: installable install uninstall
@@ -253,7 +261,7 @@ install: installable
 	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(LIBDIR)/$(SONAME)
 	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libiacsg.so
 	install -m 644 $(BUILD)/libiacsg.a $(DESTDIR)$(LIBDIR)/
-	install -m 755 $(BUILD)/libiacsg_image.so $(DESTDIR)$(IMAGE_HELPER_DIR)/
+	install -m 755 $(BUILD)/libiacsg_image.so $(BUILD)/libiacsg_mpi.so $(DESTDIR)$(IMAGE_HELPER_DIR)/
 	install -m 644 $(addprefix $(BUILD)/include/iacsg/,$(notdir $(PUBLIC_HEADERS))) \
 	    $(DESTDIR)$(INCLUDEDIR)/iacsg/
 	sed -e 's|@PREFIX@|$(PREFIX)|; s|@LIBDIR@|$(LIBDIR)|; s|@INCLUDEDIR@|$(INCLUDEDIR)|' \
@@ -268,7 +276,8 @@ install: installable
 uninstall:
 	rm -f $(DESTDIR)$(BINDIR)/iacsg $(DESTDIR)$(LIBDIR)/$(notdir $(SHARED_LIB)) \
 	    $(DESTDIR)$(LIBDIR)/$(SONAME) $(DESTDIR)$(LIBDIR)/libiacsg.so $(DESTDIR)$(LIBDIR)/libiacsg.a \
-	    $(DESTDIR)$(IMAGE_HELPER_DIR)/libiacsg_image.so $(DESTDIR)$(LIBDIR)/pkgconfig/iacsg.pc \
+	    $(DESTDIR)$(IMAGE_HELPER_DIR)/libiacsg_image.so $(DESTDIR)$(IMAGE_HELPER_DIR)/libiacsg_mpi.so \
+	    $(DESTDIR)$(LIBDIR)/pkgconfig/iacsg.pc \
 	    $(addprefix $(DESTDIR)$(INCLUDEDIR)/iacsg/,$(notdir $(PUBLIC_HEADERS))) \
 	    $(DESTDIR)$(MANDIR)/man1/iacsg.1 $(DESTDIR)$(MANDIR)/man7/iacsg-language.7 \
 	    $(DESTDIR)$(DOCDIR)/README.md $(addprefix $(DESTDIR)$(DOCDIR)/examples/,$(notdir $(EXAMPLES)))

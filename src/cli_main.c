@@ -34,14 +34,24 @@ static const char usage[] =
     "  -time T            value of the variable t, the real the decimal denotes (enclosed) [0]\n"
     "  -frames N          render N frames for t = 0, 1/N, ..., (N-1)/N into numbered files (name_0000.png)\n"
     "  -fp64              double precision intervals and rays [float]\n"
-    "  -fast              no outward rounding: NOT rigorous, may miss surfaces; for measuring the cost of rigor\n"
-    "  -device N          OpenCL device number, see `iacsg devices` [0]\n"
+    "  -fast              no outward rounding, the same algorithm otherwise: NOT rigorous, may miss surfaces; for\n"
+    "                     measuring the cost of the rounding\n"
+    "  -device N          OpenCL device number, see `iacsg devices` [0; under mpirun the rank's number on its\n"
+    "                     node, modulo the count of devices]\n"
+    "  -resume            skip the frames whose files are all there (an image is only renamed into place once\n"
+    "                     complete), so that a job stopped halfway is finished by the same command\n"
     "  -stats             print rays, interval evaluations per ray (mean, max), kernel build and render time\n"
-    "\n"
+    "\n";
+
+/* The rest of the help, apart: ISO C bounds a string literal's length. */
+static const char usage_more[] =
     "Camera: f = normalize(at - eye), r = normalize(f x up), u = r x f. Pixel (i, j), i left to right and j top\n"
     "to bottom, looks along normalize(f + s r + v u) with s = (2(i+1/2)/W - 1) tan(fov/2) W/H and\n"
     "v = (1 - 2(j+1/2)/H) tan(fov/2). With -ortho the ray starts at eye + s r + v u (tan(fov/2) replaced by\n"
     "HEIGHT/2) and goes along f. Only t >= 0 is traced.\n"
+    "\n"
+    "Under mpirun (mpirun -np N iacsg ...), the ranks share the work: with -frames each rank takes the next frame\n"
+    "when it is done with its last; without, they share the rows of the one frame in bands and rank 0 writes it.\n"
     "\n"
     "Guarantees (without -fast): a surface that a pixel's ray crosses inside the bounds is never missed, and the\n"
     "depth is never after the ray's first root there.\n"
@@ -59,11 +69,13 @@ static const char usage[] =
 int main(int argc, char **argv) {
     if (argc < 2) {
         fputs(usage, stderr);
+        fputs(usage_more, stderr);
         return 2;
     }
     const char *cmd = argv[1];
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "-help") == 0) {
         fputs(usage, stdout);
+        fputs(usage_more, stdout);
         return 0;
     }
     if (strcmp(cmd, "--version") == 0) {

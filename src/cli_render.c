@@ -1,6 +1,7 @@
 /* src/cli_render.c -- `iacsg EXPR|SCENE [options]`: render to image files; and `iacsg devices`. The options
  * are documented in cli_main.c's usage text and the README. */
 #include "cli.h"
+#include "cli_job.h"
 #include "cli_render.h"
 #include "cli_writer.h"
 #include "clrt.h"
@@ -90,6 +91,10 @@ int parse_options(int argc, char **argv, render_options *o) {
             o->config.stats = 1;
             continue;
         }
+        if (strcmp(a, "-resume") == 0) {
+            o->resume = 1;
+            continue;
+        }
         if (!v) {
             fprintf(stderr, "iacsg: unknown option or missing value: %s (see iacsg --help)\n", a);
             return 2;
@@ -148,6 +153,7 @@ int parse_options(int argc, char **argv, render_options *o) {
             if (end == v || *end || n < 0 || n > 1000)
                 return bad_value(a, v, "a device number (see iacsg devices)");
             o->config.device = (int)n;
+            o->have_device = 1;
         } else {
             fprintf(stderr, "iacsg: unknown option %s (see iacsg --help)\n", a);
             return 2;
@@ -265,17 +271,6 @@ void place_camera(render_options *o) {
         iacsg_camera_fit_azel(c, o->view.bounds, o->az, o->el);
 }
 
-/* "dir/name.png", 7 -> "dir/name_0007.png" (malloc'ed). */
-char *numbered(const char *path, int frame) {
-    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
-    size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - path) : strlen(path);
-    size_t size = strlen(path) + 16;
-    char *out = malloc(size);
-    if (out)
-        snprintf(out, size, "%.*s_%04d%s", (int)stem, path, frame, path + stem);
-    return out;
-}
-
 typedef struct {
     double start;
     int shown;
@@ -301,7 +296,7 @@ static iacsg_status write_frame(cli_writer *writer, const render_options *o, con
     for (int k = 0; k < 3; k++) {
         if (!paths[k])
             continue;
-        char *path = o->frames ? numbered(paths[k], frame) : strdup(paths[k]);
+        char *path = cli_job_path(paths[k], o->frames, frame);
         if (!path)
             return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
         iacsg_status st = cli_writer_write(writer, path, fr->width, fr->height, channels[k], data[k], k > 0, err);
@@ -354,11 +349,27 @@ static iacsg_status check_outputs_spare_input(const char *input, const char *con
     return IACSG_OK;
 }
 
-void print_error(const iacsg_error *err, const char *name) {
+/* The error's line without "iacsg: ": "NAME:LINE:COL: message", or the message without a place. */
+static void format_error(char *line, size_t size, const iacsg_error *err, const char *name) {
     if (err->line > 0)
-        fprintf(stderr, "iacsg: %s:%d:%d: %s\n", name, err->line, err->column, err->message);
+        snprintf(line, size, "%.4096s:%d:%d: %s", name, err->line, err->column, err->message);
     else
-        fprintf(stderr, "iacsg: %s\n", err->message);
+        snprintf(line, size, "%s", err->message);
+}
+
+#define ERROR_LINE_SIZE (sizeof(((iacsg_error *)0)->message) + 4200)
+
+void print_error(const iacsg_error *err, const char *name) {
+    char line[ERROR_LINE_SIZE];
+    format_error(line, sizeof line, err, name);
+    fprintf(stderr, "iacsg: %s\n", line);
+}
+
+/* The error's line through the job (which prints it, or under mpirun hands it to rank 0). */
+static void report_error(cli_job *job, int frame, const iacsg_error *err, const char *name) {
+    char line[ERROR_LINE_SIZE];
+    format_error(line, sizeof line, err, name);
+    cli_job_fail(job, frame, line);
 }
 
 int cli_render(int argc, char **argv) {
@@ -377,6 +388,14 @@ int cli_render(int argc, char **argv) {
     /* first, so that the writer loads while OpenCL starts */
     iacsg_status st = cli_writer_start((size_t)o.view.width * (size_t)o.view.height * 3, &writer, &err);
     const char *outputs[3] = {o.output, o.depth_file, o.normals_file};
+    cli_job *job = cli_job_start(o.frames, o.view.width, o.view.height, o.resume, outputs);
+    if (!job) {
+        cli_writer_stop(writer);
+        free(text);
+        return 1;
+    }
+    if (!o.have_device)
+        o.config.device = cli_job_device(job);
     for (int k = 0; k < 3 && st == IACSG_OK; k++)
         if (outputs[k]) {
             cli_writer_check(writer, outputs[k]);
@@ -390,7 +409,8 @@ int cli_render(int argc, char **argv) {
         char phrase[256];
         const char *which = choose_bounds(&o, e, phrase, sizeof phrase);
         const double *b = o.view.bounds;
-        printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
+        if (cli_job_rank(job) == 0)
+            printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
         place_camera(&o);
         st = iacsg_renderer_create_expr(e, &o.config, &r, &err);
     }
@@ -406,31 +426,36 @@ int cli_render(int argc, char **argv) {
      * render's own time: the writer's loading took one of the two CPUs from it. */
     if (st == IACSG_OK)
         st = cli_writer_checked(writer, &err);
-    int frames = o.frames ? o.frames : 1;
-    for (int k = 0; k < frames && st == IACSG_OK; k++) {
+    iacsg_frame fr = {0};
+    cli_job_item item = {-1, 0, 0};
+    while (st == IACSG_OK && cli_job_next(job, &fr, &item)) {
         if (o.frames)
-            iacsg_frame_time(k, o.frames, o.view.time);
-        iacsg_frame fr;
+            iacsg_frame_time(item.frame, o.frames, o.view.time);
+        o.view.row_first = item.row_first;
+        o.view.row_count = item.row_count;
         bar.start = now_seconds();
         st = iacsg_render(r, &o.view, &fr, &err);
         if (bar.shown) {
             fprintf(stderr, "\r%50s\r", "");
             bar.shown = 0;
         }
-        if (st != IACSG_OK)
-            break;
-        st = write_frame(writer, &o, &fr, k, &err);
+        if (st == IACSG_OK && cli_job_writes_frames(job))
+            st = write_frame(writer, &o, &fr, item.frame, &err);
         if (st == IACSG_OK && o.config.stats)
             print_stats(r, &fr);
-        iacsg_frame_free(&fr);
     }
+    iacsg_frame_free(&fr);
+    const iacsg_frame *whole = st == IACSG_OK ? cli_job_gathered(job) : NULL;
+    if (whole)
+        st = write_frame(writer, &o, whole, 0, &err);
     if (st != IACSG_OK)
-        print_error(&err, name);
+        report_error(job, item.frame, &err, name);
+    rc = cli_job_end(job);
     cli_writer_stop(writer);
     iacsg_renderer_destroy(r);
     iacsg_expr_destroy(e);
     free(text);
-    return st == IACSG_OK ? 0 : 1;
+    return rc;
 }
 
 static void print_device(int index, const char *platform, const char *device, void *ctx) {

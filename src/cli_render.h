@@ -10,7 +10,7 @@ typedef struct {
     const char *input, *output, *depth_file, *normals_file, *time_text;
     iacsg_view view;
     iacsg_render_config config;
-    int have_bounds, have_eye, have_at, have_azel, have_time, frames;
+    int have_bounds, have_eye, have_at, have_azel, have_time, have_device, frames, resume;
     double az, el;
 } render_options;
 
@@ -28,9 +28,6 @@ const char *choose_bounds(render_options *o, const iacsg_expr *e, char *phrase, 
 
 /* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. */
 void place_camera(render_options *o);
-
-/* "dir/name.png", 7 -> "dir/name_0007.png" (malloc'ed). */
-char *numbered(const char *path, int frame);
 
 /* One line on stderr: "iacsg: NAME:LINE:COL: message", or "iacsg: message" without a place. */
 void print_error(const iacsg_error *err, const char *name);

@@ -7,6 +7,7 @@
  * Prints to stdout: the bounds line, `wrote FILE` for each screenshot, the command line of `p`, and
  * `reloaded NAME` once an edited scene is on screen; errors go to stderr and the window's title. */
 #include "cli.h"
+#include "cli_job.h"
 #include "cli_render.h"
 #include "cli_view_camera.h"
 #include "cli_view_display.h"
@@ -150,7 +151,7 @@ static void save_screenshot(viewer *v) {
     char *path = NULL;
     for (int k = 0; k < 100000; k++) {
         free(path);
-        path = numbered(v->o.output, k);
+        path = cli_job_path(v->o.output, 1, k);
         if (!path || access(path, F_OK) != 0)
             break;
     }

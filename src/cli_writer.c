@@ -12,6 +12,7 @@
  */
 #define _GNU_SOURCE /* MAP_ANONYMOUS, MAP_NORESERVE, MSG_NOSIGNAL */
 #include "cli_writer.h"
+#include "cli_library.h"
 #include "image.h"
 #include <dlfcn.h>
 #include <errno.h>
@@ -25,7 +26,6 @@
 #include <unistd.h>
 
 #define WRITER_LIBRARY "libiacsg_image.so"
-#define WRITER_INSTALLED "../lib/iacsg/" WRITER_LIBRARY /* the Makefile's IMAGE_HELPER_DIR, from bin/ */
 
 enum { REQUEST_CHECK, REQUEST_WRITE_FLOATS, REQUEST_WRITE_BYTES };
 
@@ -52,28 +52,16 @@ struct cli_writer {
     image_library lib; /* in this process */
 };
 
-/* Loads the library from beside the running binary (the build tree), else from ../lib/iacsg/ relative to it
- * (an installed prefix: `make install`), so that a copied or relocated prefix still finds it. RTLD_LAZY: the
- * command calls three functions of it, so binding the rest would be wasted. */
+/* Loads the library (cli_library_open). RTLD_LAZY: the command calls three functions of it, so binding the rest
+ * would be wasted. */
 static iacsg_status library_load(image_library *lib, iacsg_error *err) {
-    char path[4096];
-    ssize_t n = readlink("/proc/self/exe", path, sizeof path - sizeof WRITER_INSTALLED - 1);
-    if (n <= 0)
-        return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "cannot find the image library %s: %s", WRITER_LIBRARY,
-                               strerror(errno));
-    path[n] = '\0';
-    char *slash = strrchr(path, '/');
-    char *name = slash ? slash + 1 : path;
-    strcpy(name, WRITER_LIBRARY);
-    if (access(path, F_OK) != 0)
-        strcpy(name, WRITER_INSTALLED);
-    lib->handle = dlopen(path, RTLD_LAZY | RTLD_LOCAL);
-    if (lib->handle) {
-        *(void **)&lib->check_format = dlsym(lib->handle, "iacsg_image_check_format");
-        *(void **)&lib->write = dlsym(lib->handle, "iacsg_image_write");
-        *(void **)&lib->write_bytes = dlsym(lib->handle, "iacsg_image_write_bytes");
-    }
-    if (!lib->handle || !lib->check_format || !lib->write || !lib->write_bytes)
+    lib->handle = cli_library_open(WRITER_LIBRARY, "the image library", RTLD_LAZY | RTLD_LOCAL, err);
+    if (!lib->handle)
+        return err->status;
+    *(void **)&lib->check_format = dlsym(lib->handle, "iacsg_image_check_format");
+    *(void **)&lib->write = dlsym(lib->handle, "iacsg_image_write");
+    *(void **)&lib->write_bytes = dlsym(lib->handle, "iacsg_image_write_bytes");
+    if (!lib->check_format || !lib->write || !lib->write_bytes)
         return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "cannot load the image library: %s", dlerror());
     return IACSG_OK;
 }
@@ -114,8 +102,11 @@ static int transfer_all(int fd, char *p, size_t size, int sending) {
 static int send_all(int fd, const void *data, size_t size) { return transfer_all(fd, (char *)data, size, 1); }
 static int recv_all(int fd, void *data, size_t size) { return transfer_all(fd, data, size, 0); }
 
-/* The child: answers requests until the parent closes its end. Never returns. */
+/* The child: answers requests until the parent closes its end. Never returns. It ignores SIGTERM, which mpirun
+ * sends to a rank's whole process group when it stops a job: a write under way then still ends in its rename,
+ * never as a partial file, and the child ends at the next read, when the parent's end is closed. */
 static void child_serve(int sock, const void *shared) {
+    signal(SIGTERM, SIG_IGN);
     image_library lib = {0};
     writer_request rq;
     char *path = NULL;

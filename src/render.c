@@ -19,6 +19,7 @@ extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNE
  * launches are few (each wakes the device's threads and waits for the slowest), yet short enough that no
  * launch runs for long (GPU drivers may kill a kernel that holds the display for seconds). */
 enum { BLOCK_ROWS = PACKET_H * TILE_SIZE, BAND_ROWS_PROGRESS = 2 * BLOCK_ROWS, BAND_ROWS = 64 * BLOCK_ROWS };
+_Static_assert(BLOCK_ROWS == IACSG_ROW_ALIGN, "iacsg_view.row_first is aligned to whole blocks");
 
 struct iacsg_renderer {
     clrt rt;
@@ -158,6 +159,10 @@ static iacsg_status fill_params(const iacsg_view *v, int fp64, void *block, iacs
 static iacsg_status check_view(const iacsg_view *v, iacsg_error *err) {
     if (v->width < 1 || v->height < 1 || (long long)v->width * v->height > (1LL << 28))
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "image size %dx%d is out of range", v->width, v->height);
+    if (v->row_first < 0 || v->row_count < 0 || v->row_first % IACSG_ROW_ALIGN != 0 ||
+        v->row_first + (long long)v->row_count > v->height || (v->row_count == 0 && v->row_first != 0))
+        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "rows %d + %d of a %d-row image: not a band of it",
+                               v->row_first, v->row_count, v->height);
     if (!(v->eps > 0) || !isfinite(v->eps))
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "eps must be positive (got %g)", v->eps);
     for (int k = 0; k < 3; k++)
@@ -293,8 +298,9 @@ static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacs
     cl_command_queue q = r->rt.queue;
     size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
     int band = view->progress || view->cancel ? BAND_ROWS_PROGRESS : BAND_ROWS;
-    for (cl_int row0 = 0; row0 < view->height; row0 += band) {
-        int rows = view->height - row0 < band ? view->height - row0 : band;
+    int first = view->row_first, end = view->row_count ? first + view->row_count : view->height;
+    for (cl_int row0 = first; row0 < end; row0 += band) {
+        int rows = end - row0 < band ? end - row0 : band;
         cl_int block_row0 = row0 / BLOCK_ROWS;
         size_t global[2] = {(tiles_x + PACKET_W - 1) / PACKET_W, (size_t)(rows + BLOCK_ROWS - 1) / BLOCK_ROWS};
         CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &block_row0));
@@ -303,7 +309,7 @@ static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacs
         if (view->progress || view->cancel)
             CLRT_CHECK(err, clFinish(q));
         if (view->progress)
-            view->progress((double)(row0 + rows) / view->height, view->progress_ctx);
+            view->progress((double)(row0 + rows - first) / (end - first), view->progress_ctx);
         if (view->cancel && view->cancel(view->cancel_ctx))
             return iacsg_error_set(err, IACSG_ERR_CANCELLED, 0, 0, "render cancelled");
     }
@@ -383,9 +389,14 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
         st = read_back(r, &buffers, n, tiles_n, evals, tile_evals, err);
     if (st == IACSG_OK) {
         frame->render_seconds = now_seconds() - t0;
-        frame->rays = (long long)n;
+        /* the rays of the rows traced, and their tiles' counts (a band's rows start on whole tiles) */
+        size_t first = (size_t)view->row_first, rows = view->row_count ? (size_t)view->row_count : (size_t)view->height;
+        size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
+        frame->rays = (long long)(rows * (size_t)view->width);
         if (evals)
-            summarize_evals(evals, n, tile_evals, tiles_n, frame);
+            summarize_evals(evals + first * (size_t)view->width, rows * (size_t)view->width,
+                            tile_evals + first / TILE_SIZE * tiles_x, (rows + TILE_SIZE - 1) / TILE_SIZE * tiles_x,
+                            frame);
     }
     release_buffers(&buffers);
     free(evals);

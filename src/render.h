@@ -58,14 +58,22 @@ typedef struct {
      * stops soon after. */
     int (*cancel)(void *ctx);
     void *cancel_ctx;
+    /* Trace only rows [row_first, row_first + row_count) of the image (row_count 0: all of them), as a band of
+     * a frame shared among processes; the frame's other rows are then unspecified. row_first is a multiple of
+     * IACSG_ROW_ALIGN, so that each pixel comes out exactly as in the whole frame. */
+    int row_first, row_count;
 } iacsg_view;
+
+/* The rows of a band start at multiples of this (a block of the kernel's tiles, src/render.c). */
+#define IACSG_ROW_ALIGN 32
 
 typedef struct {
     int width, height;
     float *rgb;    /* 3 floats a pixel, display-encoded in [0, 1], row 0 at the top */
     float *depth;  /* 1 float a pixel: distance from the eye (ray parameter) at the hit, +inf on a miss (or NULL) */
     float *normal; /* 3 floats a pixel: the unit normal facing the eye, 0 on a miss (or NULL) */
-    /* Statistics: rays traced, and with config.stats interval evaluations per ray (mean over all rays, max). */
+    /* Statistics: rays traced (those of the rows traced), and with config.stats interval evaluations per ray
+     * (mean over those rays, max). */
     long long rays;
     double evals_mean;
     unsigned evals_max;
