@@ -2,7 +2,7 @@
  * (the device) and as host C11 (the tests check the very code the device runs, as hashcat does).
  *
  *   KERNEL_CONSTANT   the address space of the parameter block (__constant on the device, nothing on the host).
- *   KERNEL_GLOBAL     the address space of buffers such as the scene's CSG nodes (__global, nothing on the host).
+ *   KERNEL_GLOBAL     the address space of the scene's tables and per-ray buffers (__global on the device).
  *   bisect_index      the node index of the bisection: 32 bits for float, 64 for double (see traverse.h).
  */
 #ifndef KERNELS_COMPAT_H
