@@ -34,6 +34,10 @@ DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd oc
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec.h
 KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h \
                   kernels/packet.h kernels/tile.h kernels/light.h kernels/shade.h kernels/render.cl
+# The segment path's program (src/render_scene.c): the same ia/ headers, the scene's solids, then these.
+SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h kernels/csg_node.h \
+                       kernels/scene_data.h kernels/bvh.h kernels/segments.h kernels/classify.h kernels/weave.h \
+                       kernels/surface.h kernels/scene_trace.h kernels/light.h kernels/render_scene.cl
 TEST_CL_SOURCES = $(sort $(wildcard tests/*.cl))
 
 LIB_C = $(filter-out src/cli%.c,$(wildcard ia/*.c implicits/*.c src/*.c))
@@ -43,7 +47,7 @@ TEST_C = $(filter-out %_fp.c,$(wildcard tests/*.c))
 TEST_FP_C = $(wildcard tests/*_fp.c)
 
 LIB_OBJ = $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o) $(BUILD)/embedded_ia.o \
-          $(if $(KERNEL_SOURCES),$(BUILD)/embedded_kernels.o)
+          $(if $(KERNEL_SOURCES),$(BUILD)/embedded_kernels.o) $(BUILD)/embedded_scene_kernels.o
 CLI_OBJ = $(CLI_C:%.c=$(BUILD)/%.o)
 TEST_OBJ = $(TEST_C:%.c=$(BUILD)/%.o) $(TEST_FP_C:%.c=$(BUILD)/%.f32.o) $(TEST_FP_C:%.c=$(BUILD)/%.f64.o) \
            $(if $(TEST_CL_SOURCES),$(BUILD)/embedded_tests.o)
@@ -112,6 +116,8 @@ $(BUILD)/embedded_ia.c: $(IA_CL_HEADERS) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_ia $(IA_CL_HEADERS) > $@
 $(BUILD)/embedded_kernels.c: $(KERNEL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_kernels $(KERNEL_SOURCES) > $@
+$(BUILD)/embedded_scene_kernels.c: $(SCENE_KERNEL_SOURCES) $(BUILD)/embed
+	$(BUILD)/embed iacsg_cl_scene_kernels $(SCENE_KERNEL_SOURCES) > $@
 $(BUILD)/embedded_tests.c: $(TEST_CL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_tests $(TEST_CL_SOURCES) > $@
 

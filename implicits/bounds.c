@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define BOUNDS_DOMAIN 1024.0
+#define BOUNDS_DOMAIN IACSG_BOUNDS_DOMAIN
 #define BOUNDS_BUDGET 3000
 #define BOUNDS_WORK 30000000.0 /* node evaluations in all: about a tenth of a second; huge DAGs give up */
 

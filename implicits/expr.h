@@ -32,7 +32,9 @@ iacsg_status iacsg_expr_emit_cl(const iacsg_expr *e, const char *prefix, char **
 /* 1 if the expression depends on the time variable t. */
 int iacsg_expr_uses_time(const iacsg_expr *e);
 
-/* A box proven to contain the solid's surface, as x0,y0,z0,x1,y1,z1; returns 0 if none could be found. */
+/* A box proven to contain the solid's surface inside the cube [-IACSG_BOUNDS_DOMAIN, IACSG_BOUNDS_DOMAIN]^3 for
+ * t in [0, 1], as x0,y0,z0,x1,y1,z1; returns 0 if none could be found. */
+#define IACSG_BOUNDS_DOMAIN 1024.0
 int iacsg_expr_bounds(const iacsg_expr *e, double box[6]);
 
 /* Host evaluation with the same ia/ code: an enclosure of the expression over the box lo..hi at time t (fp64
