@@ -256,9 +256,10 @@ static inline int ref_crossings(const ref_scene *rs, const ref_ray *ray, long do
 }
 
 /* The first partition of (t0, t1) that a region claims: its start, end and region (the first declared of those
- * whose tree holds at its midpoint); returns -1 when none does. */
+ * whose tree holds at its midpoint), and the solid whose boundary it starts at (-1: the bounds); returns -1 when
+ * none does. */
 static inline int ref_first_claim(const ref_scene *rs, const ref_ray *ray, long double t0, long double t1,
-                                  long double *start, long double *end) {
+                                  long double *start, long double *end, int *solid) {
     static ref_crossing c[2 * REF_MAX_SOLIDS + 2];
     int n = ref_crossings(rs, ray, t0, t1, c);
     for (int k = 0; k <= n; k++) {
@@ -270,6 +271,7 @@ static inline int ref_first_claim(const ref_scene *rs, const ref_ray *ray, long 
             if (it->kind == SCENE_REGION && ref_holds_at(rs, it->tree, ray, (a + b) / 2)) {
                 *start = a;
                 *end = b;
+                *solid = k == 0 ? -1 : c[k - 1].solid;
                 return item;
             }
         }
@@ -294,21 +296,36 @@ static inline int ref_surface_first(const ref_scene *rs, int item, const ref_ray
 }
 
 /* The first item the ray meets in (t0, t1): a region's first claimed partition or a surface's first kept point,
- * the earlier (the first declared on a tie); returns -1 when none. */
+ * the earlier (the first declared on a tie), with the solid whose boundary is there (-1: the bounds); returns -1
+ * when none. */
 static inline int ref_first_item(const ref_scene *rs, const ref_ray *ray, long double t0, long double t1,
-                                 long double *t) {
+                                 long double *t, int *solid) {
     long double start, end;
-    int id = ref_first_claim(rs, ray, t0, t1, &start, &end);
+    int id = ref_first_claim(rs, ray, t0, t1, &start, &end, solid);
     *t = id >= 0 ? start : INFINITY;
     for (int item = 0; item < rs->scene->nitems; item++) {
         long double ts;
         if (rs->scene->items[item].kind == SCENE_SURFACE && ref_surface_first(rs, item, ray, t0, t1, &ts) &&
             (ts < *t || (ts == *t && item < id))) {
             *t = ts;
+            *solid = rs->scene->items[item].solid;
             id = item;
         }
     }
     return id;
+}
+
+/* The gradient of the solid at p (the box's: the outward axis of its nearest face). */
+static inline void ref_gradient(const ref_solid *s, const long double p[3], long double g[3]) {
+    int face = 0;
+    for (int k = 0; k < 3; k++) {
+        long double u = p[k] - s->c[k];
+        g[k] = s->kind == REF_SPHERE ? 2 * u : s->kind == REF_HALFSPACE ? s->c[k] : 0;
+        if (fabsl(u) - s->a[k] > fabsl(p[face] - s->c[face]) - s->a[face])
+            face = k;
+    }
+    if (s->kind == REF_BOX)
+        g[face] = p[face] < s->c[face] ? -1 : 1;
 }
 
 /* The distance from p to the solid's boundary. */
