@@ -7,7 +7,7 @@
  *   condition certainly holds is never missed and never passed; every hit is within a few leaves of the surface
  *   where the condition may hold.
  * - The evaluation stack's bound: a chain of CSG_STACK_MAX comparisons is evaluated right, one more is refused
- *   when the scene is built.
+ *   when the scene is built, with the surface's place when it comes from the language.
  */
 #include "t_scene_ref.h"
 
@@ -302,4 +302,13 @@ TEST_FP(render_surface_condition_stack_bound) {
         }
     }
     iacsg_scene_destroy(scene);
+    /* from the language: the refusal names the surface's line */
+    char text[2048] = "solid a = sphere\nsurface deep = a where x < 0";
+    for (int k = 1; k <= CSG_STACK_MAX; k++)
+        snprintf(text + strlen(text), sizeof text - strlen(text), " & x - %d < 0", k);
+    iacsg_error err = {0};
+    CHECK(iacsg_scene_parse(text, "deep.csg", &scene, &err) != IACSG_OK && scene == NULL, "a chain of %d accepted",
+          CSG_STACK_MAX + 1);
+    CHECK(err.line == 2 && err.column == 1 && strstr(err.message, "'deep'"), "%d:%d: %s", err.line, err.column,
+          err.message);
 }
