@@ -21,8 +21,8 @@ IA_FN int bvh_node_clip(const KERNEL_GLOBAL ia_real *box, int k, const ia_real o
     return camera_clip_box(lo, hi, o, d, tn, tf, t_near, t_far);
 }
 
-/* The candidates of the ray o + t d on [tn, tf]: solid[c] and its range [range[2c], range[2c+1]], sorted by
- * range start. Returns their number, or -1 when there are more than cap. */
+/* The candidates of the ray o + t d on [tn, tf]: solid[c] and its range, from range[2c] on for range[2c+1]
+ * (rounded up), sorted by range start. Returns their number, or -1 when there are more than cap. */
 IA_FN int bvh_candidates(const KERNEL_GLOBAL ia_real *box, const KERNEL_GLOBAL int *link, int nodes,
                          const ia_real o[3], const ia_real d[3], ia_real tn, ia_real tf, KERNEL_GLOBAL int *solid,
                          KERNEL_GLOBAL ia_real *range, int cap) {
@@ -48,7 +48,7 @@ IA_FN int bvh_candidates(const KERNEL_GLOBAL ia_real *box, const KERNEL_GLOBAL i
         }
         solid[c] = leaf;
         range[2 * c] = te;
-        range[2 * c + 1] = tx;
+        range[2 * c + 1] = ia_hi(tx - te); /* the width of the walk's tree (segments.h) */
     }
     return count;
 }

@@ -24,8 +24,8 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                  __global const int *items, __global const int *solid_items_start,
                                  __global const int *solid_items, __global const int *surfaces, int nsurfaces,
                                  __global const float *albedo, __global int *cand_solid, __global ia_real *cand_range,
-                                 int cand_cap, __global ia_real *break_t, __global int *break_info, int break_cap,
-                                 __global uchar *state, int nsolids, __global float *rgb, __global float *depth,
+                                 __global ia_real *cand_pos, __global int *cand_level, __global bisect_index *cand_index,
+                                 int cand_cap, __global uchar *state, int nsolids, __global float *rgb, __global float *depth,
                                  __global float *normal, __global float *ids, __global int *overlap,
                                  __global uint *counts, __global int *overflow, __global int *noverflow) {
     size_t slot = get_global_id(1) * get_global_size(0) + get_global_id(0);
@@ -33,9 +33,18 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     if (!pixels && (i0 >= width || j0 >= height))
         return;
     scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], params[PARAM_TIME]};
-    scene_ray ray = {nodes, items, solid_items_start, solid_items, cand_solid + slot * cand_cap,
-                     cand_range + 2 * slot * cand_cap, cand_cap, 0, break_t + slot * break_cap,
-                     break_info + slot * break_cap, break_cap, 0, state + slot * nsolids, 0, 0, 0};
+    size_t first = slot * (size_t)cand_cap;
+    scene_ray ray = {nodes,
+                     items,
+                     solid_items_start,
+                     solid_items,
+                     {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first, cand_index + first},
+                     cand_cap,
+                     0,
+                     state + slot * nsolids,
+                     0,
+                     0,
+                     0};
     int pixel[PACKET_LANES];
     ia_real dk[3][PACKET_LANES], gk[3][PACKET_LANES], on[PACKET_LANES];
     float rows[PACKET_LANES], color[3][PACKET_LANES];

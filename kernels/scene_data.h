@@ -2,21 +2,20 @@
  * kernels/render_scene.cl reads it): the per-ray buffer bounds, the states of a solid along a ray, and the
  * layout of the scene's tables.
  *
- * Per-ray buffers. A ray collects the solids whose boxes it meets (candidates: a solid's number and the t range
- * of its box, SCENE_CANDIDATE_BYTES each) and the points where a solid's state changes (breaks: a t and the
- * solid's candidate slot and new state, SCENE_BREAK_BYTES each). A render starts with room for
- * SCENE_RAY_CANDIDATES and SCENE_RAY_BREAKS per ray; a ray that needs more stops, is listed, and is traced
- * again with four times the room, until it fits (never truncated). The partitions are not stored: the weave
- * sweeps the sorted breaks and classifies each partition as it passes it (kernels/weave.h).
+ * Per-ray buffers. A ray collects its candidates, the solids whose boxes it meets (bvh.h), and keeps per
+ * candidate its solid, its box's t range, and where its bisection walk stands (segments.h): SCENE_CANDIDATE_BYTES
+ * each, plus one byte per solid of the scene for the states (kept all OUT between rays). That is all: the walks
+ * give the solids' state changes in t order, so partitions are classified as they are passed (weave.h) and
+ * neither segments nor partitions are stored. A render starts with room for SCENE_RAY_CANDIDATES; a ray that
+ * meets more boxes stops, is listed, and is traced again with four times the room, until it fits (never
+ * truncated).
  */
 #ifndef KERNELS_SCENE_DATA_H
 #define KERNELS_SCENE_DATA_H
-#include "compat.h"
+#include "traverse.h"
 
 #define SCENE_RAY_CANDIDATES 32
-#define SCENE_RAY_BREAKS 128
-#define SCENE_CANDIDATE_BYTES (4 + 2 * (int)sizeof(ia_real))
-#define SCENE_BREAK_BYTES (4 + (int)sizeof(ia_real))
+#define SCENE_CANDIDATE_BYTES (2 * 4 + 3 * (int)sizeof(ia_real) + (int)sizeof(bisect_index))
 
 /* A solid's state over a part of a ray, decided on the enclosure F of its function over the part's box: OUT
  * where F > 0, IN where F < 0, BOUNDARY where 0 is in F on a leaf of the bisection (width <= eps): the solid
@@ -24,11 +23,6 @@
 #define SCENE_OUT 0
 #define SCENE_IN 1
 #define SCENE_BOUNDARY 2
-
-/* A break: bits 2.. the candidate slot, bits 0-1 the state from its t on. */
-#define SCENE_BREAK(slot, state) ((slot) << 2 | (state))
-#define SCENE_BREAK_SLOT(b) ((b) >> 2)
-#define SCENE_BREAK_STATE(b) ((b) & 3)
 
 /* The BVH over the solids' boxes, in preorder: node k has a box (6 reals, x0 y0 z0 x1 y1 z1, rounded outward)
  * and two ints: the node that follows its subtree (where a ray that misses the box goes on), and the solid of a

@@ -1,6 +1,6 @@
-/* kernels/scene_trace.h -- one ray of the segment path: its candidates (bvh.h), each bisected for its breaks in
- * order of box entry (segments.h) and swept after each (weave.h), until a region claims a partition; then the
- * surfaces (surface.h), each asked for its first kept point before that.
+/* kernels/scene_trace.h -- one ray of the segment path: its candidates (bvh.h), their walks woven in t order
+ * (segments.h, weave.h) until a region claims a partition; then the surfaces (surface.h), each asked for its
+ * first kept point before that.
  *
  * Guarantee: the claimed partition's start is never after the first point of the ray (in [tn, tf]) where a
  * region is in: every solid's states tile its box's range without gaps, OUT outside it; a partition holding
@@ -11,7 +11,6 @@
 #ifndef KERNELS_SCENE_TRACE_H
 #define KERNELS_SCENE_TRACE_H
 #include "bvh.h"
-#include "segments.h"
 #include "weave.h"
 #include "surface.h"
 
@@ -47,30 +46,17 @@ IA_FN int scene_trace_surfaces(const scene_view *v, const scene_ray *r, const ia
 }
 
 /* Traces the ray o + t d over [tn, tf]: 1 with *hit, 0 when nothing is hit, SCENE_TRACE_OVERFLOW when the ray
- * needs more room than r's buffers have. Leaves every solid's state OUT. */
+ * meets more boxes than r has room for. Leaves every solid's state OUT. */
 IA_FN int scene_trace_ray(const scene_view *v, scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real tn,
                           ia_real tf, weave_hit *hit) {
-    int n = bvh_candidates(v->box, v->link, v->nodes, o, d, tn, tf, r->cand_solid, r->cand_range, r->cand_cap);
-    int result = n < 0 ? SCENE_TRACE_OVERFLOW : 0;
-    r->ncand = 0;
-    r->nbreaks = 0;
-    for (int c = 0; c < n; c++) {
-        r->ncand = c + 1;
-        if (!segments_of_solid(r->cand_solid[c], c, o, d, r->cand_range[2 * c], r->cand_range[2 * c + 1], v->eps,
-                               v->time, r->break_t, r->break_info, &r->nbreaks, r->break_cap, &r->evals,
-                               &r->segments)) {
-            result = SCENE_TRACE_OVERFLOW;
-            break;
-        }
-        ia_real limit = c + 1 < n ? r->cand_range[2 * (c + 1)] : tf;
-        if (weave_advance(r, limit, hit)) {
-            result = 1;
-            break;
-        }
-    }
-    for (int c = 0; c < r->ncand; c++)
-        r->state[r->cand_solid[c]] = SCENE_OUT;
-    return result == SCENE_TRACE_OVERFLOW ? result : scene_trace_surfaces(v, r, o, d, tn, tf, result, hit);
+    int n = bvh_candidates(v->box, v->link, v->nodes, o, d, tn, tf, r->walks.solid, r->walks.range, r->cand_cap);
+    if (n < 0)
+        return SCENE_TRACE_OVERFLOW;
+    r->ncand = n;
+    int found = weave_ray(r, o, d, tf, v->eps, v->time, hit);
+    for (int c = 0; c < n; c++)
+        r->state[r->walks.solid[c]] = SCENE_OUT;
+    return scene_trace_surfaces(v, r, o, d, tn, tf, found, hit);
 }
 
 #endif

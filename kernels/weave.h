@@ -1,19 +1,19 @@
-/* kernels/weave.h -- partitions and their claims: the breaks of every candidate solid (segments.h), sorted by t,
- * are swept in order; between two consecutive break points lies a partition where each solid has one state, and
- * each partition is classified as the sweep passes it (classify.h) against the regions that use a solid which
- * is not OUT there (the per-solid lists of src/render_scene.c). The first partition that some region may be in
- * is the hit; the region declared first among those that may be in claims it. Where another region is
- * certainly in as well as a certainly-in winner, the partition is an overlap.
+/* kernels/weave.h -- partitions and their claims. The candidates' walks (segments.h) are stepped in t order;
+ * between two consecutive points where some solid's state changes lies a partition where each solid has one
+ * state, and each partition is classified (classify.h) once no walk can change a state before its end: against
+ * the regions that use a solid which is not OUT there (the per-solid lists of src/render_scene.c). The first
+ * partition that some region may be in is the hit; the region declared first among those that may be in claims
+ * it. Where another region is certainly in as well as a certainly-in winner, the partition is an overlap.
  *
- * Why a sweep over sorted breaks rather than Domingues' linked list of partitions: the partitions are never
- * stored, only the breaks (and the sweep needs no links), and a partition is final as soon as the sweep has
- * passed the next candidate's box entry (bvh.h sorts candidates by it): before it every solid not yet bisected
- * is certainly OUT. So the sweep advances after each solid, and stops at the first claim without bisecting the
- * solids behind it.
+ * Why not Domingues' linked list of partitions: the walks give the state changes already in order, so a
+ * partition is classified as the weave passes it and never stored; the per-ray buffer is the candidates alone
+ * (scene_data.h). What a partition is in is the table of states per solid (bytes, not bits: the host resets
+ * only the candidates' entries after each ray).
  */
 #ifndef KERNELS_WEAVE_H
 #define KERNELS_WEAVE_H
 #include "classify.h"
+#include "segments.h"
 
 /* The scene's tables and one ray's buffers (scene_data.h). */
 typedef struct {
@@ -21,12 +21,8 @@ typedef struct {
     const KERNEL_GLOBAL int *items;             /* SCENE_ITEM_INTS per item */
     const KERNEL_GLOBAL int *solid_items_start; /* solid k's regions: solid_items[start[k] .. start[k + 1]) */
     const KERNEL_GLOBAL int *solid_items;
-    KERNEL_GLOBAL int *cand_solid; /* the candidates (bvh.h) */
-    KERNEL_GLOBAL ia_real *cand_range;
-    int cand_cap, ncand; /* ncand: those bisected so far */
-    KERNEL_GLOBAL ia_real *break_t; /* the breaks not yet swept, sorted */
-    KERNEL_GLOBAL int *break_info;
-    int break_cap, nbreaks;
+    segments_walks walks; /* the candidates (bvh.h) and their walks */
+    int cand_cap, ncand;
     KERNEL_GLOBAL unsigned char *state; /* per solid of the scene, all OUT between rays */
     kernel_u32 evals, segments, partitions;
 } scene_ray;
@@ -34,7 +30,7 @@ typedef struct {
 typedef struct {
     ia_real t;   /* the claimed partition's start */
     int item;    /* the region that claims it */
-    int solid;   /* the solid whose break starts it: its boundary is the hit's surface */
+    int solid;   /* the solid whose state change starts it: its boundary is the hit's surface */
     int overlap; /* another region certainly in there, or -1 */
 } weave_hit;
 
@@ -44,7 +40,7 @@ typedef struct {
 IA_FN int weave_claim(const scene_ray *r, int *winner, int *other) {
     int may = WEAVE_NONE, first = WEAVE_NONE, second = WEAVE_NONE; /* first, second: certainly in */
     for (int c = 0; c < r->ncand; c++) {
-        int k = r->cand_solid[c];
+        int k = r->walks.solid[c];
         if (r->state[k] == SCENE_OUT)
             continue;
         for (int j = r->solid_items_start[k]; j < r->solid_items_start[k + 1]; j++) {
@@ -70,33 +66,50 @@ IA_FN int weave_claim(const scene_ray *r, int *winner, int *other) {
     return 1;
 }
 
-/* Sweeps the breaks before `limit`, applying each to its solid's state and classifying the partition that each
- * group of equal break points starts. Returns 1 at the first claimed partition (*hit), else 0 with the swept
- * breaks removed. */
-IA_FN int weave_advance(scene_ray *r, ia_real limit, weave_hit *hit) {
-    int n = 0;
-    while (n < r->nbreaks && r->break_t[n] < limit) {
-        ia_real t = r->break_t[n];
-        int solid = -1, solid_in = -1;
-        for (; n < r->nbreaks && r->break_t[n] == t; n++) {
-            int b = r->break_info[n], k = r->cand_solid[SCENE_BREAK_SLOT(b)];
-            r->state[k] = (unsigned char)SCENE_BREAK_STATE(b);
-            solid = k;
-            solid_in = SCENE_BREAK_STATE(b) != SCENE_OUT ? k : solid_in;
+/* The candidate whose walk is the least advanced (the least position), or -1 when all are done. */
+IA_FN int weave_next_walk(const scene_ray *r) {
+    int best = -1;
+    ia_real least = IA_INF;
+    for (int c = 0; c < r->ncand; c++)
+        if (r->walks.pos[c] < least) {
+            least = r->walks.pos[c];
+            best = c;
         }
-        r->partitions += 1;
-        if (weave_claim(r, &hit->item, &hit->overlap)) {
-            hit->t = t;
-            hit->solid = solid_in >= 0 ? solid_in : solid;
-            return 1;
+    return best;
+}
+
+/* Weaves the candidates' walks along the ray over [.., tf]: returns 1 at the first claimed partition (*hit),
+ * 0 when no partition starting before tf is claimed. */
+IA_FN int weave_ray(scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real tf, ia_real eps, ia_real time,
+                    weave_hit *hit) {
+    int pending = 0, pending_solid = -1; /* a partition starts at pending_t, not yet classified */
+    ia_real pending_t = 0;
+    for (int c = 0; c < r->ncand; c++)
+        segments_start(&r->walks, c);
+    for (;;) {
+        int c = weave_next_walk(r);
+        ia_real at = c >= 0 ? r->walks.pos[c] : IA_INF;
+        if (pending && at > pending_t) { /* no walk can change a state before `at` any more */
+            r->partitions += 1;
+            if (weave_claim(r, &hit->item, &hit->overlap)) {
+                hit->t = pending_t;
+                hit->solid = pending_solid;
+                return 1;
+            }
+            pending = 0;
         }
+        if (!(at < tf))
+            return 0;
+        int k = r->walks.solid[c], s = segments_step(&r->walks, c, o, d, eps, time, &r->evals);
+        if (s == r->state[k])
+            continue;
+        r->segments += r->state[k] == SCENE_OUT;
+        r->state[k] = (unsigned char)s;
+        /* the hit's surface: of the changes at one point, one to a state that may be in */
+        pending_solid = !pending || s != SCENE_OUT ? k : pending_solid;
+        pending = 1;
+        pending_t = at;
     }
-    for (int k = n; k < r->nbreaks; k++) {
-        r->break_t[k - n] = r->break_t[k];
-        r->break_info[k - n] = r->break_info[k];
-    }
-    r->nbreaks -= n;
-    return 0;
 }
 
 #endif

@@ -21,10 +21,10 @@ typedef struct {
     int fp64;   /* double intervals and rays instead of float */
     int fast;   /* no outward rounding (IA_FAST): NOT rigorous, for measuring what rigor costs */
     int stats;  /* count the interval evaluations of each ray (a kernel built with -D KERNEL_STATS) */
-    /* The segment path's per-ray buffers at the start of each frame: candidates and breaks (kernels/
-     * scene_data.h; 0: SCENE_RAY_CANDIDATES and SCENE_RAY_BREAKS). Rays that need more are traced again with
-     * four times the room; tests set them tiny to check that. */
-    int ray_candidates, ray_breaks;
+    /* The segment path's room per ray for the solids whose boxes it meets at the start of each frame (kernels/
+     * scene_data.h; 0: SCENE_RAY_CANDIDATES). Rays that need more are traced again with four times the room;
+     * tests set it tiny to check that. */
+    int ray_candidates;
 } iacsg_render_config;
 
 /* Builds the render program for `expr_cl`, the OpenCL C source of iacsg_F, iacsg_f and iacsg_f_grad (as

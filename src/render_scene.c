@@ -3,9 +3,9 @@
  * path's kernels. The scene's tables (src/scene_tables.c) live on the device for the renderer's life.
  *
  * A frame: the bands of rows, each one launch with a packet of 4x4 pixels per work-item and a slice of the
- * per-ray buffers per work-item (kernels/scene_data.h); then the rays that overflowed their buffers, listed by
- * the kernel, traced again with four times the room, until none is left (or the room would pass
- * SCENE_MAX_BREAKS: an error, never a truncated ray); then the statistics.
+ * per-ray buffers per work-item (kernels/scene_data.h); then the rays that met more boxes than the buffers have
+ * room for, listed by the kernel, traced again with four times the room (at most the scene's solids, which every
+ * ray fits), until none is left; then the statistics.
  */
 #include "render_internal.h"
 #include "implicits/scene.h"
@@ -22,8 +22,6 @@ extern const char iacsg_cl_scene_kernels[]; /* the flattened kernels of the segm
 
 /* The per-ray buffers of all work-items of one launch together stay below this; bands are cut to fit. */
 #define SCENE_SCRATCH_BUDGET (64.0 * 1024 * 1024)
-/* The most breaks a ray may be given room for. */
-#define SCENE_MAX_BREAKS (1 << 20)
 
 struct render_scene {
     scene_tables t;
@@ -74,15 +72,15 @@ static iacsg_status upload_tables(iacsg_renderer *r, render_scene *s, iacsg_erro
 /* The buffers of one frame. */
 typedef struct {
     cl_mem params, box, rgb, depth, normal, ids, overlap, counts, list[2], nlist[2];
-    cl_mem cand_solid, cand_range, break_t, break_info, state;
-    int cand_cap, break_cap;
+    cl_mem cand_solid, cand_range, cand_pos, cand_level, cand_index, state;
+    int cand_cap;
     size_t slots; /* work-items the per-ray buffers have room for */
 } scene_buffers;
 
 static void release_scene_buffers(scene_buffers *b) {
     cl_mem *all[] = {&b->params,  &b->box,      &b->rgb,        &b->depth,      &b->normal,  &b->ids,
                      &b->overlap, &b->counts,   &b->list[0],    &b->list[1],    &b->nlist[0], &b->nlist[1],
-                     &b->cand_solid, &b->cand_range, &b->break_t, &b->break_info, &b->state};
+                     &b->cand_solid, &b->cand_range, &b->cand_pos, &b->cand_level, &b->cand_index, &b->state};
     for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
         if (*all[k]) {
             clReleaseMemObject(*all[k]);
@@ -92,18 +90,23 @@ static void release_scene_buffers(scene_buffers *b) {
 
 static size_t real_size(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
 
-/* The bytes of one work-item's slice of the per-ray buffers. */
-static size_t slot_bytes(const iacsg_renderer *r, int cand_cap, int break_cap) {
-    return (size_t)cand_cap * (sizeof(int) + 2 * real_size(r)) + (size_t)break_cap * (sizeof(int) + real_size(r)) +
-           (size_t)r->scene->t.nsolids;
+/* The bytes of a candidate's walk (kernels/segments.h): solid, range, position, level and index. */
+static size_t candidate_bytes(const iacsg_renderer *r) {
+    return 2 * sizeof(cl_int) + 3 * real_size(r) + (r->config.fp64 ? sizeof(cl_ulong) : sizeof(cl_uint));
+}
+
+/* The bytes of one work-item's slice of the per-ray buffers: its candidates and the states of all solids. */
+static size_t slot_bytes(const iacsg_renderer *r, int cand_cap) {
+    return (size_t)cand_cap * candidate_bytes(r) + (size_t)r->scene->t.nsolids + 1;
 }
 
 /* (Re)allocates the per-ray buffers for `slots` work-items with the given room; the states start OUT. */
-static iacsg_status scratch_buffers(iacsg_renderer *r, scene_buffers *b, size_t slots, int cand_cap, int break_cap,
+static iacsg_status scratch_buffers(iacsg_renderer *r, scene_buffers *b, size_t slots, int cand_cap,
                                     iacsg_error *err) {
-    cl_mem *all[] = {&b->cand_solid, &b->cand_range, &b->break_t, &b->break_info, &b->state};
-    size_t bytes[] = {slots * (size_t)cand_cap * sizeof(int), slots * (size_t)cand_cap * 2 * real_size(r),
-                      slots * (size_t)break_cap * real_size(r), slots * (size_t)break_cap * sizeof(int),
+    cl_mem *all[] = {&b->cand_solid, &b->cand_range, &b->cand_pos, &b->cand_level, &b->cand_index, &b->state};
+    size_t cands = slots * (size_t)cand_cap;
+    size_t bytes[] = {cands * sizeof(cl_int), cands * 2 * real_size(r), cands * real_size(r), cands * sizeof(cl_int),
+                      cands * (r->config.fp64 ? sizeof(cl_ulong) : sizeof(cl_uint)),
                       slots * (size_t)(r->scene->t.nsolids + 1)};
     for (size_t k = 0; k < sizeof all / sizeof all[0]; k++) {
         if (*all[k])
@@ -113,10 +116,9 @@ static iacsg_status scratch_buffers(iacsg_renderer *r, scene_buffers *b, size_t 
         CLRT_CHECK(err, rc);
     }
     cl_uchar out = SCENE_OUT;
-    CLRT_CHECK(err, clEnqueueFillBuffer(r->rt.queue, b->state, &out, 1, 0, bytes[4], 0, NULL, NULL));
+    CLRT_CHECK(err, clEnqueueFillBuffer(r->rt.queue, b->state, &out, 1, 0, bytes[5], 0, NULL, NULL));
     b->slots = slots;
     b->cand_cap = cand_cap;
-    b->break_cap = break_cap;
     return IACSG_OK;
 fail:
     return IACSG_ERR_OPENCL;
@@ -129,7 +131,7 @@ static iacsg_status set_scene_args(iacsg_renderer *r, const iacsg_view *view, co
     cl_kernel k = r->kernel;
     cl_int flags = view->camera.ortho_height > 0 ? RENDER_ORTHO : 0, width = view->width, height = view->height;
     cl_int nbvh = s->t.nbvh, nsurfaces = s->t.nsurfaces, nsolids = s->t.nsolids + 1;
-    cl_int cand_cap = b->cand_cap, break_cap = b->break_cap;
+    cl_int cand_cap = b->cand_cap;
     struct {
         int index;
         size_t size;
@@ -142,8 +144,8 @@ static iacsg_status set_scene_args(iacsg_renderer *r, const iacsg_view *view, co
                 {13, sizeof(cl_mem), &s->solid_items}, {14, sizeof(cl_mem), &s->surfaces},
                 {15, sizeof nsurfaces, &nsurfaces},    {16, sizeof(cl_mem), &s->albedo},
                 {17, sizeof(cl_mem), &b->cand_solid},  {18, sizeof(cl_mem), &b->cand_range},
-                {19, sizeof cand_cap, &cand_cap},      {20, sizeof(cl_mem), &b->break_t},
-                {21, sizeof(cl_mem), &b->break_info},  {22, sizeof break_cap, &break_cap},
+                {19, sizeof(cl_mem), &b->cand_pos},    {20, sizeof(cl_mem), &b->cand_level},
+                {21, sizeof(cl_mem), &b->cand_index},  {22, sizeof cand_cap, &cand_cap},
                 {23, sizeof(cl_mem), &b->state},       {24, sizeof nsolids, &nsolids},
                 {25, sizeof(cl_mem), &b->rgb},         {26, sizeof(cl_mem), b->depth ? &b->depth : NULL},
                 {27, sizeof(cl_mem), b->normal ? &b->normal : NULL},
@@ -302,10 +304,10 @@ fail:
 static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_buffers *b, iacsg_error *err) {
     size_t groups_x = ((size_t)view->width + PACKET_W - 1) / PACKET_W;
     size_t packet_rows = ((size_t)view->height + PACKET_H - 1) / PACKET_H;
-    double per_row = (double)groups_x * (double)slot_bytes(r, b->cand_cap, b->break_cap);
+    double per_row = (double)groups_x * (double)slot_bytes(r, b->cand_cap);
     size_t band = (size_t)fmax(1, fmin((double)(view->progress ? 2 : 16), SCENE_SCRATCH_BUDGET / per_row));
     band = band < packet_rows ? band : packet_rows;
-    iacsg_status st = scratch_buffers(r, b, groups_x * band, b->cand_cap, b->break_cap, err);
+    iacsg_status st = scratch_buffers(r, b, groups_x * band, b->cand_cap, err);
     if (st == IACSG_OK)
         st = zero_count(r, b->nlist[0], err);
     if (st == IACSG_OK)
@@ -340,17 +342,12 @@ static iacsg_status retrace(iacsg_renderer *r, const iacsg_view *view, scene_buf
         if (listed == 0)
             return IACSG_OK;
         f->retraced_rays += listed;
-        int cand_cap = 4 * b->cand_cap, break_cap = 4 * b->break_cap;
-        if (cand_cap > r->scene->t.nsolids + 1)
-            cand_cap = r->scene->t.nsolids + 1; /* a ray cannot meet more */
-        if (break_cap > SCENE_MAX_BREAKS)
-            return iacsg_error_set(err, IACSG_ERR_LIMIT, 0, 0,
-                                   "%d rays need more than %d breaks of the solids' states (the segment path's "
-                                   "per-ray limit): use a larger -eps or fewer solids along a ray",
-                                   (int)listed, b->break_cap);
+        int cand_cap = 4 * b->cand_cap; /* a ray meets at most every solid: this ends */
+        if (cand_cap > r->scene->t.nsolids)
+            cand_cap = r->scene->t.nsolids;
         size_t slots = ((size_t)listed + PACKET_LANES - 1) / PACKET_LANES;
-        size_t fit = (size_t)fmax(1, SCENE_SCRATCH_BUDGET / (double)slot_bytes(r, cand_cap, break_cap));
-        iacsg_status st = scratch_buffers(r, b, slots < fit ? slots : fit, cand_cap, break_cap, err);
+        size_t fit = (size_t)fmax(1, SCENE_SCRATCH_BUDGET / (double)slot_bytes(r, cand_cap));
+        iacsg_status st = scratch_buffers(r, b, slots < fit ? slots : fit, cand_cap, err);
         if (st == IACSG_OK)
             st = set_scene_args(r, view, b, err);
         if (st == IACSG_OK)
@@ -446,7 +443,6 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
                              view->height);
     scene_buffers b = {0};
     b.cand_cap = r->config.ray_candidates > 0 ? r->config.ray_candidates : SCENE_RAY_CANDIDATES;
-    b.break_cap = r->config.ray_breaks > 0 ? r->config.ray_breaks : SCENE_RAY_BREAKS;
     if (st == IACSG_OK)
         st = frame_buffers_of(r, view, params, n, frame, &b, err);
     double t0 = render_now_seconds();
@@ -459,7 +455,7 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
     if (st == IACSG_OK) {
         frame->render_seconds = render_now_seconds() - t0;
         frame->rays = (long long)n;
-        frame->ray_buffer_bytes = (long long)slot_bytes(r, b.cand_cap, b.break_cap);
+        frame->ray_buffer_bytes = (long long)slot_bytes(r, b.cand_cap);
         summarize(overlap, counts, frame->ids, n, frame);
         if (view->no_ids) {
             free(frame->ids);
