@@ -43,7 +43,8 @@ static inline void ref_check_scene(const char *name, ref_scene *rs, const iacsg_
             ref_pixel_ray(p, &view, i, j, &ray);
             long double t0 = 0, t1 = 0, ts = INFINITY;
             int inside = ref_clip(view.bounds, &ray, &t0, &t1);
-            int solid = -1, id = inside ? ref_first_item(rs, &ray, t0, t1, &ts, &solid) : -1;
+            ref_set_ray(rs, &ray);
+            int solid = -1, id = inside ? ref_first_item(rs, t0, t1, &ts, &solid) : -1;
             size_t px = (size_t)j * REF_SIZE + (size_t)i;
             int got = (int)fr.ids[px];
             double depth = fr.depth[px];

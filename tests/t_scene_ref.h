@@ -6,7 +6,8 @@
  *
  *   ref_solid         a sphere |p - c| < r, a box |p_k - c_k| < a_k, a half-space n.p < h
  *   ref_solid_expr    the solid in the scene language (its numbers are dyadic: the text is exact)
- *   ref_span          the solid's inside along the ray, the open interval (in, out)
+ *   ref_span          the solid's inside along the ray, the open interval (in, out); ref_set_ray takes them all
+ *                     for one ray, for the functions below
  *   ref_first_claim   the first partition inside the bounds that a region claims: start, end, region
  *   ref_surface_first the first crossing of a surface solid where its condition holds
  *   ref_first_item    the first of them, regions and surfaces
@@ -133,6 +134,9 @@ typedef struct {
     ref_solid solids[REF_MAX_SOLIDS];
     int nsolids;
     iacsg_scene *scene;
+    /* the insides (ref_span) of every solid along the ray last given to ref_set_ray */
+    unsigned char meets[REF_MAX_SOLIDS];
+    long double in[REF_MAX_SOLIDS], out[REF_MAX_SOLIDS];
 } ref_scene;
 
 static inline void ref_scene_init(ref_scene *rs) {
@@ -206,15 +210,26 @@ static inline int ref_add_surface(ref_scene *rs, int solid, const char *conditio
     return id;
 }
 
-/* Whether the condition at `root` holds at the point t of the ray, each solid's side decided by its span (on a
- * crossing neither side). */
-static inline int ref_holds_at(const ref_scene *rs, int root, const ref_ray *ray, long double t) {
-    signed char sign[REF_MAX_SOLIDS];
+/* Takes the insides of every solid along the ray, for the functions below. */
+static inline void ref_set_ray(ref_scene *rs, const ref_ray *ray) {
+    for (int k = 0; k < rs->nsolids; k++)
+        rs->meets[k] = (unsigned char)ref_span(&rs->solids[k], ray, 0, &rs->in[k], &rs->out[k]);
+}
+
+/* The side of each solid at the point t of the ray: -1 inside, 1 outside, 0 on its boundary. */
+static inline void ref_signs_at(const ref_scene *rs, long double t, signed char *sign) {
     for (int k = 0; k < rs->nsolids; k++) {
-        long double in, out;
-        int meets = ref_span(&rs->solids[k], ray, 0, &in, &out);
-        sign[k] = (signed char)(meets && in < t && t < out ? -1 : meets && (t == in || t == out) ? 0 : 1);
+        int meets = rs->meets[k];
+        sign[k] = (signed char)(meets && rs->in[k] < t && t < rs->out[k] ? -1
+                                : meets && (t == rs->in[k] || t == rs->out[k]) ? 0
+                                                                               : 1);
     }
+}
+
+/* Whether the condition at `root` holds at the point t of the ray. */
+static inline int ref_holds_at(const ref_scene *rs, int root, long double t) {
+    signed char sign[REF_MAX_SOLIDS];
+    ref_signs_at(rs, t, sign);
     return scene_tree_eval(rs->scene, root, sign);
 }
 
@@ -239,17 +254,15 @@ static inline int ref_cmp_crossing(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
-static inline int ref_crossings(const ref_scene *rs, const ref_ray *ray, long double t0, long double t1,
-                                ref_crossing *out) {
+static inline int ref_crossings(const ref_scene *rs, long double t0, long double t1, ref_crossing *out) {
     int n = 0;
     for (int k = 0; k < rs->nsolids; k++) {
-        long double in, out_t;
-        if (!ref_span(&rs->solids[k], ray, 0, &in, &out_t))
+        if (!rs->meets[k])
             continue;
-        if (in > t0 && in < t1)
-            out[n++] = (ref_crossing){in, k};
-        if (out_t > t0 && out_t < t1)
-            out[n++] = (ref_crossing){out_t, k};
+        if (rs->in[k] > t0 && rs->in[k] < t1)
+            out[n++] = (ref_crossing){rs->in[k], k};
+        if (rs->out[k] > t0 && rs->out[k] < t1)
+            out[n++] = (ref_crossing){rs->out[k], k};
     }
     qsort(out, (size_t)n, sizeof *out, ref_cmp_crossing);
     return n;
@@ -258,17 +271,19 @@ static inline int ref_crossings(const ref_scene *rs, const ref_ray *ray, long do
 /* The first partition of (t0, t1) that a region claims: its start, end and region (the first declared of those
  * whose tree holds at its midpoint), and the solid whose boundary it starts at (-1: the bounds); returns -1 when
  * none does. */
-static inline int ref_first_claim(const ref_scene *rs, const ref_ray *ray, long double t0, long double t1,
-                                  long double *start, long double *end, int *solid) {
+static inline int ref_first_claim(const ref_scene *rs, long double t0, long double t1, long double *start,
+                                  long double *end, int *solid) {
     static ref_crossing c[2 * REF_MAX_SOLIDS + 2];
-    int n = ref_crossings(rs, ray, t0, t1, c);
+    signed char sign[REF_MAX_SOLIDS];
+    int n = ref_crossings(rs, t0, t1, c);
     for (int k = 0; k <= n; k++) {
         long double a = k == 0 ? t0 : c[k - 1].t, b = k == n ? t1 : c[k].t;
         if (!(a < b))
             continue;
+        ref_signs_at(rs, (a + b) / 2, sign);
         for (int item = 0; item < rs->scene->nitems; item++) {
             const scene_item *it = &rs->scene->items[item];
-            if (it->kind == SCENE_REGION && ref_holds_at(rs, it->tree, ray, (a + b) / 2)) {
+            if (it->kind == SCENE_REGION && scene_tree_eval(rs->scene, it->tree, sign)) {
                 *start = a;
                 *end = b;
                 *solid = k == 0 ? -1 : c[k - 1].solid;
@@ -280,15 +295,13 @@ static inline int ref_first_claim(const ref_scene *rs, const ref_ray *ray, long 
 }
 
 /* The first crossing in (t0, t1) of surface item `item`'s solid where its condition holds; returns 0 if none. */
-static inline int ref_surface_first(const ref_scene *rs, int item, const ref_ray *ray, long double t0,
-                                    long double t1, long double *t) {
+static inline int ref_surface_first(const ref_scene *rs, int item, long double t0, long double t1, long double *t) {
     const scene_item *it = &rs->scene->items[item];
-    long double in, out;
-    if (!ref_span(&rs->solids[it->solid], ray, 0, &in, &out))
+    if (!rs->meets[it->solid])
         return 0;
-    long double cand[2] = {in, out};
+    long double cand[2] = {rs->in[it->solid], rs->out[it->solid]};
     for (int k = 0; k < 2; k++)
-        if (cand[k] > t0 && cand[k] < t1 && (it->tree < 0 || ref_holds_at(rs, it->tree, ray, cand[k]))) {
+        if (cand[k] > t0 && cand[k] < t1 && (it->tree < 0 || ref_holds_at(rs, it->tree, cand[k]))) {
             *t = cand[k];
             return 1;
         }
@@ -298,14 +311,13 @@ static inline int ref_surface_first(const ref_scene *rs, int item, const ref_ray
 /* The first item the ray meets in (t0, t1): a region's first claimed partition or a surface's first kept point,
  * the earlier (the first declared on a tie), with the solid whose boundary is there (-1: the bounds); returns -1
  * when none. */
-static inline int ref_first_item(const ref_scene *rs, const ref_ray *ray, long double t0, long double t1,
-                                 long double *t, int *solid) {
+static inline int ref_first_item(const ref_scene *rs, long double t0, long double t1, long double *t, int *solid) {
     long double start, end;
-    int id = ref_first_claim(rs, ray, t0, t1, &start, &end, solid);
+    int id = ref_first_claim(rs, t0, t1, &start, &end, solid);
     *t = id >= 0 ? start : INFINITY;
     for (int item = 0; item < rs->scene->nitems; item++) {
         long double ts;
-        if (rs->scene->items[item].kind == SCENE_SURFACE && ref_surface_first(rs, item, ray, t0, t1, &ts) &&
+        if (rs->scene->items[item].kind == SCENE_SURFACE && ref_surface_first(rs, item, t0, t1, &ts) &&
             (ts < *t || (ts == *t && item < id))) {
             *t = ts;
             *solid = rs->scene->items[item].solid;
@@ -351,7 +363,7 @@ static inline long double ref_distance(const ref_solid *s, const long double p[3
 static inline int ref_ambiguous(const ref_scene *rs, const ref_ray *ray, long double t0, long double t1,
                                 long double until, long double margin) {
     static ref_crossing c[2 * REF_MAX_SOLIDS + 2];
-    int n = ref_crossings(rs, ray, t0 - margin, t1 + margin, c);
+    int n = ref_crossings(rs, t0 - margin, t1 + margin, c);
     for (int k = 0; k < n && c[k].t <= until + margin; k++) {
         if (fabsl(c[k].t - t0) <= margin || fabsl(c[k].t - t1) <= margin) /* at the bounds' faces */
             return 1;
@@ -360,8 +372,8 @@ static inline int ref_ambiguous(const ref_scene *rs, const ref_ray *ray, long do
                 return 1;
     }
     for (int k = 0; k < rs->nsolids; k++) {
-        long double in, out, gin, gout;
-        if (!ref_span(&rs->solids[k], ray, 0, &in, &out) && ref_span(&rs->solids[k], ray, margin, &gin, &gout) &&
+        long double gin, gout;
+        if (!rs->meets[k] && ref_span(&rs->solids[k], ray, margin, &gin, &gout) &&
             gin <= until + margin && gout >= t0)
             return 1;
     }
