@@ -1,7 +1,8 @@
 /* implicits/scene_emit.c -- see scene_emit.h. A switch over the solid's number: the kernels call one function
- * whatever the solid. The dispatchers are not inlined: the kernels call them from several places, and each
- * inlined copy of 1000 solids' code cost LLVM most of a minute and a half. Outside 0..nsolids-1 the enclosure
- * is everything, which rejects nothing. */
+ * whatever the solid, and each solid's code is a function of its own that is not inlined: LLVM's time grows
+ * faster than linearly in a function's length, and a switch holding 1000 spheres' code inline, inlined again
+ * where the kernels call it, took minutes to build. Outside 0..nsolids-1 the enclosure is everything, which
+ * rejects nothing. */
 #include "scene_emit.h"
 #include "strbuf.h"
 #include <stdio.h>
@@ -21,16 +22,24 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
         }
         strbuf_printf(&b, "%s", code);
         free(code);
+        /* each solid in functions of its own, which the dispatchers call */
+        strbuf_printf(&b,
+                      "__attribute__((noinline)) ia_interval scene_s%d_F_call(ia_interval x, ia_interval y, "
+                      "ia_interval z, ia_interval t) {\n    return scene_s%d_F(x, y, z, t);\n}\n"
+                      "__attribute__((noinline)) ia_real scene_s%d_f_grad_call(ia_real x, ia_real y, ia_real z, "
+                      "ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {\n"
+                      "    return scene_s%d_f_grad(x, y, z, t, gx, gy, gz);\n}\n",
+                      k, k, k, k);
     }
-    strbuf_printf(&b, "__attribute__((noinline)) ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, "
+    strbuf_printf(&b, "IA_FN ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, "
                       "ia_interval t) {\n    switch (k) {\n");
     for (int k = 0; k < s->nsolids; k++)
-        strbuf_printf(&b, "    case %d: return scene_s%d_F(x, y, z, t);\n", k, k);
+        strbuf_printf(&b, "    case %d: return scene_s%d_F_call(x, y, z, t);\n", k, k);
     strbuf_printf(&b, "    }\n    return ia_make(-IA_INF, IA_INF);\n}\n"
-                      "__attribute__((noinline)) ia_real scene_solid_f_grad(int k, ia_real x, ia_real y, ia_real z, ia_real t, "
+                      "IA_FN ia_real scene_solid_f_grad(int k, ia_real x, ia_real y, ia_real z, ia_real t, "
                       "ia_real *gx, ia_real *gy, ia_real *gz) {\n    switch (k) {\n");
     for (int k = 0; k < s->nsolids; k++)
-        strbuf_printf(&b, "    case %d: return scene_s%d_f_grad(x, y, z, t, gx, gy, gz);\n", k, k);
+        strbuf_printf(&b, "    case %d: return scene_s%d_f_grad_call(x, y, z, t, gx, gy, gz);\n", k, k);
     strbuf_printf(&b, "    }\n    *gx = *gy = *gz = 0;\n    return 0;\n}\n");
     *source = strbuf_finish(&b);
     return *source ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory generating code");

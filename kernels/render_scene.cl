@@ -41,6 +41,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                      {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first, cand_index + first},
                      cand_cap,
                      0,
+                     0,
                      state + slot * nsolids,
                      0,
                      0,

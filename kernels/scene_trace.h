@@ -1,6 +1,6 @@
-/* kernels/scene_trace.h -- one ray of the segment path: its candidates (bvh.h), their walks woven in t order
- * (segments.h, weave.h) until a region claims a partition; then the surfaces (surface.h), each asked for its
- * first kept point before that.
+/* kernels/scene_trace.h -- one ray of the segment path: its candidates (bvh.h, taken nearest first) and their
+ * walks woven in t order (segments.h, weave.h) until a region claims a partition; then the surfaces (surface.h),
+ * each asked for its first kept point before that.
  *
  * Guarantee: the claimed partition's start is never after the first point of the ray (in [tn, tf]) where a
  * region is in: every solid's states tile its box's range without gaps, OUT outside it; a partition holding
@@ -10,7 +10,6 @@
  */
 #ifndef KERNELS_SCENE_TRACE_H
 #define KERNELS_SCENE_TRACE_H
-#include "bvh.h"
 #include "weave.h"
 #include "surface.h"
 
@@ -49,14 +48,19 @@ IA_FN int scene_trace_surfaces(const scene_view *v, const scene_ray *r, const ia
  * meets more boxes than r has room for. Leaves every solid's state OUT. */
 IA_FN int scene_trace_ray(const scene_view *v, scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real tn,
                           ia_real tf, weave_hit *hit) {
-    int n = bvh_candidates(v->box, v->link, v->nodes, o, d, tn, tf, r->walks.solid, r->walks.range, r->cand_cap);
-    if (n < 0)
-        return SCENE_TRACE_OVERFLOW;
-    r->ncand = n;
-    int found = weave_ray(r, o, d, tf, v->eps, v->time, hit);
-    for (int c = 0; c < n; c++)
+    bvh_walk b;
+    b.box = v->box;
+    b.link = v->link;
+    b.nodes = v->nodes;
+    b.r = bvh_ray_of(d);
+    b.o = o;
+    b.d = d;
+    b.tn = tn;
+    b.tf = tf;
+    int found = weave_ray(r, &b, v->eps, v->time, hit);
+    for (int c = 0; c < r->nstarted; c++)
         r->state[r->walks.solid[c]] = SCENE_OUT;
-    return scene_trace_surfaces(v, r, o, d, tn, tf, found, hit);
+    return found < 0 ? SCENE_TRACE_OVERFLOW : scene_trace_surfaces(v, r, o, d, tn, tf, found, hit);
 }
 
 #endif

@@ -14,6 +14,7 @@
 #define KERNELS_WEAVE_H
 #include "classify.h"
 #include "segments.h"
+#include "bvh.h"
 
 /* The scene's tables and one ray's buffers (scene_data.h). */
 typedef struct {
@@ -22,7 +23,7 @@ typedef struct {
     const KERNEL_GLOBAL int *solid_items_start; /* solid k's regions: solid_items[start[k] .. start[k + 1]) */
     const KERNEL_GLOBAL int *solid_items;
     segments_walks walks; /* the candidates (bvh.h) and their walks */
-    int cand_cap, ncand;
+    int cand_cap, ncand, nstarted; /* the walks started are the first nstarted */
     KERNEL_GLOBAL unsigned char *state; /* per solid of the scene, all OUT between rays */
     kernel_u32 evals, segments, partitions;
 } scene_ray;
@@ -39,7 +40,7 @@ typedef struct {
 /* The region that claims the current partition (returns 0 when none may be in), and an overlapping one. */
 IA_FN int weave_claim(const scene_ray *r, int *winner, int *other) {
     int may = WEAVE_NONE, first = WEAVE_NONE, second = WEAVE_NONE; /* first, second: certainly in */
-    for (int c = 0; c < r->ncand; c++) {
+    for (int c = 0; c < r->nstarted; c++) {
         int k = r->walks.solid[c];
         if (r->state[k] == SCENE_OUT)
             continue;
@@ -66,28 +67,66 @@ IA_FN int weave_claim(const scene_ray *r, int *winner, int *other) {
     return 1;
 }
 
-/* The candidate whose walk is the least advanced (the least position), or -1 when all are done. */
-IA_FN int weave_next_walk(const scene_ray *r) {
+/* Brings the pending entry (bvh.h) with the least range start to position nstarted, expanding the BVH nodes that
+ * come first until it is a solid (or none is left). Returns 0 when the pending entries overflow. */
+IA_FN int weave_next_entry(scene_ray *r, const bvh_walk *b) {
+    segments_walks *w = &r->walks;
+    for (;;) {
+        int c = r->nstarted, best = c;
+        if (c >= r->ncand)
+            return 1;
+        for (int k = c + 1; k < r->ncand; k++)
+            best = w->range[2 * k] < w->range[2 * best] ? k : best;
+        int solid = w->solid[c];
+        ia_real start = w->range[2 * c], width = w->range[2 * c + 1];
+        w->solid[c] = w->solid[best];
+        w->range[2 * c] = w->range[2 * best];
+        w->range[2 * c + 1] = w->range[2 * best + 1];
+        w->solid[best] = solid;
+        w->range[2 * best] = start;
+        w->range[2 * best + 1] = width;
+        if (w->solid[c] >= 0)
+            return 1;
+        if (!bvh_expand(b, c, w->solid, w->range, &r->ncand, r->cand_cap))
+            return 0;
+    }
+}
+
+/* The candidate whose walk is the least advanced (the least position; or the next pending solid at its range's
+ * start, which it then starts), or -1 when all are done; -2 when the pending entries overflow. */
+IA_FN int weave_next_walk(scene_ray *r, const bvh_walk *b) {
     int best = -1;
     ia_real least = IA_INF;
-    for (int c = 0; c < r->ncand; c++)
+    for (int c = 0; c < r->nstarted; c++)
         if (r->walks.pos[c] < least) {
             least = r->walks.pos[c];
             best = c;
         }
+    if (r->nstarted < r->ncand && r->walks.range[2 * r->nstarted] <= least) {
+        best = r->nstarted++;
+        segments_start(&r->walks, best);
+        if (!weave_next_entry(r, b))
+            return -2;
+    }
     return best;
 }
 
-/* Weaves the candidates' walks along the ray over [.., tf]: returns 1 at the first claimed partition (*hit),
- * 0 when no partition starting before tf is claimed. */
-IA_FN int weave_ray(scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real tf, ia_real eps, ia_real time,
-                    weave_hit *hit) {
+/* Weaves the candidates' walks along the ray over [tn, tf] (b): returns 1 at the first claimed partition
+ * (*hit), 0 when no partition starting before tf is claimed, -1 when the ray meets more boxes than r has room
+ * for. */
+IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_real time, weave_hit *hit) {
+    const ia_real *o = b->o, *d = b->d;
+    ia_real tf = b->tf;
     int pending = 0, pending_solid = -1; /* a partition starts at pending_t, not yet classified */
     ia_real pending_t = 0;
-    for (int c = 0; c < r->ncand; c++)
-        segments_start(&r->walks, c);
+    r->nstarted = 0;
+    r->ncand = 0;
+    if (!bvh_roots(b, r->walks.solid, r->walks.range, &r->ncand, r->cand_cap) || !weave_next_entry(r, b))
+        return -1;
     for (;;) {
-        int c = weave_next_walk(r);
+        int c = weave_next_walk(r, b);
+        if (c == -2)
+            return -1;
         ia_real at = c >= 0 ? r->walks.pos[c] : IA_INF;
         if (pending && at > pending_t) { /* no walk can change a state before `at` any more */
             r->partitions += 1;
