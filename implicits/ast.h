@@ -61,6 +61,10 @@ typedef struct {
 iacsg_status parse(const char *text, ast *out, iacsg_error *err);
 void ast_free(ast *a);
 
+/* The line of a binding or declaration of name after token tok, or 0 if there is none (for "used before its
+ * declaration"). */
+int ast_declaration_line(const ast *a, const char *name, long tok);
+
 /* The source text of a token, copied into buf (truncated to size). */
 const char *ast_token_text(const ast *a, long tok, char *buf, size_t size);
 

@@ -1,6 +1,8 @@
 /* implicits/lower.c -- stage 3: AST to DAG (see lower.h). The AST array is walked in order (children before
  * parents, statements in source order), so this is a loop. Library texts (library.c) are lowered the same way,
- * once per compile, with their parameters as OP_PARAM leaves; a call substitutes the arguments. */
+ * once per compile, with their parameters as OP_PARAM leaves; a call substitutes the arguments. A scene's names
+ * (bindings and declarations) share one table (names.c); each declaration is handed to the front end's hook
+ * (scene_parse.c) when its expressions are lowered. */
 #include "lower.h"
 #include "library.h"
 #include "names.h"
@@ -86,6 +88,9 @@ static const char *lib_kind_name(lib_kind k) {
 
 /* "unknown primitive 'tours', did you mean 'torus'?"; an operand of a region or condition is an unknown solid. */
 static int fail_unknown(lowering *l, long tok, const char *name, int called, int operand) {
+    int later = called || l->what[0] ? 0 : ast_declaration_line(l->a, name, tok);
+    if (later)
+        return fail(l, tok, IACSG_ERR_NAME, "'%s' is used before its declaration (line %d)", name, later);
     suggestion s;
     suggest_init(&s, name);
     for (int op = 0; op < OP_COUNT; op++)

@@ -1,6 +1,6 @@
-/* implicits/lower.h -- stage 3: AST to DAG. Resolves names (scene bindings and solids, variables, constants, functions of
- * ops.def, union/intersection/difference, the library), expands library calls by substitution, and builds the
- * hash-consed DAG in which equal subexpressions are one node. */
+/* implicits/lower.h -- stage 3: AST to DAG. Resolves names (scene bindings and solids, variables, constants,
+ * functions of ops.def, union/intersection/difference, the library), expands library calls by substitution,
+ * and builds the hash-consed DAG in which equal subexpressions are one node. */
 #ifndef IACSG_LOWER_H
 #define IACSG_LOWER_H
 #include "ast.h"

@@ -284,6 +284,7 @@ static int parse_number(parser *p, const char *what) {
 /* rgb(R, G, B) { KEYWORD number }, after "material NAME ="; the values become the node's arguments. */
 static int parse_material(parser *p, long name) {
     int base = p->npending;
+    skip_newlines(p);
     if (!at_word(p, p->pos, "rgb") || p->a->toks[p->pos + 1].kind != TOK_PUNCT || p->a->toks[p->pos + 1].ch != '(')
         return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected rgb(R, G, B), the material's colour");
     p->pos += 2;
@@ -305,7 +306,8 @@ static int parse_material(parser *p, long name) {
             return -1;
     }
     if (!at_statement_end(p))
-        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected a material keyword and its number, or the end of the statement");
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX,
+                       "expected a material keyword and its number, or the end of the statement");
     int first = commit_args(p, base);
     int m = first < 0 ? -1 : add_node(p, AST_MATERIAL, name, 0, -1, -1);
     if (m >= 0) {
@@ -392,7 +394,8 @@ static int parse_comparison(parser *p) {
     const token *zero = peek(p);
     char num[LEX_MAX_NUMBER + 1];
     if (zero->kind != TOK_NUM || strtod(ast_token_text(p->a, p->pos, num, sizeof num), NULL) != 0)
-        return fail_at(p, zero, IACSG_ERR_SYNTAX, "a condition compares with 0 ('E < 0' or 'E > 0'; write 'E - c < 0')");
+        return fail_at(p, zero, IACSG_ERR_SYNTAX,
+                       "a condition compares with 0 ('E < 0' or 'E > 0'; write 'E - c < 0')");
     p->pos++;
     return add_node(p, AST_CMP, op, p->a->toks[op].ch, e, -1);
 }
@@ -586,6 +589,17 @@ void ast_free(ast *a) {
     memset(a, 0, sizeof *a);
 }
 
+int ast_declaration_line(const ast *a, const char *name, long tok) {
+    char text[LEX_MAX_NAME + 1];
+    for (int i = 0; i < a->count; i++) {
+        const ast_node *n = &a->nodes[i];
+        if ((n->kind == AST_BIND || (n->kind >= AST_MATERIAL && n->kind <= AST_SURFACE)) && n->tok > tok &&
+            strcmp(ast_token_text(a, n->tok, text, sizeof text), name) == 0)
+            return a->toks[n->tok].line;
+    }
+    return 0;
+}
+
 const char *ast_token_text(const ast *a, long tok, char *buf, size_t size) {
     const token *t = &a->toks[tok];
     size_t n = t->len < size - 1 ? t->len : size - 1;
@@ -611,7 +625,7 @@ char *ast_dump(const ast *a) {
         case AST_BIND: strbuf_printf(&b, "bind %s = n%d", ast_token_text(a, n->tok, name, sizeof name), n->a); break;
         case AST_CALL:
         case AST_MATERIAL:
-            strbuf_printf(&b, "%s %s(", n->kind == AST_CALL ? "call" : "material rgb",
+            strbuf_printf(&b, n->kind == AST_CALL ? "call %s(" : "material %s = rgb(",
                           ast_token_text(a, n->tok, name, sizeof name));
             for (int k = 0; k < n->nargs; k++) {
                 const ast_arg *g = &a->args[n->first + k];

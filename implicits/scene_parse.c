@@ -8,7 +8,8 @@
  * Solids: a `solid` declaration makes a named one; a region's or condition's operand that is not a solid's name
  * is an expression written inline and makes an unnamed one, unless an earlier solid has the same DAG node (the
  * DAG is hash-consed, so `sphere(1.2)` written twice, or a binding of it, is one solid). Every solid's index fits
- * the nodes' 29-bit operand.
+ * the nodes' 29-bit operand. Solids that no region or surface uses are dropped at the end; the others keep their
+ * order.
  */
 #include "ast.h"
 #include "expr_internal.h"
@@ -190,6 +191,9 @@ static int material_ref(builder *b, long tok) {
         return e->index;
     if (e)
         return fail_at(b, tok, IACSG_ERR_NAME, "'%s' is a %s, not a material", name, name_kind_word(e->kind));
+    int later = ast_declaration_line(b->a, name, tok);
+    if (later)
+        return fail_at(b, tok, IACSG_ERR_NAME, "'%s' is used before its declaration (line %d)", name, later);
     suggestion s;
     suggest_init(&s, name);
     for (int i = 0; i < b->names->nslots; i++)
@@ -242,8 +246,11 @@ static int declare_material(builder *b, const ast_node *n, const char *name) {
             if (s.best)
                 return fail_at(b, g->keyword, IACSG_ERR_NAME, "unknown material keyword '%s', did you mean '%s'?",
                                word, s.best);
-            return fail_at(b, g->keyword, IACSG_ERR_NAME, "unknown material keyword '%s' (%s, %s)", word,
-                           material_keywords[0].name, material_keywords[1].name);
+            char known[160] = "";
+            for (j = 0; j < NKEYWORDS; j++)
+                snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", j ? ", " : "",
+                         material_keywords[j].name);
+            return fail_at(b, g->keyword, IACSG_ERR_NAME, "unknown material keyword '%s' (%s)", word, known);
         }
         if (given[j] >= 0)
             return fail_at(b, g->keyword, IACSG_ERR_ARG, "'%s' is given twice for material '%s'", word, name);
@@ -300,7 +307,42 @@ static int declare(void *ctx, const ast *a, int node, const int *values, const n
     return index;
 }
 
-/* Compiles every solid out of the shared DAG d, or, in a plain scene (no items), makes d the final
+/* Drops the solids that no region or surface uses (those used only in other solids' expressions, or not at
+ * all): the renderer finds segments for every solid of the scene. The others keep their order. */
+static iacsg_status drop_unused_solids(builder *b, iacsg_error *err) {
+    iacsg_scene *s = b->s;
+    int *index = calloc((size_t)s->nsolids + 1, sizeof *index); /* 1 + the new index, 0 while unused */
+    if (!index)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory building the scene");
+    /* every node belongs to a region's tree or a surface's condition */
+    for (int k = 0; k < s->nnodes; k++)
+        if (CSG_NODE_OP(s->nodes[k]) <= CSG_OUTSIDE)
+            index[CSG_NODE_ARG(s->nodes[k])] = 1;
+    for (int k = 0; k < s->nitems; k++)
+        if (s->items[k].kind == SCENE_SURFACE)
+            index[s->items[k].solid] = 1;
+    int n = 0;
+    for (int k = 0; k < s->nsolids; k++) {
+        if (!index[k]) {
+            free(s->solids[k].name);
+            continue;
+        }
+        s->solids[n] = s->solids[k];
+        b->solid_node[n] = b->solid_node[k];
+        index[k] = ++n;
+    }
+    s->nsolids = n;
+    for (int k = 0; k < s->nnodes; k++)
+        if (CSG_NODE_OP(s->nodes[k]) <= CSG_OUTSIDE)
+            s->nodes[k] = CSG_NODE(CSG_NODE_OP(s->nodes[k]), (uint32_t)index[CSG_NODE_ARG(s->nodes[k])] - 1);
+    for (int k = 0; k < s->nitems; k++)
+        if (s->items[k].kind == SCENE_SURFACE)
+            s->items[k].solid = index[s->items[k].solid] - 1;
+    free(index);
+    return IACSG_OK;
+}
+
+/* Compiles every solid used out of the shared DAG d, or, in a plain scene (no items), makes d the final
  * expression's and drops the solids (there they are bindings). */
 static iacsg_status compile(builder *b, dag *d, int root, const char *name, iacsg_error *err) {
     iacsg_scene *s = b->s;
@@ -310,12 +352,11 @@ static iacsg_status compile(builder *b, dag *d, int root, const char *name, iacs
         s->nsolids = 0;
         return expr_from_dag(d, root, name, 1, &s->expr, err);
     }
-    for (int k = 0; k < s->nsolids; k++) {
-        iacsg_status st = expr_from_dag(d, b->solid_node[k], name, 0, &s->solids[k].expr, err);
-        if (st != IACSG_OK)
-            return st;
+    iacsg_status st = drop_unused_solids(b, err);
+    for (int k = 0; k < s->nsolids && st == IACSG_OK; k++) {
+        st = expr_from_dag(d, b->solid_node[k], name, 0, &s->solids[k].expr, err);
     }
-    return IACSG_OK;
+    return st;
 }
 
 /* The scene of text; with expression_only, a region or surface is an error (iacsg_expr_parse). */

@@ -2,6 +2,7 @@
  * issue's example scene, how operands are split into solids, conditions, the trees' meaning (scene_tree_eval over
  * every sign combination against the intended boolean function), the 32-bit node encoding, plain scenes, and
  * every error with its message and place. */
+#include "implicits/expr_internal.h"
 #include "implicits/scene.h"
 #include "test.h"
 #include <math.h>
@@ -169,8 +170,19 @@ TEST(scene_parse_operands) {
     check_solid_value(s, 1, p, -0.25); /* the parenthesised arithmetic is one solid */
     iacsg_scene_destroy(s);
 
-    s = parse_ok("region r =\n  sphere |\n  box");
-    CHECK(s->nsolids == 2 && s->solids[1].line == 3, "a region's expression over three lines");
+    /* solids no region or surface uses are dropped, the others keep their order */
+    s = parse_ok("solid a = sphere\nsolid b = box\nsolid c = a | b\nsolid d = y\nregion r = c & x\nsurface s = d");
+    CHECK(s->nsolids == 3 && strcmp(s->solids[0].name, "c") == 0 && strcmp(s->solids[1].name, "d") == 0 &&
+              s->solids[2].name == NULL && s->solids[2].line == 5,
+          "%d solids after dropping the unused ones", s->nsolids);
+    CHECK(s->nodes[1] == CSG_NODE(CSG_INSIDE, 0) && s->nodes[2] == CSG_NODE(CSG_INSIDE, 2) && s->items[1].solid == 1,
+          "the trees and the surface name the renumbered solids");
+    const double q[3] = {0.5, 0.25, 0};
+    check_solid_value(s, 0, q, fmin(0.25 + 0.0625 - 1, fmax(-0.5, -0.75)));
+    iacsg_scene_destroy(s);
+
+    s = parse_ok("material m =\n  rgb(1, 1, 1)\nregion r =\n  sphere |\n  box");
+    CHECK(s->nsolids == 2 && s->solids[1].line == 5, "a region's expression over three lines");
     iacsg_scene_destroy(s);
 
     /* | loosest, then &, then \ (as in expressions); parentheses group; calls and arithmetic are operands */
@@ -237,8 +249,8 @@ TEST(scene_parse_plain) {
         CHECK(s->nitems == 0 && s->nsolids == 0 && s->expr, "'%s': %d items, %d solids", texts[k], s->nitems,
               s->nsolids);
         char *a, *b;
-        CHECK(iacsg_expr_emit_cl(s->expr, "p", &a, NULL) == IACSG_OK && iacsg_expr_emit_cl(e, "p", &b, NULL) == IACSG_OK,
-              "emit");
+        CHECK(iacsg_expr_emit_cl(s->expr, "p", &a, NULL) == IACSG_OK, "emit");
+        CHECK(iacsg_expr_emit_cl(e, "p", &b, NULL) == IACSG_OK, "emit");
         CHECK(strcmp(a, b) == 0, "'%s': the scene's expression differs from iacsg_expr_parse's", texts[k]);
         free(a);
         free(b);
@@ -262,17 +274,24 @@ TEST(scene_parse_errors) {
     expect_error("material red = rgb(1, 0, 0)\nregion r = sphere : rde", IACSG_ERR_NAME, 2, 21,
                  "unknown material 'rde', did you mean 'red'?");
     expect_error("region r = sphere : gold", IACSG_ERR_NAME, 1, 21, "unknown material 'gold'");
+    expect_error("region r = sphere : gold\nmaterial gold = rgb(1, 1, 0)", IACSG_ERR_NAME, 1, 21,
+                 "'gold' is used before its declaration (line 2)");
+    expect_error("region r = ball\nsolid ball = sphere", IACSG_ERR_NAME, 1, 12,
+                 "'ball' is used before its declaration (line 2)");
     expect_error("solid ball = sphere\nregion r = sphere : ball", IACSG_ERR_NAME, 2, 21,
                  "'ball' is a solid, not a material");
-    expect_error("material red = rgb(1, 0, 0)\nregion r = red", IACSG_ERR_NAME, 2, 12, "'red' is a material, not a solid");
+    expect_error("material red = rgb(1, 0, 0)\nregion r = red", IACSG_ERR_NAME, 2, 12,
+                 "'red' is a material, not a solid");
     expect_error("region r = sphere\nregion q = r & box", IACSG_ERR_NAME, 2, 12, "'r' is a region, not a solid");
     /* declared twice: any name, any kind */
     expect_error("material red = rgb(1, 0, 0)\nmaterial red = rgb(0, 1, 0)\nregion r = x", IACSG_ERR_NAME, 2, 10,
                  "'red' is already declared as a material (line 1)");
     expect_error("a = 1\nsolid a = sphere\na", IACSG_ERR_NAME, 2, 7, "'a' is already bound (line 1)");
     expect_error("solid a = sphere\na = 1\na", IACSG_ERR_NAME, 2, 1, "'a' is already declared as a solid (line 1)");
-    expect_error("region a = sphere\nsurface a = box", IACSG_ERR_NAME, 2, 9, "'a' is already declared as a region (line 1)");
-    expect_error("solid sphere = box\nbox", IACSG_ERR_NAME, 1, 7, "cannot name a solid 'sphere': it is a built-in name");
+    expect_error("region a = sphere\nsurface a = box", IACSG_ERR_NAME, 2, 9,
+                 "'a' is already declared as a region (line 1)");
+    expect_error("solid sphere = box\nbox", IACSG_ERR_NAME, 1, 7,
+                 "cannot name a solid 'sphere': it is a built-in name");
     /* missing parts */
     expect_error("region body =\n", IACSG_ERR_SYNTAX, 1, 13, "region 'body' has no expression after '='");
     expect_error("region body =\nregion plug = sphere", IACSG_ERR_SYNTAX, 1, 13,
@@ -280,7 +299,8 @@ TEST(scene_parse_errors) {
     expect_error("material m = rgb(1, 1, 1)\nregion body = : m", IACSG_ERR_SYNTAX, 2, 13,
                  "region 'body' has no expression after '='");
     expect_error("surface s = where x < 0", IACSG_ERR_SYNTAX, 1, 11, "surface 's' has no expression after '='");
-    expect_error("surface s = plane where", IACSG_ERR_SYNTAX, 1, 19, "'where' without a condition: write e.g. 'where ball < 0'");
+    expect_error("surface s = plane where", IACSG_ERR_SYNTAX, 1, 19,
+                 "'where' without a condition: write e.g. 'where ball < 0'");
     expect_error("material g = rgb(1, 1, 1)\nsurface s = plane where : g", IACSG_ERR_SYNTAX, 2, 19,
                  "'where' without a condition: write e.g. 'where ball < 0'");
     expect_error("region r = sphere :", IACSG_ERR_SYNTAX, 1, 20,
@@ -293,14 +313,16 @@ TEST(scene_parse_errors) {
                  "a condition compares with 0 ('E < 0' or 'E > 0'; write 'E - c < 0'), found '1'");
     expect_error("surface s = plane where sphere < 0 &", IACSG_ERR_SYNTAX, 1, 37,
                  "expected a comparison such as 'ball < 0', found the end of the input");
-    expect_error("surface s = plane where (sphere < 0", IACSG_ERR_SYNTAX, 1, 36, "expected ')', found the end of the input");
+    expect_error("surface s = plane where (sphere < 0", IACSG_ERR_SYNTAX, 1, 36,
+                 "expected ')', found the end of the input");
     /* materials */
     expect_error("material m = rgb(1.5, 0, 0)\nx", IACSG_ERR_ARG, 1, 18, "rgb component 1.5 is outside [0, 1]");
     expect_error("material m = rgb(0, -0.1, 0)\nx", IACSG_ERR_ARG, 1, 21, "rgb component -0.1 is outside [0, 1]");
     expect_error("material m = rgb(0.5, 0.5)", IACSG_ERR_SYNTAX, 1, 26, "rgb takes 3 numbers, found ')'");
     expect_error("material m = rgb(0.5, 0.5, 0.5, 1)", IACSG_ERR_SYNTAX, 1, 31, "rgb takes 3 numbers, found ','");
     expect_error("material m = rgb(0.5, x, 0.5)", IACSG_ERR_SYNTAX, 1, 23, "rgb takes 3 numbers, found 'x'");
-    expect_error("material m = 0.5", IACSG_ERR_SYNTAX, 1, 14, "expected rgb(R, G, B), the material's colour, found '0.5'");
+    expect_error("material m = 0.5", IACSG_ERR_SYNTAX, 1, 14,
+                 "expected rgb(R, G, B), the material's colour, found '0.5'");
     expect_error("material m = rgb(1, 1, 1) shine 3\nx", IACSG_ERR_NAME, 1, 27,
                  "unknown material keyword 'shine' (specular, shininess)");
     expect_error("material m = rgb(1, 1, 1) speculr 0.5\nx", IACSG_ERR_NAME, 1, 27,
@@ -322,6 +344,22 @@ TEST(scene_parse_errors) {
     expect_error("sphere < 0", IACSG_ERR_SYNTAX, 1, 8, "expected an operator or the end of the statement, found '<'");
     expect_error("region r = sphere < 0", IACSG_ERR_SYNTAX, 1, 19,
                  "expected an operator or the end of the statement, found '<'");
+}
+
+/* The AST dump shows the declarations and the set operations, conditions and operands. */
+TEST(scene_parse_dump) {
+    iacsg_error err = {0};
+    char *dump = iacsg_expr_dump("material m = rgb(1, 0.5, 0) specular 0.2\nsolid a = sphere\n"
+                                 "region r = a & box \\ (x + 1) : m\nsurface s = a where !(a < 0) | y > 0",
+                                 "ast", &err);
+    CHECK(dump, "%s", err.message);
+    static const char *const lines[] = {"n4 = material m = rgb(n0, n1, n2, specular=n3)\n", "n6 = solid a = n5\n",
+                                        "n7 = name a (operand)\n", "n12 = set n8 \\ n11\n", "n13 = set n7 & n12\n",
+                                        "n14 = region r = n13 : m\n", "n18 = not n17\n", "n20 = cmp n19 > 0\n",
+                                        "n21 = cond n18 | n20\n", "n22 = surface s = n15 where n21\n"};
+    for (int k = 0; k < (int)(sizeof lines / sizeof lines[0]); k++)
+        CHECK(strstr(dump, lines[k]), "the dump lacks \"%.*s\":\n%s", (int)strlen(lines[k]) - 1, lines[k], dump);
+    free(dump);
 }
 
 /* iacsg_expr_parse reads one expression (with bindings): a region or surface is refused at its keyword. */
@@ -356,8 +394,8 @@ TEST(scene_parse_many_regions) {
     CHECK(text, "out of memory");
     size_t len = 0;
     for (int k = 0; k < N; k++)
-        len += (size_t)snprintf(text + len, size - len, "solid s%d = move(sphere(0.1), %d, 0, 0)\nregion r%d = s%d & x\n",
-                                k, k, k, k);
+        len += (size_t)snprintf(text + len, size - len,
+                                "solid s%d = move(sphere(0.1), %d, 0, 0)\nregion r%d = s%d & x\n", k, k, k, k);
     clock_t t0 = clock();
     iacsg_scene *s = parse_ok(text);
     double ms = 1e3 * (double)(clock() - t0) / CLOCKS_PER_SEC;
@@ -435,4 +473,75 @@ TEST(scene_parse_examples) {
     CHECK(claimed > decided / 10, "only %d of %d points in a region", claimed, decided);
     iacsg_scene_destroy(s);
     test_note("machined part: %d grid points, %d in one region, none in two", decided, claimed);
+}
+
+/* A random boolean expression over the solids s0..s4, written fully parenthesised into text, and its value at
+ * the signs sign[]: a region's (| & \ over names) or a condition's (& | ! over comparisons < 0, > 0). */
+typedef struct {
+    char text[4096];
+    size_t len;
+} text_buf;
+
+static int random_bool(test_rng_t *rng, text_buf *t, int depth, int condition, const signed char *sign) {
+    int leaf = depth == 0 || test_rand_u64(rng) % 3 == 0;
+    if (leaf) {
+        int k = (int)(test_rand_u64(rng) % 5);
+        int above = condition && test_rand_u64(rng) % 2;
+        t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, condition ? "s%d %c 0" : "s%d", k,
+                                   above ? '>' : '<');
+        return above ? sign[k] > 0 : sign[k] < 0;
+    }
+    if (condition && test_rand_u64(rng) % 4 == 0) {
+        t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, "!(");
+        int v = !random_bool(rng, t, depth - 1, condition, sign);
+        t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, ")");
+        return v;
+    }
+    char op = "|&\\"[test_rand_u64(rng) % (condition ? 2 : 3)];
+    t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, "(");
+    int l = random_bool(rng, t, depth - 1, condition, sign);
+    t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, " %c ", op);
+    int r = random_bool(rng, t, depth - 1, condition, sign);
+    t->len += (size_t)snprintf(t->text + t->len, sizeof t->text - t->len, ")");
+    return op == '|' ? l || r : op == '&' ? l && r : l && !r;
+}
+
+/* Random regions and conditions: their trees compute, on every combination of the solids' signs, what the
+ * text says. The text is regenerated from the same random state for each combination. */
+TEST(scene_parse_random_trees) {
+    test_rng_t *rng = test_rng();
+    long n = test_iters(150), combos = 0;
+    for (long i = 0; i < n; i++) {
+        int condition = (int)(i % 2);
+        test_rng_t start = *rng;
+        signed char sign[5] = {0};
+        text_buf t = {.len = 0};
+        t.len = (size_t)snprintf(t.text, sizeof t.text, "solid s0 = x\nsolid s1 = y\nsolid s2 = z\n"
+                                                         "solid s3 = x + y\nsolid s4 = sphere\n%s",
+                                 condition ? "surface s = s0 + s1 + s2 + s3 + s4 where " : "region r = ");
+        size_t prefix = t.len;
+        random_bool(rng, &t, 5, condition, sign);
+        test_rng_t end = *rng;
+        iacsg_scene *s = parse_ok(t.text);
+        /* solids keep their declaration order; the surface's own solid comes last */
+        for (int c = 0; c < 243; c++, combos++) {
+            for (int k = 0, r = c; k < 5; k++, r /= 3)
+                sign[k] = (signed char)(r % 3 - 1);
+            int used[5] = {0};
+            for (int k = 0; k < s->nsolids; k++)
+                if (s->solids[k].name)
+                    used[s->solids[k].name[1] - '0'] = 1;
+            signed char mapped[6] = {0};
+            for (int k = 0, m = 0; k < 5; k++)
+                if (used[k])
+                    mapped[m++] = sign[k];
+            *rng = start;
+            t.len = prefix;
+            int want = random_bool(rng, &t, 5, condition, sign);
+            CHECK(scene_tree_eval(s, s->items[0].tree, mapped) == want, "combination %d of\n%s", c, t.text);
+        }
+        *rng = end;
+        iacsg_scene_destroy(s);
+    }
+    test_note("%ld random trees, %ld sign combinations", n, combos);
 }
