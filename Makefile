@@ -136,8 +136,10 @@ demo: deps
 	@$(MAKE) --no-print-directory $(BUILD)/iacsg
 	$(BUILD)/iacsg "min(sphere,torus)" -eps 1e-5
 
-# The examples' scenes (Fig. 2, 3, 7, 8 of the Hijazi seed) as one contact sheet, through the embedding example.
-GALLERY_SCENES = $(sort $(wildcard examples/*.csg))
+# The examples' scenes as one contact sheet, through the embedding example: the single expressions of Fig. 2, 3, 7
+# and 8 of the Hijazi seed, then the scenes of regions and surfaces (the segment path; Fig. 5 among them).
+SEGMENT_SCENES = examples/fig2_cube_sphere_regions.csg examples/machined_part.csg examples/icos.csg examples/sesc.csg
+GALLERY_SCENES = $(sort $(filter-out $(SEGMENT_SCENES),$(wildcard examples/*.csg))) $(SEGMENT_SCENES)
 $(BUILD)/examples/embed: examples/embed.c $(BUILD)/libiacsg.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -o $@ $< $(BUILD)/libiacsg.a $(LIBS)

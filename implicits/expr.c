@@ -1,39 +1,39 @@
-/* implicits/expr.c -- the public API of expr.h: runs the stages, evaluates on the host, finds bounds. */
+/* implicits/expr.c -- the public API of expr.h: compiles a lowered DAG (simplify, the tape), emits, evaluates on
+ * the host. Parsing text (iacsg_expr_parse) is in scene_parse.c, bounds in bounds.c. */
 #include "expr_internal.h"
 #include "ast.h"
 #include "emit.h"
 #include "eval.h"
-#include "lower.h"
 #include "simplify.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-iacsg_status iacsg_expr_parse(const char *text, const char *name, iacsg_expr **out, iacsg_error *err) {
-    iacsg_error local;
-    if (!err)
-        err = &local;
+iacsg_status expr_from_dag(dag *raw, int root, const char *name, int take, iacsg_expr **out, iacsg_error *err) {
     *out = NULL;
     iacsg_expr *e = calloc(1, sizeof *e);
     if (!e)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     dag_init(&e->raw);
     dag_init(&e->simple);
-    e->name = malloc(strlen(name ? name : "<expr>") + 1);
-    ast a;
-    iacsg_status st = e->name ? parse(text, &a, err) : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
-    if (st != IACSG_OK) {
-        iacsg_expr_destroy(e);
-        return st;
+    e->name = malloc(strlen(name) + 1);
+    if (e->name)
+        strcpy(e->name, name);
+    if (take) {
+        dag_free(&e->raw);
+        e->raw = *raw;
+        e->raw_root = root;
+        dag_init(raw);
+    } else {
+        static const int same[4] = {-1, -1, -1, -1};
+        e->raw_root = e->name ? dag_substitute(raw, root, &e->raw, same, NULL, 0, err) : -1;
     }
-    strcpy(e->name, name ? name : "<expr>");
-    e->raw_root = lower(&a, &e->raw, err);
-    ast_free(&a);
-    if (e->raw_root >= 0)
+    if (e->name && e->raw_root >= 0)
         e->root = simplify(&e->raw, e->raw_root, &e->simple, err);
-    if (e->raw_root < 0 || e->root < 0 || (e->count = dag_reachable(&e->simple, e->root, &e->order)) < 0) {
-        st = e->raw_root < 0 || e->root < 0 ? err->status
-                                            : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    if (!e->name || e->raw_root < 0 || e->root < 0 || (e->count = dag_reachable(&e->simple, e->root, &e->order)) < 0) {
+        iacsg_status st = e->name && (e->raw_root < 0 || e->root < 0)
+                              ? err->status
+                              : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
         iacsg_expr_destroy(e);
         return st;
     }

@@ -16,8 +16,9 @@
 
 typedef struct iacsg_expr iacsg_expr; /* a compiled expression or scene (opaque) */
 
-/* Parses an expression or a scene file's text (name is used in messages, e.g. the file name or "<expr>"). On
- * failure *out is NULL and err holds the message, line and column. */
+/* Parses an expression or a scene file's text (name is used in messages, e.g. the file name or "<expr>"). A
+ * text with regions or surfaces is refused (implicits/scene.h reads it). On failure *out is NULL and err holds
+ * the message, line and column. */
 iacsg_status iacsg_expr_parse(const char *text, const char *name, iacsg_expr **out, iacsg_error *err);
 void iacsg_expr_destroy(iacsg_expr *e);
 

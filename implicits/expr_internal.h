@@ -15,6 +15,10 @@ struct iacsg_expr {
     int count;
 };
 
+/* An expression of the sub-DAG of root in raw, simplified: raw is moved into it (and left empty) when take,
+ * else the sub-DAG is copied. name is copied. */
+iacsg_status expr_from_dag(dag *raw, int root, const char *name, int take, iacsg_expr **out, iacsg_error *err);
+
 /* The enclosure over vars = {x0, x1, y0, y1, z0, z1, t0, t1} (exact doubles; see eval.h). */
 iacsg_status iacsg_expr_eval_vars(const iacsg_expr *e, int fp64, const double vars[8], double out[2],
                                   iacsg_error *err);

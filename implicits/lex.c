@@ -125,7 +125,7 @@ long lex(const char *text, token **out, iacsg_error *err) {
                                        LEX_MAX_NAME),
                        -1;
             }
-        } else if (c && strchr("+-*/^(),=|&\\;", c)) {
+        } else if (c && strchr("+-*/^(),=|&\\;<>!:", c)) {
             t->kind = TOK_PUNCT;
             t->ch = c;
             t->len = 1;

@@ -7,7 +7,7 @@
 typedef enum {
     TOK_NUM,     /* 12, 0.5, .5, 1e-3 */
     TOK_NAME,    /* identifiers */
-    TOK_PUNCT,   /* one of + - * / ^ ( ) , = | & \ ; (the character is in `ch`) */
+    TOK_PUNCT,   /* one of + - * / ^ ( ) , = | & \ ; and, for scenes, < > ! : (the character is in `ch`) */
     TOK_NEWLINE, /* a line break outside parentheses: ends a scene statement */
     TOK_END
 } tok_kind;

@@ -1,8 +1,11 @@
 /* implicits/lower.c -- stage 3: AST to DAG (see lower.h). The AST array is walked in order (children before
  * parents, statements in source order), so this is a loop. Library texts (library.c) are lowered the same way,
- * once per compile, with their parameters as OP_PARAM leaves; a call substitutes the arguments. */
+ * once per compile, with their parameters as OP_PARAM leaves; a call substitutes the arguments. A scene's names
+ * (bindings and declarations) share one table (names.c); each declaration is handed to the front end's hook
+ * (scene_parse.c) when its expressions are lowered. */
 #include "lower.h"
 #include "library.h"
+#include "names.h"
 #include "suggest.h"
 #include <stdarg.h>
 #include <stdio.h>
@@ -25,54 +28,10 @@ typedef struct {
     iacsg_error *err;
 } lower_env;
 
-/* Scene bindings: name -> node, open addressing. */
-typedef struct {
-    char name[LEX_MAX_NAME + 1];
-    int node, line;
-} binding;
-typedef struct {
-    binding *slots;
-    int nslots, count;
-} binding_map;
-
-static unsigned long hash_name(const char *s) {
-    unsigned long h = 5381;
-    while (*s)
-        h = h * 33 + (unsigned char)*s++;
-    return h;
-}
-
-static binding *binding_find(binding_map *m, const char *name) {
-    if (m->nslots == 0)
-        return NULL;
-    for (unsigned long i = hash_name(name) & (unsigned long)(m->nslots - 1);; i = (i + 1) & (unsigned long)(m->nslots - 1))
-        if (m->slots[i].name[0] == '\0' || strcmp(m->slots[i].name, name) == 0)
-            return &m->slots[i];
-}
-
-static int binding_add(binding_map *m, const char *name, int node, int line) {
-    if ((m->count + 1) * 2 > m->nslots) {
-        binding_map bigger = {calloc((size_t)(m->nslots ? m->nslots * 2 : 64), sizeof(binding)),
-                              m->nslots ? m->nslots * 2 : 64, 0};
-        if (!bigger.slots)
-            return 0;
-        for (int i = 0; i < m->nslots; i++)
-            if (m->slots[i].name[0])
-                *binding_find(&bigger, m->slots[i].name) = m->slots[i], bigger.count++;
-        free(m->slots);
-        *m = bigger;
-    }
-    binding *b = binding_find(m, name);
-    snprintf(b->name, sizeof b->name, "%s", name);
-    b->node = node;
-    b->line = line;
-    m->count++;
-    return 1;
-}
-
 /* The names a user cannot bind: they would shadow the language. */
 static const char *const csg_names[] = {"union", "intersection", "difference"};
-static const char *const reserved_names[] = {"x", "y", "z", "t", "pi", "e", "region", "material", "color"};
+static const char *const reserved_names[] = {"x",        "y",     "z",     "t",      "pi",      "e",
+                                             "material", "solid", "region", "surface", "where", "color"};
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
 static int find_op(const char *name) {
@@ -101,8 +60,9 @@ typedef struct {
     const char *what; /* "" for user text, else "in built-in 'torus': " */
     char (*params)[LEX_MAX_NAME + 1];
     int nparams;
-    binding_map bindings;
-    int *values; /* AST node -> DAG node */
+    name_table names;          /* the scene's bindings and declarations */
+    const lower_hooks *hooks;  /* NULL for the library's texts */
+    int *values;               /* AST node -> DAG node (-1 for nodes that are not values) */
 } lowering;
 
 static int fail(lowering *l, long tok, iacsg_status status, const char *fmt, ...)
@@ -126,8 +86,11 @@ static const char *lib_kind_name(lib_kind k) {
     return k == LIB_PRIMITIVE ? "primitive" : k == LIB_BLEND ? "blend" : "transform";
 }
 
-/* "unknown primitive 'tours', did you mean 'torus'?" */
-static int fail_unknown(lowering *l, long tok, const char *name, int called) {
+/* "unknown primitive 'tours', did you mean 'torus'?"; an operand of a region or condition is an unknown solid. */
+static int fail_unknown(lowering *l, long tok, const char *name, int called, int operand) {
+    int later = called || l->what[0] ? 0 : ast_declaration_line(l->a, name, tok);
+    if (later)
+        return fail(l, tok, IACSG_ERR_NAME, "'%s' is used before its declaration (line %d)", name, later);
     suggestion s;
     suggest_init(&s, name);
     for (int op = 0; op < OP_COUNT; op++)
@@ -142,14 +105,20 @@ static int fail_unknown(lowering *l, long tok, const char *name, int called) {
             suggest_offer(&s, reserved_names[i]);
         for (int i = 0; i < l->nparams; i++)
             suggest_offer(&s, l->params[i]);
-        for (int i = 0; i < l->bindings.nslots; i++)
-            if (l->bindings.slots[i].name[0])
-                suggest_offer(&s, l->bindings.slots[i].name);
+        for (int i = 0; i < l->names.nslots; i++) {
+            const name_entry *n = &l->names.slots[i];
+            if (n->name[0] && (n->kind == NAME_BINDING || n->kind == NAME_SOLID))
+                suggest_offer(&s, n->name);
+        }
     }
     if (!s.best)
-        return fail(l, tok, IACSG_ERR_NAME, called ? "unknown function '%s'" : "unknown name '%s'", name);
+        return fail(l, tok, IACSG_ERR_NAME, "unknown %s '%s'", called ? "function" : operand ? "solid" : "name", name);
     const lib_entry *e = lib_find(s.best);
-    const char *kind = e ? lib_kind_name(e->kind) : find_op(s.best) >= 0 || find_csg(s.best) >= 0 ? "function" : "name";
+    const name_entry *n = names_find(&l->names, s.best);
+    const char *kind = e ? lib_kind_name(e->kind)
+                       : find_op(s.best) >= 0 || find_csg(s.best) >= 0 ? "function"
+                       : (n && n->kind == NAME_SOLID) || operand        ? "solid"
+                                                                        : "name";
     return fail(l, tok, IACSG_ERR_NAME, "unknown %s '%s', did you mean '%s'?", kind, name, s.best);
 }
 
@@ -297,11 +266,12 @@ static int lower_call(lowering *l, const ast_node *n) {
         for (int i = 0; i < l->nparams; i++)
             if (strcmp(l->params[i], name) == 0)
                 return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is not a function", name);
-        if (binding_find(&l->bindings, name) && binding_find(&l->bindings, name)->name[0])
-            return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is a binding, not a function", name);
+        const name_entry *b = names_find(&l->names, name);
+        if (b)
+            return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is a %s, not a function", name, name_kind_word(b->kind));
         if (is_builtin(name))
             return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is not a function", name);
-        return fail_unknown(l, n->tok, name, 1);
+        return fail_unknown(l, n->tok, name, 1, 0);
     }
     for (int i = 0; i < n->nargs; i++)
         if (l->a->args[n->first + i].keyword >= 0)
@@ -327,9 +297,12 @@ static int lower_name(lowering *l, const ast_node *n) {
     for (int i = 0; i < l->nparams; i++)
         if (strcmp(l->params[i], name) == 0)
             return dag_add(d, OP_PARAM, -1, -1, i, l->env->err);
-    binding *b = binding_find(&l->bindings, name);
-    if (b && b->name[0])
+    const name_entry *b = names_find(&l->names, name);
+    if (b && (b->kind == NAME_BINDING || b->kind == NAME_SOLID))
         return b->node;
+    if (b)
+        return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is a %s, not %s", name, name_kind_word(b->kind),
+                    n->op == AST_OPERAND ? "a solid" : "an expression");
     static const char *const leaves[] = {"x", "y", "z", "t", "pi", "e"};
     static const int leaf_ops[] = {OP_X, OP_Y, OP_Z, OP_T, OP_PI, OP_E};
     for (int i = 0; i < COUNT(leaves); i++)
@@ -342,28 +315,59 @@ static int lower_name(lowering *l, const ast_node *n) {
         return fail(l, n->tok, IACSG_ERR_ARITY, "'%s' needs arguments: write %s(...)", name, name);
     if (is_builtin(name))
         return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is reserved for multi-material scenes", name);
-    return fail_unknown(l, n->tok, name, 0);
+    return fail_unknown(l, n->tok, name, 0, n->op == AST_OPERAND);
+}
+
+/* Enters the name of a binding or declaration (node: its DAG node for a binding or solid, index: its index in
+ * the scene) into the namespace; 0 with err set when it is built in or taken. */
+static int declare_name(lowering *l, const ast_node *n, name_kind kind, int node, int index) {
+    char name[LEX_MAX_NAME + 1];
+    ast_token_text(l->a, n->tok, name, sizeof name);
+    if (is_builtin(name))
+        return kind == NAME_BINDING ? fail(l, n->tok, IACSG_ERR_NAME, "cannot bind '%s': it is a built-in name", name)
+                                    : fail(l, n->tok, IACSG_ERR_NAME, "cannot name a %s '%s': it is a built-in name",
+                                           name_kind_word(kind), name);
+    const name_entry *b = names_find(&l->names, name);
+    if (b && b->kind == NAME_BINDING)
+        return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is already bound (line %d)", name, b->line);
+    if (b)
+        return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is already declared as a %s (line %d)", name,
+                    name_kind_word(b->kind), b->line);
+    if (!names_add(&l->names, name, kind, node, index, l->a->toks[n->tok].line))
+        return iacsg_error_set(l->env->err, IACSG_ERR_NOMEM, 0, 0, "out of memory"), -1;
+    return 0;
 }
 
 static int lower_bind(lowering *l, const ast_node *n) {
-    char name[LEX_MAX_NAME + 1];
-    ast_token_text(l->a, n->tok, name, sizeof name);
-    int line = l->a->toks[n->tok].line;
-    if (is_builtin(name))
-        return fail(l, n->tok, IACSG_ERR_NAME, "cannot bind '%s': it is a built-in name", name);
-    binding *b = binding_find(&l->bindings, name);
-    if (b && b->name[0]) {
-        return fail(l, n->tok, IACSG_ERR_NAME, "'%s' is already bound (line %d)", name, b->line);
-    }
-    if (!binding_add(&l->bindings, name, l->values[n->a], line))
-        return iacsg_error_set(l->env->err, IACSG_ERR_NOMEM, 0, 0, "out of memory"), -1;
-    return l->values[n->a];
+    return declare_name(l, n, NAME_BINDING, l->values[n->a], -1) < 0 ? -1 : l->values[n->a];
 }
 
-static int lower_ast(lower_env *env, const ast *a, const char *what, char (*params)[LEX_MAX_NAME + 1], int nparams) {
+/* A material, solid, region or surface: its name is checked, the front end's hook builds it (in source order,
+ * after its expressions are lowered), then the name is entered with the index the hook gave. */
+static int lower_declaration(lowering *l, int i) {
+    static const name_kind kinds[] = {[AST_MATERIAL] = NAME_MATERIAL, [AST_SOLID] = NAME_SOLID,
+                                      [AST_REGION] = NAME_REGION, [AST_SURFACE] = NAME_SURFACE};
+    const ast_node *n = &l->a->nodes[i];
+    char name[LEX_MAX_NAME + 1];
+    if (!l->hooks)
+        return fail(l, n->tok, IACSG_ERR_SYNTAX, "'%s' declares nothing here",
+                    ast_token_text(l->a, n->tok - 1, name, sizeof name));
+    if (is_builtin(ast_token_text(l->a, n->tok, name, sizeof name)) || names_find(&l->names, name))
+        return declare_name(l, n, kinds[n->kind], -1, -1);
+    int index = l->hooks->declare(l->hooks->ctx, l->a, i, l->values, &l->names, l->env->err);
+    if (index < 0)
+        return -1;
+    int node = n->kind == AST_SOLID ? l->values[n->a] : -1;
+    return declare_name(l, n, kinds[n->kind], node, index) < 0 ? -1 : node >= 0 ? node : index;
+}
+
+/* Lowers a's nodes in order; *root is the final expression's node (-1 in a scene without one). 0, or -1 with
+ * err set. */
+static int lower_ast(lower_env *env, const ast *a, const char *what, char (*params)[LEX_MAX_NAME + 1], int nparams,
+                     const lower_hooks *hooks, int *root) {
     static const int bin_ops[] = {['+'] = OP_ADD, ['-'] = OP_SUB, ['*'] = OP_MUL, ['/'] = OP_DIV,
                                   ['^'] = OP_POW, ['|'] = OP_MIN, ['&'] = OP_MAX,  ['\\'] = OP_MAX};
-    lowering l = {env, a, what, params, nparams, {NULL, 0, 0}, malloc((size_t)a->count * sizeof(int))};
+    lowering l = {env, a, what, params, nparams, {NULL, 0, 0}, hooks, malloc((size_t)a->count * sizeof(int))};
     int r = 0;
     if (!l.values)
         return iacsg_error_set(env->err, IACSG_ERR_NOMEM, 0, 0, "out of memory"), -1;
@@ -385,14 +389,22 @@ static int lower_ast(lower_env *env, const ast *a, const char *what, char (*para
             r = b < 0 ? -1 : dag_add(env->d, bin_ops[(unsigned char)n->op], l.values[n->a], b, 0, env->err);
             break;
         }
+        case AST_MATERIAL:
+        case AST_SOLID:
+        case AST_REGION:
+        case AST_SURFACE: r = lower_declaration(&l, i); break;
+        case AST_BOOL: /* the structure of regions and conditions: the hook reads it from the AST */
+        case AST_COND:
+        case AST_NOT:
+        case AST_CMP: r = 0; break;
         }
-        l.values[i] = r;
+        l.values[i] = n->kind <= AST_BIND || n->kind == AST_SOLID ? r : -1;
     }
     if (r >= 0)
-        r = l.values[a->root];
+        *root = a->root >= 0 ? l.values[a->root] : -1;
     free(l.values);
-    free(l.bindings.slots);
-    return r;
+    names_free(&l.names);
+    return r < 0 ? -1 : 0;
 }
 
 static int lower_text(lower_env *env, const char *text, const char *what, char (*params)[LEX_MAX_NAME + 1],
@@ -400,17 +412,18 @@ static int lower_text(lower_env *env, const char *text, const char *what, char (
     ast a;
     if (parse(text, &a, env->err) != IACSG_OK)
         return -1;
-    int r = lower_ast(env, &a, what, params, nparams);
+    int root = -1;
+    int r = lower_ast(env, &a, what, params, nparams, NULL, &root);
     ast_free(&a);
-    return r;
+    return r < 0 ? -1 : root;
 }
 
-int lower(const ast *a, dag *d, iacsg_error *err) {
+iacsg_status lower(const ast *a, dag *d, const lower_hooks *hooks, int *root, iacsg_error *err) {
     lib_lowered *lib = calloc((size_t)lib_count, sizeof *lib);
     if (!lib)
-        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory"), -1;
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     lower_env env = {d, lib, err};
-    int r = lower_ast(&env, a, "", NULL, 0);
+    int r = lower_ast(&env, a, "", NULL, 0, hooks, root);
     free(lib);
-    return r;
+    return r < 0 ? err->status : IACSG_OK;
 }

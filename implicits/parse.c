@@ -1,7 +1,18 @@
 /* implicits/parse.c -- stage 2: recursive descent from tokens to the AST (ast.h).
  *
- *   scene      := { [statement] (NEWLINE | ';') } ; the last statement is the final expression
- *   statement  := NAME '=' expr | expr
+ *   scene      := { [statement] (NEWLINE | ';') } ; the last statement is the final expression, except in a
+ *                                                     scene with regions or surfaces, which has none
+ *   statement  := NAME '=' expr | declaration | expr
+ *   declaration:= 'material' NAME '=' 'rgb' '(' number ',' number ',' number ')' { NAME number }
+ *               | 'solid' NAME '=' expr
+ *               | 'region' NAME '=' expr [':' NAME]        the expression's outer | & \ are set operations
+ *               | 'surface' NAME '=' expr ['where' cond] [':' NAME]
+ *   number     := ['-'] NUM
+ *   cond       := cand { '|' cand }
+ *   cand       := cnot { '&' cnot }
+ *   cnot       := { '!' } cprimary
+ *   cprimary   := '(' cond ')' | expr ('<' | '>') NUM      the number is 0; a '(' opens a condition when a
+ *                                                          '<', '>' or '!' comes before its matching ')'
  *   expr       := inter { '|' inter }            union (lowest precedence)
  *   inter      := diff { '&' diff }               intersection
  *   diff       := sum { '\' sum }                 difference
@@ -11,6 +22,10 @@
  *   power      := primary [ '^' unary ]           right associative: 2^3^2 = 2^9, -x^2 = -(x^2)
  *   primary    := NUM | NAME | NAME '(' [arg { ',' arg }] ')' | '(' expr ')'
  *   arg        := NAME '=' expr | expr
+ *
+ * In a region, the operators | & \ that are not inside a call's arguments or an arithmetic operand are set
+ * operations over solids (AST_BOOL); every maximal expression under them is an operand (a solid's name or an
+ * expression written inline): `sphere(1.2) & box` is two operands, `(a + 1) \ b` too, `move(a | b, 1)` one.
  *
  * Chains of binary operators and signs are loops; only parentheses, calls and exponents recurse, and their
  * depth is limited (PARSE_MAX_DEPTH), so no input can overflow the stack. A line break after a binary operator,
@@ -242,20 +257,291 @@ static int parse_expr(parser *p) {
     return parse_level(p, "|", parse_inter);
 }
 
+static int at_word(parser *p, long at, const char *word) {
+    const token *t = &p->a->toks[at];
+    return t->kind == TOK_NAME && t->len == strlen(word) && memcmp(p->a->text + t->start, word, t->len) == 0;
+}
+static int at_statement_end(parser *p) {
+    return peek(p)->kind == TOK_NEWLINE || peek(p)->kind == TOK_END || at_punct(p, ';');
+}
+
+/* A failure at token t with a message that says all (no ", found ..."). */
+static int fail_here(parser *p, const token *t, const char *message) {
+    if (p->status == IACSG_OK)
+        p->status = iacsg_error_set(p->err, IACSG_ERR_SYNTAX, t->line, t->column, "%s", message);
+    return -1;
+}
+
+/* ['-'] NUM, for a material. */
+static int parse_number(parser *p, const char *what) {
+    long sign = at_punct(p, '-') ? p->pos++ : -1;
+    if (peek(p)->kind != TOK_NUM)
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, what);
+    int r = add_node(p, AST_NUM, p->pos++, 0, -1, -1);
+    return r >= 0 && sign >= 0 ? add_node(p, AST_NEG, sign, 0, r, -1) : r;
+}
+
+/* rgb(R, G, B) { KEYWORD number }, after "material NAME ="; the values become the node's arguments. */
+static int parse_material(parser *p, long name) {
+    int base = p->npending;
+    skip_newlines(p);
+    if (!at_word(p, p->pos, "rgb") || p->a->toks[p->pos + 1].kind != TOK_PUNCT || p->a->toks[p->pos + 1].ch != '(')
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected rgb(R, G, B), the material's colour");
+    p->pos += 2;
+    for (int k = 0; k < 3; k++) {
+        if (k > 0 && !at_punct(p, ','))
+            return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "rgb takes 3 numbers");
+        p->pos += k > 0;
+        int v = parse_number(p, "rgb takes 3 numbers");
+        if (v < 0 || !push_arg(p, v, -1))
+            return -1;
+    }
+    if (!at_punct(p, ')'))
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "rgb takes 3 numbers");
+    p->pos++;
+    while (peek(p)->kind == TOK_NAME) {
+        long keyword = p->pos++;
+        int v = parse_number(p, "expected a number after the material's keyword");
+        if (v < 0 || !push_arg(p, v, keyword))
+            return -1;
+    }
+    if (!at_statement_end(p))
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX,
+                       "expected a material keyword and its number, or the end of the statement");
+    int first = commit_args(p, base);
+    int m = first < 0 ? -1 : add_node(p, AST_MATERIAL, name, 0, -1, -1);
+    if (m >= 0) {
+        p->a->nodes[m].first = first;
+        p->a->nodes[m].nargs = p->a->nargs - first;
+    }
+    return m;
+}
+
+/* Marks an operand that is a bare name (it may name a solid). */
+static void mark_operand(parser *p, int node) {
+    if (p->a->nodes[node].kind == AST_NAME)
+        p->a->nodes[node].op = AST_OPERAND;
+}
+
+/* Retypes the outer | & \ of a region's expression (nodes first .. root) into set operations, and marks their
+ * operands. Children come before parents, so one backward pass reaches every node from the root. */
+static int mark_boolean(parser *p, int first, int root) {
+    unsigned char *outer = calloc((size_t)(root - first + 1), 1);
+    if (!outer) {
+        p->status = iacsg_error_set(p->err, IACSG_ERR_NOMEM, 0, 0, "out of memory parsing the expression");
+        return -1;
+    }
+    outer[root - first] = 1;
+    for (int i = root; i >= first; i--) {
+        ast_node *n = &p->a->nodes[i];
+        if (!outer[i - first])
+            continue;
+        if (n->kind == AST_BIN && (n->op == '|' || n->op == '&' || n->op == '\\')) {
+            n->kind = AST_BOOL;
+            outer[n->a - first] = outer[n->b - first] = 1;
+        } else {
+            mark_operand(p, i);
+        }
+    }
+    free(outer);
+    return root;
+}
+
+/* Whether the '(' at p->pos opens a condition: a '<', '>' or '!' comes before its matching ')' (no expression
+ * holds one). */
+static int group_is_condition(parser *p) {
+    int depth = 0;
+    for (long k = p->pos; p->a->toks[k].kind == TOK_PUNCT || p->a->toks[k].kind == TOK_NAME ||
+                          p->a->toks[k].kind == TOK_NUM;
+         k++) {
+        char c = p->a->toks[k].kind == TOK_PUNCT ? p->a->toks[k].ch : 0;
+        depth += c == '(' ? 1 : c == ')' ? -1 : 0;
+        if (depth == 0 || c == ';')
+            return 0;
+        if (c == '<' || c == '>' || c == '!')
+            return 1;
+    }
+    return 0;
+}
+
+static int parse_cond(parser *p);
+
+/* '(' cond ')' or E ('<' | '>') 0. */
+static int parse_comparison(parser *p) {
+    long at = p->pos;
+    if (at_punct(p, '(') && group_is_condition(p)) {
+        if (!enter(p, at))
+            return -1;
+        p->pos++;
+        int r = parse_cond(p);
+        p->depth--;
+        if (r < 0)
+            return -1;
+        if (!at_punct(p, ')'))
+            return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected ')'");
+        p->pos++;
+        return r;
+    }
+    if (at_statement_end(p) || at_punct(p, ':'))
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected a comparison such as 'ball < 0'");
+    int e = parse_expr(p);
+    if (e < 0)
+        return -1;
+    mark_operand(p, e);
+    if (!at_punct(p, '<') && !at_punct(p, '>'))
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected '< 0' or '> 0' after the expression in the condition");
+    long op = p->pos++;
+    const token *zero = peek(p);
+    char num[LEX_MAX_NUMBER + 1];
+    if (zero->kind != TOK_NUM || strtod(ast_token_text(p->a, p->pos, num, sizeof num), NULL) != 0)
+        return fail_at(p, zero, IACSG_ERR_SYNTAX,
+                       "a condition compares with 0 ('E < 0' or 'E > 0'; write 'E - c < 0')");
+    p->pos++;
+    return add_node(p, AST_CMP, op, p->a->toks[op].ch, e, -1);
+}
+
+/* { '!' } comparison: the '!' tokens are consecutive, the innermost last. */
+static int parse_not(parser *p) {
+    long first = p->pos;
+    while (at_punct(p, '!'))
+        p->pos++;
+    long last = p->pos;
+    int r = parse_comparison(p);
+    for (long k = last - 1; r >= 0 && k >= first; k--)
+        r = add_node(p, AST_NOT, k, 0, r, -1);
+    return r;
+}
+
+/* One level of a condition: operand { op operand }. */
+static int parse_cond_level(parser *p, char op, level_fn operand) {
+    int r = operand(p);
+    while (r >= 0 && at_punct(p, op)) {
+        long at = p->pos++;
+        skip_newlines(p);
+        int b = operand(p);
+        r = b < 0 ? -1 : add_node(p, AST_COND, at, op, r, b);
+    }
+    return r;
+}
+static int parse_cand(parser *p) { return parse_cond_level(p, '&', parse_not); }
+static int parse_cond(parser *p) { return parse_cond_level(p, '|', parse_cand); }
+
+/* [':' NAME]: the token of the material's name, -1 without one, -2 on failure. */
+static long parse_material_ref(parser *p) {
+    if (!at_punct(p, ':'))
+        return -1;
+    p->pos++;
+    if (peek(p)->kind != TOK_NAME)
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected the name of a material after ':'"), -2;
+    return p->pos++;
+}
+
+static int declaration_at(parser *p);
+
+/* The expression of a region or surface NAME, which must not be missing (it may start on the next line, as
+ * after any '='; not with the next declaration). */
+static int parse_item_expr(parser *p, const char *kind, long name) {
+    const token *equals = &p->a->toks[p->pos - 1];
+    skip_newlines(p);
+    if (at_statement_end(p) || at_punct(p, ':') || at_word(p, p->pos, "where") || declaration_at(p) >= 0) {
+        char text[LEX_MAX_NAME + 1], message[160];
+        snprintf(message, sizeof message, "%s '%s' has no expression after '='", kind,
+                 ast_token_text(p->a, name, text, sizeof text));
+        return fail_here(p, equals, message);
+    }
+    return parse_expr(p);
+}
+
+static int parse_region(parser *p, long name) {
+    int first = p->a->count;
+    int v = parse_item_expr(p, "region", name);
+    if (v < 0 || mark_boolean(p, first, v) < 0)
+        return -1;
+    long material = parse_material_ref(p);
+    int r = material < -1 ? -1 : add_node(p, AST_REGION, name, 0, v, -1);
+    if (r >= 0)
+        p->a->nodes[r].first = (int)material;
+    return r;
+}
+
+static int parse_surface(parser *p, long name) {
+    int v = parse_item_expr(p, "surface", name), cond = -1;
+    if (v < 0)
+        return -1;
+    mark_operand(p, v);
+    if (at_word(p, p->pos, "where")) {
+        const token *where = peek(p);
+        p->pos++;
+        if (at_statement_end(p) || at_punct(p, ':'))
+            return fail_here(p, where, "'where' without a condition: write e.g. 'where ball < 0'");
+        if ((cond = parse_cond(p)) < 0)
+            return -1;
+    }
+    long material = parse_material_ref(p);
+    int r = material < -1 ? -1 : add_node(p, AST_SURFACE, name, 0, v, cond);
+    if (r >= 0)
+        p->a->nodes[r].first = (int)material;
+    return r;
+}
+
+/* The declarations: "KEYWORD NAME" starts one. */
+static const char *const declaration_words[] = {"material", "solid", "region", "surface"};
+
+/* The declaration at p->pos (its keyword's index in declaration_words), or -1 for another statement. */
+static int declaration_at(parser *p) {
+    if (peek(p)->kind != TOK_NAME || p->a->toks[p->pos + 1].kind != TOK_NAME)
+        return -1;
+    for (int k = 0; k < 4; k++)
+        if (at_word(p, p->pos, declaration_words[k]))
+            return k;
+    return -1;
+}
+
+static int parse_declaration(parser *p, int which) {
+    long name = p->pos + 1;
+    p->pos += 2;
+    if (!at_punct(p, '=')) {
+        char text[LEX_MAX_NAME + 1], what[128];
+        snprintf(what, sizeof what, "expected '=' after '%s %s'", declaration_words[which],
+                 ast_token_text(p->a, name, text, sizeof text));
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, what);
+    }
+    p->pos++;
+    switch (which) {
+    case 0: return parse_material(p, name);
+    case 1: {
+        int v = parse_expr(p);
+        return v < 0 ? -1 : add_node(p, AST_SOLID, name, 0, v, -1);
+    }
+    case 2: return parse_region(p, name);
+    default: return parse_surface(p, name);
+    }
+}
+
+/* Whether a statement's node is an expression (rather than a binding or a declaration). */
+static int is_expression(const ast_node *n) {
+    return n->kind != AST_BIND && n->kind != AST_MATERIAL && n->kind != AST_SOLID && n->kind != AST_REGION &&
+           n->kind != AST_SURFACE;
+}
+
 static int parse_scene(parser *p) {
-    int last = -1;
+    int last = -1, items = 0;
     long last_tok = 0;
     for (;;) {
         while (peek(p)->kind == TOK_NEWLINE || at_punct(p, ';'))
             p->pos++;
         if (peek(p)->kind == TOK_END)
             break;
-        if (last >= 0 && p->a->nodes[last].kind != AST_BIND)
+        if (last >= 0 && is_expression(&p->a->nodes[last]))
             return fail_at(p, &p->a->toks[last_tok], IACSG_ERR_SYNTAX,
                            "only the last statement of a scene may be an expression; expected 'name = ...'");
         last_tok = p->pos;
-        if (peek(p)->kind == TOK_NAME && p->a->toks[p->pos + 1].kind == TOK_PUNCT &&
-            p->a->toks[p->pos + 1].ch == '=') {
+        int which = declaration_at(p);
+        if (which >= 0) {
+            last = parse_declaration(p, which);
+            items += which >= 2;
+        } else if (peek(p)->kind == TOK_NAME && p->a->toks[p->pos + 1].kind == TOK_PUNCT &&
+                   p->a->toks[p->pos + 1].ch == '=') {
             long name = p->pos;
             p->pos += 2;
             int v = parse_expr(p);
@@ -265,11 +551,17 @@ static int parse_scene(parser *p) {
         }
         if (last < 0)
             return -1;
-        if (peek(p)->kind != TOK_NEWLINE && peek(p)->kind != TOK_END && !at_punct(p, ';'))
+        if (!at_statement_end(p))
             return fail_at(p, peek(p), IACSG_ERR_SYNTAX,
                            at_punct(p, ')') ? "unbalanced ')'" : "expected an operator or the end of the statement");
     }
-    if (last < 0 || p->a->nodes[last].kind == AST_BIND)
+    if (items > 0 && last >= 0 && is_expression(&p->a->nodes[last]))
+        return fail_here(p, &p->a->toks[last_tok],
+                         "a scene with regions or surfaces has no final expression (its regions and surfaces are "
+                         "what is rendered): declare it as a region, or remove it");
+    if (items > 0)
+        return -1; /* no final expression; p->status stays OK */
+    if (last < 0 || !is_expression(&p->a->nodes[last]))
         return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected an expression to render");
     return last;
 }
@@ -283,7 +575,7 @@ iacsg_status parse(const char *text, ast *out, iacsg_error *err) {
     parser p = {out, 0, 0, err, IACSG_OK, NULL, 0, 0};
     out->root = parse_scene(&p);
     free(p.pending);
-    if (out->root < 0) {
+    if (p.status != IACSG_OK) {
         ast_free(out);
         return p.status;
     }
@@ -295,6 +587,17 @@ void ast_free(ast *a) {
     free(a->nodes);
     free(a->args);
     memset(a, 0, sizeof *a);
+}
+
+int ast_declaration_line(const ast *a, const char *name, long tok) {
+    char text[LEX_MAX_NAME + 1];
+    for (int i = 0; i < a->count; i++) {
+        const ast_node *n = &a->nodes[i];
+        if ((n->kind == AST_BIND || (n->kind >= AST_MATERIAL && n->kind <= AST_SURFACE)) && n->tok > tok &&
+            strcmp(ast_token_text(a, n->tok, text, sizeof text), name) == 0)
+            return a->toks[n->tok].line;
+    }
+    return 0;
 }
 
 const char *ast_token_text(const ast *a, long tok, char *buf, size_t size) {
@@ -313,12 +616,17 @@ char *ast_dump(const ast *a) {
         strbuf_printf(&b, "n%d = ", i);
         switch (n->kind) {
         case AST_NUM: strbuf_printf(&b, "num %s", ast_token_text(a, n->tok, name, sizeof name)); break;
-        case AST_NAME: strbuf_printf(&b, "name %s", ast_token_text(a, n->tok, name, sizeof name)); break;
+        case AST_NAME:
+            strbuf_printf(&b, "name %s%s", ast_token_text(a, n->tok, name, sizeof name),
+                          n->op == AST_OPERAND ? " (operand)" : "");
+            break;
         case AST_NEG: strbuf_printf(&b, "neg n%d", n->a); break;
         case AST_BIN: strbuf_printf(&b, "n%d %c n%d", n->a, n->op, n->b); break;
         case AST_BIND: strbuf_printf(&b, "bind %s = n%d", ast_token_text(a, n->tok, name, sizeof name), n->a); break;
         case AST_CALL:
-            strbuf_printf(&b, "call %s(", ast_token_text(a, n->tok, name, sizeof name));
+        case AST_MATERIAL:
+            strbuf_printf(&b, n->kind == AST_CALL ? "call %s(" : "material %s = rgb(",
+                          ast_token_text(a, n->tok, name, sizeof name));
             for (int k = 0; k < n->nargs; k++) {
                 const ast_arg *g = &a->args[n->first + k];
                 strbuf_printf(&b, "%s%s%sn%d", k ? ", " : "",
@@ -327,6 +635,20 @@ char *ast_dump(const ast *a) {
             }
             strbuf_printf(&b, ")");
             break;
+        case AST_SOLID: strbuf_printf(&b, "solid %s = n%d", ast_token_text(a, n->tok, name, sizeof name), n->a); break;
+        case AST_REGION:
+        case AST_SURFACE:
+            strbuf_printf(&b, "%s %s = n%d", n->kind == AST_REGION ? "region" : "surface",
+                          ast_token_text(a, n->tok, name, sizeof name), n->a);
+            if (n->kind == AST_SURFACE && n->b >= 0)
+                strbuf_printf(&b, " where n%d", n->b);
+            if (n->first >= 0)
+                strbuf_printf(&b, " : %s", ast_token_text(a, n->first, name, sizeof name));
+            break;
+        case AST_BOOL: strbuf_printf(&b, "set n%d %c n%d", n->a, n->op, n->b); break;
+        case AST_COND: strbuf_printf(&b, "cond n%d %c n%d", n->a, n->op, n->b); break;
+        case AST_NOT: strbuf_printf(&b, "not n%d", n->a); break;
+        case AST_CMP: strbuf_printf(&b, "cmp n%d %c 0", n->a, n->op); break;
         }
         strbuf_printf(&b, "%s\n", i == a->root ? "   <- root" : "");
     }

@@ -59,8 +59,10 @@ struct iacsg_scene {
 typedef struct iacsg_scene iacsg_scene;
 
 /* Parses a scene file's text or an expression (name is used in messages). A text with regions or surfaces has
- * items and no final expression; any other has expr set, as iacsg_expr_parse would make it. On failure *out is
- * NULL and err holds the message, line and column. Destroy with iacsg_scene_destroy. */
+ * items and no final expression, and its solids are those the items use (declared or inline, in order); any
+ * other has expr set, as iacsg_expr_parse would make it, no solids (its `solid` statements are bindings) and its
+ * materials listed. On failure *out is NULL and err holds the message, line and column. Destroy with
+ * iacsg_scene_destroy. The language: docs/language.md, "Regions, surfaces and materials". */
 iacsg_status iacsg_scene_parse(const char *text, const char *name, iacsg_scene **out, iacsg_error *err);
 void iacsg_scene_destroy(iacsg_scene *s);
 

@@ -33,6 +33,11 @@ static void make_fixture(const char *dir) {
     write_file(dir, "scene.csg", "sphere\n", 1, "");
     write_file(dir, "scene.tif", "sphere\n", 1, "");
     write_file(dir, "notadir", "", 1, "");
+    /* multi-material scenes refused by the parser whichever way the command reads them */
+    write_file(dir, "final-expression.csg", "solid ball = sphere\nregion r = ball\nbox\n", 1, "");
+    write_file(dir, "region-no-expression.csg", "region body = \n", 1, "");
+    write_file(dir, "where-no-condition.csg", "surface s = plane where\n", 1, "");
+    write_file(dir, "material-twice.csg", "material red = rgb(1, 0, 0)\nmaterial red = rgb(0, 1, 0)\nsphere\n", 1, "");
     char path[4096];
     snprintf(path, sizeof path, "%s/deep.csg", dir);
     FILE *f = fopen(path, "w");

@@ -27,7 +27,7 @@ static int replay_dir(const char *dir, const char *suffix, int must_compile, int
         CHECK(data, "cannot read %s", path);
         int r = expr_exercise(data, size);
         free(data);
-        CHECK(r >= 0, "%s: rejected without a message", ent->d_name);
+        CHECK(r >= 0, "%s: rejected without a message, or its scene is unsound", ent->d_name);
         CHECK(r == 1 || !must_compile, "%s: does not compile", ent->d_name);
         replayed++;
         *compiled += r;

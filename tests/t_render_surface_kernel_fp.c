@@ -7,45 +7,35 @@
  *   condition certainly holds is never missed and never passed; every hit is within a few leaves of the surface
  *   where the condition may hold.
  * - The evaluation stack's bound: a chain of CSG_STACK_MAX comparisons is evaluated right, one more is refused
- *   when the scene is built.
+ *   when the scene is built, with the surface's place when it comes from the language.
  */
-#include "ia/ia.h"
-#include "implicits/scene.h"
-#include "test.h"
-#include <stdlib.h>
+#include "t_scene_ref.h"
 
-enum { SOLID_PLANE, SOLID_SPHERE, SOLID_BOX };
-
-/* A test solid: plane n.p - h; sphere |p - c|^2 - r^2; box max_k(|p_k - c_k| - a_k). Parameters are reals of
- * the working precision, so the long double references use the same numbers. */
-typedef struct {
-    int kind;
-    ia_real c[3], r; /* plane: c = n, r = h; sphere: centre, radius; box: centre, half size a in a[] */
-    ia_real a[3];
-} test_solid;
-
+/* The solids the kernel calls scene_solid_F on (their numbers are reals of the working precision, so the long
+ * double references see the same solids). */
 #define MAX_SOLIDS 4
-static test_solid solids[MAX_SOLIDS];
+static ref_solid solids[MAX_SOLIDS];
 
 /* The inclusion function the kernel calls: each variable occurs once per term, so it is tight over a box. */
 static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     (void)t;
-    const test_solid *s = &solids[k];
+    const ref_solid *s = &solids[k];
     ia_interval p[3] = {x, y, z}, f = ia_point(0);
     for (int c = 0; c < 3; c++) {
-        if (s->kind == SOLID_PLANE)
-            f = ia_add(f, ia_mul_r(p[c], s->c[c]));
-        else if (s->kind == SOLID_SPHERE)
-            f = ia_add(f, ia_sqr(ia_sub(p[c], ia_point(s->c[c]))));
+        ia_real sc = (ia_real)s->c[c];
+        if (s->kind == REF_HALFSPACE)
+            f = ia_add(f, ia_mul_r(p[c], sc));
+        else if (s->kind == REF_SPHERE)
+            f = ia_add(f, ia_sqr(ia_sub(p[c], ia_point(sc))));
         else {
-            ia_interval side = ia_sub(ia_abs(ia_sub(p[c], ia_point(s->c[c]))), ia_point(s->a[c]));
+            ia_interval side = ia_sub(ia_abs(ia_sub(p[c], ia_point(sc))), ia_point((ia_real)s->a[c]));
             f = c == 0 ? side : ia_max(f, side);
         }
     }
-    if (s->kind == SOLID_PLANE)
-        return ia_sub(f, ia_point(s->r));
-    if (s->kind == SOLID_SPHERE)
-        return ia_sub(f, ia_sqr(ia_point(s->r)));
+    if (s->kind == REF_HALFSPACE)
+        return ia_sub(f, ia_point((ia_real)s->r));
+    if (s->kind == REF_SPHERE)
+        return ia_sub(f, ia_sqr(ia_point((ia_real)s->r)));
     return f;
 }
 
@@ -53,37 +43,15 @@ static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interva
 
 /* ---- long double references */
 
-static long double solid_at(const test_solid *s, const long double p[3]) {
-    long double f = 0;
-    for (int c = 0; c < 3; c++) {
-        long double u = p[c] - (long double)s->c[c];
-        if (s->kind == SOLID_PLANE)
-            f += (long double)s->c[c] * p[c];
-        else if (s->kind == SOLID_SPHERE)
-            f += u * u;
-        else
-            f = c == 0 ? fabsl(u) - (long double)s->a[c] : fmaxl(f, fabsl(u) - (long double)s->a[c]);
-    }
-    if (s->kind == SOLID_PLANE)
-        return f - (long double)s->r;
-    if (s->kind == SOLID_SPHERE)
-        return f - (long double)s->r * (long double)s->r;
-    return f;
-}
-
-typedef struct {
-    long double o[3], d[3];
-} exact_ray;
-
-static long double solid_on_ray(const test_solid *s, const exact_ray *ray, long double t) {
+static long double solid_on_ray(const ref_solid *s, const ref_ray *ray, long double t) {
     long double p[3];
     for (int c = 0; c < 3; c++)
         p[c] = ray->o[c] + t * ray->d[c];
-    return solid_at(s, p);
+    return ref_solid_at(s, p);
 }
 
 /* Every test solid is convex along a line: its minimum over [a, b] by golden section, its maximum at an end. */
-static long double argmin_on_ray(const test_solid *s, const exact_ray *ray, long double a, long double b) {
+static long double argmin_on_ray(const ref_solid *s, const ref_ray *ray, long double a, long double b) {
     const long double g = 0.6180339887498948482L;
     for (int k = 0; k < 200 && b - a > 0; k++) {
         long double m1 = b - g * (b - a), m2 = a + g * (b - a);
@@ -95,40 +63,25 @@ static long double argmin_on_ray(const test_solid *s, const exact_ray *ray, long
     return (a + b) / 2;
 }
 
-static void range_on_ray(const test_solid *s, const exact_ray *ray, long double a, long double b, long double *lo,
+static void range_on_ray(const ref_solid *s, const ref_ray *ray, long double a, long double b, long double *lo,
                          long double *hi) {
     long double fa = solid_on_ray(s, ray, a), fb = solid_on_ray(s, ray, b);
     *lo = fminl(solid_on_ray(s, ray, argmin_on_ray(s, ray, a, b)), fminl(fa, fb));
     *hi = fmaxl(fa, fb);
 }
 
-/* A root of f between a and b, where f changes sign, by bisection to long double precision. */
-static long double root_between(const test_solid *s, const exact_ray *ray, long double a, long double b) {
-    int a_neg = solid_on_ray(s, ray, a) < 0;
-    for (int k = 0; k < 200; k++) {
-        long double m = (a + b) / 2;
-        if (m <= a || m >= b)
-            break;
-        if ((solid_on_ray(s, ray, m) < 0) == a_neg)
-            a = m;
-        else
-            b = m;
-    }
-    return (a + b) / 2;
-}
-
-/* The crossings of the solid's boundary by the ray in [a, b] (at most two: convex), in order; a minimum that
- * does not go below -margin is not counted (the ray may only graze). */
-static int crossings(const test_solid *s, const exact_ray *ray, long double a, long double b, long double margin,
+/* The crossings of the solid's boundary by the ray in [a, b], in order; a ray that enters the solid by less
+ * than `margin` (it may only graze it) has none. */
+static int crossings(const ref_solid *s, const ref_ray *ray, long double a, long double b, long double margin,
                      long double roots[2]) {
-    long double m = argmin_on_ray(s, ray, a, b);
-    if (!(solid_on_ray(s, ray, m) < -margin))
-        return 0;
+    long double in, out;
     int n = 0;
-    if (solid_on_ray(s, ray, a) > 0)
-        roots[n++] = root_between(s, ray, a, m);
-    if (solid_on_ray(s, ray, b) > 0)
-        roots[n++] = root_between(s, ray, m, b);
+    if (!ref_span(s, ray, -margin, &in, &out) || !ref_span(s, ray, 0, &in, &out))
+        return 0;
+    if (in >= a && in <= b)
+        roots[n++] = in;
+    if (out >= a && out <= b)
+        roots[n++] = out;
     return n;
 }
 
@@ -155,13 +108,13 @@ static int condition_over_ranges(const iacsg_scene *scene, int root, int nsolids
 
 static ia_real uniform(test_rng_t *rng, double a, double b) { return (ia_real)(a + (b - a) * test_rand_unit(rng)); }
 
-static void random_solid(test_rng_t *rng, test_solid *s) {
+static void random_solid(test_rng_t *rng, ref_solid *s) {
     s->kind = (int)(test_rand_u64(rng) % 3);
     for (int c = 0; c < 3; c++) {
         s->c[c] = uniform(rng, -0.8, 0.8);
         s->a[c] = uniform(rng, 0.2, 1.2);
     }
-    s->r = s->kind == SOLID_PLANE ? uniform(rng, -0.5, 0.5) : uniform(rng, 0.3, 1.5);
+    s->r = s->kind == REF_HALFSPACE ? uniform(rng, -0.5, 0.5) : uniform(rng, 0.3, 1.5);
 }
 
 /* A random condition tree over solids 1..nsolids-1 in preorder with relative operands, into nodes from *n. */
@@ -198,14 +151,14 @@ static int random_scene(test_rng_t *rng, int nsolids, iacsg_scene **scene) {
 
 /* The exact range of every solid over the float ray's points t in [a, b], each widened by the solid's change
  * over `spread` (the box the kernel evaluates reaches that far from the segment) */
-static void ranges_on_segment(int nsolids, const exact_ray *ray, long double a, long double b, long double spread,
+static void ranges_on_segment(int nsolids, const ref_ray *ray, long double a, long double b, long double spread,
                               long double *lo, long double *hi) {
     for (int k = 0; k < nsolids; k++) {
         range_on_ray(&solids[k], ray, a, b, &lo[k], &hi[k]);
         long double slope = 1;
-        if (solids[k].kind == SOLID_SPHERE)
+        if (solids[k].kind == REF_SPHERE)
             slope = 2 * (8 + fabsl((long double)solids[k].r)); /* |grad| <= 2 |p - c| in the test's space */
-        else if (solids[k].kind == SOLID_PLANE)
+        else if (solids[k].kind == REF_HALFSPACE)
             slope = fabsl((long double)solids[k].c[0]) + fabsl((long double)solids[k].c[1]) +
                     fabsl((long double)solids[k].c[2]);
         lo[k] -= slope * spread;
@@ -232,7 +185,7 @@ TEST_FP(render_surface_condition_encloses_points) {
             for (int c = 0; c < 3; c++)
                 p[c] = (long double)box[c].lo + test_rand_unit(rng) * ((long double)box[c].hi - box[c].lo);
             for (int k = 0; k < nsolids; k++) {
-                long double f = solid_at(&solids[k], p);
+                long double f = ref_solid_at(&solids[k], p);
                 sign[k] = (signed char)((f > 0) - (f < 0));
             }
             int at_point = scene_tree_eval(scene, root, sign) ? SURFACE_MAY_HOLD : SURFACE_MAY_FAIL;
@@ -262,7 +215,7 @@ TEST_FP(render_surface_first_root_vs_exact) {
             len += d[c] * d[c];
         }
         len = sqrt(len);
-        exact_ray ray;
+        ref_ray ray;
         for (int c = 0; c < 3; c++) {
             d[c] /= len;
             ray.o[c] = o[c];
@@ -320,8 +273,8 @@ static int chain(iacsg_scene *scene, int k, int op) {
 }
 
 TEST_FP(render_surface_condition_stack_bound) {
-    solids[0] = (test_solid){SOLID_PLANE, {1, 0, 0}, 0, {0, 0, 0}};  /* x < 0 */
-    solids[1] = (test_solid){SOLID_PLANE, {0, 1, 0}, 0, {0, 0, 0}};  /* y < 0 */
+    solids[0] = ref_halfspace(1, 0, 0, 0); /* x < 0 */
+    solids[1] = ref_halfspace(0, 1, 0, 0); /* y < 0 */
     iacsg_scene *scene = scene_create();
     CHECK(scene, "out of memory");
     int ops[2] = {CSG_INTERSECT, CSG_UNION};
@@ -335,7 +288,8 @@ TEST_FP(render_surface_condition_stack_bound) {
               err.message);
         CHECK(scene_add_surface(scene, "over", 0, over, -1, &err) < 0, "a chain of %d accepted",
               CSG_STACK_MAX + 1);
-        test_note("%s", err.message);
+        if (o == 0)
+            test_note("%s", err.message);
         /* at points of each quadrant (boxes inside it) the chain's value matches the point reference */
         for (int q = 0; q < 4; q++) {
             ia_real sx = q & 1 ? 1 : -1, sy = q & 2 ? 1 : -1;
@@ -348,4 +302,13 @@ TEST_FP(render_surface_condition_stack_bound) {
         }
     }
     iacsg_scene_destroy(scene);
+    /* from the language: the refusal names the surface's line */
+    char text[2048] = "solid a = sphere\nsurface deep = a where x < 0";
+    for (int k = 1; k <= CSG_STACK_MAX; k++)
+        snprintf(text + strlen(text), sizeof text - strlen(text), " & x - %d < 0", k);
+    iacsg_error err = {0};
+    CHECK(iacsg_scene_parse(text, "deep.csg", &scene, &err) != IACSG_OK && scene == NULL, "a chain of %d accepted",
+          CSG_STACK_MAX + 1);
+    CHECK(err.line == 2 && err.column == 1 && strstr(err.message, "'deep'"), "%d:%d: %s", err.line, err.column,
+          err.message);
 }
