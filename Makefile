@@ -8,6 +8,8 @@
 #   make bench-ia   nanoseconds per interval operation, host and device, rigorous and fast
 #   make bench      render the benchmark suite of issue 5 and write BENCHMARKS.md (BENCH_QUICK=1: a quick look)
 #   make fuzz       libFuzzer on the expression compiler for FUZZ_SECONDS (default 60)
+#   make install    PREFIX=/usr/local DESTDIR=: the command, libraries, headers, iacsg.pc, man pages, examples
+#   make uninstall  removes what make install put there (same PREFIX and DESTDIR)
 #
 # BUILD=dir SAN=1 builds everything under AddressSanitizer and UndefinedBehaviorSanitizer in another directory.
 
@@ -28,7 +30,8 @@ LIBS = -lOpenCL $(IMAGE_LIBS) -lmpfr -lgmp -lm -lstdc++
 CLI_LIBS = -lOpenCL -lm -ldl
 LDFLAGS_ALL = $(OPT) $(LDFLAGS)
 
-DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev
+DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev \
+               pkg-config groff-base
 
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec.h
@@ -67,8 +70,9 @@ deps:
 $(BUILD)/libiacsg.a: $(LIB_OBJ)
 	ar rcs $@ $^
 
-# The command is not linked with OpenImageIO: it loads libiacsg_image.so, beside it, in a child process
-# (src/cli_writer.c), so that the ~180 ms of linking OpenImageIO's libraries overlap OpenCL's start.
+# The command is not linked with OpenImageIO: it loads libiacsg_image.so, beside it (installed: ../lib/iacsg/),
+# in a child process (src/cli_writer.c), so that the ~180 ms of linking OpenImageIO's libraries overlap OpenCL's
+# start.
 $(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so
 	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(CLI_LIBS)
 
@@ -125,11 +129,11 @@ $(BUILD)/embedded_tests.c: $(TEST_CL_SOURCES) $(BUILD)/embed
 # `make test` runs the suite, the suite under ASan+UBSan (build-asan/), and valgrind on the compiler
 # (tests/run.sh); `make check` is the quick loop: the plain suite only.
 test: deps
-	@$(MAKE) --no-print-directory $(BUILD)/iacsg-tests $(BUILD)/iacsg
+	@$(MAKE) --no-print-directory $(BUILD)/iacsg-tests $(BUILD)/iacsg installable
 	@$(MAKE) --no-print-directory BUILD=build-asan SAN=1 build-asan/iacsg-tests build-asan/iacsg
 	@BUILD=$(BUILD) ASAN_BUILD=build-asan tests/run.sh
 
-check: $(BUILD)/iacsg-tests $(BUILD)/iacsg
+check: $(BUILD)/iacsg-tests $(BUILD)/iacsg installable
 	$(BUILD)/iacsg-tests
 
 demo: deps
@@ -140,9 +144,9 @@ demo: deps
 # and 8 of the Hijazi seed, then the scenes of regions and surfaces (the segment path; Fig. 5 among them).
 SEGMENT_SCENES = examples/fig2_cube_sphere_regions.csg examples/machined_part.csg examples/icos.csg examples/sesc.csg
 GALLERY_SCENES = $(sort $(filter-out $(SEGMENT_SCENES),$(wildcard examples/*.csg))) $(SEGMENT_SCENES)
-$(BUILD)/examples/embed: examples/embed.c $(BUILD)/libiacsg.a
+$(BUILD)/examples/embed: examples/embed.c $(BUILD)/libiacsg.a $(BUILD)/include/iacsg.stamp
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -o $@ $< $(BUILD)/libiacsg.a $(LIBS)
+	$(CC) $(CFLAGS_ALL) -I$(BUILD)/include -o $@ $< $(BUILD)/libiacsg.a $(LIBS)
 gallery: deps
 	@$(MAKE) --no-print-directory $(BUILD)/examples/embed
 	$(BUILD)/examples/embed docs/gallery.png 256 3 $(GALLERY_SCENES)
@@ -170,6 +174,114 @@ fuzz: deps
 	@mkdir -p build-fuzz/corpus
 	build-fuzz/fuzz_expr -max_total_time=$(FUZZ_SECONDS) -timeout=20 -rss_limit_mb=4096 -max_len=8192 \
 	    -print_final_stats=1 -artifact_prefix=build-fuzz/ build-fuzz/corpus examples tests/data/fuzz
+
+# ---- The library and command as installed software (issue 13) --------------------------------------------
+# make install PREFIX=/usr/local DESTDIR= puts, under DESTDIR/PREFIX:
+#   bin/iacsg                          the command (libiacsg.a linked in)
+#   lib/libiacsg.so.VERSION            the shared library, SONAME libiacsg.so.MAJOR, links .so.MAJOR and .so
+#   lib/libiacsg.a                     the static library
+#   lib/iacsg/libiacsg_image.so        the command's image writer, found from bin/ as ../lib/iacsg/ (cli_writer.c)
+#   lib/pkgconfig/iacsg.pc             from src/iacsg.pc.in
+#   include/iacsg/*.h                  PUBLIC_HEADERS, flat: #include <iacsg/iacsg.h>
+#   share/man/man1/iacsg.1             made from `iacsg --help`, so the two say the same
+#   share/man/man7/iacsg-language.7    made from docs/language.md
+#   share/doc/iacsg/                   README.md and examples/
+# make uninstall removes those files, then the directories they leave empty. tests/t_install.c checks both.
+PREFIX ?= /usr/local
+DESTDIR ?=
+BINDIR = $(PREFIX)/bin
+LIBDIR = $(PREFIX)/lib
+INCLUDEDIR = $(PREFIX)/include
+MANDIR = $(PREFIX)/share/man
+DOCDIR = $(PREFIX)/share/doc/iacsg
+IMAGE_HELPER_DIR = $(PREFIX)/lib/iacsg
+
+# The public API: these headers, and nothing else, are installed (flat, under include/iacsg/) and exported.
+PUBLIC_HEADERS = src/iacsg.h src/api.h src/error.h src/camera.h src/image.h src/render.h implicits/expr.h
+EXAMPLES = $(sort $(wildcard examples/*.c examples/*.csg))
+
+VERSION := $(shell sed -n 's/^\#define IACSG_VERSION "\(.*\)"$$/\1/p' src/iacsg.h 2>/dev/null)
+SONAME = libiacsg.so.$(firstword $(subst ., ,$(VERSION)))
+SHARED_LIB = $(BUILD)/libiacsg.so.$(VERSION)
+PC_LIBS_PRIVATE = -lOpenCL $(IMAGE_LIBS) -lstdc++ -lm
+MAN_PAGES = $(BUILD)/man/iacsg.1 $(BUILD)/man/iacsg-language.7
+INSTALLABLE = $(BUILD)/iacsg $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so $(SHARED_LIB) \
+              $(BUILD)/include/iacsg.stamp $(MAN_PAGES)
+
+.PHONY: installable install uninstall
+all: installable
+installable: $(INSTALLABLE)
+
+# The shared library: position-independent objects (build/pic/) with hidden visibility, so that only the
+# declarations of the public headers (between IACSG_API_BEGIN and IACSG_API_END, src/api.h) are exported;
+# src/libiacsg.map also hides what OpenImageIO's headers mark default (its inline members).
+PIC_OBJ = $(LIB_OBJ:$(BUILD)/%=$(BUILD)/pic/%)
+$(BUILD)/pic/%.o: CFLAGS += -fvisibility=hidden
+$(BUILD)/pic/%.o: CXXFLAGS += -fvisibility=hidden
+$(BUILD)/pic/%.o: $(BUILD)/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -fPIC -c $< -o $@
+$(SHARED_LIB): $(PIC_OBJ) src/libiacsg.map
+	$(CXX) $(LDFLAGS_ALL) -shared -Wl,-soname,$(SONAME) -Wl,--version-script=src/libiacsg.map -Wl,-z,defs \
+	    -o $@ $(PIC_OBJ) $(PC_LIBS_PRIVATE)
+
+# The public headers as installed, flat, their quoted includes of one another reduced to the file name.
+$(BUILD)/include/iacsg.stamp: $(PUBLIC_HEADERS) src/tools/public_headers.sh
+	sh src/tools/public_headers.sh $(BUILD)/include/iacsg $(PUBLIC_HEADERS)
+	@touch $@
+
+$(BUILD)/man/iacsg.1: $(BUILD)/iacsg src/tools/help_to_man.awk
+	@mkdir -p $(dir $@)
+	$(BUILD)/iacsg --help | awk -v version=$(VERSION) -f src/tools/help_to_man.awk > $@.tmp && mv $@.tmp $@
+$(BUILD)/man/iacsg-language.7: docs/language.md src/tools/md_to_man.awk
+	@mkdir -p $(dir $@)
+	awk -v name=iacsg-language -v section=7 -v version=$(VERSION) -f src/tools/md_to_man.awk docs/language.md \
+	    > $@.tmp && mv $@.tmp $@
+
+# Refused before anything is built or copied, in one line, when the prefix (or its nearest existing parent)
+# cannot be written.
+ifneq ($(filter install uninstall,$(MAKECMDGOALS)),)
+INSTALL_ROOT_DENIED := $(shell d='$(DESTDIR)$(PREFIX)'; while [ ! -e "$$d" ]; do d=$$(dirname "$$d"); done; \
+                               [ -w "$$d" ] || echo "$$d")
+ifneq ($(INSTALL_ROOT_DENIED),)
+$(error make $(filter install uninstall,$(MAKECMDGOALS)): no write access to $(INSTALL_ROOT_DENIED) \
+    (PREFIX=$(PREFIX)); choose another PREFIX, or run it as root)
+endif
+endif
+
+install: installable
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(IMAGE_HELPER_DIR) \
+	    $(DESTDIR)$(INCLUDEDIR)/iacsg $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man7 $(DESTDIR)$(DOCDIR)/examples
+	install -m 755 $(BUILD)/iacsg $(DESTDIR)$(BINDIR)/
+	install -m 755 $(SHARED_LIB) $(DESTDIR)$(LIBDIR)/
+	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(LIBDIR)/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libiacsg.so
+	install -m 644 $(BUILD)/libiacsg.a $(DESTDIR)$(LIBDIR)/
+	install -m 755 $(BUILD)/libiacsg_image.so $(DESTDIR)$(IMAGE_HELPER_DIR)/
+	install -m 644 $(addprefix $(BUILD)/include/iacsg/,$(notdir $(PUBLIC_HEADERS))) \
+	    $(DESTDIR)$(INCLUDEDIR)/iacsg/
+	sed -e 's|@PREFIX@|$(PREFIX)|; s|@LIBDIR@|$(LIBDIR)|; s|@INCLUDEDIR@|$(INCLUDEDIR)|' \
+	    -e 's|@VERSION@|$(VERSION)|; s|@LIBS_PRIVATE@|$(PC_LIBS_PRIVATE)|' src/iacsg.pc.in \
+	    > $(DESTDIR)$(LIBDIR)/pkgconfig/iacsg.pc
+	install -m 644 $(BUILD)/man/iacsg.1 $(DESTDIR)$(MANDIR)/man1/
+	install -m 644 $(BUILD)/man/iacsg-language.7 $(DESTDIR)$(MANDIR)/man7/
+	install -m 644 README.md $(DESTDIR)$(DOCDIR)/
+	install -m 644 $(EXAMPLES) $(DESTDIR)$(DOCDIR)/examples/
+
+# Standard directories (bin, lib, share/man, ...) go only when nothing else is left in them.
+uninstall:
+	rm -f $(DESTDIR)$(BINDIR)/iacsg $(DESTDIR)$(LIBDIR)/$(notdir $(SHARED_LIB)) \
+	    $(DESTDIR)$(LIBDIR)/$(SONAME) $(DESTDIR)$(LIBDIR)/libiacsg.so $(DESTDIR)$(LIBDIR)/libiacsg.a \
+	    $(DESTDIR)$(IMAGE_HELPER_DIR)/libiacsg_image.so $(DESTDIR)$(LIBDIR)/pkgconfig/iacsg.pc \
+	    $(addprefix $(DESTDIR)$(INCLUDEDIR)/iacsg/,$(notdir $(PUBLIC_HEADERS))) \
+	    $(DESTDIR)$(MANDIR)/man1/iacsg.1 $(DESTDIR)$(MANDIR)/man7/iacsg-language.7 \
+	    $(DESTDIR)$(DOCDIR)/README.md $(addprefix $(DESTDIR)$(DOCDIR)/examples/,$(notdir $(EXAMPLES)))
+	@for d in $(DOCDIR)/examples $(DOCDIR) $(PREFIX)/share/doc $(MANDIR)/man1 $(MANDIR)/man7 $(MANDIR) \
+	    $(PREFIX)/share $(INCLUDEDIR)/iacsg $(INCLUDEDIR) $(IMAGE_HELPER_DIR) $(LIBDIR)/pkgconfig $(LIBDIR) \
+	    $(BINDIR); do [ ! -d "$(DESTDIR)$$d" ] || rmdir --ignore-fail-on-non-empty "$(DESTDIR)$$d"; done
+
+# tests/t_install.c installs this build (a sanitizer build's tests install the plain one, `build`).
+$(BUILD)/tests/t_install.o: CFLAGS += -DIACSG_INSTALL_BUILD_DEFAULT='"$(if $(SAN),build,$(BUILD))"'
 
 clean:
 	rm -rf build build-asan build-fuzz

@@ -8,9 +8,8 @@
  * the first-root path, one of regions and surfaces by the segment path (iacsg_renderer_create_scene chooses).
  * The library never prints: every call returns a status and fills an iacsg_error, and this program decides
  * what to say. */
-#include "iacsg.h"
-#include "implicits/scene.h"
-#include "scene_tables.h" /* scene_bounds */
+#include <iacsg/iacsg.h>
+#include "implicits/scene.h" /* the scene language: not an installed header yet */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,12 +55,13 @@ static iacsg_status render_cell(const char *path, int cell, float *sheet, int sh
         st = iacsg_renderer_create_scene(s, &config, &r, err);
     if (st == IACSG_OK) {
         iacsg_view view = {.width = cell, .height = cell, .eps = 0x1p-16, .camera = {.up = {0, 0, 1}, .fov = 40}};
-        if (!(s->nitems > 0 ? scene_bounds(s, view.bounds) : iacsg_expr_bounds(s->expr, view.bounds)))
+        view.time[0] = view.time[1] = scene_uses_time(s) ? 0.5 : 0;
+        if (!(s->nitems > 0 ? iacsg_scene_bounds(s, view.time, view.bounds)
+                            : iacsg_expr_bounds(s->expr, view.time, view.bounds)))
             memcpy(view.bounds, (double[6]){-2, -2, -2, 2, 2, 2}, sizeof view.bounds);
         for (int k = 0; k < 3; k++)
             view.camera.at[k] = 0.5 * (view.bounds[k] + view.bounds[k + 3]);
         iacsg_camera_fit_azel(&view.camera, view.bounds, 35, 25);
-        view.time = scene_uses_time(s) ? 0.5 : 0;
         iacsg_frame frame;
         st = iacsg_render(r, &view, &frame, err);
         if (st == IACSG_OK) {

@@ -30,11 +30,31 @@
  *   identity). Infinite bounds mean "unbounded". Reals passed to an operation (add_r, mul_r, contains) are
  *   finite. No operation makes a NaN bound from non-NaN inputs (ia_mid of empty is NaN by definition).
  *
+ *   Undefined operands (what an expression means where a part of it is undefined: sqrt(x) for x < 0, log(0),
+ *   1/0, tan at its poles, pow off its domain). ONE rule, the same in the host evaluator (implicits/eval_body.h),
+ *   the interval code F, the vector code Fv (ia/vec.h) and its union groups, and the point code f, f_grad:
+ *     - every operation with an undefined operand is undefined (NaN in the point code), except the union:
+ *     - min(a, b) is b where a is undefined and a where b is (undefined counts as outside, +inf, in a union),
+ *       undefined where both are; max(a, b) is undefined where either is (outside: an intersection with
+ *       nothing is nothing);
+ *     - where the whole expression is undefined, the point is outside the solid: the solid is where the
+ *       expression is defined and < 0, and its boundary is the surface f = 0 and the edge of the domain where
+ *       the defined side is inside.
+ *   As intervals: an enclosure holds the values at the points of the box where the expression is defined (the
+ *   set-based rule above), and the emitted code carries beside each interval that can be undefined a flag,
+ *   "may be undefined somewhere on the box", made by the `undefined` column of implicits/ops.def (the vector
+ *   code a second one, "undefined on all of it": ia/vec.h). A union with a flagged operand is ia_union, which
+ *   takes that operand as [lo, +inf] (ia_or_outside), and so is the value of the whole expression read. (C's
+ *   fmin already drops a NaN; the point max is ia_real_max.) Interval Newton needs F defined and continuous on
+ *   the whole node, so the derivative code reports an unbounded derivative wherever a flag is raised
+ *   (kernels/packet.h).
+ *
  *   Fast mode (IA_FAST) drops the widening: the Hijazi seed's arithmetic, for measuring the cost of rigor.
  *
- * Files: compat.h (host/device differences), round.h (widening, error table), interval.h (type, exact ops),
- * arith.h (+ - * / recip sqr pown sqrt), elem.h (exp log sin cos tan atan pow). Host only: decimal.h. Device
- * only: vec.h, the operations over IA_VW lanes (for lanes with nonempty operands, bit-identical to these).
+ * Files: compat.h (host/device differences), round.h (widening, error table), interval.h (type, exact ops, the
+ * union under the rule for undefined operands), arith.h (+ - * / recip sqr pown sqrt), elem.h (exp log sin cos
+ * tan atan pow). Host only: decimal.h. Device only: vec.h, the operations over IA_VW lanes (for lanes with
+ * nonempty operands, bit-identical to these).
  */
 #ifndef IA_IA_H
 #define IA_IA_H

@@ -76,8 +76,8 @@ IA_FN ia_interval ia_abs(ia_interval a) {
     return ia_make(0, fmax(-a.lo, a.hi));
 }
 
-/* min and max: CSG union and intersection. With an empty operand the result is empty (the function is
- * undefined there). */
+/* min and max of intervals (IEEE 1788): with an empty operand the result is empty. The CSG union of operands
+ * that may be undefined is ia_union (below). */
 IA_FN ia_interval ia_min(ia_interval a, ia_interval b) {
     if (ia_is_empty(a) || ia_is_empty(b))
         return ia_empty();
@@ -88,6 +88,28 @@ IA_FN ia_interval ia_max(ia_interval a, ia_interval b) {
         return ia_empty();
     return ia_make(fmax(a.lo, b.lo), fmax(a.hi, b.hi));
 }
+
+/* An enclosure a of a value that may be undefined somewhere on the box (`undefined`: the flag the emitted code
+ * carries, ia/ia.h), read as a solid reads it, undefined counting as +inf (outside): [a.lo, +inf]. Empty (undefined
+ * everywhere) stays empty. */
+IA_FN ia_interval ia_or_outside(ia_interval a, int undefined) {
+    return undefined && !ia_is_empty(a) ? ia_make(a.lo, IA_INF) : a;
+}
+
+/* The CSG union of a and b, min under the rule of ia/ia.h for undefined operands, given their flags: an operand
+ * undefined everywhere (empty) leaves the other; one undefined somewhere enters the min through ia_or_outside,
+ * so the result holds the other operand's values where it is undefined. */
+IA_FN ia_interval ia_union(ia_interval a, int a_undefined, ia_interval b, int b_undefined) {
+    if (ia_is_empty(a))
+        return b;
+    if (ia_is_empty(b))
+        return a;
+    return ia_min(ia_or_outside(a, a_undefined), ia_or_outside(b, b_undefined));
+}
+
+/* max of two point values, undefined (NaN) where either is: the point code's max (C's fmax would drop a NaN,
+ * which is min's rule, not max's; see ia/ia.h). */
+IA_FN ia_real ia_real_max(ia_real a, ia_real b) { return isnan(a) || isnan(b) ? (ia_real)NAN : fmax(a, b); }
 
 /* The smallest interval containing both; empty is the identity. */
 IA_FN ia_interval ia_hull(ia_interval a, ia_interval b) {

@@ -1,13 +1,15 @@
 /* ia/vec.h -- intervals of IA_VW lanes, OpenCL C only (built with -D IA_VW=4, 8 or 16): the operations of
  * ia/ over vectors of bounds, without branches, so that one work-item evaluates an expression for IA_VW rays
  * at once in SIMD registers. PoCL does not vectorise the bisection across work-items (its trip count differs
- * per ray), so the kernels do it by hand (kernels/bisect_simd.h) and need these.
+ * per ray), so the kernels do it by hand (kernels/packet.h) and need these.
  *
  * The contract differs from ia/ia.h in one point, on purpose: a lane whose operand is empty, or whose operand
  * misses the operation's domain entirely (sqrt of [-2,-1]), may hold ANY value, NaN included. Dropping the
- * emptiness tests is what makes the operations branch-free. It is enough for the renderer: every operation maps
- * empty to empty, so when a node of an expression is empty over a box the whole expression is, and then any
- * result encloses its (empty) range. A lane whose operands are nonempty gets exactly what ia/ia.h promises:
+ * emptiness tests is what makes the operations branch-free. It is enough for the renderer: a lane is empty only
+ * where an operation was undefined on all of its box, and the emitted code raises that operation's flags there
+ * (ia/ia.h, undefined operands: `empty` beside `undefined`); they reach every node above it up to a union or the
+ * value of the whole expression, which read the lane as [+inf, +inf] whatever it holds (iav_or_outside).
+ * A lane whose operands are nonempty gets exactly what ia/ia.h promises:
  * inclusion under the same rounding arguments (ia/round.h), bounds never NaN, and the same tightness.
  * A NaN that reaches the end fails iav_contains_zero, as an empty interval would.
  *
@@ -104,6 +106,21 @@ IA_FN int iav_count(ia_maskv m) {
     iav__mask4 m4 = m8.lo + m8.hi;
     iav__mask2 m2 = m4.lo + m4.hi;
     return -(int)(m2.x + m2.y);
+}
+
+/* ia_or_outside and ia_union lane by lane. A lane's emptiness cannot be read from its bounds here (see the top),
+ * so the emitted code carries it as a second flag, `empty` (undefined on all of the box; it implies
+ * `undefined`): such a lane counts as [+inf, +inf], outside everywhere, the other flagged lanes as [lo, +inf]. */
+IA_FN iav iav_or_outside(iav a, ia_maskv undefined, ia_maskv empty) {
+    return iav_make(select(a.lo, IAV_R(IA_INF), empty), select(a.hi, IAV_R(IA_INF), undefined));
+}
+IA_FN iav iav_union(iav a, ia_maskv a_undefined, ia_maskv a_empty, iav b, ia_maskv b_undefined, ia_maskv b_empty) {
+    return iav_min(iav_or_outside(a, a_undefined, a_empty), iav_or_outside(b, b_undefined, b_empty));
+}
+
+/* [-inf, +inf] in the lanes of m, a elsewhere: the derivative code's answer where F may be undefined. */
+IA_FN iav iav_entire_where(iav a, ia_maskv m) {
+    return iav_make(select(a.lo, IAV_R(-IA_INF), m), select(a.hi, IAV_R(IA_INF), m));
 }
 
 /* ia_hull of nonempty operands, and ia_dabs, ia_dmin, ia_dmax lane by lane (the same choices, as selects). */

@@ -8,12 +8,12 @@
 #include <string.h>
 
 #define STR(x) #x
-#define LEAF {"", 0, 0, "", "", "", ""}
+#define LEAF {"", 0, 0, "", "", "", "", "", ""}
 const dag_op_info dag_ops[OP_COUNT] = {
     [OP_X] = LEAF, [OP_Y] = LEAF, [OP_Z] = LEAF, [OP_T] = LEAF, [OP_CONST] = LEAF, [OP_PI] = LEAF, [OP_E] = LEAF,
     [OP_PARAM] = LEAF,
-#define OP(id, name, arity, nary, iv, pt, d, td, oracle)                                                          \
-    [OP_##id] = {name, arity, nary, STR(iv), STR(pt), STR(d), STR(td)},
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle, undef, empty)                                               \
+    [OP_##id] = {name, arity, nary, STR(iv), STR(pt), STR(d), STR(td), STR(undef), STR(empty)},
 #include "ops.def"
 #undef OP
 };
@@ -22,7 +22,7 @@ const dag_op_info dag_ops[OP_COUNT] = {
 const char *dag_op_id(dag_op op) {
     static const char *const ids[OP_COUNT] = {
         "X", "Y", "Z", "T", "CONST", "PI", "E", "PARAM",
-#define OP(id, name, arity, nary, iv, pt, d, td, oracle) #id,
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle, undef, empty) #id,
 #include "ops.def"
 #undef OP
     };

@@ -12,7 +12,7 @@ typedef enum {
     OP_CONST,               /* a constant: enclosing intervals in both precisions (and its decimal text, if any) */
     OP_PI, OP_E,            /* the real constants, folded to intervals by simplify.c */
     OP_PARAM,               /* parameter n of a primitive's body, replaced when the primitive is called */
-#define OP(id, name, arity, nary, iv, pt, d, td, oracle) OP_##id,
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle, undef, empty) OP_##id,
 #include "ops.def"
 #undef OP
     OP_COUNT
@@ -21,7 +21,7 @@ typedef enum {
 typedef struct {
     const char *name; /* "" for operators, leaves and internal ops */
     int arity, nary;
-    const char *interval, *point, *derivative, *tderiv; /* the stringified columns of ops.def ("" for leaves) */
+    const char *interval, *point, *derivative, *tderiv, *undefined, *empty; /* ops.def's columns ("" for leaves) */
 } dag_op_info;
 extern const dag_op_info dag_ops[OP_COUNT];
 const char *dag_op_id(dag_op op); /* "ADD", "X", ... for dumps */

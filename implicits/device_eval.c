@@ -17,17 +17,15 @@ static const char kernel_head[] =
     "    size_t i = get_global_id(0);\n"
     "    if (i >= n)\n"
     "        return;\n"
-    "    __global const ia_real *v = in + 11 * i;\n"
+    "    __global const ia_real *v = in + 8 * i;\n"
     "    ia_interval x = ia_make(v[0], v[1]), y = ia_make(v[2], v[3]), z = ia_make(v[4], v[5]);\n"
     "    ia_interval t = ia_make(v[6], v[7]);\n"
-    "    ia_interval r = ia_empty(), dr = ia_empty();\n"
-    "    ia_interval dx = ia_point(v[8]), dy = ia_point(v[9]), dz = ia_point(v[10]);\n"
+    "    ia_interval r = ia_empty();\n"
     "    ia_real f = 0, gx = 0, gy = 0, gz = 0;\n"
     "    switch (which[i]) {\n";
 static const char kernel_tail[] = "    }\n"
-                                  "    __global ia_real *o = out + 8 * i;\n"
+                                  "    __global ia_real *o = out + 6 * i;\n"
                                   "    o[0] = r.lo; o[1] = r.hi; o[2] = f; o[3] = gx; o[4] = gy; o[5] = gz;\n"
-                                  "    o[6] = dr.lo; o[7] = dr.hi;\n"
                                   "}\n";
 
 static char *program_source(const iacsg_expr *const *exprs, int nexprs, iacsg_error *err) {
@@ -44,10 +42,9 @@ static char *program_source(const iacsg_expr *const *exprs, int nexprs, iacsg_er
     }
     strbuf_printf(&b, "%s", kernel_head);
     for (int k = 0; k < nexprs; k++)
-        strbuf_printf(&b,
-                      "    case %d: r = e%d_F(x, y, z, t); f = e%d_f_grad(v[0], v[2], v[4], v[6], &gx, &gy, &gz); "
-                      "e%d_Fd(x, y, z, t, dx, dy, dz, &dr); break;\n",
-                      k, k, k, k);
+        strbuf_printf(&b, "    case %d: r = e%d_F(x, y, z, t); f = e%d_f_grad(v[0], v[2], v[4], v[6], &gx, &gy, &gz); "
+                          "break;\n",
+                      k, k, k);
     strbuf_printf(&b, "%s", kernel_tail);
     char *s = strbuf_finish(&b);
     if (!s)
@@ -85,13 +82,10 @@ iacsg_status device_eval(clrt *rt, const iacsg_expr *const *exprs, int nexprs, i
         goto done;
     }
     for (size_t i = 0; i < DEVICE_EVAL_IN * n; i++) {
-        size_t k = i % DEVICE_EVAL_IN;
         if (fp64)
             ((double *)host_in)[i] = in[i];
-        else if (k >= 8) /* the direction */
-            ((float *)host_in)[i] = (float)in[i];
         else /* the corner x0, y0, z0, t0 is also the point: round it down with the box */
-            ((float *)host_in)[i] = to_float(in[i], k % 2 == 0);
+            ((float *)host_in)[i] = to_float(in[i], i % 2 == 0);
     }
     if ((st = clrt_ia_options(rt, fp64, 0, options, sizeof options, err)) != IACSG_OK)
         goto done;

@@ -6,12 +6,11 @@
 #include "expr.h"
 
 /* One program for nexprs expressions, then n queries: query i evaluates expression which[i] with
- * in[11i .. 11i+10] = x0, x1, y0, y1, z0, z1, t0, t1 (exact doubles; rounded outward to floats without fp64),
- * dx, dy, dz (a direction, rounded to nearest) and writes out[8i .. 8i+7] = the enclosure lo, hi of F over that
- * box, f and its gradient gx, gy, gz at the corner (x0, y0, z0, t0) as the device holds it (rounded down to
- * float without fp64), then the enclosure lo, hi of the derivative of F along (dx, dy, dz) over the box (Fd). */
-#define DEVICE_EVAL_IN 11
-#define DEVICE_EVAL_OUT 8
+ * in[8i .. 8i+7] = x0, x1, y0, y1, z0, z1, t0, t1 (exact doubles; rounded outward to floats without fp64) and
+ * writes out[6i .. 6i+5] = the enclosure lo, hi of F over that box, f and its gradient gx, gy, gz at the corner
+ * (x0, y0, z0, t0) as the device holds it (rounded down to float without fp64). */
+#define DEVICE_EVAL_IN 8
+#define DEVICE_EVAL_OUT 6
 iacsg_status device_eval(clrt *rt, const iacsg_expr *const *exprs, int nexprs, int fp64, size_t n,
                          const int *which, const double *in, double *out, iacsg_error *err);
 

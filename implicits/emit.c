@@ -10,7 +10,11 @@
  * one pass instead of six evaluations, and has no step size to tune (a step that suits a unit sphere fails on
  * x^500 or near the tiny features of a blend). The three travel as one 4-vector (iacsg_grad): one statement
  * per node instead of three, which also spares LLVM's SLP vectoriser, whose search over three parallel scalar
- * chains made most of the compile time of large expressions. */
+ * chains made most of the compile time of large expressions.
+ *
+ * Undefined operands follow the rule at the top of ia/ia.h: nodes that may be undefined carry flags (see
+ * op_may_be_undefined), a union of them is ia_union, and the value of the whole expression is read through
+ * ia_or_outside. */
 #include "emit.h"
 #include "strbuf.h"
 #include <math.h>
@@ -34,26 +38,38 @@ static void put_real(strbuf *b, double d, float f) {
     strbuf_printf(b, ")");
 }
 
+/* Undefined operands (the rule is at the top of ia/ia.h): a node "may be undefined" when its operation's
+ * `undefined` column of ops.def is not 0 (a pole, a domain edge; pown only for negative powers), when it is an
+ * empty constant, or when an operand may be, but for a union, which is undefined only where both operands are.
+ * Such a node's interval code computes beside its value v<i> a flag v<i>_u (int, or ia_maskv over lanes), "may
+ * be undefined somewhere on the box": its own condition or its operands' flags; the vector code also v<i>_e,
+ * "undefined on all of the box" (the `empty` column), as it cannot test its lanes for empty (ia/vec.h). Nodes
+ * that cannot be undefined, most of them, get no flag. */
+static int op_may_be_undefined(const dag_node *n) {
+    return n->op >= OP_NEG && strcmp(dag_ops[n->op].undefined, "0") != 0 && !(n->op == OP_POWN && n->n >= 0);
+}
+
 typedef struct {
     const dag *d;
-    unsigned char *axes; /* per node: bit k set when its derivative along axis k is not identically 0 */
+    unsigned char *axes;      /* per node: bit k set when its derivative along axis k is not identically 0 */
+    unsigned char *undefined; /* per node: 1 when it may be undefined somewhere (it has a flag v<i>_u) */
 } emitter;
 
 /* The text standing for operand node i in the interval code, the vector interval code (ia/vec.h: the same
  * templates with iav_ for ia_), the point code, or its gradient (an iacsg_grad vector: x, y, z, 0); and, for the
- * interval code along a ray (AS_INTERVAL_DT, AS_VECTOR_DT: values and their derivatives in t, the leaves x, y, z
- * moving at the rates dx, dy, dz), the enclosure of its derivative (AS_TDERIV, AS_VTDERIV). */
-typedef enum { AS_INTERVAL, AS_VECTOR, AS_POINT, AS_DERIV, AS_INTERVAL_DT, AS_VECTOR_DT, AS_TDERIV, AS_VTDERIV } role;
+ * vector interval code along a ray (AS_VECTOR_DT: values and their derivatives in t, the leaves x, y, z moving
+ * at the rates dx, dy, dz), the enclosure of its derivative (AS_VTDERIV). */
+typedef enum { AS_INTERVAL, AS_VECTOR, AS_POINT, AS_DERIV, AS_VECTOR_DT, AS_VTDERIV } role;
 static int is_interval(role r) { return r != AS_POINT && r != AS_DERIV; }
 static int is_vector(role r) { return r == AS_VECTOR || r == AS_VECTOR_DT || r == AS_VTDERIV; }
 static void put_operand(strbuf *b, const emitter *em, int i, role r) {
     const dag *d = em->d;
     const dag_node *n = &d->nodes[i];
-    if (r == AS_TDERIV || r == AS_VTDERIV) {
+    if (r == AS_VTDERIV) {
         if (n->op <= OP_Z)
             strbuf_printf(b, "d%s", var_names[n->op]);
         else if (!em->axes[i])
-            strbuf_printf(b, r == AS_VTDERIV ? "iav_point(0)" : "ia_point(0)");
+            strbuf_printf(b, "iav_point(0)");
         else
             strbuf_printf(b, "v%d_t", i);
     } else if (r == AS_DERIV) {
@@ -83,17 +99,71 @@ static void put_operand(strbuf *b, const emitter *em, int i, role r) {
     }
 }
 
+/* A flag of node i (it may be undefined): v<i>_u or v<i>_e (kind 'u' or 'e'), or true for an empty constant. */
+static void put_flag(strbuf *b, const emitter *em, int i, role r, char kind) {
+    if (em->d->nodes[i].op == OP_CONST)
+        strbuf_printf(b, is_vector(r) ? "(ia_maskv)-1" : "1");
+    else
+        strbuf_printf(b, "v%d_%c", i, kind);
+}
+
+/* Node i's flags as arguments: ", u" or, over lanes, ", u, e"; false where it cannot be undefined. */
+static void put_flag_arguments(strbuf *b, const emitter *em, int i, role r) {
+    for (int k = 0; k < (is_vector(r) ? 2 : 1); k++) {
+        strbuf_printf(b, ", ");
+        if (em->undefined[i])
+            put_flag(b, em, i, r, k == 0 ? 'u' : 'e');
+        else
+            strbuf_printf(b, is_vector(r) ? "(ia_maskv)0" : "0");
+    }
+}
+
+/* Node i's interval value as the solid reads it: through ia_or_outside where it may be undefined (+inf,
+ * outside, there). For the value of the whole expression, and for the parts of a union in groups (emit_group), as
+ * iav_union takes them. */
+static void put_solid_value(strbuf *b, const emitter *em, int i, role r) {
+    if (!em->undefined[i]) {
+        put_operand(b, em, i, r);
+        return;
+    }
+    strbuf_printf(b, is_vector(r) ? "iav_or_outside(" : "ia_or_outside(");
+    put_operand(b, em, i, r);
+    put_flag_arguments(b, em, i, r);
+    strbuf_printf(b, ")");
+}
+
+/* The value of a union (MIN) with an operand that may be undefined: ia_union (ia/interval.h) with the flags. */
+static void put_union(strbuf *b, const emitter *em, int i, role r) {
+    const dag_node *n = &em->d->nodes[i];
+    int operands[2] = {n->a, n->b};
+    strbuf_printf(b, is_vector(r) ? "iav_union(" : "ia_union(");
+    for (int k = 0; k < 2; k++) {
+        put_operand(b, em, operands[k], r);
+        put_flag_arguments(b, em, operands[k], r);
+        strbuf_printf(b, k == 0 ? ", " : ")");
+    }
+}
+
 static int is_ident_char(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
 }
 
-/* Writes an ops.def template for node i, replacing the placeholders A, B, N, KB, DA, DB and R. */
+/* Writes an ops.def template for node i, replacing the placeholders A, B, N, KB, DA, DB and R. In the point
+ * code, the bounds .lo and .hi of the `undefined` column are the point itself. */
 static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r) {
     const dag *d = em->d;
     const dag_node *n = &d->nodes[i];
-    role operand_role = r == AS_DERIV ? AS_POINT : r == AS_TDERIV ? AS_INTERVAL : r == AS_VTDERIV ? AS_VECTOR : r;
-    role deriv_role = r == AS_TDERIV || r == AS_VTDERIV ? r : AS_DERIV;
+    role operand_role = r == AS_DERIV ? AS_POINT : r == AS_VTDERIV ? AS_VECTOR : r;
+    role deriv_role = r == AS_VTDERIV ? r : AS_DERIV;
+    if (n->op == OP_MIN && tpl == dag_ops[OP_MIN].interval && (em->undefined[n->a] || em->undefined[n->b])) {
+        put_union(b, em, i, r);
+        return;
+    }
     for (const char *p = tpl; *p;) {
+        if (r == AS_POINT && (strncmp(p, ".lo", 3) == 0 || strncmp(p, ".hi", 3) == 0) && !is_ident_char(p[3])) {
+            p += 3;
+            continue;
+        }
         if (!is_ident_char(*p)) {
             strbuf_append(b, p++, 1);
             continue;
@@ -138,11 +208,39 @@ static int valid_prefix(const char *p) {
     return 1;
 }
 
-/* The statements computing every non-leaf node, for one of the six functions. Derivatives that are 0 by
- * structure (of nodes that depend on none of x, y, z) are not computed. */
+/* Node i's flag of a kind, 'u' or 'e' (see op_may_be_undefined): its own condition (the undefined or empty
+ * column), or its operands' flags (both, for a union). */
+static void flag_statement(strbuf *b, const emitter *em, int i, role value, char kind) {
+    const dag_node *n = &em->d->nodes[i];
+    const char *own = kind == 'u' ? dag_ops[n->op].undefined : dag_ops[n->op].empty;
+    strbuf_printf(b, "    %s v%d_%c = ", is_vector(value) ? "ia_maskv" : "int", i, kind);
+    const char *join = "";
+    if (op_may_be_undefined(n) && strcmp(own, "0") != 0) {
+        strbuf_printf(b, "(");
+        expand(b, em, i, own, value);
+        strbuf_printf(b, ")");
+        join = " || ";
+    }
+    int operands[2] = {n->a, n->b}, any = 0;
+    for (int k = 0; k < 2; k++)
+        if (operands[k] >= 0 && em->undefined[operands[k]]) {
+            strbuf_printf(b, "%s", n->op == OP_MIN ? (k == 0 ? "(" : " && ") : join);
+            put_flag(b, em, operands[k], value, kind);
+            join = " || ";
+            any = 1;
+        }
+    if (!any && !*join) /* tan is never undefined on all of a box */
+        strbuf_printf(b, "0");
+    strbuf_printf(b, "%s;\n", n->op == OP_MIN ? ")" : "");
+}
+
+/* The statements computing every non-leaf node, for one of the five functions. Derivatives that are 0 by
+ * structure (of nodes that depend on none of x, y, z) are not computed. Where a node may be undefined, the
+ * interval code computes its flag, the point code makes it NaN where its own operation is undefined (NaN then
+ * spreads through the arithmetic; at a point, tan's poles are never met, so its condition on R is left out),
+ * and the derivative along a ray gathers the flags of such operations in `undefined`. */
 static void body(strbuf *b, const emitter *em, const int *order, int count, role r) {
-    role value = r == AS_INTERVAL_DT ? AS_INTERVAL : r == AS_VECTOR_DT ? AS_VECTOR : r;
-    int with_derivative = r == AS_DERIV || r == AS_INTERVAL_DT || r == AS_VECTOR_DT;
+    role value = r == AS_VECTOR_DT ? AS_VECTOR : r == AS_DERIV ? AS_POINT : r;
     for (int k = 0; k < count; k++) {
         int i = order[k];
         const dag_node *n = &em->d->nodes[i];
@@ -152,31 +250,54 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
         strbuf_printf(b, "    %s v%d = ", type, i);
         expand(b, em, i, is_interval(r) ? dag_ops[n->op].interval : dag_ops[n->op].point, value);
         strbuf_printf(b, ";\n");
-        if (!with_derivative || !em->axes[i])
+        int own = op_may_be_undefined(n);
+        if (em->undefined[i] && is_interval(r))
+            flag_statement(b, em, i, value, 'u');
+        if (em->undefined[i] && is_vector(r))
+            flag_statement(b, em, i, value, 'e');
+        if (own && r == AS_VECTOR_DT)
+            strbuf_printf(b, "    undefined |= v%d_u;\n", i);
+        if (own && !is_interval(r) && !strstr(dag_ops[n->op].undefined, "R.")) {
+            strbuf_printf(b, "    v%d = ", i);
+            expand(b, em, i, dag_ops[n->op].undefined, AS_POINT);
+            strbuf_printf(b, " ? (ia_real)NAN : v%d;\n", i);
+        }
+        if ((r != AS_DERIV && r != AS_VECTOR_DT) || !em->axes[i])
             continue;
         if (r == AS_DERIV) {
             strbuf_printf(b, "    iacsg_grad v%d_d = ", i);
             expand(b, em, i, dag_ops[n->op].derivative, AS_DERIV);
         } else {
-            strbuf_printf(b, "    %s v%d_t = ", type, i);
-            expand(b, em, i, dag_ops[n->op].tderiv, r == AS_VECTOR_DT ? AS_VTDERIV : AS_TDERIV);
+            strbuf_printf(b, "    iav v%d_t = ", i);
+            expand(b, em, i, dag_ops[n->op].tderiv, AS_VTDERIV);
         }
         strbuf_printf(b, ";\n");
     }
 }
 
-/* The value of the expression over a box and the enclosure of its derivative along a ray through it, the box
- * moving at the rates dx, dy, dz (the ray's direction): prefix_Fdv over lanes or prefix_Fd. */
+/* Whether any node of order[] has an operation that may be undefined. */
+static int any_partial(const emitter *em, const int *order, int count) {
+    for (int k = 0; k < count; k++)
+        if (op_may_be_undefined(&em->d->nodes[order[k]]))
+            return 1;
+    return 0;
+}
+
+/* The value of the expression over lanes' boxes and the enclosure of its derivative along a ray through them, the
+ * boxes moving at the rates dx, dy, dz (the rays' directions): prefix_Fdv, for interval Newton. Where an
+ * operation may be undefined on a lane's box (a pole, a domain edge), F may be undefined or jump there, and the
+ * mean value theorem Newton relies on fails: the derivative is reported as [-inf, +inf] in that lane. */
 static void emit_tderiv_function(strbuf *b, const emitter *em, const int *order, int count, int root,
-                                 const char *prefix, int vector) {
-    const char *type = vector ? "iav" : "ia_interval";
-    strbuf_printf(b, "IA_FN %s %s_Fd%s(%s x, %s y, %s z, %s t, %s dx, %s dy, %s dz, %s *dt) {\n", type, prefix,
-                  vector ? "v" : "", type, type, type, type, type, type, type, type);
-    body(b, em, order, count, vector ? AS_VECTOR_DT : AS_INTERVAL_DT);
-    strbuf_printf(b, "    *dt = ");
-    put_operand(b, em, root, vector ? AS_VTDERIV : AS_TDERIV);
-    strbuf_printf(b, ";\n    return ");
-    put_operand(b, em, root, vector ? AS_VECTOR : AS_INTERVAL);
+                                 const char *prefix) {
+    strbuf_printf(b, "IA_FN iav %s_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt) {\n", prefix);
+    int partial = any_partial(em, order, count);
+    if (partial)
+        strbuf_printf(b, "    ia_maskv undefined = 0;\n");
+    body(b, em, order, count, AS_VECTOR_DT);
+    strbuf_printf(b, partial ? "    *dt = iav_entire_where(" : "    *dt = ");
+    put_operand(b, em, root, AS_VTDERIV);
+    strbuf_printf(b, partial ? ", undefined);\n    return " : ";\n    return ");
+    put_solid_value(b, em, root, AS_VECTOR);
     strbuf_printf(b, ";\n}\n");
 }
 
@@ -269,7 +390,10 @@ static int emit_group(strbuf *b, const emitter *em, int root, const int *parts, 
                       prefix, g);
     body(b, em, order, count, r);
     strbuf_printf(b, vector ? "    iav r = " : "    ia_real r = ");
-    put_operand(b, em, parts[first], vector ? AS_VECTOR : AS_POINT);
+    if (vector)
+        put_solid_value(b, em, parts[first], AS_VECTOR);
+    else
+        put_operand(b, em, parts[first], AS_POINT);
     if (!vector) {
         strbuf_printf(b, ";\n    iacsg_grad rg = ");
         put_operand(b, em, parts[first], AS_DERIV);
@@ -278,12 +402,15 @@ static int emit_group(strbuf *b, const emitter *em, int root, const int *parts, 
     for (int c = first + 1; c < last; c++) {
         if (vector) {
             strbuf_printf(b, "    r = iav_min(r, ");
-            put_operand(b, em, parts[c], AS_VECTOR);
+            put_solid_value(b, em, parts[c], AS_VECTOR);
             strbuf_printf(b, ");\n");
             continue;
         }
-        /* as MIN's point and derivative templates: fmin, and the first operand's gradient when r <= v */
-        strbuf_printf(b, "    rg = r <= ");
+        /* as MIN's point and derivative templates: fmin, and the first operand's gradient when r <= v or v is
+         * undefined */
+        strbuf_printf(b, "    rg = isnan(");
+        put_operand(b, em, parts[c], AS_POINT);
+        strbuf_printf(b, ") || r <= ");
         put_operand(b, em, parts[c], AS_POINT);
         strbuf_printf(b, " ? rg : ");
         put_operand(b, em, parts[c], AS_DERIV);
@@ -337,7 +464,7 @@ static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *
                          "    iacsg_grad g, gv;\n    ia_real r = %s_f_grad_group(0, x, y, z, t, &g);\n"
                          "    for (int group = 1; group < %d; group++) {\n"
                          "        ia_real v = %s_f_grad_group(group, x, y, z, t, &gv);\n"
-                         "        g = r <= v ? g : gv;\n        r = fmin(r, v);\n    }\n"
+                         "        g = isnan(v) || r <= v ? g : gv;\n        r = fmin(r, v);\n    }\n"
                          "    *gx = g.x;\n    *gy = g.y;\n    *gz = g.z;\n    return r;\n}\n",
                       prefix, prefix, gr.count, prefix);
     }
@@ -382,27 +509,37 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
                                "expression too long to compile: %d operations after simplification (at most %d)",
                                count, EMIT_MAX_NODES);
     }
-    emitter em = {d, count < 0 ? NULL : malloc((size_t)root + 1)};
-    if (!em.axes) {
+    emitter em = {d, count < 0 ? NULL : malloc((size_t)root + 1), count < 0 ? NULL : malloc((size_t)root + 1)};
+    if (!em.axes || !em.undefined) {
         if (count >= 0)
             free(order);
+        free(em.axes);
+        free(em.undefined);
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory generating code");
     }
     for (int k = 0; k < count; k++) {
         const dag_node *n = &d->nodes[order[k]];
-        em.axes[order[k]] = n->op <= OP_Z ? (unsigned char)(1u << n->op)
-                            : n->op < OP_NEG ? 0 /* t and constants */
-                                             : em.axes[n->a] | (n->b >= 0 ? em.axes[n->b] : 0);
+        int i = order[k], a = n->a, b2 = n->b;
+        em.axes[i] = n->op <= OP_Z ? (unsigned char)(1u << n->op)
+                     : n->op < OP_NEG ? 0 /* t and constants */
+                                      : em.axes[a] | (b2 >= 0 ? em.axes[b2] : 0);
+        if (n->op < OP_NEG)
+            em.undefined[i] = n->op == OP_CONST && !(n->lo <= n->hi);
+        else if (n->op == OP_MIN)
+            em.undefined[i] = em.undefined[a] && em.undefined[b2];
+        else
+            em.undefined[i] = op_may_be_undefined(n) || em.undefined[a] || (b2 >= 0 && em.undefined[b2]);
     }
     strbuf b = {0};
     strbuf_printf(&b, "/* generated by iacsg: %d nodes */\n"
                       "#ifndef IACSG_K\n#ifdef IA_FP64\n#define IACSG_K(f, d) (d)\ntypedef double4 iacsg_grad;\n#else\n"
                       "#define IACSG_K(f, d) (f)\ntypedef float4 iacsg_grad;\n#endif\n#endif\n",
                   count);
-    /* Over IA_VW lanes (ia/vec.h) for the renderer's kernels, a large union in groups; the scalar interval and
-     * point functions for other programs (device evaluation). A program gets only what it uses: clang parses
-     * every function it is given, and for 1024 spheres each of these is 3400 statements. A program that traces
-     * rays one by one but shades in lanes (the segment path) defines IACSG_SCALAR_CODE to get the scalar ones. */
+    /* Over IA_VW lanes (ia/vec.h) for the renderer's kernels, a large union in groups; the scalar interval
+     * function for other programs (device evaluation); the point value and gradient for both. A program gets
+     * only what it uses: clang parses every function it is given, and for 1024 spheres each of these is 3400
+     * statements. A program that traces rays one by one but shades in lanes (the segment path) defines
+     * IACSG_SCALAR_CODE to get the scalar ones. */
     int *parts;
     int nparts = union_parts(d, root, &parts);
     strbuf_printf(&b, "#if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)\n");
@@ -413,24 +550,18 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
         strbuf_printf(&b, "IA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n", prefix);
         body(&b, &em, order, count, AS_VECTOR);
         strbuf_printf(&b, "    return ");
-        put_operand(&b, &em, root, AS_VECTOR);
+        put_solid_value(&b, &em, root, AS_VECTOR);
         strbuf_printf(&b, ";\n}\n");
         if (newton_pays(d, order, count)) {
             strbuf_printf(&b, "#define IACSG_FDV 1\n");
-            emit_tderiv_function(&b, &em, order, count, root, prefix, 1);
+            emit_tderiv_function(&b, &em, order, count, root, prefix);
         }
     }
     strbuf_printf(&b, "#else\nIA_FN ia_interval %s_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n",
                   prefix);
     body(&b, &em, order, count, AS_INTERVAL);
     strbuf_printf(&b, "    return ");
-    put_operand(&b, &em, root, AS_INTERVAL);
-    strbuf_printf(&b, ";\n}\n");
-    emit_tderiv_function(&b, &em, order, count, root, prefix, 0);
-    strbuf_printf(&b, "IA_FN ia_real %s_f(ia_real x, ia_real y, ia_real z, ia_real t) {\n", prefix);
-    body(&b, &em, order, count, AS_POINT);
-    strbuf_printf(&b, "    return ");
-    put_operand(&b, &em, root, AS_POINT);
+    put_solid_value(&b, &em, root, AS_INTERVAL);
     strbuf_printf(&b, ";\n}\n");
     /* a union in groups: the kernels shade it by differences of iacsg_Fv (kernels/shade.h), its gradient code
      * would be a quarter of their build */
@@ -451,6 +582,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     free(parts);
     free(order);
     free(em.axes);
+    free(em.undefined);
     *source = strbuf_finish(&b);
     if (*source && !ok) {
         free(*source);

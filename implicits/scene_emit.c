@@ -1,9 +1,10 @@
 /* implicits/scene_emit.c -- see scene_emit.h. Each dispatcher is a switch over groups of SCENE_EMIT_GROUP solids,
  * each group a function of its own (not inlined) holding a switch over its solids, whose code is inlined there:
- * inlined wherever the kernels call the dispatchers, 1000 spheres took minutes to build. The build still costs
- * about 75 ms of CPU per sphere (PoCL, LLVM 15), two thirds of it for the derivative code (Fd) that interval
- * Newton needs, which made the segment path's frames up to 3x faster. Outside 0..nsolids-1 the enclosure is
- * everything, which rejects nothing. */
+ * inlined wherever the kernels call the dispatchers, 1000 spheres took minutes to build. The build costs about
+ * 30 ms of CPU per sphere (PoCL, LLVM 15). No scene_solid_Fd: the compiler emits the derivative along a ray
+ * only over lanes (P_Fdv), so the walks' interval Newton (kernels/segments.h, SCENE_SOLID_FD) is off; with a
+ * scalar P_Fd it made the frames up to 3x faster. Outside 0..nsolids-1 the enclosure is everything, which
+ * rejects nothing. */
 #include "scene_emit.h"
 #include "strbuf.h"
 #include <stdio.h>
@@ -17,10 +18,6 @@ static const struct {
 } dispatched[] = {
     {"F", "ia_interval", "ia_interval x, ia_interval y, ia_interval z, ia_interval t", "x, y, z, t",
      "return ia_make(-IA_INF, IA_INF);"},
-    {"Fd", "ia_interval",
-     "ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, "
-     "ia_interval *dt",
-     "x, y, z, t, dx, dy, dz, dt", "*dt = ia_make(-IA_INF, IA_INF);\n    return ia_make(-IA_INF, IA_INF);"},
     {"f_grad", "ia_real", "ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz",
      "x, y, z, t, gx, gy, gz", "*gx = *gy = *gz = 0;\n    return 0;"},
 };
@@ -60,7 +57,6 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
     }
     for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0]; which++)
         emit_dispatcher(&b, s->nsolids, (int)which);
-    strbuf_printf(&b, "#define SCENE_SOLID_FD 1\n");
     *source = strbuf_finish(&b);
     return *source ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory generating code");
 }

@@ -7,11 +7,20 @@
  * Every operation here is +, -, *, / or sqrt, written in a fixed order, so the host computes the same float
  * ray bit for bit when the device rounds / and sqrt correctly (fp64 always; float with IA_CR_DIVSQRT). The
  * rendered ray IS this float ray: the bisection encloses its points rigorously (traverse.h), so rounding here
- * only moves the ray by an ulp, it never makes the renderer miss a surface the float ray crosses.
+ * only moves the ray by an ulp, it never makes the renderer miss a surface the float ray crosses. Where / and
+ * sqrt are not correctly rounded (the OpenCL spec allows 2.5 and 3 ulps in float), the tile pass's box of a
+ * tile's rays (tile.h) allows for their error: camera_s_range, camera_v_range.
  */
 #ifndef KERNELS_CAMERA_H
 #define KERNELS_CAMERA_H
 #include "params.h"
+
+/* The error bounds, in ulps, of the / and sqrt that compute the pixel rays: the device's (ia/round.h). Host
+ * tests set them to model a device without correctly rounded ones (tests/t_render_tile_inexact.c). */
+#ifndef CAMERA_ULP_DIV
+#define CAMERA_ULP_DIV IA_ULP_DIV
+#define CAMERA_ULP_SQRT IA_ULP_SQRT
+#endif
 
 /* The screen coordinates s of column i and v of row j. Each is a chain of monotone rounded operations, so s
  * increases with i and v decreases with j also in floating point (kernels/tile.h relies on it). */
@@ -20,6 +29,37 @@ IA_FN ia_real camera_s(const KERNEL_CONSTANT ia_real *p, int i, int width) {
 }
 IA_FN ia_real camera_v(const KERNEL_CONSTANT ia_real *p, int j, int height) {
     return ((ia_real)1 - (ia_real)(2 * j + 1) / (ia_real)height) * p[PARAM_SCALE_V];
+}
+
+/* Enclosures of camera_s of columns i0..i1 and camera_v of rows j0..j1. With a correctly rounded / they are
+ * monotone in the index, so the ends' values are the bounds. Otherwise each quotient (2k + 1) / n may be
+ * CAMERA_ULP_DIV ulps off either way, and need not be monotone: the ends' quotients widened by twice that (their
+ * own error and a pixel's), then the rest in outward rounding, which contains its rounded results. */
+#if CAMERA_ULP_DIV == 0
+IA_FN ia_interval camera_s_range(const KERNEL_CONSTANT ia_real *p, int i0, int i1, int width) {
+    return ia_make(camera_s(p, i0, width), camera_s(p, i1, width));
+}
+IA_FN ia_interval camera_v_range(const KERNEL_CONSTANT ia_real *p, int j0, int j1, int height) {
+    return ia_make(camera_v(p, j1, height), camera_v(p, j0, height));
+}
+#else
+IA_FN ia_interval camera_quotients(int k0, int k1, int n) {
+    return ia_make(ia_lo_k((ia_real)(2 * k0 + 1) / (ia_real)n, 2 * CAMERA_ULP_DIV),
+                   ia_hi_k((ia_real)(2 * k1 + 1) / (ia_real)n, 2 * CAMERA_ULP_DIV));
+}
+IA_FN ia_interval camera_s_range(const KERNEL_CONSTANT ia_real *p, int i0, int i1, int width) {
+    return ia_mul_r(ia_add_r(camera_quotients(i0, i1, width), (ia_real)-1), p[PARAM_SCALE_S]);
+}
+IA_FN ia_interval camera_v_range(const KERNEL_CONSTANT ia_real *p, int j0, int j1, int height) {
+    return ia_mul_r(ia_add_r(ia_neg(camera_quotients(j0, j1, height)), (ia_real)1), p[PARAM_SCALE_V]);
+}
+#endif
+
+/* An enclosure of exact values widened to hold them as an operation with a k-ulp error computes them (the
+ * pixels' own / and sqrt); for k = 0 it holds them already: an outward-rounded bound lies beyond the
+ * rounded-to-nearest one. */
+IA_FN ia_interval camera_as_rounded(ia_interval a, int k) {
+    return k == 0 ? a : ia_make(ia_lo_k(a.lo, k), ia_hi_k(a.hi, k));
 }
 
 IA_FN void camera_ray(const KERNEL_CONSTANT ia_real *p, int ortho, int i, int j, int width, int height,

@@ -227,14 +227,29 @@ IA_FN void packet_advance_some(ia_maskv *searching, ia_maskv moving, ia_maskv do
 /* Interval Newton along the ray, where the compiler emitted iacsg_Fdv (implicits/emit.c: newton_pays): from a
  * node [a, b] that holds 0, no wider than NEWTON_PIXELS pixel footprints and at least NEWTON_MIN_LEAVES leaves
  * wide, instead of bisecting it down to eps, N = m - F(m) / F'([a, b]) with m the midpoint, and
- * [a, b] := [a, b] n N. Every root of F on [a, b] stays in N (the mean value theorem, F' enclosing the derivative
- * along the ray over the box of the segment, Clarke's at kinks), so the first one is neither lost nor passed;
- * when N misses [a, b] or F([a, b]) misses 0 the node is root-free; when F' holds 0 or a step does not halve the
- * width, the ray goes back to bisecting (that node and every later one: a second try rarely paid). Near a simple
- * root the width squares at each step: on the reference view at eps 1e-5, 12.27 evaluations per ray became 5.54
- * (~3 steps per hit) and the frame 49 -> 39 ms. Not with IA_FAST: unrounded, N can miss the root it holds.
- * Measured choices: 8, 32, 128 footprints gave 43, 39, 40 ms; below 64 leaves bisection is as cheap. */
-#if defined(IACSG_FDV) && !defined(IA_FAST)
+ * [a, b] := [a, b] n N, where F' = iacsg_Fdv's enclosure of the derivative along the ray over the box of the
+ * segment (Clarke's generalized derivative at the kinks of abs, min, max).
+ *
+ * When a step is valid: only where F' is BOUNDED (both ends finite). Proof sketch. iacsg_Fdv reports
+ * [-inf, +inf] wherever an operation of the expression may be undefined on the box (implicits/emit.c: a pole of
+ * 1/x, tan or a negative power, the domain edge of sqrt, log or pow), so a bounded F' means every operation is
+ * defined on the whole segment; all of them are continuous where defined, so F is continuous there, with its
+ * derivative along the ray (Clarke's generalized one at the kinks) in the bounded F' (the inclusion property of
+ * the derivative code): F is Lipschitz on [a, b], and Lebourg's mean value theorem gives F(m) - F(r) in
+ * F' (m - r) for every point r of [a, b]. At a root r, F(r) = 0, so r is in m - F(m) / F' when 0 is not in
+ * F': N keeps every root of [a, b], the first one is neither lost nor passed. Over a node that holds a pole the
+ * derivative is unbounded in any case (F is unbounded near it, so F' cannot be bounded by the inclusion
+ * property); the old test, "F' holds 0", let through F' = [-inf, -c] over a pole, and the step kept the wrong
+ * side of it (tests/t_newton_pole_fp.c).
+ *
+ * When N misses [a, b] or F([a, b]) misses 0 the node is root-free; when F' holds 0 or is unbounded, or a step
+ * does not halve the width, the ray goes back to bisecting (that node and every later one: a second try rarely
+ * paid). Near a simple root the width squares at each step: on the reference view at eps 1e-5, 12.27
+ * evaluations per ray became 5.54 (~3 steps per hit) and the frame 49 -> 39 ms. With IA_FAST the same steps run
+ * unrounded (not rigorous, as everything in that mode), so that the fast mode differs from the rigorous one only
+ * in the rounding. Measured choices: 8, 32, 128 footprints gave 43, 39, 40 ms; below 64 leaves bisection is as
+ * cheap. */
+#ifdef IACSG_FDV
 #define PACKET_NEWTON 1
 #endif
 #define NEWTON_PIXELS 32
@@ -299,7 +314,8 @@ IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_
             PACKET_COUNT(*evals, stepping);
             ia_maskv zero = stepping & iav_contains_zero(f);
             ia_maskv leaf = zero & (nb - na <= eps);
-            ia_maskv stuck = zero & ~leaf & iav_contains_zero(slope);
+            ia_maskv bounded = isfinite(slope.lo) & isfinite(slope.hi); /* NaN is not: garbage lanes stop too */
+            ia_maskv stuck = zero & ~leaf & (iav_contains_zero(slope) | ~bounded);
             ia_maskv step = zero & ~leaf & ~stuck;
             ia_maskv empty = stepping & ~zero;
             if (iav_any(step)) {
@@ -314,6 +330,11 @@ IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_
                 empty |= step & ~(a <= b);
                 step &= a <= b;
                 stuck |= step & (b - a > (ia_real)0.5 * (nb - na)); /* no longer converging: bisect instead */
+                /* Never narrower than half a leaf: the step after this one is the leaf's test, F over it, and
+                 * unrounded (IA_FAST) F over a box far below the widths at which its rounding errors show missed
+                 * the root in a fifth of the reference view's rays. [a, b] grows inside [na, nb], so it keeps
+                 * every root; the leaf's start is still at or before the first one. */
+                b = fmin(nb, fmax(b, a + (ia_real)0.5 * eps));
                 na = select(na, a, step);
                 nb = select(nb, b, step);
             }

@@ -17,10 +17,11 @@ enum {
     PARAM_SCALE_V = 13,  /* tan(fov/2), or HEIGHT/2 */
     PARAM_BOX = 14,      /* 6: x0, y0, z0, x1, y1, z1, the bounds every ray is clipped to */
     PARAM_EPS = 20,      /* the width of a leaf of the bisection, in units of t (the distance along the ray) */
-    PARAM_TIME = 21,     /* the value of the variable t of the expression */
-    PARAM_TMIN = 22,     /* every ray's part inside the box lies in t in [TMIN, TMAX] (src/render.c) */
-    PARAM_TMAX = 23,
-    PARAM_COUNT = 24
+    PARAM_TIME_LO = 21,  /* [TIME_LO, TIME_HI] encloses the value of the variable t of the expression */
+    PARAM_TIME_HI = 22,
+    PARAM_TMIN = 23,     /* every ray's part inside the box lies in t in [TMIN, TMAX] (src/render.c) */
+    PARAM_TMAX = 24,
+    PARAM_COUNT = 25
 };
 
 /* Flags, an int argument of the render kernels. */

@@ -59,7 +59,7 @@ static void block_tiles(__constant ia_real *params, int flags, int width, int he
     ia_real t0, w;
     frame_root(params, &t0, &w);
     ia_maskv searching = IAV_LOAD(valid) != 0;
-    iav time = iav_point(params[PARAM_TIME]);
+    iav time = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     /* The groups of a union that matter in any of the tiles, over the whole tree, for their common search; then
      * each tile's own from its first leaf on, for its rays. */
     ulong groups[IA_VW];
@@ -180,7 +180,7 @@ static void trace_packet(__constant ia_real *params, int flags, int width, int h
     size_t tile = tile_index(i0 / TILE_SIZE, j0 / TILE_SIZE, (width + TILE_SIZE - 1) / TILE_SIZE);
     int level = (int)tiles[2 * tile];
     const __global ulong *segment_groups = tile_groups_of + tile * SEGMENTS;
-    ia_real t0, w, time = params[PARAM_TIME];
+    ia_real t0, w, time = params[PARAM_TIME_LO]; /* for the shading's point gradients */
     frame_root(params, &t0, &w);
     packet_int lanes = packet_lane_numbers();
     packet_int col = i0 + lanes % PACKET_W, row = j0 + lanes / PACKET_W;
@@ -199,8 +199,8 @@ static void trace_packet(__constant ia_real *params, int flags, int width, int h
         ia_real pixel = (ia_real)2 * params[PARAM_SCALE_V] / (ia_real)height;
         int ortho = flags & RENDER_ORTHO;
         hit = packet_first_root(segment_groups, o, d, t0, w, (packet_int)level, start, t_near, t_far, searching,
-                                params[PARAM_EPS], ortho ? pixel : 0, ortho ? 0 : pixel, iav_point(time), &hit_lo,
-                                &hit_hi, &counts);
+                                params[PARAM_EPS], ortho ? pixel : 0, ortho ? 0 : pixel,
+                                iav_const(time, params[PARAM_TIME_HI]), &hit_lo, &hit_hi, &counts);
         if (iav_any(hit)) {
             ia_realv g[3];
             packet_gradients(segment_groups, t0, w, hit, o, d, hit_lo * (ia_real)0.5 + hit_hi * (ia_real)0.5, time,

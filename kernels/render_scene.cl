@@ -32,7 +32,8 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     int i0 = (int)get_global_id(0) * PACKET_W, j0 = (block_row0 + (int)get_global_id(1)) * PACKET_H;
     if (!pixels && (i0 >= width || j0 >= height))
         return;
-    scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], params[PARAM_TIME]};
+    scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS],
+                       ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI])};
     size_t first = slot * (size_t)cand_cap;
     scene_ray ray = {nodes,
                      items,
@@ -73,7 +74,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
         on[k] = found;
         ia_real gradient[3] = {0, 0, 0};
         if (found)
-            scene_gradient(hit.solid, o, d, hit.t, params[PARAM_TIME], gradient);
+            scene_gradient(hit.solid, o, d, hit.t, params[PARAM_TIME_LO], gradient); /* a point for shading */
         for (int c = 0; c < 3; c++) {
             dk[c][k] = d[c];
             gk[c][k] = gradient[c];

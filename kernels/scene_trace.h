@@ -19,7 +19,8 @@ typedef struct {
     int nodes;
     const KERNEL_GLOBAL int *surfaces; /* the items that are surfaces */
     int nsurfaces;
-    ia_real eps, time;
+    ia_real eps;
+    ia_interval time; /* encloses the value of t */
 } scene_view;
 
 #define SCENE_TRACE_OVERFLOW (-1)
@@ -32,7 +33,7 @@ IA_FN int scene_trace_surfaces(const scene_view *v, const scene_ray *r, const ia
         const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * item;
         ia_real lo, hi, end = found ? hit->t : tf;
         if (surface_first_root(o, d, tn, end, v->eps, it[SCENE_ITEM_SOLID], it[SCENE_ITEM_ROOT], r->nodes,
-                               ia_point(v->time), &lo, &hi) &&
+                               v->time, &lo, &hi) &&
             (!found || lo < hit->t)) {
             found = 1;
             hit->t = lo;

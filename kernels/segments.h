@@ -53,17 +53,17 @@ IA_FN void segments_start(const segments_walks *w, int c) {
 #define SEGMENTS_NEWTON_LEAVES 256
 #if defined(SCENE_SOLID_FD) && !defined(IA_FAST)
 IA_FN int segments_newton(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real lo,
-                          ia_real hi, int level, ia_real time, kernel_u32 *evals) {
+                          ia_real hi, int level, ia_interval time, kernel_u32 *evals) {
     ia_interval t = ia_make(lo, hi), slope;
     scene_solid_Fd(w->solid[c], ray_extent(o[0], d[0], t), ray_extent(o[1], d[1], t), ray_extent(o[2], d[2], t),
-                   ia_point(time), ia_point(d[0]), ia_point(d[1]), ia_point(d[2]), &slope);
+                   time, ia_point(d[0]), ia_point(d[1]), ia_point(d[2]), &slope);
     *evals += 1;
     if (!(slope.lo > 0 || slope.hi < 0))
         return -1;
     ia_real m = lo * (ia_real)0.5 + hi * (ia_real)0.5;
     ia_interval at = ia_point(m);
     ia_interval fm = scene_solid_F(w->solid[c], ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at),
-                                   ray_extent(o[2], d[2], at), ia_point(time));
+                                   ray_extent(o[2], d[2], at), time);
     *evals += 1;
     ia_interval n = ia_sub(at, ia_div(fm, slope));
     ia_real a = fmax(lo, n.lo), b = fmin(hi, n.hi);
@@ -95,7 +95,7 @@ IA_FN int segments_state(ia_interval f, ia_real width, ia_real eps, int level) {
  * node's start, or the range's end for the final OUT), and moves pos[c] on. The solid is OUT before the range
  * and after it. Adds the evaluations to *evals. */
 IA_FN int segments_step(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3],
-                        ia_real eps, ia_real time, kernel_u32 *evals) {
+                        ia_real eps, ia_interval time, kernel_u32 *evals) {
     ia_real ta = w->range[2 * c], width = w->range[2 * c + 1];
     int level = w->level[c];
     if (level == SEGMENTS_CLOSING) {
@@ -122,7 +122,7 @@ IA_FN int segments_step(const segments_walks *w, int c, const ia_real o[3], cons
         }
         ia_interval t = ia_make(lo, hi);
         ia_interval f = scene_solid_F(w->solid[c], ray_extent(o[0], d[0], t), ray_extent(o[1], d[1], t),
-                                      ray_extent(o[2], d[2], t), ia_point(time));
+                                      ray_extent(o[2], d[2], t), time);
         *evals += 1;
         s = segments_state(f, hi - lo, eps, level);
 #if defined(SCENE_SOLID_FD) && !defined(IA_FAST)

@@ -6,8 +6,9 @@
  * the pass also finds which groups can matter in the tile, per segment of the tree (tile_groups).
  *
  * Rigor: tile_box mirrors every rounded operation of camera_ray with the interval operation that encloses its
- * rounded result (an outward-rounded op contains the round-to-nearest one), so each pixel's float ray is inside
- * the box, and ray_extent's argument applies to it.
+ * rounded result (an outward-rounded op contains the round-to-nearest one; / and sqrt, where the device does
+ * not round them correctly, widened by their error bound: camera.h), so each pixel's float ray is inside the
+ * box, and ray_extent's argument applies to it.
  *
  * Needs iacsg_Fv (the emitted source).
  */
@@ -26,8 +27,7 @@ typedef struct {
 
 IA_FN void tile_rays_of(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1, int j0, int j1, int width,
                         int height, tile_rays *r) {
-    ia_interval s = ia_make(camera_s(p, i0, width), camera_s(p, i1, width));
-    ia_interval v = ia_make(camera_v(p, j1, height), camera_v(p, j0, height));
+    ia_interval s = camera_s_range(p, i0, i1, width), v = camera_v_range(p, j0, j1, height);
     for (int k = 0; k < 3; k++) {
         ia_interval offset = ia_add(ia_mul_r(s, p[PARAM_RIGHT + k]), ia_mul_r(v, p[PARAM_UP + k]));
         r->base[k] = ortho ? ia_add_r(offset, p[PARAM_EYE + k]) : ia_point(p[PARAM_EYE + k]);
@@ -36,8 +36,9 @@ IA_FN void tile_rays_of(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int
     if (ortho)
         return;
     ia_interval len = ia_sqrt(ia_add(ia_add(ia_sqr(r->dir[0]), ia_sqr(r->dir[1])), ia_sqr(r->dir[2])));
+    len = camera_as_rounded(len, CAMERA_ULP_SQRT);
     for (int k = 0; k < 3; k++)
-        r->dir[k] = ia_div(r->dir[k], len);
+        r->dir[k] = camera_as_rounded(ia_div(r->dir[k], len), CAMERA_ULP_DIV);
 }
 
 /* The box holding the points o + t*d, t in T, of the tile's float rays. */

@@ -128,7 +128,7 @@ IA_FN int weave_next_walk(scene_ray *r, const bvh_walk *b) {
  * weave goes on to the first partition where the winner is certainly in (at most WEAVE_OVERLAP_PARTITIONS
  * further) and names another region certainly in there. */
 #define WEAVE_OVERLAP_PARTITIONS 8
-IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_real time, weave_hit *hit) {
+IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_interval time, weave_hit *hit) {
     const ia_real *o = b->o, *d = b->d;
     ia_real tf = b->tf;
     int pending = 0, pending_solid = -1, found = 0, confirming = WEAVE_OVERLAP_PARTITIONS;

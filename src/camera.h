@@ -4,6 +4,8 @@
 #define IACSG_CAMERA_H
 #include "error.h"
 
+IACSG_API_BEGIN
+
 typedef struct {
     double eye[3], at[3], up[3];
     double fov;          /* vertical field of view in degrees (perspective) */
@@ -23,4 +25,5 @@ void iacsg_camera_fit_azel(iacsg_camera *c, const double bounds[6], double az, d
  * IACSG_ERR_ARG when eye == at, up is parallel to the view direction, or fov is not in (0, 180). */
 iacsg_status iacsg_camera_params(const iacsg_camera *c, int width, int height, double *params, iacsg_error *err);
 
+IACSG_API_END
 #endif

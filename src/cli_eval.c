@@ -15,7 +15,7 @@ static const char eval_usage[] =
     "Decimal numbers are taken as the reals they denote; the bounds printed parse back to the same doubles.\n";
 static const char compile_usage[] =
     "usage: iacsg compile EXPR|SCENE [--dump tokens|ast|dag|simple] [--prefix NAME]\n"
-    "Prints the OpenCL C generated for the expression (functions NAME_F, NAME_f, NAME_f_grad; NAME = iacsg),\n"
+    "Prints the OpenCL C generated for the expression (functions NAME_F, NAME_f_grad, NAME_Fv; NAME = iacsg),\n"
     "or the dump of one compiler stage.\n";
 
 /* The text of a scene file when `input` names a readable file, else the input itself. malloc'ed. */

@@ -33,7 +33,7 @@ static const char usage[] =
     "  -normals FILE      also write the unit normals: float32, three channels, 0 where the ray misses\n"
     "  -ids FILE          also write the id of the region or surface hit (numbered in declaration order):\n"
     "                     float32, one channel, -1 where the ray hits none (an expression: 0 where it hits)\n"
-    "  -time T            value of the variable t [0]\n"
+    "  -time T            value of the variable t, the real the decimal denotes (enclosed) [0]\n"
     "  -frames N          render N frames for t = 0, 1/N, ..., (N-1)/N into numbered files (name_0000.png)\n"
     "  -fp64              double precision intervals and rays [float]\n"
     "  -fast              no outward rounding: NOT rigorous, may miss surfaces; for measuring the cost of rigor\n"

@@ -4,6 +4,8 @@
 #include "cli_writer.h"
 #include "clrt.h"
 #include "iacsg.h"
+#include "implicits/scene.h"
+#include "ia/decimal.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -14,7 +16,7 @@
 #include <unistd.h>
 
 typedef struct {
-    const char *input, *output, *depth_file, *normals_file, *ids_file;
+    const char *input, *output, *depth_file, *normals_file, *ids_file, *time_text;
     iacsg_view view;
     iacsg_render_config config;
     int have_bounds, have_eye, have_at, have_azel, have_time, frames;
@@ -138,9 +140,12 @@ static int parse_options(int argc, char **argv, render_options *o) {
             if (!parse_numbers(v, &o->view.camera.ortho_height, 1) || !(o->view.camera.ortho_height > 0))
                 return bad_value(a, v, "a positive height");
         } else if (strcmp(a, "-time") == 0) {
-            if (!parse_numbers(v, &o->view.time, 1))
+            /* the real the text denotes, enclosed: -time 0.7 is 7/10, not the double nearest to it */
+            if (ia_decimal_double(v, &o->view.time[0], &o->view.time[1]) != 0 || !isfinite(o->view.time[0]) ||
+                !isfinite(o->view.time[1]))
                 return bad_value(a, v, "a number");
             o->have_time = 1;
+            o->time_text = v;
         } else if (strcmp(a, "-frames") == 0) {
             char *end;
             long n = strtol(v, &end, 10);
@@ -221,15 +226,43 @@ static char *read_input(const char *input, const char **name) {
     return text;
 }
 
-/* The bounds (given, found by the compiler, or the default) and a phrase saying which. A scene with items: the
- * union of its solids' proven boxes. */
-static const char *choose_bounds(render_options *o, const iacsg_scene *s) {
+/* The times the command renders, as one interval: -time's (enclosed), or the hull of the frames' k/N. */
+static void rendered_times(const render_options *o, double t[2]) {
+    memcpy(t, o->view.time, 2 * sizeof(double));
+    if (o->frames) {
+        double last[2];
+        iacsg_frame_time(o->frames - 1, o->frames, last);
+        t[0] = 0;
+        t[1] = last[1];
+    }
+}
+
+/* The bounds (given, found by the compiler for the times rendered, or the default) and a phrase saying which
+ * and what was proven (in `phrase`). A scene with items: the union of its solids' proven boxes. */
+static const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase, size_t size) {
     if (o->have_bounds)
         return "given";
-    if (s->nitems > 0 && iacsg_scene_bounds(s, o->view.bounds))
+    double t[2];
+    rendered_times(o, t);
+    if (s->nitems > 0 && iacsg_scene_bounds(s, t, o->view.bounds))
         return "proven to enclose the solids";
-    if (s->nitems == 0 && iacsg_expr_bounds(s->expr, o->view.bounds))
-        return "proven to enclose the surface";
+    const iacsg_expr *e = s->nitems > 0 ? NULL : s->expr;
+    char when[64] = "";
+    if (e && iacsg_expr_uses_time(e) && o->frames)
+        snprintf(when, sizeof when, " for t = 0/%d .. %d/%d", o->frames, o->frames - 1, o->frames);
+    else if (e && iacsg_expr_uses_time(e))
+        snprintf(when, sizeof when, " at t = %.40s", o->have_time ? o->time_text : "0");
+    switch (e ? iacsg_expr_bounds(e, t, o->view.bounds) : IACSG_BOUNDS_NONE) {
+    case IACSG_BOUNDS_EVERYWHERE:
+        snprintf(phrase, size, "proven to enclose the surface%s", when);
+        return phrase;
+    case IACSG_BOUNDS_IN_CUBE:
+        snprintf(phrase, size, "proven: no surface in [-%g,%g]^3 outside this box%s; beyond that cube, unknown",
+                 IACSG_BOUNDS_CUBE, IACSG_BOUNDS_CUBE, when);
+        return phrase;
+    case IACSG_BOUNDS_NONE:
+        break;
+    }
     static const double fallback[6] = {-2, -2, -2, 2, 2, 2};
     memcpy(o->view.bounds, fallback, sizeof fallback);
     return "the default: no enclosing box could be found";
@@ -380,7 +413,8 @@ int cli_render(int argc, char **argv) {
     if (st == IACSG_OK)
         st = iacsg_scene_parse(text, name, &scene, &err);
     if (st == IACSG_OK) {
-        const char *which = choose_bounds(&o, scene);
+        char phrase[256];
+        const char *which = choose_bounds(&o, scene, phrase, sizeof phrase);
         const double *b = o.view.bounds;
         printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
         place_camera(&o);
@@ -403,7 +437,7 @@ int cli_render(int argc, char **argv) {
     int frames = o.frames ? o.frames : 1;
     for (int k = 0; k < frames && st == IACSG_OK; k++) {
         if (o.frames)
-            o.view.time = (double)k / o.frames;
+            iacsg_frame_time(k, o.frames, o.view.time);
         iacsg_frame fr;
         bar.start = now_seconds();
         st = iacsg_render(r, &o.view, &fr, &err);

@@ -2,7 +2,7 @@
  *
  * Why a process: linked into the command, OpenImageIO's dependency closure (some 260 shared libraries) cost
  * ~180 ms of dynamic linking before main, half of the whole command for a render with a cached kernel. The
- * command is not linked with it; a child forked at start loads libiacsg_image.so (beside the binary) while
+ * command is not linked with it; a child forked at start loads libiacsg_image.so (see library_load) while
  * the parent starts OpenCL and builds, and the parent hands it each image through shared memory. A
  * thread could not overlap the two: glibc's dlopen holds one lock, which PoCL's own dlopens wait for.
  *
@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #define WRITER_LIBRARY "libiacsg_image.so"
+#define WRITER_INSTALLED "../lib/iacsg/" WRITER_LIBRARY /* the Makefile's IMAGE_HELPER_DIR, from bin/ */
 
 enum { REQUEST_CHECK, REQUEST_WRITE_FLOATS, REQUEST_WRITE_BYTES };
 
@@ -51,17 +52,21 @@ struct cli_writer {
     image_library lib; /* in this process */
 };
 
-/* Loads the library from the directory of the running binary (RTLD_LAZY: the command calls three functions of
- * it, so binding the rest would be wasted). */
+/* Loads the library from beside the running binary (the build tree), else from ../lib/iacsg/ relative to it
+ * (an installed prefix: `make install`), so that a copied or relocated prefix still finds it. RTLD_LAZY: the
+ * command calls three functions of it, so binding the rest would be wasted. */
 static iacsg_status library_load(image_library *lib, iacsg_error *err) {
     char path[4096];
-    ssize_t n = readlink("/proc/self/exe", path, sizeof path - sizeof WRITER_LIBRARY - 1);
+    ssize_t n = readlink("/proc/self/exe", path, sizeof path - sizeof WRITER_INSTALLED - 1);
     if (n <= 0)
         return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "cannot find the image library %s: %s", WRITER_LIBRARY,
                                strerror(errno));
     path[n] = '\0';
     char *slash = strrchr(path, '/');
-    strcpy(slash ? slash + 1 : path, WRITER_LIBRARY);
+    char *name = slash ? slash + 1 : path;
+    strcpy(name, WRITER_LIBRARY);
+    if (access(path, F_OK) != 0)
+        strcpy(name, WRITER_INSTALLED);
     lib->handle = dlopen(path, RTLD_LAZY | RTLD_LOCAL);
     if (lib->handle) {
         *(void **)&lib->check_format = dlsym(lib->handle, "iacsg_image_check_format");

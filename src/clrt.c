@@ -118,7 +118,8 @@ iacsg_status clrt_open(clrt *rt, int device_index, iacsg_error *err) {
                                     &rt->max_alloc_size, NULL));
     rt->has_fp64 = strstr(ext, "cl_khr_fp64") != NULL;
     rt->float_denorms = (fp & CL_FP_DENORM) != 0;
-    rt->cr_divide_sqrt = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
+    const char *inexact = getenv("IACSG_INEXACT_DIVIDE_SQRT");
+    rt->cr_divide_sqrt = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0 && !(inexact && *inexact);
     rt->context = clCreateContext(NULL, 1, &rt->device, NULL, NULL, &rc);
     CLRT_CHECK(err, rc);
     rt->queue = clCreateCommandQueue(rt->context, rt->device, 0, &rc);

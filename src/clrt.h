@@ -17,7 +17,9 @@ typedef struct {
     char platform_name[256];
     int has_fp64;         /* cl_khr_fp64 */
     int float_denorms;    /* CL_FP_DENORM in the single-precision config; if 0, ia/ is built with IA_FTZ */
-    int cr_divide_sqrt;   /* CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT: build with -cl-fp32-correctly-rounded-... */
+    int cr_divide_sqrt;   /* CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT: build with -cl-fp32-correctly-rounded-...;
+                           * 0 when the environment sets IACSG_INEXACT_DIVIDE_SQRT (non-empty): then float / and
+                           * sqrt are widened by the spec's bounds as on a device without them (the tests use it) */
     cl_uint compute_units;
     cl_ulong global_mem_size; /* CL_DEVICE_GLOBAL_MEM_SIZE */
     cl_ulong max_alloc_size;  /* CL_DEVICE_MAX_MEM_ALLOC_SIZE: the largest single buffer */

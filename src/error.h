@@ -2,6 +2,9 @@
  * these and returns; only the CLI prints or exits. */
 #ifndef IACSG_ERROR_H
 #define IACSG_ERROR_H
+#include "api.h"
+
+IACSG_API_BEGIN
 
 typedef enum {
     IACSG_OK = 0,
@@ -32,7 +35,8 @@ iacsg_status iacsg_error_set(iacsg_error *err, iacsg_status status, int line, in
 #endif
     ;
 
-/* A short name for a status, e.g. "syntax error". */
+/* A short name for a status, e.g. "syntax error" (a static string, not to be freed). */
 const char *iacsg_status_name(iacsg_status status);
 
+IACSG_API_END
 #endif

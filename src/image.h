@@ -4,9 +4,7 @@
 #define IACSG_IMAGE_H
 #include "error.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+IACSG_API_BEGIN
 
 /* Writes an image; the file format comes from the extension of `path` (png, exr, tif, jpg, ...). With
  * as_float the file stores 32-bit floats where the format can (exr, tif), otherwise 8 bits per channel from
@@ -26,7 +24,5 @@ iacsg_status iacsg_image_check_format(const char *path, iacsg_error *err);
 iacsg_status iacsg_image_read(const char *path, int *width, int *height, int *channels, float **pixels,
                               iacsg_error *err);
 
-#ifdef __cplusplus
-}
-#endif
+IACSG_API_END
 #endif

@@ -126,7 +126,8 @@ static void t_range(double *p, int ortho) {
     p[PARAM_TMAX] = hi + slack;
 }
 
-/* The parameter block in the working precision. The box is rounded outward to float, so it only grows. */
+/* The parameter block in the working precision. The box and the time are rounded outward to float, so they
+ * only grow. */
 iacsg_status render_fill_params(const iacsg_view *v, int fp64, void *block, iacsg_error *err) {
     double p[PARAM_COUNT];
     iacsg_status st = iacsg_camera_params(&v->camera, v->width, v->height, p, err);
@@ -135,13 +136,14 @@ iacsg_status render_fill_params(const iacsg_view *v, int fp64, void *block, iacs
     for (int k = 0; k < 6; k++)
         p[PARAM_BOX + k] = v->bounds[k];
     p[PARAM_EPS] = v->eps;
-    p[PARAM_TIME] = v->time;
+    p[PARAM_TIME_LO] = v->time[0];
+    p[PARAM_TIME_HI] = v->time[1];
     for (int pass = 0; pass < 2; pass++) { /* the t range is computed from the rounded values of pass 0 */
         if (pass == 1)
             t_range(p, v->camera.ortho_height > 0);
         for (int k = 0; k < PARAM_COUNT; k++) {
-            int down = (k >= PARAM_BOX && k < PARAM_BOX + 3) || k == PARAM_TMIN;
-            int up = (k >= PARAM_BOX + 3 && k < PARAM_BOX + 6) || k == PARAM_TMAX;
+            int down = (k >= PARAM_BOX && k < PARAM_BOX + 3) || k == PARAM_TMIN || k == PARAM_TIME_LO;
+            int up = (k >= PARAM_BOX + 3 && k < PARAM_BOX + 6) || k == PARAM_TMAX || k == PARAM_TIME_HI;
             if (fp64) {
                 ((double *)block)[k] = p[k];
                 continue;
@@ -166,8 +168,8 @@ iacsg_status render_check_view(const iacsg_view *v, iacsg_error *err) {
     for (int k = 0; k < 3; k++)
         if (!(v->bounds[k] < v->bounds[k + 3]) || !isfinite(v->bounds[k]) || !isfinite(v->bounds[k + 3]))
             return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the bounds are empty or not finite");
-    if (!isfinite(v->time))
-        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the time is not finite");
+    if (!(v->time[0] <= v->time[1]) || !isfinite(v->time[0]) || !isfinite(v->time[1]))
+        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the time is not a finite interval [lo, hi]");
     return IACSG_OK;
 }
 
@@ -420,4 +422,10 @@ void iacsg_frame_free(iacsg_frame *frame) {
     free(frame->normal);
     free(frame->ids);
     frame->rgb = frame->depth = frame->normal = frame->ids = NULL;
+}
+
+void iacsg_frame_time(int k, int n, double time[2]) {
+    double q = (double)k / n, r = fma(q, n, -(double)k); /* q n - k, rounded once: its sign is exact */
+    time[0] = r > 0 ? nextafter(q, -INFINITY) : q;
+    time[1] = r < 0 ? nextafter(q, INFINITY) : q;
 }

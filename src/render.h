@@ -14,6 +14,8 @@
 
 typedef struct iacsg_scene iacsg_scene; /* implicits/scene.h */
 
+IACSG_API_BEGIN
+
 typedef struct iacsg_renderer iacsg_renderer;
 
 typedef struct {
@@ -27,7 +29,7 @@ typedef struct {
     int ray_candidates;
 } iacsg_render_config;
 
-/* Builds the render program for `expr_cl`, the OpenCL C source of iacsg_F, iacsg_f and iacsg_f_grad (as
+/* Builds the render program for `expr_cl`, the OpenCL C source of iacsg_Fv, iacsg_f_grad and so on (as
  * iacsg_expr_emit_cl writes it with the prefix "iacsg"). The source is copied. Destroy with
  * iacsg_renderer_destroy. */
 iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,
@@ -44,9 +46,9 @@ iacsg_status iacsg_renderer_create_expr(const iacsg_expr *e, const iacsg_render_
 iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_render_config *config,
                                          iacsg_renderer **out, iacsg_error *err);
 
-/* The union of the proven boxes of the solids that a scene's items use (x0,y0,z0,x1,y1,z1), for its default
- * bounds; returns 0 when one of them has none (src/scene_tables.c). */
-int iacsg_scene_bounds(const iacsg_scene *s, double box[6]);
+/* The union of the proven boxes of the solids that a scene's items use (x0,y0,z0,x1,y1,z1) for times in
+ * [time[0], time[1]], for its default bounds; returns 0 when one of them has none (src/scene_tables.c). */
+int iacsg_scene_bounds(const iacsg_scene *s, const double time[2], double box[6]);
 
 /* Seconds the build took (clBuildProgram and the device compiling the kernel, see render.c: compile_now), and
  * the device's name (owned by the renderer). */
@@ -58,7 +60,11 @@ typedef struct {
     iacsg_camera camera;
     double bounds[6]; /* x0, y0, z0, x1, y1, z1: rays are clipped to this box */
     double eps;       /* leaf width of the bisection along the ray (world units) */
-    double time;      /* the value of t in the expression */
+    /* The value of t in the expression, as an interval that encloses it: {v, v} for a double v; for a real
+     * that no double equals, the doubles around it (ia_decimal_double for a decimal text, iacsg_frame_time for
+     * k/n). The kernel gets it rounded outward to its precision, as every constant of the expression, so the
+     * guarantees hold for the real time. */
+    double time[2];
     /* Leave frame.depth, frame.normal or frame.ids NULL: the kernel then writes 4, 12 or 4 bytes a pixel fewer. */
     int no_depth, no_normals, no_ids;
     /* Called after each band of rows with the fraction done, when not NULL. */
@@ -98,4 +104,9 @@ typedef struct {
 iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
 void iacsg_frame_free(iacsg_frame *frame);
 
+/* The time of frame k of an animation of n frames, k/n, enclosed for iacsg_view.time: time[0] <= k/n <=
+ * time[1], the two equal when k/n is a double. */
+void iacsg_frame_time(int k, int n, double time[2]);
+
+IACSG_API_END
 #endif

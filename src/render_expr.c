@@ -1,5 +1,5 @@
 /* src/render_expr.c -- a renderer for a compiled expression: the compiler's OpenCL C, with the prefix the
- * kernels call (iacsg_F, iacsg_f, iacsg_f_grad), built by iacsg_renderer_create. */
+ * kernels call (iacsg_Fv, iacsg_Fdv, iacsg_f_grad), built by iacsg_renderer_create. */
 #include "render.h"
 #include <stdlib.h>
 

@@ -235,13 +235,13 @@ iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_rende
 }
 
 /* The BVH's boxes in the working precision, rounded outward. They hold where the bounds were proven
- * (implicits/bounds.c: inside the cube of IACSG_BOUNDS_DOMAIN, for t in [0, 1]); a view reaching outside that
- * gets infinite boxes: every solid is then bisected along the whole ray. */
+ * (implicits/bounds.c: for t in [0, 1], some only inside the cube of IACSG_BOUNDS_CUBE); a view reaching outside
+ * that gets infinite boxes: every solid is then bisected along the whole ray. */
 static iacsg_status box_buffer(iacsg_renderer *r, const iacsg_view *view, scene_buffers *b, iacsg_error *err) {
     const scene_tables *t = &r->scene->t;
-    int proven = !t->uses_time || (view->time >= 0 && view->time <= 1);
-    for (int k = 0; k < 3; k++)
-        proven = proven && view->bounds[k] >= -IACSG_BOUNDS_DOMAIN && view->bounds[k + 3] <= IACSG_BOUNDS_DOMAIN;
+    int proven = !t->uses_time || (view->time[0] >= 0 && view->time[1] <= 1);
+    for (int k = 0; k < 3 && t->in_cube; k++)
+        proven = proven && view->bounds[k] >= -IACSG_BOUNDS_CUBE && view->bounds[k + 3] <= IACSG_BOUNDS_CUBE;
     size_t count = 6 * (size_t)t->nbvh;
     void *reals = malloc(real_size(r) * (count + 1));
     if (!reals)

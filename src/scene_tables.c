@@ -35,21 +35,24 @@ static void refine_box(const iacsg_expr *e, double b[6]) {
     }
 }
 
-/* The solid's box for the kernels: its proven box when its inside lies within it (f > 0 at a point outside it,
- * and so all over the connected outside, where f has no zero), else an infinite box. 1 if bounded. */
-static int solid_box(const iacsg_expr *e, double box[6]) {
+/* The solid's box for the kernels, for times in `time`: its proven box when its inside lies within it (f > 0 at
+ * a point outside it, and so all over the connected outside, where f has no zero), else an infinite box. 1 if
+ * bounded; *in_cube is set when the box holds only inside the cube of IACSG_BOUNDS_CUBE. */
+static int solid_box(const iacsg_expr *e, const double time[2], double box[6], int *in_cube) {
     double b[6];
-    int bounded = iacsg_expr_bounds(e, b);
+    iacsg_bounds_proof proof = iacsg_expr_bounds(e, time, b);
+    int bounded = proof != IACSG_BOUNDS_NONE;
+    *in_cube |= proof == IACSG_BOUNDS_IN_CUBE;
     if (bounded) {
         double p[3] = {0.5 * (b[0] + b[3]), 0.5 * (b[1] + b[4]), 0.5 * (b[2] + b[5])}, f[2];
-        if (b[3] < IACSG_BOUNDS_DOMAIN) /* halfway from the box to the cube's side */
-            p[0] = 0.5 * (b[3] + IACSG_BOUNDS_DOMAIN);
-        else if (b[0] > -IACSG_BOUNDS_DOMAIN)
-            p[0] = 0.5 * (b[0] - IACSG_BOUNDS_DOMAIN);
+        if (b[3] < IACSG_BOUNDS_CUBE) /* halfway from the box to the cube's side */
+            p[0] = 0.5 * (b[3] + IACSG_BOUNDS_CUBE);
+        else if (b[0] > -IACSG_BOUNDS_CUBE)
+            p[0] = 0.5 * (b[0] - IACSG_BOUNDS_CUBE);
         else
             bounded = 0;
         iacsg_error err = {0};
-        bounded = bounded && iacsg_expr_eval_box(e, 1, p, p, 0, f, &err) == IACSG_OK && f[0] > 0;
+        bounded = bounded && iacsg_expr_eval_box(e, 1, p, p, time[0], f, &err) == IACSG_OK && f[0] > 0;
         if (bounded && !iacsg_expr_uses_time(e))
             refine_box(e, b);
     }
@@ -126,7 +129,8 @@ static int bvh_of(const iacsg_scene *s, const unsigned char *used, scene_tables 
     for (int k = 0; ok && k < s->nsolids; k++) {
         if (!used[k])
             continue;
-        if (solid_box(s->solids[k].expr, boxes + 6 * k)) {
+        static const double times[2] = {0, 1}; /* the boxes hold for t in [0, 1] (render_scene.c) */
+        if (solid_box(s->solids[k].expr, times, boxes + 6 * k, &t->in_cube)) {
             bounded[nbounded++] = k;
             continue;
         }
@@ -335,7 +339,7 @@ void scene_tables_free(scene_tables *t) {
     memset(t, 0, sizeof *t);
 }
 
-int iacsg_scene_bounds(const iacsg_scene *s, double box[6]) {
+int iacsg_scene_bounds(const iacsg_scene *s, const double time[2], double box[6]) {
     unsigned char *used = calloc((size_t)s->nsolids + 1, 1);
     if (!used)
         return 0;
@@ -354,7 +358,8 @@ int iacsg_scene_bounds(const iacsg_scene *s, double box[6]) {
         double b[6];
         if (!used[k])
             continue;
-        ok = solid_box(s->solids[k].expr, b);
+        int in_cube = 0;
+        ok = solid_box(s->solids[k].expr, time, b, &in_cube);
         for (int c = 0; ok && c < 3; c++) {
             box[c] = fmin(box[c], b[c]);
             box[c + 3] = fmax(box[c + 3], b[c + 3]);

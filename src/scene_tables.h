@@ -25,6 +25,7 @@ typedef struct {
     int *surfaces, nsurfaces;
     float *albedo; /* 3 per item */
     int uses_time; /* some solid depends on t (the boxes hold for t in [0, 1]) */
+    int in_cube;   /* some box holds only inside the cube of IACSG_BOUNDS_CUBE */
 } scene_tables;
 
 iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_error *err);

@@ -19,7 +19,7 @@ static int exercise_expr(const iacsg_expr *e, int bounds) {
     free(source);
     double box[6], out[2];
     if (bounds)
-        iacsg_expr_bounds(e, box);
+        iacsg_expr_bounds(e, (double[2]){0, 1}, box);
     const double lo[3] = {-1.5, -0.25, -1}, hi[3] = {1, 0.5, 2};
     for (int fp64 = 0; fp64 <= 1; fp64++)
         if (iacsg_expr_eval_box(e, fp64, lo, hi, 0.5, out, &err) != IACSG_OK && !has_message(&err))

@@ -58,8 +58,9 @@ TEST(codegen_rejects_bad_prefix) {
               bad[i]);
     }
     CHECK(iacsg_expr_emit_cl(e, "my_prefix2", &src, &err) == IACSG_OK, "%s", err.message);
-    CHECK(strstr(src, "my_prefix2_F(") && strstr(src, "my_prefix2_f(") && strstr(src, "my_prefix2_f_grad("),
-          "the three functions are not all there");
+    CHECK(strstr(src, "my_prefix2_F(") && strstr(src, "my_prefix2_Fv(") && strstr(src, "my_prefix2_Fdv(") &&
+              strstr(src, "my_prefix2_f_grad("),
+          "the four functions are not all there");
     free(src);
     iacsg_expr_destroy(e);
 }

@@ -17,10 +17,14 @@ static int oracle_pow(mpfr_ptr r, mpfr_srcptr a, mpfr_srcptr b, mpfr_rnd_t rnd) 
     return mpfr_pow(r, a, b, rnd);
 }
 
+/* The compiler turns a power whose exponent is a constant integer of at most 65536 into pown
+ * (implicits/simplify.c), defined for a negative base too: x^-1 is 1/x, x^3 is x*x*x. */
+static int oracle_pown_exponent(mpfr_srcptr b) { return mpfr_integer_p(b) && mpfr_cmpabs_ui(b, 65536) <= 0; }
+
 static void apply(int op, mpfr_ptr R, mpfr_srcptr A, mpfr_srcptr B, long N) {
     (void)B, (void)N;
     switch (op) {
-#define OP(id, name, arity, nary, iv, pt, d, td, oracle)                                                          \
+#define OP(id, name, arity, nary, iv, pt, d, td, oracle, undef, empty)                                               \
     case OP_##id: oracle; break;
 #include "implicits/ops.def"
 #undef OP
@@ -28,18 +32,21 @@ static void apply(int op, mpfr_ptr R, mpfr_srcptr A, mpfr_srcptr B, long N) {
     }
 }
 
-static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
+/* The value at p with prec bits for every node, into y. */
+static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y, mpfr_prec_t prec) {
     const dag *d = &e->raw;
     int *order;
     int count = dag_reachable(d, e->raw_root, &order);
     CHECK(count > 0, "out of memory");
     mpfr_t *v = malloc(((size_t)e->raw_root + 1) * sizeof *v);
-    CHECK(v != NULL, "out of memory");
+    char *varies = malloc((size_t)e->raw_root + 1); /* the node depends on x, y, z or t */
+    CHECK(v != NULL && varies != NULL, "out of memory");
     int ok = 1;
     for (int k = 0; k < count; k++) {
         int i = order[k];
         const dag_node *n = &d->nodes[i];
-        mpfr_init2(v[i], EXPR_ORACLE_PREC);
+        mpfr_init2(v[i], prec);
+        varies[i] = n->op <= OP_T || (n->a >= 0 && varies[n->a]) || (n->b >= 0 && varies[n->b]);
         if (n->op <= OP_T)
             mpfr_set(v[i], p[n->op], RN);
         else if (n->op == OP_CONST && n->n >= 0)
@@ -50,8 +57,12 @@ static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
             mpfr_const_pi(v[i], RN);
         else if (n->op == OP_E)
             mpfr_set_ui(v[i], 1, RN), mpfr_exp(v[i], v[i], RN);
+        else if (n->op == OP_MIN && (!mpfr_number_p(v[n->a]) || !mpfr_number_p(v[n->b])))
+            mpfr_set(v[i], mpfr_number_p(v[n->a]) ? v[n->a] : v[n->b], RN); /* undefined is outside (ia/ia.h) */
         else if (!mpfr_number_p(v[n->a]) || (n->b >= 0 && !mpfr_number_p(v[n->b])))
             mpfr_set_nan(v[i]); /* undefined operands make the whole expression undefined at p */
+        else if (n->op == OP_POW && !varies[n->b] && oracle_pown_exponent(v[n->b]))
+            mpfr_pow(v[i], v[n->a], v[n->b], RN); /* pown: +-inf at a pole, so undefined there */
         else
             apply(n->op, v[i], v[n->a], n->b >= 0 ? v[n->b] : v[n->a], n->n);
     }
@@ -60,6 +71,7 @@ static int oracle_at(const iacsg_expr *e, mpfr_srcptr const p[4], mpfr_ptr y) {
     for (int k = 0; k < count; k++)
         mpfr_clear(v[order[k]]);
     free(v);
+    free(varies);
     free(order);
     return ok;
 }
@@ -72,39 +84,47 @@ int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y) {
         mpfr_set_d(q[k], p[k], RN);
         qp[k] = q[k];
     }
-    int ok = oracle_at(e, qp, y);
+    int ok = oracle_at(e, qp, y, EXPR_ORACLE_PREC);
     for (int k = 0; k < 4; k++)
         mpfr_clear(q[k]);
     return ok;
 }
 
 int expr_oracle_slope(const iacsg_expr *e, const double p[4], const double dir[3], mpfr_ptr slope) {
-    mpfr_t q[4], f1;
+    mpfr_t q[4];
     mpfr_srcptr qp[4];
     for (int k = 0; k < 4; k++) {
         mpfr_init2(q[k], EXPR_ORACLE_PREC);
         qp[k] = q[k];
     }
-    mpfr_init2(f1, EXPR_ORACLE_PREC);
-    int ok = 1;
-    for (int side = 0; side < 2 && ok; side++) {
-        for (int k = 0; k < 4; k++) { /* p +- 2^-80 dir, exact in EXPR_ORACLE_PREC bits */
-            mpfr_set_d(q[k], k < 3 ? dir[k] : 0, RN);
-            mpfr_mul_2si(q[k], q[k], -80, RN);
-            if (side)
-                mpfr_neg(q[k], q[k], RN);
-            mpfr_add_d(q[k], q[k], p[k], RN);
+    int defined = 1, known = 0;
+    /* (f(p + h dir) - f(p - h dir)) / 2h keeps prec - 80 bits of f's magnitude: a slope far smaller than f (x^500
+     * with |x| < 1 in x^500 - 1) cancels, and is computed again with 4 times the bits; past that, a difference
+     * of 0 is taken as a slope of 0 */
+    for (mpfr_prec_t prec = EXPR_ORACLE_PREC; defined && !known && prec <= 4 * EXPR_ORACLE_PREC; prec *= 4) {
+        mpfr_t f[2];
+        mpfr_inits2(prec, f[0], f[1], (mpfr_ptr)0);
+        for (int side = 0; side < 2 && defined; side++) {
+            for (int k = 0; k < 4; k++) { /* p +- 2^-80 dir, exact in EXPR_ORACLE_PREC bits */
+                mpfr_set_d(q[k], k < 3 ? dir[k] : 0, RN);
+                mpfr_mul_2si(q[k], q[k], -80, RN);
+                if (side)
+                    mpfr_neg(q[k], q[k], RN);
+                mpfr_add_d(q[k], q[k], p[k], RN);
+            }
+            defined = oracle_at(e, qp, f[side], prec);
         }
-        ok = oracle_at(e, qp, side ? slope : f1);
-    }
-    if (ok) { /* (f(p + h dir) - f(p - h dir)) / 2h */
-        mpfr_sub(slope, f1, slope, RN);
-        mpfr_mul_2si(slope, slope, 79, RN);
+        if (defined) {
+            mpfr_sub(f[1], f[0], f[1], RN);
+            known = mpfr_zero_p(f[1]) ? prec > EXPR_ORACLE_PREC
+                                      : mpfr_zero_p(f[0]) || mpfr_get_exp(f[0]) - mpfr_get_exp(f[1]) < prec - 140;
+            mpfr_mul_2si(slope, f[1], 79, RN);
+        }
+        mpfr_clears(f[0], f[1], (mpfr_ptr)0);
     }
     for (int k = 0; k < 4; k++)
         mpfr_clear(q[k]);
-    mpfr_clear(f1);
-    return ok;
+    return defined && known;
 }
 
 static double unit(test_rng_t *r) { return test_rand_unit(r); }

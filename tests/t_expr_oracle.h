@@ -10,13 +10,16 @@
 #define EXPR_ORACLE_PREC 256
 
 /* The value at (x, y, z, t) of the expression as written (its unsimplified DAG, decimal constants read exactly
- * to EXPR_ORACLE_PREC bits), into y (initialised by the caller). Returns 0 where some subexpression is
- * undefined or infinite (the point is outside the expression's domain), else 1. */
+ * to EXPR_ORACLE_PREC bits), into y (initialised by the caller). A subexpression undefined or infinite at p is
+ * undefined, and follows the rule of ia/ia.h: a union is its other operand there, any other operation is
+ * undefined. Returns 0 where the whole expression is undefined, else 1. */
 int expr_oracle(const iacsg_expr *e, const double p[4], mpfr_ptr y);
 
 /* The derivative at p along dir (x, y, z) of the same, by a central difference of step 2^-80 at
  * EXPR_ORACLE_PREC bits (exact arguments; its error is far below a double's ulp wherever the expression is
- * smooth, and between the one-sided derivatives at a kink), into slope. Returns 0 where a side is undefined. */
+ * smooth, and between the one-sided derivatives at a kink), into slope; where the difference cancels (a slope
+ * far smaller than f), again at 4 times the precision. Returns 0 where a side is undefined, or the slope is not
+ * known even then. */
 int expr_oracle_slope(const iacsg_expr *e, const double p[4], const double dir[3], mpfr_ptr slope);
 
 /* A random expression text of at most `depth` levels into buf (size >= 4096): variables, decimal constants,

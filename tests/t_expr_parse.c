@@ -262,24 +262,27 @@ TEST(expr_simplify) {
 TEST(expr_uses_time_and_bounds) {
     static const struct {
         const char *text;
-        int uses_time, bounded;
+        int uses_time;
+        iacsg_bounds_proof bounded;
         double box[6];
     } cases[] = {
-        {"sphere", 0, 1, {-1, -1, -1, 1, 1, 1}},
-        {"move(sphere(0.5), 3, 0, 0)", 0, 1, {2.5, -0.5, -0.5, 3.5, 0.5, 0.5}},
-        {"morph(sphere(0.5), sphere, t)", 1, 1, {-1, -1, -1, 1, 1, 1}},
-        {"move(sphere, t, 0, 0)", 1, 1, {-1, -1, -1, 2, 1, 1}},
-        {"cylinder", 0, 0, {0, 0, 0, 0, 0, 0}},
-        {"gyroid", 0, 0, {0, 0, 0, 0, 0, 0}},
+        {"sphere", 0, IACSG_BOUNDS_EVERYWHERE, {-1, -1, -1, 1, 1, 1}},
+        {"move(sphere(0.5), 3, 0, 0)", 0, IACSG_BOUNDS_EVERYWHERE, {2.5, -0.5, -0.5, 3.5, 0.5, 0.5}},
+        /* a + t (b - a): b - a is inf - inf over the unbounded boxes outside the cube */
+        {"morph(sphere(0.5), sphere, t)", 1, IACSG_BOUNDS_IN_CUBE, {-1, -1, -1, 1, 1, 1}},
+        {"move(sphere, t, 0, 0)", 1, IACSG_BOUNDS_EVERYWHERE, {-1, -1, -1, 2, 1, 1}},
+        {"cylinder", 0, IACSG_BOUNDS_NONE, {0, 0, 0, 0, 0, 0}},
+        {"gyroid", 0, IACSG_BOUNDS_NONE, {0, 0, 0, 0, 0, 0}},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         iacsg_expr *e;
         CHECK(iacsg_expr_parse(cases[i].text, "<test>", &e, NULL) == IACSG_OK, "%s", cases[i].text);
         double box[6];
-        int uses = iacsg_expr_uses_time(e), bounded = iacsg_expr_bounds(e, box);
+        int uses = iacsg_expr_uses_time(e);
+        iacsg_bounds_proof bounded = iacsg_expr_bounds(e, (double[2]){0, 1}, box);
         iacsg_expr_destroy(e);
         CHECK(uses == cases[i].uses_time, "'%s': uses_time %d", cases[i].text, uses);
-        CHECK(bounded == cases[i].bounded, "'%s': bounds %d", cases[i].text, bounded);
+        CHECK(bounded == cases[i].bounded, "'%s': bounds %d", cases[i].text, (int)bounded);
         for (int k = 0; bounded && k < 6; k++) /* contains the true box, and not more than 1.5 times wider */
             CHECK(k < 3 ? box[k] <= cases[i].box[k] && box[k] >= cases[i].box[k] - 0.5 * (cases[i].box[k + 3] - cases[i].box[k])
                         : box[k] >= cases[i].box[k] && box[k] <= cases[i].box[k] + 0.5 * (cases[i].box[k] - cases[i].box[k - 3]),
@@ -306,7 +309,7 @@ TEST(expr_examples_compile) {
         double box[6];
         CHECK(n > 0 && iacsg_scene_parse(text, g.gl_pathv[i], &s, &err) == IACSG_OK, "%s:%d:%d: %s", g.gl_pathv[i],
               err.line, err.column, err.message);
-        int bounded = !s->expr || iacsg_expr_bounds(s->expr, box);
+        int bounded = !s->expr || iacsg_expr_bounds(s->expr, (double[2]){0, 0.5}, box);
         iacsg_scene_destroy(s);
         CHECK(bounded, "%s: no bounds found", g.gl_pathv[i]);
     }

@@ -1,6 +1,7 @@
 /* tests/t_expr_props_fp.c -- the containment contract for compiled expressions on the host, in float and
  * double intervals: for random expression trees, every primitive and every op, the host enclosure over a random
- * box contains the MPFR value of the expression as written at points of the box. */
+ * box contains the MPFR value of the expression as written at points of the box. Each test also requires a
+ * minimum share of points in the domain, so that an oracle or a generator that leaves everything undefined fails. */
 #include "t_expr_oracle.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,14 +54,18 @@ TEST_FP(expr_contains_random_trees) {
         checked += check_expr(text, 4, 6);
     }
     test_note("%ld random expressions, %ld points in the domain checked", n, checked);
+    CHECK(checked >= n * 4 * 6 / 2, "only %ld of %ld points in the domain", checked, n * 4 * 6);
 }
 
 TEST_FP(expr_contains_every_primitive) {
     const char *names[64];
     int n = expr_primitive_names(names, 64);
-    long checked = 0;
-    for (int i = 0; i < n; i++)
-        checked += check_expr(names[i], (int)test_iters(40), 6);
+    long checked = 0, boxes = test_iters(40);
+    for (int i = 0; i < n; i++) {
+        long here = check_expr(names[i], (int)boxes, 6);
+        CHECK(here == boxes * 6, "%s: only %ld of %ld points in the domain", names[i], here, boxes * 6);
+        checked += here;
+    }
     test_note("%d primitives, %ld points checked", n, checked);
 }
 
@@ -73,7 +78,11 @@ TEST_FP(expr_contains_every_op) {
         for (int k = 0; k < e->count; k++)
             used[e->simple.nodes[e->order[k]].op] = 1;
         iacsg_expr_destroy(e);
-        checked += check_expr(expr_every_op_texts[i], (int)test_iters(200), 4);
+        /* every op is defined on at least a quarter of the random boxes' points (log, sqrt, pow: x > 0) */
+        long boxes = test_iters(200), here = check_expr(expr_every_op_texts[i], (int)boxes, 4);
+        CHECK(4 * here >= boxes * 4, "'%s': only %ld of %ld points in the domain", expr_every_op_texts[i], here,
+              boxes * 4);
+        checked += here;
     }
     for (int op = OP_NEG; op < OP_COUNT; op++)
         CHECK(used[op], "no test expression exercises %s: add one to expr_every_op_texts", dag_op_id(op));

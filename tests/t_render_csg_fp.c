@@ -5,7 +5,9 @@
  * Along a ray each primitive's inside is a union of t intervals, found from the roots of its polynomial in t
  * (quadratic for the sphere, slab and rod, quartic for the torus); the CSG of the insides is decided at the
  * midpoints between consecutive roots. Checked: no ray that passes through the solid (by more than 1e-6) is
- * missed, and no depth is after the first root. Also a union of 32 spheres, which is emitted in groups. */
+ * missed, no depth is after the first root, and no depth is a ghost (its point farther than ghost_margin, in
+ * t_render_util.h, from every primitive's surface: each primitive also gives its exact distance function). Also
+ * a union of 32 spheres, which is emitted in groups. */
 #include "t_render_util.h"
 #include "implicits/expr.h"
 #include <string.h>
@@ -136,48 +138,47 @@ static int csg_first_entry(ray_poly pa, ray_poly pb, csg_op op, double tn, doubl
     return 0;
 }
 
-/* The exact (double) part of the ray inside the bounds, t >= 0. */
-static int box_span(const double b[6], const double o[3], const double d[3], double *tn, double *tf) {
-    *tn = 0;
-    *tf = INFINITY;
-    for (int k = 0; k < 3; k++) {
-        if (d[k] == 0) {
-            if (o[k] < b[k] || o[k] > b[k + 3])
-                return 0;
-            continue;
-        }
-        double t1 = (b[k] - o[k]) / d[k], t2 = (b[k + 3] - o[k]) / d[k];
-        *tn = fmax(*tn, fmin(t1, t2));
-        *tf = fmin(*tf, fmax(t1, t2));
-    }
-    return *tn < *tf;
-}
-
 typedef ray_poly (*make_poly)(const double o[3], const double d[3]);
+/* The distance from a point to a primitive's surface. */
+typedef double (*surface_distance)(const double p[3]);
+
+/* A primitive: along a ray, and in space. */
+typedef struct {
+    make_poly poly;
+    surface_distance distance;
+} primitive;
 
 /* The exact first entry of the ray into a scene in [tn, tf], and the length of the inside piece it starts. */
 typedef int (*first_entry)(const void *scene, const double o[3], const double d[3], double tn, double tf, double *t,
                            double *piece);
+/* The distance from a point to the nearest surface of the scene's primitives. */
+typedef double (*scene_distance)(const void *scene, const double p[3]);
 
 /* Two primitives and an operation. */
 typedef struct {
-    make_poly a, b;
+    primitive a, b;
     csg_op op;
 } csg_pair;
 static int pair_entry(const void *scene, const double o[3], const double d[3], double tn, double tf, double *t,
                       double *piece) {
     const csg_pair *s = scene;
-    return csg_first_entry(s->a(o, d), s->b(o, d), s->op, tn, tf, t, piece);
+    return csg_first_entry(s->a.poly(o, d), s->b.poly(o, d), s->op, tn, tf, t, piece);
+}
+static double pair_distance(const void *scene, const double p[3]) {
+    const csg_pair *s = scene;
+    return fmin(s->a.distance(p), s->b.distance(p));
 }
 
 typedef struct {
-    long through, misses, late;
+    long through, misses, late, ghosts;
+    double worst_gap; /* the largest distance from a depth's point to the nearest surface */
 } csg_report;
 
 /* Compiles `expr`, renders it, and checks each pixel against the exact first entry; reports under `name`. */
-static csg_report check_scene(const char *name, const char *expr, first_entry entry, const void *scene,
-                              const iacsg_view *view) {
-    csg_report rep = {0, 0, 0};
+static csg_report check_scene(const char *name, const char *expr, first_entry entry, scene_distance distance,
+                              const void *scene, const iacsg_view *view) {
+    csg_report rep = {0};
+    double margin = ghost_margin(view->eps);
     iacsg_error err = {0};
     iacsg_expr *e = NULL;
     CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s: %s", expr, err.message);
@@ -196,10 +197,17 @@ static csg_report check_scene(const char *name, const char *expr, first_entry en
         for (int i = 0; i < view->width; i++) {
             double o[3], d[3], tn, tf, t, piece;
             pixel_ray(p, view, i, j, o, d);
-            if (!box_span(view->bounds, o, d, &tn, &tf) || !entry(scene, o, d, tn, tf, &t, &piece) || piece < 1e-6)
+            double depth = fr.depth[(size_t)j * view->width + i];
+            if (isfinite(depth)) {
+                double q[3] = {o[0] + depth * d[0], o[1] + depth * d[1], o[2] + depth * d[2]}, gap = distance(scene, q);
+                rep.worst_gap = fmax(rep.worst_gap, gap);
+                if (gap > margin && rep.ghosts++ < 5)
+                    test_note("%s: ghost pixel (%d, %d): depth %.9g is %.3g from every surface", name, i, j, depth,
+                              gap);
+            }
+            if (!ray_box_span(view->bounds, o, d, &tn, &tf) || !entry(scene, o, d, tn, tf, &t, &piece) || piece < 1e-6)
                 continue;
             rep.through++;
-            double depth = fr.depth[(size_t)j * view->width + i];
             if (!isfinite(depth)) {
                 if (rep.misses++ < 5)
                     test_note("%s: missed pixel (%d, %d), entry at t = %.9g", name, i, j, t);
@@ -208,15 +216,19 @@ static csg_report check_scene(const char *name, const char *expr, first_entry en
             }
         }
     iacsg_frame_free(&fr);
-    test_note("%s: %ld rays through the solid, %ld missed, %ld late", name, rep.through, rep.misses, rep.late);
+    test_note("%s: %ld rays through the solid, %ld missed, %ld late, %ld ghosts (depths within %.2g of a surface, "
+              "margin %.2g)",
+              name, rep.through, rep.misses, rep.late, rep.ghosts, rep.worst_gap, margin);
     CHECK(rep.through > 100, "%s: too few rays through the solid (%ld)", name, rep.through);
     CHECK(rep.misses == 0 && rep.late == 0, "%s: %ld missed and %ld late pixels", name, rep.misses, rep.late);
+    CHECK(rep.ghosts == 0, "%s: %ld ghost pixels (a depth farther than %.3g from every surface)", name, rep.ghosts,
+          margin);
     return rep;
 }
 
-static csg_report check_expr(const char *expr, make_poly fa, make_poly fb, csg_op op, const iacsg_view *view) {
-    csg_pair pair = {fa, fb, op};
-    return check_scene(expr, expr, pair_entry, &pair, view);
+static csg_report check_expr(const char *expr, primitive a, primitive b, csg_op op, const iacsg_view *view) {
+    csg_pair pair = {a, b, op};
+    return check_scene(expr, expr, pair_entry, pair_distance, &pair, view);
 }
 
 static iacsg_view view_of(int w, int h, double eps) {
@@ -225,17 +237,24 @@ static iacsg_view view_of(int w, int h, double eps) {
     return v;
 }
 
-static ray_poly ball(const double o[3], const double d[3]) {
-    static const double c[3] = {0.5, 0, 0};
-    return sphere_poly(c, 1, o, d);
+static const sphere ball_sphere = {{0.5, 0, 0}, 1}, small_ball_sphere = {{0.5, 0, 0.25}, 0.5};
+static ray_poly ball_poly(const double o[3], const double d[3]) { return sphere_poly(ball_sphere.c, 1, o, d); }
+static double ball_distance(const double p[3]) { return sphere_surface_distance(ball_sphere, p); }
+static ray_poly small_ball_poly(const double o[3], const double d[3]) {
+    return sphere_poly(small_ball_sphere.c, 0.5, o, d);
 }
-static ray_poly small_ball(const double o[3], const double d[3]) {
-    static const double c[3] = {0.5, 0, 0.25};
-    return sphere_poly(c, 0.5, o, d);
+static double small_ball_distance(const double p[3]) { return sphere_surface_distance(small_ball_sphere, p); }
+static ray_poly ring_poly(const double o[3], const double d[3]) { return torus_poly(1, 0.375, o, d); }
+static double ring_distance(const double p[3]) {
+    return fabs(hypot(hypot(p[0], p[1]) - 1, p[2]) - 0.375);
 }
-static ray_poly ring(const double o[3], const double d[3]) { return torus_poly(1, 0.375, o, d); }
-static ray_poly rod(const double o[3], const double d[3]) { return rod_poly(0.004, o, d); }
-static ray_poly slab(const double o[3], const double d[3]) { return slab_poly(5e-5, o, d); }
+static ray_poly rod_poly_of(const double o[3], const double d[3]) { return rod_poly(0.004, o, d); }
+static double rod_distance(const double p[3]) { return fabs(hypot(p[0], p[1]) - 0.004); }
+static ray_poly slab_poly_of(const double o[3], const double d[3]) { return slab_poly(5e-5, o, d); }
+static double slab_distance(const double p[3]) { return fabs(fabs(p[2]) - 5e-5); }
+static const primitive ball = {ball_poly, ball_distance}, small_ball = {small_ball_poly, small_ball_distance},
+                       ring = {ring_poly, ring_distance}, rod = {rod_poly_of, rod_distance},
+                       slab = {slab_poly_of, slab_distance};
 
 TEST_FP(render_csg_sphere_torus) {
     iacsg_view v = view_of(128, 128, 1e-5);
@@ -279,6 +298,16 @@ static int grid_entry(const void *scene, const double o[3], const double d[3], d
     }
     return found;
 }
+static double grid_distance(const void *scene, const double p[3]) {
+    (void)scene;
+    double nearest = INFINITY;
+    for (int n = 0; n < GRID_X * GRID_Y * GRID_Z; n++) {
+        sphere s = {{0, 0, 0}, 0.3};
+        grid_centre(n, s.c);
+        nearest = fmin(nearest, sphere_surface_distance(s, p));
+    }
+    return nearest;
+}
 
 /* The normals of the union in groups, which the kernels compute by differences (kernels/shade.h), against the
  * exact ones at the entry points (the spheres are disjoint: no edges to blend across). */
@@ -303,7 +332,7 @@ static void check_grid_normals(const char *expr, const iacsg_view *view) {
         for (int i = 0; i < view->width; i++) {
             double o[3], d[3], tn, tf, best = INFINITY, piece = 0, centre[3] = {0, 0, 0};
             pixel_ray(p, view, i, j, o, d);
-            if (!box_span(view->bounds, o, d, &tn, &tf))
+            if (!ray_box_span(view->bounds, o, d, &tn, &tf))
                 continue;
             for (int n = 0; n < GRID_X * GRID_Y * GRID_Z; n++) {
                 double c[3], roots[MAX_ROOTS];
@@ -340,6 +369,6 @@ TEST_FP(render_union_of_many_spheres) {
     }
     snprintf(end, sizeof expr - (size_t)(end - expr), ")");
     iacsg_view v = view_of(160, 160, 1e-5);
-    check_scene("a union of 32 spheres", expr, grid_entry, NULL, &v);
+    check_scene("a union of 32 spheres", expr, grid_entry, grid_distance, NULL, &v);
     check_grid_normals(expr, &v);
 }

@@ -8,7 +8,9 @@
  *   - within eps: where the surface is not grazing (|n.d| > 0.25), the depth is at most k eps before the root,
  *     k = 1 + sum |n_i d_i| / |n.d|: a leaf holds the root (1 eps), or is an earlier leaf accepted because its
  *     box, not its segment, comes near the surface (the box over a segment of length eps is at most
- *     sum |n_i d_i| / |n.d| eps further from the surface along the ray than the segment is).
+ *     sum |n_i d_i| / |n.d| eps further from the surface along the ray than the segment is);
+ *   - no ghost: every reported depth lies within ghost_margin(eps) (t_render_util.h) of a sphere's surface, on
+ *     rays that miss as on rays that hit (so also no depth far before a grazing root).
  * The expressions are written by hand in OpenCL C, so these tests need nothing from the compiler.
  */
 #include "t_render_util.h"
@@ -65,11 +67,13 @@ typedef struct {
     long hits, misses, late, checked_eps, ghosts;
     double worst_eps;  /* largest (root - depth) / (k eps) where checked */
     double evals_mean; /* interval evaluations per ray, with stats */
+    double margin;     /* ghost_margin of the view's eps */
+    double worst_gap;  /* the largest distance from a depth's point to the nearest surface */
 } depth_report;
 
 /* Renders the solid, given as OpenCL C (cl), and compares every pixel with the analytic first root. */
 static depth_report check_solid(sphere A, sphere B, solid_op op, const char *cl, const iacsg_view *view, int stats) {
-    depth_report rep = {0};
+    depth_report rep = {.margin = ghost_margin(view->eps)};
     iacsg_render_config config = {.device = 0, .fp64 = FP64, .stats = stats};
     iacsg_frame fr;
     render_cl(cl, &config, view, &fr);
@@ -83,10 +87,15 @@ static depth_report check_solid(sphere A, sphere B, solid_op op, const char *cl,
             int which;
             double depth = fr.depth[(size_t)j * view->width + i];
             int hit = solid_first_root(A, B, op, o, d, &t, &piece, &which);
-            if (!hit || piece < 1e-6) {
-                rep.ghosts += !hit && isfinite(depth);
-                continue;
+            if (isfinite(depth)) {
+                double q[3] = {o[0] + depth * d[0], o[1] + depth * d[1], o[2] + depth * d[2]};
+                double gap = fmin(sphere_surface_distance(A, q), sphere_surface_distance(B, q));
+                rep.worst_gap = fmax(rep.worst_gap, gap);
+                if (gap > rep.margin && rep.ghosts++ < 5)
+                    test_note("ghost pixel (%d, %d): depth %.9g is %.3g from the surface", i, j, depth, gap);
             }
+            if (!hit || piece < 1e-6)
+                continue;
             if (!isfinite(depth)) {
                 if (rep.misses++ < 5)
                     test_note("missed pixel (%d, %d): root at t = %.9g", i, j, t);
@@ -146,12 +155,15 @@ static iacsg_view small_view(int size, double eps) {
 }
 
 static void expect_exact(depth_report rep, const char *what) {
-    test_note("%s: %ld hits, %ld checked for eps (worst %.3f k eps), %ld ghost pixels", what, rep.hits,
-              rep.checked_eps, rep.worst_eps, rep.ghosts);
+    test_note("%s: %ld hits, %ld checked for eps (worst %.3f k eps), %ld ghost pixels (depths within %.2g of a "
+              "surface, margin %.2g)",
+              what, rep.hits, rep.checked_eps, rep.worst_eps, rep.ghosts, rep.worst_gap, rep.margin);
     CHECK(rep.hits > 500, "%s: too few hits (%ld) to mean anything", what, rep.hits);
     CHECK(rep.misses == 0, "%s: %ld missed pixels", what, rep.misses);
     CHECK(rep.late == 0, "%s: %ld pixels with the depth after the first root", what, rep.late);
     CHECK(rep.worst_eps <= 1, "%s: depth %.3f k eps before the root on a non-grazing pixel", what, rep.worst_eps);
+    CHECK(rep.ghosts == 0, "%s: %ld ghost pixels (a depth farther than %.3g from every surface)", what, rep.ghosts,
+          rep.margin);
 }
 
 static const sphere unit_sphere = {{0, 0, 0}, 1};

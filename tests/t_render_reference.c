@@ -59,21 +59,27 @@ TEST(render_reference_images) {
         float *ref = NULL;
         CHECK(iacsg_image_read(path, &w, &h, &ch, &ref, &err) == IACSG_OK, "%s", err.message);
         CHECK(w == fr.width && h == fr.height && ch == 3, "%s: reference is %dx%dx%d", s->name, w, h, ch);
-        /* Tolerance: 8-bit quantization plus small shading differences everywhere; larger ones (a pixel whose
-         * hit moved across an edge) on at most 0.2 % of the pixels. */
+        /* Tolerance: the references are 8-bit, so a quantization error of 1/510 at most and ~1/1020 on average
+         * (measured 0.00091-0.00114, float and fp64 alike); and a few pixels where the shading may move (a device
+         * rounding a shading function differently, the kernel reordering its arithmetic): on the cube's edges,
+         * x^500's normal turns within a pixel, and the two edge pixels there changed with the normals by
+         * differences (0.28 off). A ghost, a miss or a moved silhouette is a whole pixel off. */
         long far_off = 0, n = (long)w * h;
         double sum = 0;
-        for (long p = 0; p < n * 3; p++) {
-            double diff = fabs(fr.rgb[p] - ref[p]);
-            sum += diff;
-            far_off += diff > 0.1;
+        for (long p = 0; p < n; p++) {
+            double worst = 0;
+            for (int c = 0; c < 3; c++) {
+                double diff = fabs(fr.rgb[3 * p + c] - ref[3 * p + c]);
+                sum += diff;
+                worst = fmax(worst, diff);
+            }
+            far_off += worst > 0.1;
         }
         free(ref);
         iacsg_frame_free(&fr);
-        test_note("%s: mean difference %.5f, %ld channel values off by more than 0.1", s->name, sum / (3.0 * n),
-                  far_off);
-        CHECK(sum / (3.0 * n) < 2.0 / 255, "%s: mean difference %.4f", s->name, sum / (3.0 * n));
-        CHECK(far_off <= n * 3 / 500, "%s: %ld values differ by more than 0.1", s->name, far_off);
+        test_note("%s: mean difference %.5f, %ld pixels off by more than 0.1", s->name, sum / (3.0 * n), far_off);
+        CHECK(sum / (3.0 * n) < 1.0 / 255, "%s: mean difference %.4f", s->name, sum / (3.0 * n));
+        CHECK(far_off <= 4, "%s: %ld pixels differ by more than 0.1", s->name, far_off);
     }
 }
 

@@ -1,7 +1,8 @@
 /* tests/t_render_traverse_fp.c -- the kernel's traversal (kernels/traverse.h), compiled here as host C with the
- * same precision: node ends from one formula are bit-identical between parent, children and neighbours; the
- * stackless walk visits the leaves in ray order and covers the root interval with no gap; and the gap-prone
- * alternative hi = lo + width does leave gaps (so the first property is not vacuous). */
+ * same precision: node ends are the exact dyadic fraction u = i * 2^-k of the root carried through
+ * t0 + w * u with two roundings, checked against MPFR, so a parent's ends are its children's and a node's end is
+ * its neighbour's start (the same u); the same check finds the gaps of hi = lo + width (so it can fail); the
+ * stackless walk visits the leaves in ray order and covers the root interval with no gap. */
 #include "kernels/traverse.h"
 #include "test.h"
 #include <math.h>
@@ -9,8 +10,10 @@
 
 #ifdef IA_FP64
 #define TRAVERSE_LEVELS 52
+#define REAL_BITS 53
 #else
 #define TRAVERSE_LEVELS 24
+#define REAL_BITS 24
 #endif
 
 /* A random root interval like a clipped ray's: t0 in [0, 8), w in (0, 8). */
@@ -19,27 +22,62 @@ static void random_root(test_rng_t *rng, ia_real *t0, ia_real *w) {
     *w = (ia_real)(8 * test_rand_unit(rng)) + (ia_real)1e-3;
 }
 
-TEST_FP(render_traverse_siblings_share_ends) {
-    test_rng_t *rng = test_rng();
-    long gaps_naive = 0, n = test_iters(200000);
+/* The documented end of the fraction i * 2^-k of [t0, t0 + w], computed independently of traverse.h: u exact
+ * (an integer scaled by a power of two), w * u rounded to nearest in the working precision, then t0 + that. */
+static ia_real exact_node_end(ia_real t0, ia_real w, int k, unsigned long long i) {
+    mpfr_t v;
+    mpfr_init2(v, 256);
+    mpfr_set_ui(v, (unsigned long)(i >> 32), MPFR_RNDN); /* i, exactly, from its two halves */
+    mpfr_mul_2ui(v, v, 32, MPFR_RNDN);
+    mpfr_add_ui(v, v, (unsigned long)(i & 0xffffffffu), MPFR_RNDN);
+    mpfr_div_2ui(v, v, (unsigned long)k, MPFR_RNDN);
+    mpfr_mul_d(v, v, (double)w, MPFR_RNDN); /* exact at 256 bits */
+    mpfr_prec_round(v, REAL_BITS, MPFR_RNDN);
+    mpfr_prec_round(v, 256, MPFR_RNDN);
+    mpfr_add_d(v, v, (double)t0, MPFR_RNDN); /* exact: the exponents are close */
+    mpfr_prec_round(v, REAL_BITS, MPFR_RNDN);
+    double r = mpfr_get_d(v, MPFR_RNDN);
+    mpfr_clear(v);
+    return (ia_real)r;
+}
+
+/* A node's upper end as the kernel computes it (node_bound of the next index), and as a walk that recomputes
+ * hi = lo + width would. */
+static ia_real kernel_node_hi(ia_real t0, ia_real w, int k, bisect_index i) { return node_bound(t0, w, k, i + 1); }
+static ia_real naive_node_hi(ia_real t0, ia_real w, int k, bisect_index i) {
+    return node_bound(t0, w, k, i) + w * node_scale(k);
+}
+
+/* For random nodes and their two children: the start of each is the exact formula at its own u, and the upper
+ * end given by node_hi the exact formula at the next u, which is the next node's start: a node's end that
+ * differs from it is a gap or an overlap. Returns the number of ends that differ. */
+static long count_wrong_ends(test_rng_t *rng, long n, ia_real (*node_hi)(ia_real, ia_real, int, bisect_index)) {
+    long wrong = 0;
     for (long it = 0; it < n; it++) {
         ia_real t0, w;
         random_root(rng, &t0, &w);
         int k = (int)(test_rand_u64(rng) % TRAVERSE_LEVELS);
         bisect_index i = (bisect_index)(test_rand_u64(rng) & (((bisect_index)1 << k) - 1));
-        ia_real lo = node_bound(t0, w, k, i), hi = node_bound(t0, w, k, i + 1);
-        ia_real left_lo = node_bound(t0, w, k + 1, 2 * i), mid = node_bound(t0, w, k + 1, 2 * i + 1);
-        ia_real right_hi = node_bound(t0, w, k + 1, 2 * i + 2);
-        CHECK(left_lo == lo && right_hi == hi, "level %d index %llu: children's ends differ from the parent's", k,
-              (unsigned long long)i);
-        CHECK(lo <= mid && mid <= hi, "level %d index %llu: the midpoint is outside the node", k,
-              (unsigned long long)i);
-        /* The gap-prone way: hi recomputed from lo and the width of the level. */
-        ia_real naive_hi = lo + w * ldexp((ia_real)1, -k);
-        gaps_naive += naive_hi < hi;
+        for (int c = 0; c < 3; c++) { /* the node, then its children */
+            int level = c ? k + 1 : k;
+            bisect_index j = c ? 2 * i + (bisect_index)(c - 1) : i;
+            ia_real lo = node_bound(t0, w, level, j), hi = node_hi(t0, w, level, j);
+            CHECK(lo == exact_node_end(t0, w, level, j), "t0 %a w %a level %d index %llu: the start %a is not "
+                  "t0 + w * u rounded", (double)t0, (double)w, level, (unsigned long long)j, (double)lo);
+            wrong += hi != exact_node_end(t0, w, level, j + 1);
+        }
     }
-    test_note("%ld nodes checked; hi = lo + width would leave a gap after %ld of them", n, gaps_naive);
-    CHECK(gaps_naive > 0, "the naive end never differed: the test does not exercise rounding");
+    return wrong;
+}
+
+TEST_FP(render_traverse_node_ends_exact) {
+    long n = test_iters(100000);
+    long wrong = count_wrong_ends(test_rng(), n, kernel_node_hi);
+    long naive = count_wrong_ends(test_rng(), n, naive_node_hi);
+    test_note("%ld nodes and their children: %ld ends not the next node's start; with hi = lo + width %ld", n,
+              wrong, naive);
+    CHECK(wrong == 0, "%ld node ends differ from the next node's start", wrong);
+    CHECK(naive > 0, "hi = lo + width never left a gap: the check cannot tell a gap-prone walk");
 }
 
 /* Walks the whole tree down to `depth`, descending at every node above it: the leaves must come in order,

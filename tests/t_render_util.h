@@ -74,6 +74,39 @@ static inline int sphere_span(sphere s, const double o[3], const double d[3], do
     return 1;
 }
 
+/* The distance from p to the surface of sphere s. */
+static inline double sphere_surface_distance(sphere s, const double p[3]) {
+    double dx = p[0] - s.c[0], dy = p[1] - s.c[1], dz = p[2] - s.c[2];
+    return fabs(sqrt(dx * dx + dy * dy + dz * dz) - s.r);
+}
+
+/* How far from every primitive's surface a reported depth may lie before it is a ghost (a hit where there is no
+ * surface). The kernel returns a leaf of at most eps along a unit ray whose box holds 0 in F's enclosure. In the
+ * render tests each primitive's enclosure is its exact range over a box up to a few ulps (sums of squares of
+ * separate coordinates, sqrt and abs of them), so on a box where every primitive keeps one sign min and max are
+ * one-signed too and the box is rejected: an accepted box touches some primitive's surface, and the point at
+ * the leaf's start is within the box's diagonal, eps, of it. 2 eps + 1e-5 leaves room for rounding (float
+ * coordinates of a few units, F near 0 off by ~1e-6). The boundary of any CSG of the primitives lies on their
+ * surfaces, so the nearest primitive surface is never farther than the solid's. */
+static inline double ghost_margin(double eps) { return 2 * eps + 1e-5; }
+
+/* The exact (double) part of the ray inside the bounds, t >= 0. */
+static inline int ray_box_span(const double b[6], const double o[3], const double d[3], double *tn, double *tf) {
+    *tn = 0;
+    *tf = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        if (d[k] == 0) {
+            if (o[k] < b[k] || o[k] > b[k + 3])
+                return 0;
+            continue;
+        }
+        double t1 = (b[k] - o[k]) / d[k], t2 = (b[k + 3] - o[k]) / d[k];
+        *tn = fmax(*tn, fmin(t1, t2));
+        *tf = fmin(*tf, fmax(t1, t2));
+    }
+    return *tn < *tf;
+}
+
 /* The camera part of the parameter block, in the working precision, as src/render.c fills it. */
 static inline void view_params(const iacsg_view *view, ia_real p[PARAM_COUNT]) {
     double pd[PARAM_COUNT] = {0};

@@ -113,7 +113,7 @@ TEST(scene_parse_issue_example) {
     check_solid_value(s, 4, p,
                       sin(4 * p[0]) * cos(4 * p[1]) + sin(4 * p[1]) * cos(4 * p[2]) + sin(4 * p[2]) * cos(4 * p[0]));
     double box[6];
-    CHECK(iacsg_expr_bounds(s->solids[0].expr, box) && box[3] >= 1.2 && box[3] < 2, "ball's bounds: %g", box[3]);
+    CHECK(iacsg_expr_bounds(s->solids[0].expr, (double[2]){0, 0}, box) && box[3] >= 1.2 && box[3] < 2, "ball's bounds: %g", box[3]);
     /* items: ids in declaration order */
     CHECK(s->nitems == 3, "%d items", s->nitems);
     static const char *const inames[] = {"body", "plug", "shell"};

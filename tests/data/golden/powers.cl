@@ -12,71 +12,60 @@ typedef float4 iacsg_grad;
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v2 = iav_pown(x, 3);
     iav v5 = iav_sqrt(y);
+    ia_maskv v5_u = (y.lo < 0);
+    ia_maskv v5_e = (y.hi < 0);
     iav v6 = iav_add(v2, v5);
+    ia_maskv v6_u = v5_u;
+    ia_maskv v6_e = v5_e;
     iav v10 = iav_pown(z, -2);
+    ia_maskv v10_u = (-2 < 0 && z.lo <= 0 && z.hi >= 0);
+    ia_maskv v10_e = (-2 < 0 && z.lo == 0 && z.hi == 0);
     iav v11 = iav_add(v6, v10);
+    ia_maskv v11_u = v6_u || v10_u;
+    ia_maskv v11_e = v6_e || v10_e;
     iav v12 = iav_sqr(x);
     iav v13 = iav_add(v11, v12);
+    ia_maskv v13_u = v11_u;
+    ia_maskv v13_e = v11_e;
     iav v15 = iav_pow(y, iav_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
+    ia_maskv v15_u = (y.lo < 0 || (y.lo <= 0 && iav_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).lo <= 0));
+    ia_maskv v15_e = (y.hi < 0 || (y.hi == 0 && iav_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).hi <= 0));
     iav v16 = iav_add(v13, v15);
-    return v16;
+    ia_maskv v16_u = v13_u || v15_u;
+    ia_maskv v16_e = v13_e || v15_e;
+    return iav_or_outside(v16, v16_u, v16_e);
 }
 #else
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     ia_interval v2 = ia_pown(x, 3);
     ia_interval v5 = ia_sqrt(y);
+    int v5_u = (y.lo < 0);
     ia_interval v6 = ia_add(v2, v5);
+    int v6_u = v5_u;
     ia_interval v10 = ia_pown(z, -2);
+    int v10_u = (-2 < 0 && z.lo <= 0 && z.hi >= 0);
     ia_interval v11 = ia_add(v6, v10);
+    int v11_u = v6_u || v10_u;
     ia_interval v12 = ia_sqr(x);
     ia_interval v13 = ia_add(v11, v12);
+    int v13_u = v11_u;
     ia_interval v15 = ia_pow(y, ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
+    int v15_u = (y.lo < 0 || (y.lo <= 0 && ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).lo <= 0));
     ia_interval v16 = ia_add(v13, v15);
-    return v16;
-}
-IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
-    ia_interval v2 = ia_pown(x, 3);
-    ia_interval v2_t = ia_mul(ia_mul_r(ia_pown(x, 3 - 1), 3), dx);
-    ia_interval v5 = ia_sqrt(y);
-    ia_interval v5_t = ia_div(dy, ia_mul_r(v5, 2));
-    ia_interval v6 = ia_add(v2, v5);
-    ia_interval v6_t = ia_add(v2_t, v5_t);
-    ia_interval v10 = ia_pown(z, -2);
-    ia_interval v10_t = ia_mul(ia_mul_r(ia_pown(z, -2 - 1), -2), dz);
-    ia_interval v11 = ia_add(v6, v10);
-    ia_interval v11_t = ia_add(v6_t, v10_t);
-    ia_interval v12 = ia_sqr(x);
-    ia_interval v12_t = ia_mul(ia_mul_r(x, 2), dx);
-    ia_interval v13 = ia_add(v11, v12);
-    ia_interval v13_t = ia_add(v11_t, v12_t);
-    ia_interval v15 = ia_pow(y, ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
-    ia_interval v15_t = ia_mul(v15, ia_add(ia_mul(ia_point(0), ia_log(y)), ia_div(ia_mul(ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)), dy), y)));
-    ia_interval v16 = ia_add(v13, v15);
-    ia_interval v16_t = ia_add(v13_t, v15_t);
-    *dt = v16_t;
-    return v16;
-}
-IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
-    ia_real v2 = pown(x, 3);
-    ia_real v5 = sqrt(y);
-    ia_real v6 = v2 + v5;
-    ia_real v10 = pown(z, -2);
-    ia_real v11 = v6 + v10;
-    ia_real v12 = x * x;
-    ia_real v13 = v11 + v12;
-    ia_real v15 = pow(y, IACSG_K(0x1.8p+0f, 0x1.8p+0));
-    ia_real v16 = v13 + v15;
-    return v16;
+    int v16_u = v13_u || v15_u;
+    return ia_or_outside(v16, v16_u);
 }
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v2 = pown(x, 3);
     iacsg_grad v2_d = (ia_real)3 * pown(x, 3 - 1) * (iacsg_grad)(1, 0, 0, 0);
     ia_real v5 = sqrt(y);
+    v5 = y < 0 ? (ia_real)NAN : v5;
     iacsg_grad v5_d = (iacsg_grad)(0, 1, 0, 0) / ((ia_real)2 * v5);
     ia_real v6 = v2 + v5;
     iacsg_grad v6_d = v2_d + v5_d;
     ia_real v10 = pown(z, -2);
+    v10 = -2 < 0 && z <= 0 && z >= 0 ? (ia_real)NAN : v10;
     iacsg_grad v10_d = (ia_real)-2 * pown(z, -2 - 1) * (iacsg_grad)(0, 0, 1, 0);
     ia_real v11 = v6 + v10;
     iacsg_grad v11_d = v6_d + v10_d;
@@ -85,6 +74,7 @@ IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *
     ia_real v13 = v11 + v12;
     iacsg_grad v13_d = v11_d + v12_d;
     ia_real v15 = pow(y, IACSG_K(0x1.8p+0f, 0x1.8p+0));
+    v15 = y < 0 || (y <= 0 && IACSG_K(0x1.8p+0f, 0x1.8p+0) <= 0) ? (ia_real)NAN : v15;
     iacsg_grad v15_d = v15 * ((iacsg_grad)0 * log(y) + IACSG_K(0x1.8p+0f, 0x1.8p+0) * (iacsg_grad)(0, 1, 0, 0) / y);
     ia_real v16 = v13 + v15;
     iacsg_grad v16_d = v13_d + v15_d;

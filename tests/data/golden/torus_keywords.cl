@@ -14,15 +14,26 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v6 = iav_sqr(y);
     iav v7 = iav_add(v4, v6);
     iav v8 = iav_sqrt(v7);
+    ia_maskv v8_u = (v7.lo < 0);
+    ia_maskv v8_e = (v7.hi < 0);
     iav v10 = iav_sqr(z);
     iav v11 = iav_sub(iav_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
+    ia_maskv v11_u = v8_u;
+    ia_maskv v11_e = v8_e;
     iav v12 = iav_sqr(v11);
+    ia_maskv v12_u = v11_u;
+    ia_maskv v12_e = v11_e;
     iav v13 = iav_add(v10, v12);
+    ia_maskv v13_u = v12_u;
+    ia_maskv v13_e = v12_e;
     iav v16 = iav_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
-    return v16;
+    ia_maskv v16_u = v13_u;
+    ia_maskv v16_e = v13_e;
+    return iav_or_outside(v16, v16_u, v16_e);
 }
 #define IACSG_FDV 1
 IA_FN iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt) {
+    ia_maskv undefined = 0;
     iav v4 = iav_sqr(x);
     iav v4_t = iav_mul(iav_mul_r(x, 2), dx);
     iav v6 = iav_sqr(y);
@@ -30,19 +41,30 @@ IA_FN iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt)
     iav v7 = iav_add(v4, v6);
     iav v7_t = iav_add(v4_t, v6_t);
     iav v8 = iav_sqrt(v7);
+    ia_maskv v8_u = (v7.lo < 0);
+    ia_maskv v8_e = (v7.hi < 0);
+    undefined |= v8_u;
     iav v8_t = iav_div(v7_t, iav_mul_r(v8, 2));
     iav v10 = iav_sqr(z);
     iav v10_t = iav_mul(iav_mul_r(z, 2), dz);
     iav v11 = iav_sub(iav_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
+    ia_maskv v11_u = v8_u;
+    ia_maskv v11_e = v8_e;
     iav v11_t = iav_sub(iav_point(0), v8_t);
     iav v12 = iav_sqr(v11);
+    ia_maskv v12_u = v11_u;
+    ia_maskv v12_e = v11_e;
     iav v12_t = iav_mul(iav_mul_r(v11, 2), v11_t);
     iav v13 = iav_add(v10, v12);
+    ia_maskv v13_u = v12_u;
+    ia_maskv v13_e = v12_e;
     iav v13_t = iav_add(v10_t, v12_t);
     iav v16 = iav_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
+    ia_maskv v16_u = v13_u;
+    ia_maskv v16_e = v13_e;
     iav v16_t = v13_t;
-    *dt = v16_t;
-    return v16;
+    *dt = iav_entire_where(v16_t, undefined);
+    return iav_or_outside(v16, v16_u, v16_e);
 }
 #else
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
@@ -50,46 +72,17 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v6 = ia_sqr(y);
     ia_interval v7 = ia_add(v4, v6);
     ia_interval v8 = ia_sqrt(v7);
+    int v8_u = (v7.lo < 0);
     ia_interval v10 = ia_sqr(z);
     ia_interval v11 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
+    int v11_u = v8_u;
     ia_interval v12 = ia_sqr(v11);
+    int v12_u = v11_u;
     ia_interval v13 = ia_add(v10, v12);
+    int v13_u = v12_u;
     ia_interval v16 = ia_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
-    return v16;
-}
-IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
-    ia_interval v4 = ia_sqr(x);
-    ia_interval v4_t = ia_mul(ia_mul_r(x, 2), dx);
-    ia_interval v6 = ia_sqr(y);
-    ia_interval v6_t = ia_mul(ia_mul_r(y, 2), dy);
-    ia_interval v7 = ia_add(v4, v6);
-    ia_interval v7_t = ia_add(v4_t, v6_t);
-    ia_interval v8 = ia_sqrt(v7);
-    ia_interval v8_t = ia_div(v7_t, ia_mul_r(v8, 2));
-    ia_interval v10 = ia_sqr(z);
-    ia_interval v10_t = ia_mul(ia_mul_r(z, 2), dz);
-    ia_interval v11 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
-    ia_interval v11_t = ia_sub(ia_point(0), v8_t);
-    ia_interval v12 = ia_sqr(v11);
-    ia_interval v12_t = ia_mul(ia_mul_r(v11, 2), v11_t);
-    ia_interval v13 = ia_add(v10, v12);
-    ia_interval v13_t = ia_add(v10_t, v12_t);
-    ia_interval v16 = ia_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
-    ia_interval v16_t = v13_t;
-    *dt = v16_t;
-    return v16;
-}
-IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {
-    ia_real v4 = x * x;
-    ia_real v6 = y * y;
-    ia_real v7 = v4 + v6;
-    ia_real v8 = sqrt(v7);
-    ia_real v10 = z * z;
-    ia_real v11 = IACSG_K(0x1p+0f, 0x1p+0) - v8;
-    ia_real v12 = v11 * v11;
-    ia_real v13 = v10 + v12;
-    ia_real v16 = v13 + IACSG_K(-0x1p-4f, -0x1p-4);
-    return v16;
+    int v16_u = v13_u;
+    return ia_or_outside(v16, v16_u);
 }
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
@@ -100,6 +93,7 @@ IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *
     ia_real v7 = v4 + v6;
     iacsg_grad v7_d = v4_d + v6_d;
     ia_real v8 = sqrt(v7);
+    v8 = v7 < 0 ? (ia_real)NAN : v8;
     iacsg_grad v8_d = v7_d / ((ia_real)2 * v8);
     ia_real v10 = z * z;
     iacsg_grad v10_d = (ia_real)2 * z * (iacsg_grad)(0, 0, 1, 0);

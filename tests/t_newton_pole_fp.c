@@ -1,0 +1,76 @@
+/* tests/t_newton_pole_fp.c -- interval Newton (kernels/packet.h) next to a pole: f = g(x) with a pole at
+ * x = -0.52 and a steep term, seen orthographically along +x, so that every ray meets the same first root. Over a
+ * node that holds the root and the pole, the derivative enclosure is one-signed and unbounded ([-inf, -c] or
+ * [1, inf]); a Newton step there kept the far side of the pole and reported the second root, 0.063 later, in
+ * every pixel. Each pixel's depth must be the first root's, to within the leaf width. Float and double. */
+#include "t_render_util.h"
+#include <string.h>
+
+#ifdef IA_FP64
+#define FP64 1
+#else
+#define FP64 0
+#endif
+
+/* tan's case is increasing on (-2, -0.52) (it is -cot(x + 0.52) + 1000 (x + 0.52)), with one root there, near
+ * the power's -0.52 - 1/sqrt(1000): found by bisection in double. */
+static double pole_tan(double x) { return tan(x + 2.0907963267948966) + 1000 * (x + 0.52); }
+
+/* The root of an increasing f on [lo, hi] (f(lo) < 0 < f(hi)), to the resolution of doubles. */
+static double increasing_root(double (*f)(double), double lo, double hi) {
+    while (1) {
+        double mid = lo * 0.5 + hi * 0.5;
+        if (!(mid > lo && mid < hi))
+            return lo;
+        if (f(mid) < 0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+}
+
+static void check_first_root(const char *expr, double x_root) {
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    char *cl = NULL;
+    CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s", err.message);
+    iacsg_status st = iacsg_expr_emit_cl(e, "iacsg", &cl, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    CHECK(strstr(cl, "IACSG_FDV"), "'%s': no derivative code, so no interval Newton to test", expr);
+    iacsg_view view = {.width = 24, .height = 24, .eps = 1e-5,
+                       .camera = {.eye = {-3, 0, 0}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 40, .ortho_height = 4},
+                       .bounds = {-2, -2, -2, 2, 2, 2}};
+    iacsg_render_config config = {.device = 0, .fp64 = FP64};
+    iacsg_frame fr;
+    render_cl(cl, &config, &view, &fr);
+    free(cl);
+    ia_real p[PARAM_COUNT];
+    view_params(&view, p);
+    long missed = 0, late = 0, early = 0;
+    double worst = 0;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 0; i < view.width; i++) {
+            double o[3], d[3];
+            pixel_ray(p, &view, i, j, o, d);
+            double t = (x_root - o[0]) / d[0]; /* d is exactly (1, 0, 0) */
+            double depth = fr.depth[(size_t)j * view.width + i];
+            worst = fmax(worst, fabs(depth - t));
+            missed += !isfinite(depth);
+            late += depth > t * (1 + 1e-12);
+            early += depth < t - 2 * view.eps; /* a leaf (eps) holds the root, its box one eps further at most */
+        }
+    iacsg_frame_free(&fr);
+    test_note("%s: first root at depth %.9g; %d pixels, worst |depth - root| %.3g", expr, x_root + 3,
+              view.width * view.height, worst);
+    CHECK(missed == 0 && late == 0 && early == 0,
+          "%s: %ld pixels missed, %ld after the first root, %ld more than 2 eps before it (worst |depth - root| %.6g)",
+          expr, missed, late, early, worst);
+}
+
+TEST_FP(newton_pole_power) { check_first_root("(x+0.52)^-1 - 1000*(x+0.52)", -0.52 - 1 / sqrt(1000.0)); }
+
+TEST_FP(newton_pole_tan) {
+    CHECK(pole_tan(-2) < 0 && pole_tan(-0.5201) > 0, "the bracket does not hold the root");
+    check_first_root("tan(x+2.0907963267948966) + 1000*(x+0.52)", increasing_root(pole_tan, -2, -0.5201));
+}
