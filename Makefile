@@ -197,7 +197,8 @@ DOCDIR = $(PREFIX)/share/doc/iacsg
 IMAGE_HELPER_DIR = $(PREFIX)/lib/iacsg
 
 # The public API: these headers, and nothing else, are installed (flat, under include/iacsg/) and exported.
-PUBLIC_HEADERS = src/iacsg.h src/api.h src/error.h src/camera.h src/image.h src/render.h implicits/expr.h
+PUBLIC_HEADERS = src/iacsg.h src/api.h src/error.h src/camera.h src/image.h src/render.h implicits/expr.h \
+                 implicits/scene_api.h
 EXAMPLES = $(sort $(wildcard examples/*.c examples/*.csg))
 
 VERSION := $(shell sed -n 's/^\#define IACSG_VERSION "\(.*\)"$$/\1/p' src/iacsg.h 2>/dev/null)

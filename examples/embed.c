@@ -9,7 +9,6 @@
  * The library never prints: every call returns a status and fills an iacsg_error, and this program decides
  * what to say. */
 #include <iacsg/iacsg.h>
-#include "implicits/scene.h" /* the scene language: not an installed header yet */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,14 +31,6 @@ static char *read_file(const char *path) {
     return text;
 }
 
-/* Whether any solid of the scene depends on the time t. */
-static int scene_uses_time(const iacsg_scene *s) {
-    int uses = s->expr && iacsg_expr_uses_time(s->expr);
-    for (int k = 0; k < s->nsolids; k++)
-        uses |= iacsg_expr_uses_time(s->solids[k].expr);
-    return uses;
-}
-
 /* Renders one scene into a cell of the sheet (rows of `sheet_width` RGB pixels). */
 static iacsg_status render_cell(const char *path, int cell, float *sheet, int sheet_width, int x0, int y0,
                                 iacsg_error *err) {
@@ -55,9 +46,8 @@ static iacsg_status render_cell(const char *path, int cell, float *sheet, int sh
         st = iacsg_renderer_create_scene(s, &config, &r, err);
     if (st == IACSG_OK) {
         iacsg_view view = {.width = cell, .height = cell, .eps = 0x1p-16, .camera = {.up = {0, 0, 1}, .fov = 40}};
-        view.time[0] = view.time[1] = scene_uses_time(s) ? 0.5 : 0;
-        if (!(s->nitems > 0 ? iacsg_scene_bounds(s, view.time, view.bounds)
-                            : iacsg_expr_bounds(s->expr, view.time, view.bounds)))
+        view.time[0] = view.time[1] = iacsg_scene_uses_time(s) ? 0.5 : 0;
+        if (!iacsg_scene_bounds(s, view.time, view.bounds))
             memcpy(view.bounds, (double[6]){-2, -2, -2, 2, 2, 2}, sizeof view.bounds);
         for (int k = 0; k < 3; k++)
             view.camera.at[k] = 0.5 * (view.bounds[k] + view.bounds[k + 3]);

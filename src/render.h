@@ -11,8 +11,7 @@
 #include "camera.h"
 #include "error.h"
 #include "implicits/expr.h"
-
-typedef struct iacsg_scene iacsg_scene; /* implicits/scene.h */
+#include "implicits/scene_api.h"
 
 IACSG_API_BEGIN
 
@@ -47,7 +46,8 @@ iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_rende
                                          iacsg_renderer **out, iacsg_error *err);
 
 /* The union of the proven boxes of the solids that a scene's items use (x0,y0,z0,x1,y1,z1) for times in
- * [time[0], time[1]], for its default bounds; returns 0 when one of them has none (src/scene_tables.c). */
+ * [time[0], time[1]], for its default bounds (a plain scene: its expression's box); returns 0 when one of them
+ * has none (src/scene_tables.c). */
 int iacsg_scene_bounds(const iacsg_scene *s, const double time[2], double box[6]);
 
 /* Seconds the build took (clBuildProgram and the device compiling the kernel, see render.c: compile_now), and

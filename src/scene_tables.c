@@ -339,7 +339,16 @@ void scene_tables_free(scene_tables *t) {
     memset(t, 0, sizeof *t);
 }
 
+int iacsg_scene_uses_time(const iacsg_scene *s) {
+    int uses = s->expr && iacsg_expr_uses_time(s->expr);
+    for (int k = 0; k < s->nsolids; k++)
+        uses |= iacsg_expr_uses_time(s->solids[k].expr);
+    return uses;
+}
+
 int iacsg_scene_bounds(const iacsg_scene *s, const double time[2], double box[6]) {
+    if (s->nitems == 0)
+        return s->expr && iacsg_expr_bounds(s->expr, time, box) != IACSG_BOUNDS_NONE;
     unsigned char *used = calloc((size_t)s->nsolids + 1, 1);
     if (!used)
         return 0;
