@@ -36,7 +36,11 @@ DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd oc
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec.h
 KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h \
-                  kernels/packet.h kernels/tile.h kernels/shade.h kernels/render.cl
+                  kernels/packet.h kernels/tile.h kernels/light.h kernels/shade.h kernels/render.cl
+# The segment path's program (src/render_scene.c): the same ia/ headers, the scene's solids, then these.
+SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h kernels/csg_node.h \
+                       kernels/scene_data.h kernels/bvh.h kernels/segments.h kernels/classify.h kernels/weave.h \
+                       kernels/surface.h kernels/scene_trace.h kernels/light.h kernels/render_scene.cl
 TEST_CL_SOURCES = $(sort $(wildcard tests/*.cl))
 
 LIB_C = $(filter-out src/cli%.c,$(wildcard ia/*.c implicits/*.c src/*.c))
@@ -46,7 +50,7 @@ TEST_C = $(filter-out %_fp.c,$(wildcard tests/*.c))
 TEST_FP_C = $(wildcard tests/*_fp.c)
 
 LIB_OBJ = $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o) $(BUILD)/embedded_ia.o \
-          $(if $(KERNEL_SOURCES),$(BUILD)/embedded_kernels.o)
+          $(if $(KERNEL_SOURCES),$(BUILD)/embedded_kernels.o) $(BUILD)/embedded_scene_kernels.o
 CLI_OBJ = $(CLI_C:%.c=$(BUILD)/%.o)
 TEST_OBJ = $(TEST_C:%.c=$(BUILD)/%.o) $(TEST_FP_C:%.c=$(BUILD)/%.f32.o) $(TEST_FP_C:%.c=$(BUILD)/%.f64.o) \
            $(if $(TEST_CL_SOURCES),$(BUILD)/embedded_tests.o)
@@ -127,6 +131,8 @@ $(BUILD)/embedded_ia.c: $(IA_CL_HEADERS) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_ia $(IA_CL_HEADERS) > $@
 $(BUILD)/embedded_kernels.c: $(KERNEL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_kernels $(KERNEL_SOURCES) > $@
+$(BUILD)/embedded_scene_kernels.c: $(SCENE_KERNEL_SOURCES) $(BUILD)/embed
+	$(BUILD)/embed iacsg_cl_scene_kernels $(SCENE_KERNEL_SOURCES) > $@
 $(BUILD)/embedded_tests.c: $(TEST_CL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_tests $(TEST_CL_SOURCES) > $@
 
@@ -145,8 +151,10 @@ demo: deps
 	@$(MAKE) --no-print-directory $(BUILD)/iacsg
 	$(BUILD)/iacsg "min(sphere,torus)" -eps 1e-5
 
-# The examples' scenes (Fig. 2, 3, 7, 8 of the Hijazi seed) as one contact sheet, through the embedding example.
-GALLERY_SCENES = $(sort $(wildcard examples/*.csg))
+# The examples' scenes as one contact sheet, through the embedding example: the single expressions of Fig. 2, 3, 7
+# and 8 of the Hijazi seed, then the scenes of regions and surfaces (the segment path; Fig. 5 among them).
+SEGMENT_SCENES = examples/fig2_cube_sphere_regions.csg examples/machined_part.csg examples/icos.csg examples/sesc.csg
+GALLERY_SCENES = $(sort $(filter-out $(SEGMENT_SCENES),$(wildcard examples/*.csg))) $(SEGMENT_SCENES)
 $(BUILD)/examples/embed: examples/embed.c $(BUILD)/libiacsg.a $(BUILD)/include/iacsg.stamp
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -I$(BUILD)/include -o $@ $< $(BUILD)/libiacsg.a $(LIBS)
@@ -201,7 +209,8 @@ DOCDIR = $(PREFIX)/share/doc/iacsg
 IMAGE_HELPER_DIR = $(PREFIX)/lib/iacsg
 
 # The public API: these headers, and nothing else, are installed (flat, under include/iacsg/) and exported.
-PUBLIC_HEADERS = src/iacsg.h src/api.h src/error.h src/camera.h src/image.h src/render.h implicits/expr.h
+PUBLIC_HEADERS = src/iacsg.h src/api.h src/error.h src/camera.h src/image.h src/render.h implicits/expr.h \
+                 implicits/scene_api.h
 EXAMPLES = $(sort $(wildcard examples/*.c examples/*.csg))
 
 VERSION := $(shell sed -n 's/^\#define IACSG_VERSION "\(.*\)"$$/\1/p' src/iacsg.h 2>/dev/null)

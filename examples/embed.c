@@ -4,8 +4,10 @@
  *   usage: embed OUT.png CELL COLUMNS SCENE.csg...
  *
  * Each scene is rendered CELL x CELL pixels from the default view of the command line (azimuth 35, elevation
- * 25, the whole bounds in view), at t = 1/2 if it depends on time. The library never prints: every call
- * returns a status and fills an iacsg_error, and this program decides what to say. */
+ * 25, the whole bounds in view), at t = 1/2 if it depends on time. A scene of one expression is rendered by
+ * the first-root path, one of regions and surfaces by the segment path (iacsg_renderer_create_scene chooses).
+ * The library never prints: every call returns a status and fills an iacsg_error, and this program decides
+ * what to say. */
 #include <iacsg/iacsg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -35,17 +37,17 @@ static iacsg_status render_cell(const char *path, int cell, float *sheet, int sh
     char *text = read_file(path);
     if (!text)
         return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: cannot read", path);
-    iacsg_expr *e = NULL;
+    iacsg_scene *s = NULL;
     iacsg_renderer *r = NULL;
-    iacsg_status st = iacsg_expr_parse(text, path, &e, err);
+    iacsg_status st = iacsg_scene_parse(text, path, &s, err);
     free(text);
     iacsg_render_config config = {0}; /* device 0, float, rigorous */
     if (st == IACSG_OK)
-        st = iacsg_renderer_create_expr(e, &config, &r, err);
+        st = iacsg_renderer_create_scene(s, &config, &r, err);
     if (st == IACSG_OK) {
         iacsg_view view = {.width = cell, .height = cell, .eps = 0x1p-16, .camera = {.up = {0, 0, 1}, .fov = 40}};
-        view.time[0] = view.time[1] = iacsg_expr_uses_time(e) ? 0.5 : 0;
-        if (!iacsg_expr_bounds(e, view.time, view.bounds))
+        view.time[0] = view.time[1] = iacsg_scene_uses_time(s) ? 0.5 : 0;
+        if (!iacsg_scene_bounds(s, view.time, view.bounds))
             memcpy(view.bounds, (double[6]){-2, -2, -2, 2, 2, 2}, sizeof view.bounds);
         for (int k = 0; k < 3; k++)
             view.camera.at[k] = 0.5 * (view.bounds[k] + view.bounds[k + 3]);
@@ -60,7 +62,7 @@ static iacsg_status render_cell(const char *path, int cell, float *sheet, int sh
         }
     }
     iacsg_renderer_destroy(r);
-    iacsg_expr_destroy(e);
+    iacsg_scene_destroy(s);
     return st;
 }
 

@@ -538,10 +538,11 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     /* Over IA_VW lanes (ia/vec.h) for the renderer's kernels, a large union in groups; the scalar interval
      * function for other programs (device evaluation); the point value and gradient for both. A program gets
      * only what it uses: clang parses every function it is given, and for 1024 spheres each of these is 3400
-     * statements. */
+     * statements. A program that traces rays one by one but shades in lanes (the segment path) defines
+     * IACSG_SCALAR_CODE to get the scalar ones. */
     int *parts;
     int nparts = union_parts(d, root, &parts);
-    strbuf_printf(&b, "#ifdef IA_VW\n");
+    strbuf_printf(&b, "#if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)\n");
     int ok = nparts >= 0;
     if (nparts >= EMIT_GROUP_MIN_PARTS) {
         ok = emit_union_groups(&b, &em, root, parts, nparts, prefix, AS_VECTOR);

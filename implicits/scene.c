@@ -115,19 +115,18 @@ int scene_add_region(iacsg_scene *s, const char *name, int tree, int material, i
 }
 
 int scene_add_surface(iacsg_scene *s, const char *name, int solid, int condition, int material, iacsg_error *err) {
+    int need = condition >= 0 ? csg_stack_need(s->nodes, condition) : 0;
+    if (need > CSG_STACK_MAX) /* the device evaluates it on a stack of CSG_STACK_MAX entries (csg_node.h) */
+        return iacsg_error_set(err, IACSG_ERR_LIMIT, 0, 0,
+                               "the condition of surface '%s' is too large: evaluating it needs %d stack entries, "
+                               "at most %d (a chain of n operands of & or | needs n)",
+                               name ? name : "", need, CSG_STACK_MAX),
+               -1;
     scene_item item = {SCENE_SURFACE, NULL, material, condition, solid, 0, 0};
     return add_item(s, item, name, err);
 }
 
-int scene_tree_size(const iacsg_scene *s, int root) {
-    int end = root; /* follow the rightmost path: its leaf is the subtree's last node */
-    for (;;) {
-        int op = CSG_NODE_OP(s->nodes[end]);
-        if (op == CSG_INSIDE || op == CSG_OUTSIDE)
-            return end + 1 - root;
-        end = op == CSG_NOT ? end + 1 : (int)CSG_NODE_ARG(s->nodes[end]);
-    }
-}
+int scene_tree_size(const iacsg_scene *s, int root) { return csg_tree_last(s->nodes, root) + 1 - root; }
 
 int scene_tree_eval(const iacsg_scene *s, int root, const signed char *sign) {
     int n = scene_tree_size(s, root);

@@ -15,6 +15,7 @@
 #define IACSG_SCENE_H
 #include "error.h"
 #include "expr.h"
+#include "scene_api.h"
 #include "kernels/csg_node.h"
 #include <stdint.h>
 

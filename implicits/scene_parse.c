@@ -300,6 +300,9 @@ static int declare(void *ctx, const ast *a, int node, const int *values, const n
     if (index >= 0) {
         b->s->items[index].line = a->toks[keyword].line;
         b->s->items[index].column = a->toks[keyword].column;
+    } else if (err && err->line == 0) { /* the builder's refusal (a condition too large) has no place */
+        err->line = a->toks[keyword].line;
+        err->column = a->toks[keyword].column;
     }
     return index;
 }

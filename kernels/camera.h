@@ -91,25 +91,39 @@ IA_FN ia_interval camera_crossing(ia_real plane, ia_real o, ia_real d) {
     return ia_make(ia_lo_k(lo / d, IA_ULP_DIV), ia_hi_k(hi / d, IA_ULP_DIV));
 }
 
-/* The part t >= 0 of the ray o + t*d inside the box (params.h, PARAM_BOX), widened outward: every t >= 0
- * whose exact point o + t*d lies in the box is in [*t_near, *t_far]. Returns 0 when the ray misses the box. */
-IA_FN int camera_clip(const KERNEL_CONSTANT ia_real *p, const ia_real o[3], const ia_real d[3], ia_real *t_near,
-                      ia_real *t_far) {
-    ia_real tn = 0, tf = IA_INF;
+/* The part [tn, tf] of the ray o + t*d inside the box lo..hi, widened outward: every t in [tn, tf] whose exact
+ * point o + t*d lies in the box is in [*t_near, *t_far]. Returns 0 when the ray misses the box there. Infinite
+ * box bounds are allowed (a box holding everything). */
+IA_FN int camera_clip_box(const ia_real lo[3], const ia_real hi[3], const ia_real o[3], const ia_real d[3], ia_real tn,
+                          ia_real tf, ia_real *t_near, ia_real *t_far) {
     for (int k = 0; k < 3; k++) {
-        ia_real lo = p[PARAM_BOX + k], hi = p[PARAM_BOX + 3 + k];
         if (d[k] == 0) {
-            if (o[k] < lo || o[k] > hi)
+            if (o[k] < lo[k] || o[k] > hi[k])
                 return 0;
             continue;
         }
-        ia_interval a = camera_crossing(lo, o[k], d[k]), b = camera_crossing(hi, o[k], d[k]);
+        ia_interval a = camera_crossing(lo[k], o[k], d[k]), b = camera_crossing(hi[k], o[k], d[k]);
         tn = fmax(tn, fmin(a.lo, b.lo));
         tf = fmin(tf, fmax(a.hi, b.hi));
     }
     *t_near = tn;
     *t_far = tf;
     return tn <= tf;
+}
+
+/* The part t >= 0 of the ray o + t*d inside the box (params.h, PARAM_BOX), widened outward: every t >= 0
+ * whose exact point o + t*d lies in the box is in [*t_near, *t_far]. Returns 0 when the ray misses the box. */
+IA_FN int camera_clip(const KERNEL_CONSTANT ia_real *p, const ia_real o[3], const ia_real d[3], ia_real *t_near,
+                      ia_real *t_far) {
+    ia_real lo[3] = {p[PARAM_BOX], p[PARAM_BOX + 1], p[PARAM_BOX + 2]};
+    ia_real hi[3] = {p[PARAM_BOX + 3], p[PARAM_BOX + 4], p[PARAM_BOX + 5]};
+    return camera_clip_box(lo, hi, o, d, 0, IA_INF, t_near, t_far);
+}
+
+/* The depth image is float32: in double mode the start of a leaf is rounded down, so it stays before the root. */
+IA_FN float camera_depth_round_down(ia_real t) {
+    float f = (float)t;
+    return (ia_real)f > t ? nextafter(f, -INFINITY) : f;
 }
 
 #endif

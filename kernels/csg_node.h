@@ -27,4 +27,30 @@ enum {
 #define CSG_NODE_OP(n) ((int)((kernel_u32)(n) >> CSG_ARG_BITS))
 #define CSG_NODE_ARG(n) ((kernel_u32)(n) & CSG_ARG_MAX)
 
+/* The index of the last node of the tree at `root`: the leaf at the end of its rightmost path. */
+IA_FN int csg_tree_last(const KERNEL_GLOBAL kernel_u32 *nodes, int root) {
+    int k = root;
+    for (;;) {
+        int op = CSG_NODE_OP(nodes[k]);
+        if (op == CSG_INSIDE || op == CSG_OUTSIDE)
+            return k;
+        k = op == CSG_NOT ? k + 1 : (int)CSG_NODE_ARG(nodes[k]);
+    }
+}
+
+/* A condition is evaluated over a box from its last node back to its root (kernels/surface.h), keeping the
+ * values of finished subtrees on a stack of CSG_STACK_MAX entries of 2 bits, one 64-bit word: no recursion and
+ * bounded private memory. csg_stack_need is the depth that evaluation reaches for the tree at `root` (a chain
+ * a & b & c & ... needs one entry per operand); the scene rejects a condition that needs more. */
+#define CSG_STACK_MAX 32
+IA_FN int csg_stack_need(const KERNEL_GLOBAL kernel_u32 *nodes, int root) {
+    int depth = 0, need = 0;
+    for (int k = csg_tree_last(nodes, root); k >= root; k--) {
+        int op = CSG_NODE_OP(nodes[k]);
+        depth += op == CSG_INSIDE || op == CSG_OUTSIDE ? 1 : op == CSG_NOT ? 0 : -1;
+        need = depth > need ? depth : need;
+    }
+    return need;
+}
+
 #endif

@@ -106,12 +106,6 @@ static void block_tiles(__constant ia_real *params, int flags, int width, int he
     }
 }
 
-/* The depth image is float32: in double mode round the start down, so it stays before the first root. */
-static inline float depth_round_down(ia_real t) {
-    float f = (float)t;
-    return (ia_real)f > t ? nextafter(f, -INFINITY) : f;
-}
-
 /* The gradients at the points o + t d of the lanes of `hit` (anything in the others). For a union in groups, by
  * differences over the groups of the segments of the frame's tree the points are on; else lane by lane, with the
  * emitted (scalar) point code. */
@@ -167,7 +161,7 @@ static void put_pixels(packet_int col, packet_int row, int width, int height, ia
             continue;
         size_t pixel = (size_t)j[k] * (size_t)width + (size_t)i[k];
         if (depth)
-            depth[pixel] = on[k] != 0 ? depth_round_down(start[k]) : INFINITY;
+            depth[pixel] = on[k] != 0 ? camera_depth_round_down(start[k]) : INFINITY;
         for (int c = 0; c < 3; c++) {
             rgb_out[3 * pixel + c] = color[c][k];
             if (normal)

@@ -32,8 +32,8 @@ char *cli_job_path(const char *path, int frames, int frame) {
 }
 
 /* Whether every file of the frame is in place (and so complete: see cli_job.h). */
-static int frame_complete(const char *const outputs[3], int frames, int frame) {
-    for (int k = 0; k < 3; k++) {
+static int frame_complete(const char *const outputs[CLI_MPI_IMAGES], int frames, int frame) {
+    for (int k = 0; k < CLI_MPI_IMAGES; k++) {
         if (!outputs[k])
             continue;
         char *path = cli_job_path(outputs[k], frames, frame);
@@ -56,25 +56,27 @@ static void describe_item(int item, char *out, size_t size, void *ctx) {
 
 /* The images of a frame as rows to send or receive. */
 static cli_mpi_images frame_images(const iacsg_frame *f) {
-    cli_mpi_images im = {f->width, f->height, {f->rgb ? 3 : 0, f->depth ? 1 : 0, f->normal ? 3 : 0},
-                         {f->rgb, f->depth, f->normal}};
+    cli_mpi_images im = {f->width, f->height, {f->rgb ? 3 : 0, f->depth ? 1 : 0, f->normal ? 3 : 0, f->ids ? 1 : 0},
+                         {f->rgb, f->depth, f->normal, f->ids}};
     return im;
 }
 
 /* Rank 0 of a banded frame: the frame the bands are gathered into. */
-static int alloc_whole(cli_job *j, int width, const char *const outputs[3]) {
+static int alloc_whole(cli_job *j, int width, const char *const outputs[CLI_MPI_IMAGES]) {
     size_t n = (size_t)width * (size_t)j->height;
     j->whole.width = width;
     j->whole.height = j->height;
     j->whole.rgb = malloc(3 * n * sizeof(float));
     j->whole.depth = outputs[1] ? malloc(n * sizeof(float)) : NULL;
     j->whole.normal = outputs[2] ? malloc(3 * n * sizeof(float)) : NULL;
+    j->whole.ids = outputs[3] ? malloc(n * sizeof(float)) : NULL;
     j->whole.rays = (long long)n;
-    return j->whole.rgb && (j->whole.depth || !outputs[1]) && (j->whole.normal || !outputs[2]);
+    return j->whole.rgb && (j->whole.depth || !outputs[1]) && (j->whole.normal || !outputs[2]) &&
+           (j->whole.ids || !outputs[3]);
 }
 
 /* Under mpirun: loads the MPI layer, joins the job, and (rank 0) hands out the items. */
-static int start_mpi(cli_job *j, int width, const char *const outputs[3]) {
+static int start_mpi(cli_job *j, int width, const char *const outputs[CLI_MPI_IMAGES]) {
     iacsg_error err = {0};
     /* RTLD_GLOBAL: Open MPI's own plugins resolve their symbols against libmpi */
     void *lib = cli_library_open(CLI_MPI_LIBRARY, "the MPI layer", RTLD_NOW | RTLD_GLOBAL, &err);
@@ -114,7 +116,7 @@ static int start_mpi(cli_job *j, int width, const char *const outputs[3]) {
     return 1;
 }
 
-cli_job *cli_job_start(int frames, int width, int height, int resume, const char *const outputs[3]) {
+cli_job *cli_job_start(int frames, int width, int height, int resume, const char *const outputs[CLI_MPI_IMAGES]) {
     cli_job *j = calloc(1, sizeof *j);
     int total = frames ? frames : 1;
     if (!j || !(j->items = malloc((size_t)total * sizeof(int)))) {

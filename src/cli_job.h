@@ -11,6 +11,7 @@
  * an image is only ever renamed into place once complete (src/image_oiio.cpp), so being there is being complete. */
 #ifndef IACSG_CLI_JOB_H
 #define IACSG_CLI_JOB_H
+#include "cli_mpi.h"
 #include "iacsg.h"
 
 typedef struct cli_job cli_job;
@@ -21,9 +22,9 @@ typedef struct {
 } cli_job_item;
 
 /* Plans the job for `frames` frames (0: one frame, not numbered) of width x height pixels, written to
- * outputs[0..2] (image, depth, normals; NULL: not written). Call after cli_writer_start, which forks. NULL after
+ * outputs[0..3] (image, depth, normals, ids; NULL: not written). Call after cli_writer_start, which forks. NULL after
  * printing why when it fails. */
-cli_job *cli_job_start(int frames, int width, int height, int resume, const char *const outputs[3]);
+cli_job *cli_job_start(int frames, int width, int height, int resume, const char *const outputs[CLI_MPI_IMAGES]);
 
 /* This process's rank (0 when run plainly): rank 0 alone prints what the job says once. */
 int cli_job_rank(const cli_job *j);

@@ -16,9 +16,12 @@ enum { CLI_MPI_DONE = -1, CLI_MPI_STOPPED = -2 };
 
 /* Where the rows of the images go (rank 0) or come from (a rank's frame): up to three images of width x height
  * pixels, of channels[k] floats a pixel (0: no such image). */
+/* image, depth, normals, ids */
+#define CLI_MPI_IMAGES 4
+
 typedef struct {
-    int width, height, channels[3];
-    float *planes[3];
+    int width, height, channels[CLI_MPI_IMAGES];
+    float *planes[CLI_MPI_IMAGES];
 } cli_mpi_images;
 
 /* Describes an item for the messages ("frame 3", "rows 256-511 of frame 0"). */

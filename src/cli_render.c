@@ -6,6 +6,7 @@
 #include "cli_writer.h"
 #include "clrt.h"
 #include "iacsg.h"
+#include "implicits/scene.h"
 #include "ia/decimal.h"
 #include <errno.h>
 #include <math.h>
@@ -106,6 +107,8 @@ int parse_options(int argc, char **argv, render_options *o) {
             o->depth_file = v;
         } else if (strcmp(a, "-normals") == 0) {
             o->normals_file = v;
+        } else if (strcmp(a, "-ids") == 0) {
+            o->ids_file = v;
         } else if (strcmp(a, "-size") == 0) {
             if (!parse_size(v, &o->view.width, &o->view.height))
                 return bad_value(a, v, "WxH with W and H from 1 to 32768, e.g. 1024x768");
@@ -234,18 +237,21 @@ static void rendered_times(const render_options *o, double t[2]) {
 }
 
 /* The bounds (given, found by the compiler for the times rendered, or the default) and a phrase saying which
- * and what was proven (in `phrase`). */
-const char *choose_bounds(render_options *o, const iacsg_expr *e, char *phrase, size_t size) {
+ * and what was proven (in `phrase`). A scene with items: the union of its solids' proven boxes. */
+const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase, size_t size) {
     if (o->have_bounds)
         return "given";
     double t[2];
     rendered_times(o, t);
+    if (s->nitems > 0 && iacsg_scene_bounds(s, t, o->view.bounds))
+        return "proven to enclose the solids";
+    const iacsg_expr *e = s->nitems > 0 ? NULL : s->expr;
     char when[64] = "";
-    if (iacsg_expr_uses_time(e) && o->frames)
+    if (e && iacsg_expr_uses_time(e) && o->frames)
         snprintf(when, sizeof when, " for t = 0/%d .. %d/%d", o->frames, o->frames - 1, o->frames);
-    else if (iacsg_expr_uses_time(e))
+    else if (e && iacsg_expr_uses_time(e))
         snprintf(when, sizeof when, " at t = %.40s", o->have_time ? o->time_text : "0");
-    switch (iacsg_expr_bounds(e, t, o->view.bounds)) {
+    switch (e ? iacsg_expr_bounds(e, t, o->view.bounds) : IACSG_BOUNDS_NONE) {
     case IACSG_BOUNDS_EVERYWHERE:
         snprintf(phrase, size, "proven to enclose the surface%s", when);
         return phrase;
@@ -290,10 +296,10 @@ static void show_progress(double done, void *ctx) {
 
 static iacsg_status write_frame(cli_writer *writer, const render_options *o, const iacsg_frame *fr, int frame,
                                 iacsg_error *err) {
-    const char *paths[3] = {o->output, o->depth_file, o->normals_file};
-    const float *data[3] = {fr->rgb, fr->depth, fr->normal};
-    const int channels[3] = {3, 1, 3};
-    for (int k = 0; k < 3; k++) {
+    const char *paths[4] = {o->output, o->depth_file, o->normals_file, o->ids_file};
+    const float *data[4] = {fr->rgb, fr->depth, fr->normal, fr->ids};
+    const int channels[4] = {3, 1, 3, 1};
+    for (int k = 0; k < 4; k++) {
         if (!paths[k])
             continue;
         char *path = cli_job_path(paths[k], o->frames, frame);
@@ -309,10 +315,23 @@ static iacsg_status write_frame(cli_writer *writer, const render_options *o, con
     return IACSG_OK;
 }
 
-static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr) {
+static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const iacsg_scene *s) {
     printf("device: %s\n", iacsg_renderer_device_name(r));
     printf("rays: %lld\n", fr->rays);
     printf("interval evaluations per ray: mean %.2f, max %u\n", fr->evals_mean, fr->evals_max);
+    if (s->nitems > 0) {
+        printf("segments per ray: mean %.2f, max %u\n", fr->segments_mean, fr->segments_max);
+        printf("partitions per ray: mean %.2f, max %u\n", fr->partitions_mean, fr->partitions_max);
+        printf("overlaps: %lld partitions claimed by two regions", fr->overlaps);
+        for (int k = 0; k < fr->noverlap_pairs; k++) {
+            const char *won = s->items[fr->overlap_pairs[k][0]].name, *lost = s->items[fr->overlap_pairs[k][1]].name;
+            printf("%s%s (%d) over %s (%d)", k ? ", " : "; the first: ", won ? won : "?", fr->overlap_pairs[k][0],
+                   lost ? lost : "?", fr->overlap_pairs[k][1]);
+        }
+        printf("\n");
+        printf("per-ray buffers: %lld bytes a ray (%lld rays traced again with more room)\n", fr->ray_buffer_bytes,
+               fr->retraced_rays);
+    }
     printf("kernel build: %.3f s\n", iacsg_renderer_build_seconds(r));
     printf("render: %.3f s\n", fr->render_seconds);
 }
@@ -336,11 +355,11 @@ static iacsg_status check_directory_writable(const char *path, iacsg_error *err)
 }
 
 /* An output that is the scene file itself would destroy it: refuse before rendering. */
-static iacsg_status check_outputs_spare_input(const char *input, const char *const outputs[3], iacsg_error *err) {
+static iacsg_status check_outputs_spare_input(const char *input, const char *const outputs[4], iacsg_error *err) {
     struct stat in;
     if (stat(input, &in) != 0)
         return IACSG_OK;
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 4; k++) {
         struct stat out;
         if (outputs[k] && stat(outputs[k], &out) == 0 && out.st_dev == in.st_dev && out.st_ino == in.st_ino)
             return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "%s: the output would overwrite the scene file",
@@ -382,12 +401,12 @@ int cli_render(int argc, char **argv) {
     if (!text)
         return 1;
     iacsg_error err = {0};
-    iacsg_expr *e = NULL;
+    iacsg_scene *scene = NULL;
     iacsg_renderer *r = NULL;
     cli_writer *writer = NULL;
     /* first, so that the writer loads while OpenCL starts */
     iacsg_status st = cli_writer_start((size_t)o.view.width * (size_t)o.view.height * 3, &writer, &err);
-    const char *outputs[3] = {o.output, o.depth_file, o.normals_file};
+    const char *outputs[CLI_MPI_IMAGES] = {o.output, o.depth_file, o.normals_file, o.ids_file};
     cli_job *job = cli_job_start(o.frames, o.view.width, o.view.height, o.resume, outputs);
     if (!job) {
         cli_writer_stop(writer);
@@ -396,7 +415,7 @@ int cli_render(int argc, char **argv) {
     }
     if (!o.have_device)
         o.config.device = cli_job_device(job);
-    for (int k = 0; k < 3 && st == IACSG_OK; k++)
+    for (int k = 0; k < CLI_MPI_IMAGES && st == IACSG_OK; k++)
         if (outputs[k]) {
             cli_writer_check(writer, outputs[k]);
             st = check_directory_writable(outputs[k], &err);
@@ -404,18 +423,20 @@ int cli_render(int argc, char **argv) {
     if (st == IACSG_OK && name == o.input) /* a scene file */
         st = check_outputs_spare_input(o.input, outputs, &err);
     if (st == IACSG_OK)
-        st = iacsg_expr_parse(text, name, &e, &err);
+        st = iacsg_scene_parse(text, name, &scene, &err);
     if (st == IACSG_OK) {
         char phrase[256];
-        const char *which = choose_bounds(&o, e, phrase, sizeof phrase);
+        const char *which = choose_bounds(&o, scene, phrase, sizeof phrase);
         const double *b = o.view.bounds;
         if (cli_job_rank(job) == 0)
             printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
         place_camera(&o);
-        st = iacsg_renderer_create_expr(e, &o.config, &r, &err);
+        /* regions or surfaces: the segment path; else the expression by the first-root path */
+        st = iacsg_renderer_create_scene(scene, &o.config, &r, &err);
     }
     o.view.no_depth = !o.depth_file; /* images nobody writes are not computed */
     o.view.no_normals = !o.normals_file;
+    o.view.no_ids = !o.ids_file;
     progress_bar bar = {0, 0};
     if (isatty(STDERR_FILENO)) {
         o.view.progress = show_progress;
@@ -442,7 +463,7 @@ int cli_render(int argc, char **argv) {
         if (st == IACSG_OK && cli_job_writes_frames(job))
             st = write_frame(writer, &o, &fr, item.frame, &err);
         if (st == IACSG_OK && o.config.stats)
-            print_stats(r, &fr);
+            print_stats(r, &fr, scene);
     }
     iacsg_frame_free(&fr);
     const iacsg_frame *whole = st == IACSG_OK ? cli_job_gathered(job) : NULL;
@@ -453,7 +474,7 @@ int cli_render(int argc, char **argv) {
     rc = cli_job_end(job);
     cli_writer_stop(writer);
     iacsg_renderer_destroy(r);
-    iacsg_expr_destroy(e);
+    iacsg_scene_destroy(scene);
     free(text);
     return rc;
 }

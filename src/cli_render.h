@@ -7,7 +7,7 @@
 #include <stddef.h>
 
 typedef struct {
-    const char *input, *output, *depth_file, *normals_file, *time_text;
+    const char *input, *output, *depth_file, *normals_file, *ids_file, *time_text;
     iacsg_view view;
     iacsg_render_config config;
     int have_bounds, have_eye, have_at, have_azel, have_time, have_device, frames, resume;
@@ -23,8 +23,9 @@ int parse_options(int argc, char **argv, render_options *o);
 char *read_input(const char *input, const char **name);
 
 /* Sets o->view.bounds (given, found by the compiler for the times rendered, or the default) and returns a
- * phrase saying which and what was proven (in `phrase`, or a constant). */
-const char *choose_bounds(render_options *o, const iacsg_expr *e, char *phrase, size_t size);
+ * phrase saying which and what was proven (in `phrase`, or a constant). A scene with items: the union of its
+ * solids' proven boxes. */
+const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase, size_t size);
 
 /* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. */
 void place_camera(render_options *o);

@@ -32,8 +32,8 @@ static void shown_pixel(const iacsg_frame *fr, view_mode mode, long p, float lo,
         case VIEW_NORMALS:
             out[c] = hit ? 0.5f + 0.5f * fr->normal[3 * p + c] : 0.0f;
             break;
-        case VIEW_IDS:
-            out[c] = hit ? id_palette[0][c] : 0.0f;
+        case VIEW_IDS: /* the frame's ids when it has them (regions, surfaces), else one id for the solid */
+            out[c] = !hit ? 0.0f : id_palette[fr->ids && fr->ids[p] >= 0 ? (int)fr->ids[p] % 6 : 0][c];
             break;
         }
     }

@@ -9,7 +9,7 @@ iacsg_status view_scene_load(const render_options *o, view_scene **out, const ch
     if (!text)
         return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: cannot read the scene file", o->input);
     view_scene *s = calloc(1, sizeof *s);
-    iacsg_status st = s ? iacsg_expr_parse(text, *name, &s->expr, err)
+    iacsg_status st = s ? iacsg_scene_parse(text, *name, &s->scene, err)
                         : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     free(text);
     if (st != IACSG_OK) {
@@ -17,7 +17,7 @@ iacsg_status view_scene_load(const render_options *o, view_scene **out, const ch
         return st;
     }
     render_options chosen = *o; /* choose_bounds writes the options' view */
-    const char *phrase = choose_bounds(&chosen, s->expr, s->bounds_phrase, sizeof s->bounds_phrase);
+    const char *phrase = choose_bounds(&chosen, s->scene, s->bounds_phrase, sizeof s->bounds_phrase);
     if (phrase != s->bounds_phrase)
         snprintf(s->bounds_phrase, sizeof s->bounds_phrase, "%s", phrase);
     for (int k = 0; k < 6; k++)
@@ -28,12 +28,12 @@ iacsg_status view_scene_load(const render_options *o, view_scene **out, const ch
 
 iacsg_status view_scene_renderer(const view_scene *s, const iacsg_render_config *config, iacsg_renderer **out,
                                  iacsg_error *err) {
-    return iacsg_renderer_create_expr(s->expr, config, out, err);
+    return iacsg_renderer_create_scene(s->scene, config, out, err);
 }
 
 void view_scene_destroy(view_scene *s) {
     if (!s)
         return;
-    iacsg_expr_destroy(s->expr);
+    iacsg_scene_destroy(s->scene);
     free(s);
 }

@@ -6,7 +6,7 @@
 #include "cli_render.h"
 
 typedef struct {
-    iacsg_expr *expr;
+    iacsg_scene *scene; /* a plain expression, or regions and surfaces */
     double bounds[6];       /* as the render command chooses them for the same options */
     char bounds_phrase[256]; /* which bounds, and what was proven (choose_bounds) */
 } view_scene;

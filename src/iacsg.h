@@ -4,7 +4,9 @@
  *
  *   iacsg_expr_parse / iacsg_expr_destroy            implicits/expr.h   text -> compiled expression
  *   iacsg_expr_bounds                                implicits/expr.h   expression, times -> a box proven to hold it
+ *   iacsg_scene_parse / iacsg_scene_destroy          implicits/scene_api.h  scene text -> regions, surfaces
  *   iacsg_renderer_create_expr / _destroy            src/render.h       expression -> device program
+ *   iacsg_renderer_create_scene                      src/render.h       scene -> device program (either path)
  *   iacsg_render / iacsg_frame_free                  src/render.h       one view at one time -> images in memory
  *   iacsg_image_write                                src/image.h        images -> files
  *
@@ -22,6 +24,7 @@
 #include "error.h"
 #include "image.h"
 #include "implicits/expr.h"
+#include "implicits/scene_api.h"
 #include "render.h"
 
 IACSG_API_BEGIN

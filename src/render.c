@@ -1,8 +1,7 @@
 /* src/render.c -- see render.h. One program per expression: the ia/ headers, the expression's emitted source
  * and the kernels, concatenated (all three embedded or generated, so nothing is read from disk). A frame is
  * traced in bands of rows, so that progress can be reported and no single launch runs for long. */
-#include "render.h"
-#include "clrt.h"
+#include "render_internal.h"
 #include "kernels/params.h"
 #include <math.h>
 #include <stdio.h>
@@ -10,7 +9,6 @@
 #include <string.h>
 #include <time.h>
 
-extern const char iacsg_cl_ia[];      /* the flattened ia/ headers (Makefile: IA_CL_HEADERS) */
 extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNEL_SOURCES) */
 
 /* A work-item is a block of PACKET_W x PACKET_H tiles (kernels/render.cl), BLOCK_ROWS pixel rows high. A band is
@@ -21,15 +19,7 @@ extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNE
 enum { BLOCK_ROWS = PACKET_H * TILE_SIZE, BAND_ROWS_PROGRESS = 2 * BLOCK_ROWS, BAND_ROWS = 64 * BLOCK_ROWS };
 _Static_assert(BLOCK_ROWS == IACSG_ROW_ALIGN, "iacsg_view.row_first is aligned to whole blocks");
 
-struct iacsg_renderer {
-    clrt rt;
-    cl_program program;
-    cl_kernel kernel;
-    iacsg_render_config config;
-    double build_seconds;
-};
-
-static double now_seconds(void) {
+double render_now_seconds(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
@@ -37,10 +27,9 @@ static double now_seconds(void) {
 
 static iacsg_status compile_now(iacsg_renderer *r, iacsg_error *err);
 
-iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,
-                                   iacsg_error *err) {
-    *out = NULL;
+iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out, iacsg_error *err) {
     iacsg_renderer *r = calloc(1, sizeof *r);
+    *out = NULL;
     if (!r)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     r->config = *config;
@@ -49,23 +38,42 @@ iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_confi
         free(r);
         return st;
     }
+    *out = r;
+    return IACSG_OK;
+}
+
+iacsg_status render_build(iacsg_renderer *r, const char *const *sources, size_t count, const char *kernel,
+                          iacsg_error *err) {
     char options[512];
-    st = clrt_ia_options(&r->rt, config->fp64, config->fast, options, sizeof options - 32, err);
+    iacsg_status st = clrt_ia_options(&r->rt, r->config.fp64, r->config.fast, options, sizeof options - 32, err);
+    if (st != IACSG_OK)
+        return st;
+    snprintf(options + strlen(options), 32, " -D IA_VW=%d%s", PACKET_LANES, r->config.stats ? " -D KERNEL_STATS" : "");
+    double t0 = render_now_seconds();
+    st = clrt_build(&r->rt, sources, count, options, &r->program, err);
+    r->build_seconds += render_now_seconds() - t0;
+    if (st != IACSG_OK)
+        return st;
+    cl_int rc = CL_SUCCESS;
+    r->kernel = clCreateKernel(r->program, kernel, &rc);
+    CLRT_CHECK(err, rc);
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,
+                                   iacsg_error *err) {
+    iacsg_renderer *r;
+    iacsg_status st = render_open(config, &r, err);
+    if (st != IACSG_OK)
+        return st;
+    const char *sources[] = {iacsg_cl_ia, expr_cl, iacsg_cl_kernels};
+    st = render_build(r, sources, 3, "iacsg_render", err);
     if (st == IACSG_OK) {
-        snprintf(options + strlen(options), 32, " -D IA_VW=%d%s", PACKET_LANES,
-                 config->stats ? " -D KERNEL_STATS" : "");
-        const char *sources[] = {iacsg_cl_ia, expr_cl, iacsg_cl_kernels};
-        double t0 = now_seconds();
-        st = clrt_build(&r->rt, sources, 3, options, &r->program, err);
-        r->build_seconds = now_seconds() - t0;
-    }
-    if (st == IACSG_OK) {
-        cl_int rc = CL_SUCCESS;
-        r->kernel = clCreateKernel(r->program, "iacsg_render", &rc);
-        CLRT_CHECK(err, rc);
-        double t0 = now_seconds();
+        double t0 = render_now_seconds();
         st = compile_now(r, err);
-        r->build_seconds += now_seconds() - t0;
+        r->build_seconds += render_now_seconds() - t0;
     }
     if (st != IACSG_OK) {
         iacsg_renderer_destroy(r);
@@ -73,9 +81,6 @@ iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_confi
     }
     *out = r;
     return IACSG_OK;
-fail:
-    iacsg_renderer_destroy(r);
-    return IACSG_ERR_OPENCL;
 }
 
 void iacsg_renderer_destroy(iacsg_renderer *r) {
@@ -85,6 +90,7 @@ void iacsg_renderer_destroy(iacsg_renderer *r) {
         clReleaseKernel(r->kernel);
     if (r->program)
         clReleaseProgram(r->program);
+    render_scene_free(r->scene);
     clrt_close(&r->rt);
     free(r);
 }
@@ -124,7 +130,7 @@ static void t_range(double *p, int ortho) {
 
 /* The parameter block in the working precision. The box and the time are rounded outward to float, so they
  * only grow. */
-static iacsg_status fill_params(const iacsg_view *v, int fp64, void *block, iacsg_error *err) {
+iacsg_status render_fill_params(const iacsg_view *v, int fp64, void *block, iacsg_error *err) {
     double p[PARAM_COUNT];
     iacsg_status st = iacsg_camera_params(&v->camera, v->width, v->height, p, err);
     if (st != IACSG_OK)
@@ -156,7 +162,7 @@ static iacsg_status fill_params(const iacsg_view *v, int fp64, void *block, iacs
     return IACSG_OK;
 }
 
-static iacsg_status check_view(const iacsg_view *v, iacsg_error *err) {
+iacsg_status render_check_view(const iacsg_view *v, iacsg_error *err) {
     if (v->width < 1 || v->height < 1 || (long long)v->width * v->height > (1LL << 28))
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "image size %dx%d is out of range", v->width, v->height);
     if (v->row_first < 0 || v->row_count < 0 || v->row_first % IACSG_ROW_ALIGN != 0 ||
@@ -200,12 +206,12 @@ static void release_buffers(frame_buffers *b) {
 }
 
 /* The frame's buffers must fit the device: checked up front, so that a too-large image gets a message in
- * terms of -size rather than an OpenCL error code. The largest buffer holds 3 floats a pixel, and the frame's
- * buffers together 7 (8 with -stats). */
-static iacsg_status check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n,
+ * terms of -size rather than an OpenCL error code. The largest buffer holds 3 floats a pixel; the frame's buffers
+ * together `per_pixel` 4-byte values a pixel (the first-root path: 7, 8 with -stats). */
+iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n, double per_pixel,
                                         iacsg_error *err) {
     double mib = 1024.0 * 1024.0;
-    double largest = 3.0 * (double)n * sizeof(float), total = (r->config.stats ? 8.0 : 7.0) * (double)n * sizeof(float);
+    double largest = 3.0 * (double)n * sizeof(float), total = per_pixel * (double)n * sizeof(float);
     if (largest <= (double)r->rt.max_alloc_size && total <= (double)r->rt.global_mem_size)
         return IACSG_OK;
     return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0,
@@ -345,17 +351,25 @@ fail:
 }
 
 /* A frame's image of `count` floats, page-aligned as devices prefer host arrays they use in place. */
-static float *image_alloc(size_t count) {
+float *render_image_alloc(size_t count) {
     void *p = NULL;
     return posix_memalign(&p, 4096, count * sizeof(float)) == 0 ? p : NULL;
 }
 
+/* An expression's ids from its depth: 0 where the ray hits, -1 where it misses. */
+static void ids_from_depth(const float *depth, size_t n, float *ids) {
+    for (size_t k = 0; k < n; k++)
+        ids[k] = isinf(depth[k]) ? -1.0f : 0.0f;
+}
+
 iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err) {
+    if (r->scene)
+        return render_scene_frame(r, view, frame, err);
     memset(frame, 0, sizeof *frame);
     double params[PARAM_COUNT]; /* room for either precision */
-    iacsg_status st = check_view(view, err);
+    iacsg_status st = render_check_view(view, err);
     if (st == IACSG_OK)
-        st = fill_params(view, r->config.fp64, params, err);
+        st = render_fill_params(view, r->config.fp64, params, err);
     if (st != IACSG_OK)
         return st;
     size_t n = (size_t)view->width * (size_t)view->height;
@@ -365,30 +379,32 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     cl_uint *evals = NULL, *tile_evals = NULL;
     frame->width = view->width;
     frame->height = view->height;
-    frame->rgb = image_alloc(3 * n);
-    frame->depth = view->no_depth ? NULL : image_alloc(n);
-    frame->normal = view->no_normals ? NULL : image_alloc(3 * n);
+    frame->rgb = render_image_alloc(3 * n);
+    int need_depth = !view->no_depth || !view->no_ids; /* the ids come from the depth */
+    frame->depth = need_depth ? render_image_alloc(n) : NULL;
+    frame->normal = view->no_normals ? NULL : render_image_alloc(3 * n);
+    frame->ids = view->no_ids ? NULL : render_image_alloc(n);
     if (r->config.stats) {
         evals = malloc(n * sizeof(cl_uint));
         tile_evals = malloc(tiles_n * sizeof(cl_uint));
     }
-    if (!frame->rgb || (!frame->depth && !view->no_depth) || (!frame->normal && !view->no_normals) ||
-        (r->config.stats && (!evals || !tile_evals)))
+    if (!frame->rgb || (!frame->depth && need_depth) || (!frame->normal && !view->no_normals) ||
+        (!frame->ids && !view->no_ids) || (r->config.stats && (!evals || !tile_evals)))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
     if (st == IACSG_OK)
-        st = check_device_memory(r, view, n, err);
+        st = render_check_device_memory(r, view, n, r->config.stats ? 8 : 7, err);
     if (st == IACSG_OK)
         st = create_buffers(r, params, n, tiles_n, frame, &buffers, err);
     if (st == IACSG_OK)
         st = set_args(r, view, &buffers, err);
-    double t0 = now_seconds();
+    double t0 = render_now_seconds();
     if (st == IACSG_OK)
         st = launch_bands(r, view, err);
     if (st == IACSG_OK)
         st = read_back(r, &buffers, n, tiles_n, evals, tile_evals, err);
     if (st == IACSG_OK) {
-        frame->render_seconds = now_seconds() - t0;
+        frame->render_seconds = render_now_seconds() - t0;
         /* the rays of the rows traced, and their tiles' counts (a band's rows start on whole tiles) */
         size_t first = (size_t)view->row_first, rows = view->row_count ? (size_t)view->row_count : (size_t)view->height;
         size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
@@ -397,6 +413,12 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
             summarize_evals(evals + first * (size_t)view->width, rows * (size_t)view->width,
                             tile_evals + first / TILE_SIZE * tiles_x, (rows + TILE_SIZE - 1) / TILE_SIZE * tiles_x,
                             frame);
+        if (frame->ids)
+            ids_from_depth(frame->depth, n, frame->ids);
+        if (view->no_depth) {
+            free(frame->depth);
+            frame->depth = NULL;
+        }
     }
     release_buffers(&buffers);
     free(evals);
@@ -410,7 +432,8 @@ void iacsg_frame_free(iacsg_frame *frame) {
     free(frame->rgb);
     free(frame->depth);
     free(frame->normal);
-    frame->rgb = frame->depth = frame->normal = NULL;
+    free(frame->ids);
+    frame->rgb = frame->depth = frame->normal = frame->ids = NULL;
 }
 
 void iacsg_frame_time(int k, int n, double time[2]) {

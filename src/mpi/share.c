@@ -118,7 +118,7 @@ static void serve_one(void) {
         return;
     }
     if (ask[0] >= 0 && job.band_rows)
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < CLI_MPI_IMAGES; k++) {
             int count;
             float *to = band_floats(&job.gather, k, ask[0], &count);
             if (job.gather.channels[k])
@@ -204,7 +204,7 @@ static int mpi_next(int finished, const cli_mpi_images *rows) {
     start_together();
     if (job.rank == 0) {
         if (finished >= 0 && job.band_rows)
-            for (int k = 0; k < 3; k++) {
+            for (int k = 0; k < CLI_MPI_IMAGES; k++) {
                 int count;
                 float *to = band_floats(&job.gather, k, finished, &count);
                 if (job.gather.channels[k])
@@ -225,7 +225,7 @@ static int mpi_next(int finished, const cli_mpi_images *rows) {
     int ask[2] = {finished, 0}, reply;
     MPI_Send(ask, 2, MPI_INT, 0, TAG_ASK, MPI_COMM_WORLD);
     if (finished >= 0 && job.band_rows)
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < CLI_MPI_IMAGES; k++) {
             int count;
             float *from = band_floats(rows, k, finished, &count);
             if (rows->channels[k])

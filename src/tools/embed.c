@@ -22,7 +22,7 @@ int main(int argc, char **argv) {
         while (fgets(line, sizeof line, f)) {
             if (strncmp(line, "#include \"", 10) == 0)
                 continue;
-            for (const unsigned char *p = (const unsigned char *)line; *p; p++)
+            for (const char *p = line; *p; p++) /* as char values: bytes above 127 (UTF-8 text) are negative */
                 printf("%d,%s", *p, ++count % 24 ? "" : "\n");
         }
         fclose(f);

@@ -1,0 +1,17 @@
+/* implicits/scene_emit.h -- the OpenCL C of a scene's solids for the segment path: each solid k's functions
+ * (iacsg_expr_emit_cl with the prefix scene_s<k>) and dispatchers over the solid's number,
+ *   IA_FN ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t);
+ *   IA_FN ia_real scene_solid_f_grad(int k, ia_real x, ia_real y, ia_real z, ia_real t,
+ *                                    ia_real *gx, ia_real *gy, ia_real *gz);
+ * (kernels/segments.h would use a scene_solid_Fd, the value and derivative along a ray, for interval Newton
+ * where the program defines SCENE_SOLID_FD; the compiler emits those only over lanes now.)
+ * which kernels/segments.h and kernels/surface.h call. The solids' code is the scalar code (IACSG_SCALAR_CODE):
+ * the segment path traces one ray at a time and only shades in lanes. */
+#ifndef IACSG_SCENE_EMIT_H
+#define IACSG_SCENE_EMIT_H
+#include "scene.h"
+
+/* The source, malloc'ed (the caller free()s *source). */
+iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err);
+
+#endif

@@ -1,0 +1,42 @@
+/* kernels/scene_data.h -- what the host and the device share for the segment path (src/render_scene.c fills it,
+ * kernels/render_scene.cl reads it): the per-ray buffer bounds, the states of a solid along a ray, and the
+ * layout of the scene's tables.
+ *
+ * Per-ray buffers. A ray collects its candidates, the solids whose boxes it meets (bvh.h), and keeps per
+ * candidate its solid, its box's t range, and where its bisection walk stands (segments.h): 3 ints, 5 reals and a
+ * node index (36 bytes in float, 60 in double: src/render_scene.c, candidate_bytes), plus one byte per solid of
+ * the scene for the states (kept all OUT between rays). That is all: the walks give the solids' state changes
+ * in t order, so partitions are classified as they are passed (weave.h) and neither segments nor partitions
+ * are stored. A render starts with room for SCENE_RAY_CANDIDATES; a ray that
+ * meets more boxes stops, is listed, and is traced again with four times the room, until it fits (never
+ * truncated).
+ */
+#ifndef KERNELS_SCENE_DATA_H
+#define KERNELS_SCENE_DATA_H
+#include "compat.h"
+
+#define SCENE_RAY_CANDIDATES 32
+
+/* A solid's state over a part of a ray, decided on the enclosure F of its function over the part's box: OUT
+ * where F > 0, IN where F < 0, BOUNDARY where 0 is in F on a leaf of the bisection (width <= eps): the solid
+ * may be in or out there. OUT is 0: the per-ray table of states starts, and is left, all OUT. */
+#define SCENE_OUT 0
+#define SCENE_IN 1
+#define SCENE_BOUNDARY 2
+
+/* The BVH over the solids' boxes, in preorder: node k has a box (6 reals, x0 y0 z0 x1 y1 z1, rounded outward)
+ * and two ints: the node that follows its subtree (where a ray that misses the box goes on), and the solid of a
+ * leaf (-1 for an inner node). A solid whose inside reaches beyond its box, or that has no proven box, has an
+ * infinite one: every ray evaluates it all along. */
+#define SCENE_BVH_SKIP 0
+#define SCENE_BVH_SOLID 1
+
+/* An item (region or surface): SCENE_ITEM_INTS ints. Its tree (or condition) is nodes[root .. root + size),
+ * kernels/csg_node.h, relinearised so that its evaluation needs at most SCENE_TREE_STACK values at once
+ * (kernels/classify.h). */
+enum { SCENE_ITEM_KIND = 0, SCENE_ITEM_ROOT = 1, SCENE_ITEM_SIZE = 2, SCENE_ITEM_SOLID = 3, SCENE_ITEM_INTS = 4 };
+#define SCENE_KIND_REGION 0
+#define SCENE_KIND_SURFACE 1
+#define SCENE_TREE_STACK 64
+
+#endif

@@ -1,0 +1,125 @@
+/* kernels/surface.h -- the level-set surface stage of the segment path (Hijazi et al. §4.4): along one ray, the
+ * first point of a surface solid's zero set that the surface's condition may keep.
+ *
+ *   surface_condition   a condition (kernels/csg_node.h: INSIDE "f < 0", OUTSIDE "f > 0", and, or, not) over a
+ *                       box, three-valued from interval enclosures: may it hold somewhere, may it fail somewhere
+ *   surface_first_root  bisection of the ray's t range over traverse.h's gap-free nodes, with its outward-rounded
+ *                       ray boxes: a node is dropped where F of the surface misses 0 or its condition certainly
+ *                       fails; the first node no wider than eps that survives is the hit
+ *
+ * Guarantee: let p = o + t*d (exact, t in [t_near, t_far]) be a point of the float ray with F(p) = 0 where the
+ * condition holds (each compared solid defined at p, with the strict sign). Every node holding t has 0 in its
+ * enclosure of F and its condition may hold (inclusion), so it is never dropped; the nodes tile [t_near, t_far]
+ * in ray order with no gap (traverse.h), so the hit's start is never after t. Conversely the hit's leaf is at
+ * most eps wide, F's enclosure holds 0 over it and the condition may hold there: a miss of the surface by
+ * less than the enclosures' width, or a point within a leaf of the condition's boundary, may be a hit (as the
+ * first-root path may hit a surface it only grazes).
+ *
+ * Needs the emitted dispatcher over the scene's solids,
+ *     ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t),
+ * declared before this header (tests/t_render_surface_kernel_fp.c defines its own). The hit is shaded with the
+ * surface solid's gradient, turned to face the eye, by the renderer that calls this.
+ */
+#ifndef KERNELS_SURFACE_H
+#define KERNELS_SURFACE_H
+#include "csg_node.h"
+#include "traverse.h"
+
+/* The value of a condition over a box: a set of the truth values it may take there. */
+#define SURFACE_MAY_HOLD 1
+#define SURFACE_MAY_FAIL 2
+#define SURFACE_CERTAIN SURFACE_MAY_HOLD /* holds at every point of the box */
+
+/* A comparison of solid enclosure g with 0: INSIDE holds where g < 0, OUTSIDE where g > 0. An empty enclosure
+ * (the solid is undefined throughout the box) holds nowhere. */
+IA_FN int surface_compare(int op, ia_interval g) {
+    if (ia_is_empty(g))
+        return SURFACE_MAY_FAIL;
+    int hold = op == CSG_INSIDE ? g.lo < 0 : g.hi > 0, fail = op == CSG_INSIDE ? g.hi >= 0 : g.lo <= 0;
+    return (hold ? SURFACE_MAY_HOLD : 0) | (fail ? SURFACE_MAY_FAIL : 0);
+}
+
+/* not: a value that may hold may fail to be false, and the other way round. */
+IA_FN int surface_not(int v) { return (v & SURFACE_MAY_HOLD) << 1 | (v & SURFACE_MAY_FAIL) >> 1; }
+
+/* The condition at node `root` (last node `last`) of nodes over the box, each leaf's solid enclosed by
+ * scene_solid_F. The nodes are visited from the last back to the root, so both children of a node are done
+ * before it; the finished subtrees' values wait on a stack of 2-bit entries in one 64-bit word, the left child
+ * (visited last) on top. The scene refuses a condition deeper than CSG_STACK_MAX (csg_stack_need). */
+IA_FN int surface_condition(const KERNEL_GLOBAL kernel_u32 *nodes, int root, int last, const ia_interval box[3],
+                            ia_interval time) {
+    kernel_u64 stack = 0;
+    for (int k = last; k >= root; k--) {
+        kernel_u32 node = nodes[k];
+        int op = CSG_NODE_OP(node), v;
+        if (op == CSG_INSIDE || op == CSG_OUTSIDE) {
+            v = surface_compare(op, scene_solid_F((int)CSG_NODE_ARG(node), box[0], box[1], box[2], time));
+        } else {
+            int left = (int)(stack & 3);
+            stack >>= 2;
+            if (op == CSG_NOT) {
+                v = surface_not(left);
+            } else {
+                int right = (int)(stack & 3);
+                stack >>= 2;
+                if (op == CSG_DIFFERENCE) /* left and not right */
+                    right = surface_not(right);
+                int both = left & right, either = left | right;
+                /* or: may hold if either may, may fail only if both may; and: the other way round */
+                v = op == CSG_UNION ? (either & SURFACE_MAY_HOLD) | (both & SURFACE_MAY_FAIL)
+                                    : (both & SURFACE_MAY_HOLD) | (either & SURFACE_MAY_FAIL);
+            }
+        }
+        stack = stack << 2 | (kernel_u64)v;
+    }
+    return (int)(stack & 3);
+}
+
+/* The first point of solid `solid`'s zero set in [t_near, t_far] (finite) of the float ray o + t*d where the
+ * condition at node `condition` of nodes (-1: none, the whole zero set) may hold: returns 1 with the hit's leaf
+ * [*hit_lo, *hit_hi] (at most eps wide, or at the deepest level), 0 when the ray has none. The tree's root is
+ * [t_near, t_near + w], w the width rounded up, each node clipped to t_far. Where a node's condition is certain,
+ * its descendants inherit it: `proven` is that node's level, and the walk is inside it while it is deeper (it
+ * leaves a node's subtree only by climbing to the node's level or above, traverse.h's node_next). */
+IA_FN int surface_first_root(const ia_real o[3], const ia_real d[3], ia_real t_near, ia_real t_far, ia_real eps,
+                             int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time,
+                             ia_real *hit_lo, ia_real *hit_hi) {
+    if (!(t_near <= t_far))
+        return 0;
+    ia_real w = ia_hi(t_far - t_near);
+    int last = condition >= 0 ? csg_tree_last(nodes, condition) : -1;
+    int unproven = condition >= 0 ? BISECT_MAX_LEVEL + 1 : -1; /* without a condition every node is certain */
+    int level = 0, proven = unproven;
+    bisect_index i = 0;
+    for (;;) {
+        ia_real lo = node_bound(t_near, w, level, i), hi = fmin(node_bound(t_near, w, level, i + 1), t_far);
+        if (lo > t_far) /* so is every later node */
+            return 0;
+        ia_interval t = ia_make(lo, hi), box[3];
+        for (int k = 0; k < 3; k++)
+            box[k] = ray_extent(o[k], d[k], t);
+        int keep = 0;
+        if (ia_contains_zero(scene_solid_F(solid, box[0], box[1], box[2], time))) {
+            int holds = level > proven ? SURFACE_CERTAIN : surface_condition(nodes, condition, last, box, time);
+            keep = holds & SURFACE_MAY_HOLD;
+            if (holds == SURFACE_CERTAIN && level < proven)
+                proven = level;
+        }
+        if (keep && (hi - lo <= eps || level == BISECT_MAX_LEVEL)) {
+            *hit_lo = lo;
+            *hit_hi = hi;
+            return 1;
+        }
+        if (keep) {
+            level += 1;
+            i <<= 1;
+        } else {
+            if (!node_next(&level, &i))
+                return 0;
+            if (level <= proven)
+                proven = unproven;
+        }
+    }
+}
+
+#endif

@@ -1,0 +1,180 @@
+/* kernels/weave.h -- partitions and their claims. The candidates' walks (segments.h) are stepped in t order;
+ * between two consecutive points where some solid's state changes lies a partition where each solid has one
+ * state, and each partition is classified (classify.h) once no walk can change a state before its end: against
+ * the regions that use a solid which is not OUT there (the per-solid lists of src/render_scene.c). The first
+ * partition that some region may be in is the hit; the region declared first among those that may be in claims
+ * it. At the first partition from there on where the winner is certainly in, another region certainly in makes
+ * an overlap (weave_ray).
+ *
+ * Why not Domingues' linked list of partitions: the walks give the state changes already in order, so a
+ * partition is classified as the weave passes it and never stored; the per-ray buffer is the candidates alone
+ * (scene_data.h). What a partition is in is the table of states per solid (bytes, not bits: each ray resets only
+ * its candidates' entries when it is done).
+ */
+#ifndef KERNELS_WEAVE_H
+#define KERNELS_WEAVE_H
+#include "classify.h"
+#include "segments.h"
+#include "bvh.h"
+
+/* The scene's tables and one ray's buffers (scene_data.h). */
+typedef struct {
+    const KERNEL_GLOBAL kernel_u32 *nodes;
+    const KERNEL_GLOBAL int *items;             /* SCENE_ITEM_INTS per item */
+    const KERNEL_GLOBAL int *solid_items_start; /* solid k's regions: solid_items[start[k] .. start[k + 1]) */
+    const KERNEL_GLOBAL int *solid_items;
+    segments_walks walks; /* the candidates (bvh.h) and their walks */
+    int cand_cap, ncand, nstarted; /* the walks started are the first nstarted */
+    KERNEL_GLOBAL unsigned char *state; /* per solid of the scene, all OUT between rays */
+    kernel_u32 evals, segments, partitions;
+} scene_ray;
+
+typedef struct {
+    ia_real t;   /* the claimed partition's start */
+    int item;    /* the region that claims it */
+    int solid;   /* the solid whose state change starts it: its boundary is the hit's surface */
+    int overlap; /* another region certainly in there, or -1 */
+} weave_hit;
+
+#define WEAVE_NONE 0x7fffffff
+
+/* The value (classify.h) of item's tree over the current partition. */
+IA_FN int weave_value(const scene_ray *r, int item) {
+    const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * item;
+    return classify_tree(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], r->state);
+}
+
+/* The first declared region that may be in over the current partition (returns 0 when none may be), among the
+ * regions of the solids that are not OUT there; with `certain`, the first that is certainly in, other than
+ * `except`. */
+IA_FN int weave_first_region(const scene_ray *r, int certain, int except, int *first) {
+    int best = WEAVE_NONE;
+    for (int c = 0; c < r->nstarted; c++) {
+        int k = r->walks.solid[c];
+        if (r->state[k] == SCENE_OUT)
+            continue;
+        for (int j = r->solid_items_start[k]; j < r->solid_items_start[k + 1]; j++) {
+            int item = r->solid_items[j];
+            if (item >= best || item == except)
+                continue;
+            int v = weave_value(r, item);
+            if (certain ? v == CLASSIFY_MAY_IN : (v & CLASSIFY_MAY_IN) != 0)
+                best = item;
+        }
+    }
+    *first = best;
+    return best != WEAVE_NONE;
+}
+
+/* After a claim: whether the winner is certainly in over the current partition (1, and *other the first other
+ * region certainly in there, or -1), may still be in (0), or is certainly out (-1: it claimed on undecided
+ * states alone). */
+IA_FN int weave_overlap(const scene_ray *r, int winner, int *other) {
+    int v = weave_value(r, winner);
+    if (v != CLASSIFY_MAY_IN)
+        return v & CLASSIFY_MAY_IN ? 0 : -1;
+    if (!weave_first_region(r, 1, winner, other))
+        *other = -1;
+    return 1;
+}
+
+/* Brings the pending entry (bvh.h) with the least range start to position nstarted, expanding the BVH nodes that
+ * come first until it is a solid (or none is left). Returns 0 when the pending entries overflow. */
+IA_FN int weave_next_entry(scene_ray *r, const bvh_walk *b) {
+    segments_walks *w = &r->walks;
+    for (;;) {
+        int c = r->nstarted, best = c;
+        if (c >= r->ncand)
+            return 1;
+        for (int k = c + 1; k < r->ncand; k++)
+            best = w->range[2 * k] < w->range[2 * best] ? k : best;
+        int solid = w->solid[c];
+        ia_real start = w->range[2 * c], width = w->range[2 * c + 1];
+        w->solid[c] = w->solid[best];
+        w->range[2 * c] = w->range[2 * best];
+        w->range[2 * c + 1] = w->range[2 * best + 1];
+        w->solid[best] = solid;
+        w->range[2 * best] = start;
+        w->range[2 * best + 1] = width;
+        if (w->solid[c] >= 0)
+            return 1;
+        if (!bvh_expand(b, c, w->solid, w->range, &r->ncand, r->cand_cap))
+            return 0;
+    }
+}
+
+/* The candidate whose walk is the least advanced (the least position; or the next pending solid at its range's
+ * start, which it then starts), or -1 when all are done; -2 when the pending entries overflow. */
+IA_FN int weave_next_walk(scene_ray *r, const bvh_walk *b) {
+    int best = -1;
+    ia_real least = IA_INF;
+    for (int c = 0; c < r->nstarted; c++)
+        if (r->walks.pos[c] < least) {
+            least = r->walks.pos[c];
+            best = c;
+        }
+    if (r->nstarted < r->ncand && r->walks.range[2 * r->nstarted] <= least) {
+        best = r->nstarted++;
+        segments_start(&r->walks, best);
+        if (!weave_next_entry(r, b))
+            return -2;
+    }
+    return best;
+}
+
+/* Weaves the candidates' walks along the ray over [tn, tf] (b): returns 1 at the first claimed partition
+ * (*hit), 0 when no partition starting before tf is claimed, -1 when the ray meets more boxes than r has room
+ * for. The claimed partition is mostly a BOUNDARY leaf, where no region is certainly in: for the overlap, the
+ * weave goes on to the first partition where the winner is certainly in (at most WEAVE_OVERLAP_PARTITIONS
+ * further) and names another region certainly in there. */
+#define WEAVE_OVERLAP_PARTITIONS 8
+IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_interval time, weave_hit *hit) {
+    const ia_real *o = b->o, *d = b->d;
+    ia_real tf = b->tf;
+    int pending = 0, pending_solid = -1, found = 0, confirming = WEAVE_OVERLAP_PARTITIONS;
+    ia_real pending_t = 0;
+    r->nstarted = 0;
+    r->ncand = 0;
+    if (!bvh_roots(b, r->walks.solid, r->walks.range, &r->ncand, r->cand_cap) || !weave_next_entry(r, b))
+        return -1;
+    for (;;) {
+        int c = weave_next_walk(r, b);
+        if (c == -2)
+            return found ? 1 : -1;
+        ia_real at = c >= 0 ? r->walks.pos[c] : IA_INF;
+        if (pending && at > pending_t) { /* no walk can change a state before `at` any more */
+            pending = 0;
+            if (found) { /* confirming the claim for the overlap */
+                int other = -1, v = weave_overlap(r, hit->item, &other);
+                hit->overlap = v > 0 ? other : -1;
+                if (v != 0 || --confirming == 0)
+                    return 1;
+            } else if (weave_first_region(r, 0, -1, &hit->item)) {
+                r->partitions += 1;
+                found = 1;
+                hit->t = pending_t;
+                hit->solid = pending_solid;
+                hit->overlap = -1;
+                int other = -1, v = weave_overlap(r, hit->item, &other);
+                hit->overlap = v > 0 ? other : -1;
+                if (v != 0)
+                    return 1;
+            } else {
+                r->partitions += 1;
+            }
+        }
+        if (!(at < tf))
+            return found;
+        int k = r->walks.solid[c], s = segments_step(&r->walks, c, o, d, eps, time, &r->evals);
+        if (s == r->state[k])
+            continue;
+        r->segments += r->state[k] == SCENE_OUT;
+        r->state[k] = (unsigned char)s;
+        /* the hit's surface: of the changes at one point, one to a state that may be in */
+        pending_solid = !pending || s != SCENE_OUT ? k : pending_solid;
+        pending = 1;
+        pending_t = at;
+    }
+}
+
+#endif

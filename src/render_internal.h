@@ -1,0 +1,42 @@
+/* src/render_internal.h -- what the two render paths share inside the library: the renderer, its program build
+ * (src/render.c) and the frame's parameter block, images and checks. src/render_scene.c is the segment path. */
+#ifndef IACSG_RENDER_INTERNAL_H
+#define IACSG_RENDER_INTERNAL_H
+#include "clrt.h"
+#include "render.h"
+
+extern const char iacsg_cl_ia[]; /* the flattened ia/ headers (Makefile: IA_CL_HEADERS) */
+
+typedef struct render_scene render_scene; /* the segment path's tables and buffers (render_scene.c) */
+
+struct iacsg_renderer {
+    clrt rt;
+    cl_program program;
+    cl_kernel kernel;
+    iacsg_render_config config;
+    double build_seconds;
+    render_scene *scene; /* NULL on the first-root path */
+};
+
+double render_now_seconds(void);
+
+/* A renderer on config's device, without a program yet (destroy with iacsg_renderer_destroy). */
+iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out, iacsg_error *err);
+
+/* Builds the program from the sources with the ia/ options of the config and creates its kernel. */
+iacsg_status render_build(iacsg_renderer *r, const char *const *sources, size_t count, const char *kernel,
+                          iacsg_error *err);
+
+iacsg_status render_check_view(const iacsg_view *v, iacsg_error *err);
+/* The parameter block (kernels/params.h) in the working precision. */
+iacsg_status render_fill_params(const iacsg_view *v, int fp64, void *block, iacsg_error *err);
+/* An error naming -size when a frame's buffers, `per_pixel` 4-byte values a pixel, cannot fit the device. */
+iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n, double per_pixel,
+                                        iacsg_error *err);
+/* A frame's image of `count` floats, page-aligned. */
+float *render_image_alloc(size_t count);
+
+void render_scene_free(render_scene *s);
+iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
+
+#endif

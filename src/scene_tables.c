@@ -1,0 +1,380 @@
+/* src/scene_tables.c -- see scene_tables.h. */
+#include "scene_tables.h"
+#include "render.h"
+#include "kernels/scene_data.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void scene_palette(int id, float rgb[3]) {
+    static const float palette[8][3] = {{0.80f, 0.30f, 0.22f}, {0.25f, 0.45f, 0.85f}, {0.90f, 0.70f, 0.20f},
+                                        {0.30f, 0.70f, 0.35f}, {0.65f, 0.35f, 0.75f}, {0.20f, 0.70f, 0.75f},
+                                        {0.85f, 0.50f, 0.65f}, {0.60f, 0.60f, 0.55f}};
+    memcpy(rgb, palette[id % 8], 3 * sizeof(float));
+}
+
+/* Shrinks a proven box (x0,y0,z0,x1,y1,z1) of a solid not depending on t: each face moves inwards by binary
+ * search while the slab it leaves behind is proven free of zeros (f > 0 over it, one enclosure). The compiler's
+ * boxes sit on a coarse grid of planes (implicits/bounds.c); the BVH culls rays by these, and a box 1.5 times
+ * too wide on each axis made the BVH walk most of a frame of 1000 spheres. */
+static void refine_box(const iacsg_expr *e, double b[6]) {
+    for (int face = 0; face < 6; face++) {
+        int axis = face % 3, upper = face >= 3;
+        double good = b[face], bad = 0.5 * (b[axis] + b[axis + 3]);
+        for (int step = 0; step < 12; step++) {
+            double mid = 0.5 * (good + bad), lo[3] = {b[0], b[1], b[2]}, hi[3] = {b[3], b[4], b[5]}, f[2];
+            if (upper)
+                lo[axis] = mid;
+            else
+                hi[axis] = mid;
+            iacsg_error err = {0};
+            int empty = iacsg_expr_eval_box(e, 1, lo, hi, 0, f, &err) == IACSG_OK && f[0] > 0;
+            *(empty ? &good : &bad) = mid;
+        }
+        b[face] = good;
+    }
+}
+
+/* The solid's box for the kernels, for times in `time`: its proven box when its inside lies within it (f > 0 at
+ * a point outside it, and so all over the connected outside, where f has no zero), else an infinite box. 1 if
+ * bounded; *in_cube is set when the box holds only inside the cube of IACSG_BOUNDS_CUBE. */
+static int solid_box(const iacsg_expr *e, const double time[2], double box[6], int *in_cube) {
+    double b[6];
+    iacsg_bounds_proof proof = iacsg_expr_bounds(e, time, b);
+    int bounded = proof != IACSG_BOUNDS_NONE;
+    *in_cube |= proof == IACSG_BOUNDS_IN_CUBE;
+    if (bounded) {
+        double p[3] = {0.5 * (b[0] + b[3]), 0.5 * (b[1] + b[4]), 0.5 * (b[2] + b[5])}, f[2];
+        if (b[3] < IACSG_BOUNDS_CUBE) /* halfway from the box to the cube's side */
+            p[0] = 0.5 * (b[3] + IACSG_BOUNDS_CUBE);
+        else if (b[0] > -IACSG_BOUNDS_CUBE)
+            p[0] = 0.5 * (b[0] - IACSG_BOUNDS_CUBE);
+        else
+            bounded = 0;
+        iacsg_error err = {0};
+        bounded = bounded && iacsg_expr_eval_box(e, 1, p, p, time[0], f, &err) == IACSG_OK && f[0] > 0;
+        if (bounded && !iacsg_expr_uses_time(e))
+            refine_box(e, b);
+    }
+    for (int k = 0; k < 3; k++) {
+        box[k] = bounded ? b[k] : -INFINITY;
+        box[k + 3] = bounded ? b[k + 3] : INFINITY;
+    }
+    return bounded;
+}
+
+/* ---- the BVH */
+
+typedef struct {
+    double key;
+    int solid;
+} keyed;
+
+static int by_key(const void *a, const void *b) {
+    double x = ((const keyed *)a)->key, y = ((const keyed *)b)->key;
+    return (x > y) - (x < y);
+}
+
+typedef struct {
+    const double *boxes; /* 6 per solid */
+    scene_tables *t;
+    keyed *scratch;
+} bvh_builder;
+
+/* Emits the subtree over solids[0..n) at the next node; the depth is log2 n (median splits). */
+static void bvh_build(bvh_builder *b, int *solids, int n) {
+    scene_tables *t = b->t;
+    int node = t->nbvh++;
+    double *box = t->bvh_box + 6 * node, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < 6; k++)
+        box[k] = k < 3 ? INFINITY : -INFINITY;
+    for (int i = 0; i < n; i++) {
+        const double *s = b->boxes + 6 * solids[i];
+        for (int k = 0; k < 3; k++) {
+            box[k] = fmin(box[k], s[k]);
+            box[k + 3] = fmax(box[k + 3], s[k + 3]);
+            double c = 0.5 * (s[k] + s[k + 3]);
+            lo[k] = fmin(lo[k], c);
+            hi[k] = fmax(hi[k], c);
+        }
+    }
+    t->bvh_link[2 * node + SCENE_BVH_SOLID] = n == 1 ? solids[0] : -1;
+    if (n > 1) {
+        int axis = 0;
+        for (int k = 1; k < 3; k++)
+            axis = hi[k] - lo[k] > hi[axis] - lo[axis] ? k : axis;
+        for (int i = 0; i < n; i++) {
+            const double *s = b->boxes + 6 * solids[i];
+            b->scratch[i].key = 0.5 * (s[axis] + s[axis + 3]);
+            b->scratch[i].solid = solids[i];
+        }
+        qsort(b->scratch, (size_t)n, sizeof *b->scratch, by_key);
+        for (int i = 0; i < n; i++)
+            solids[i] = b->scratch[i].solid;
+        bvh_build(b, solids, n / 2);
+        bvh_build(b, solids + n / 2, n - n / 2);
+    }
+    t->bvh_link[2 * node + SCENE_BVH_SKIP] = t->nbvh;
+}
+
+/* Unbounded solids first, each a leaf of its own (their boxes would make every node of the tree infinite),
+ * then the BVH of the bounded ones. */
+static int bvh_of(const iacsg_scene *s, const unsigned char *used, scene_tables *t) {
+    double *boxes = malloc(6 * sizeof(double) * (size_t)(s->nsolids + 1));
+    int *bounded = malloc(sizeof(int) * (size_t)(s->nsolids + 1));
+    keyed *scratch = malloc(sizeof(keyed) * (size_t)(s->nsolids + 1));
+    t->bvh_box = malloc(12 * sizeof(double) * (size_t)(s->nsolids + 1));
+    t->bvh_link = malloc(4 * sizeof(int) * (size_t)(s->nsolids + 1));
+    int ok = boxes && bounded && scratch && t->bvh_box && t->bvh_link, nbounded = 0;
+    for (int k = 0; ok && k < s->nsolids; k++) {
+        if (!used[k])
+            continue;
+        static const double times[2] = {0, 1}; /* the boxes hold for t in [0, 1] (render_scene.c) */
+        if (solid_box(s->solids[k].expr, times, boxes + 6 * k, &t->in_cube)) {
+            bounded[nbounded++] = k;
+            continue;
+        }
+        int node = t->nbvh++;
+        memcpy(t->bvh_box + 6 * node, boxes + 6 * k, 6 * sizeof(double));
+        t->bvh_link[2 * node + SCENE_BVH_SKIP] = node + 1;
+        t->bvh_link[2 * node + SCENE_BVH_SOLID] = k;
+    }
+    if (ok && nbounded > 0) {
+        bvh_builder b = {boxes, t, scratch};
+        bvh_build(&b, bounded, nbounded);
+    }
+    free(boxes);
+    free(bounded);
+    free(scratch);
+    return ok;
+}
+
+/* ---- region trees for the device */
+
+/* Appends region tree `root` of s->nodes to t->nodes (room for its size), children ordered so that the deeper
+ * is evaluated first (kernels/classify.h: from the last node back, the second child first); a difference whose
+ * left side is deeper becomes an intersection with the negated right side first. Returns the stack depth its
+ * evaluation needs, or -1 when out of memory. */
+static int relinearise(const iacsg_scene *s, int root, scene_tables *t) {
+    int size = scene_tree_size(s, root);
+    int *need = malloc(sizeof(int) * (size_t)size), *task = malloc(2 * sizeof(int) * (size_t)(2 * size + 1));
+    if (!need || !task) {
+        free(need);
+        free(task);
+        return -1;
+    }
+    for (int k = root + size - 1; k >= root; k--) {
+        int op = CSG_NODE_OP(s->nodes[k]);
+        if (op == CSG_INSIDE || op == CSG_OUTSIDE) {
+            need[k - root] = 1;
+        } else if (op == CSG_NOT) {
+            need[k - root] = need[k + 1 - root];
+        } else {
+            int a = need[k + 1 - root], b = need[(int)CSG_NODE_ARG(s->nodes[k]) - root];
+            int deep = a > b ? a : b, shallow = a > b ? b : a;
+            need[k - root] = deep > shallow + 1 ? deep : shallow + 1;
+        }
+    }
+    int result = need[0], top = 0;
+    enum { EMIT, EMIT_NOT, PATCH };
+    task[top++] = EMIT, task[top++] = root;
+    while (top > 0) {
+        int arg = task[--top], kind = task[--top];
+        if (kind == PATCH) {
+            t->nodes[arg] = CSG_NODE(CSG_NODE_OP(t->nodes[arg]), (uint32_t)t->nnodes);
+            continue;
+        }
+        if (kind == EMIT_NOT) {
+            t->nodes[t->nnodes++] = CSG_NODE(CSG_NOT, 0);
+            task[top++] = EMIT, task[top++] = arg;
+            continue;
+        }
+        uint32_t node = s->nodes[arg];
+        int op = CSG_NODE_OP(node);
+        if (op == CSG_INSIDE || op == CSG_OUTSIDE) {
+            t->nodes[t->nnodes++] = node;
+            continue;
+        }
+        if (op == CSG_NOT) {
+            t->nodes[t->nnodes++] = node;
+            task[top++] = EMIT, task[top++] = arg + 1;
+            continue;
+        }
+        int left = arg + 1, right = (int)CSG_NODE_ARG(node);
+        int first = left, second = right, first_kind = EMIT;
+        if (need[left - root] > need[right - root]) { /* the deeper one second: evaluated first */
+            first = right;
+            second = left;
+            if (op == CSG_DIFFERENCE) {
+                op = CSG_INTERSECT;
+                first_kind = EMIT_NOT;
+            }
+        }
+        int here = t->nnodes++;
+        t->nodes[here] = CSG_NODE(op, 0);
+        task[top++] = EMIT, task[top++] = second; /* pushed first: done last */
+        task[top++] = PATCH, task[top++] = here;
+        task[top++] = first_kind, task[top++] = first;
+    }
+    free(need);
+    free(task);
+    return result;
+}
+
+/* Marks the solids of the tree at `root`. */
+static void mark_solids(const iacsg_scene *s, int root, unsigned char *mark) {
+    int last = root + scene_tree_size(s, root) - 1;
+    for (int k = root; k <= last; k++) {
+        int op = CSG_NODE_OP(s->nodes[k]);
+        if (op == CSG_INSIDE || op == CSG_OUTSIDE)
+            mark[CSG_NODE_ARG(s->nodes[k])] = 1;
+    }
+}
+
+static iacsg_status lists_of(const iacsg_scene *s, scene_tables *t, unsigned char *used, iacsg_error *err) {
+    int n = s->nsolids, total = 0;
+    unsigned char *mark = calloc((size_t)n + 1, 1);
+    t->solid_items_start = calloc((size_t)n + 2, sizeof(int));
+    if (!mark || !t->solid_items_start)
+        goto nomem;
+    for (int pass = 0; pass < 2; pass++) { /* count, then fill */
+        for (int item = 0; item < s->nitems; item++) {
+            if (s->items[item].kind != SCENE_REGION)
+                continue;
+            memset(mark, 0, (size_t)n);
+            mark_solids(s, s->items[item].tree, mark);
+            for (int k = 0; k < n; k++) {
+                if (!mark[k])
+                    continue;
+                used[k] = 1;
+                if (pass == 0)
+                    t->solid_items_start[k + 1] += 1;
+                else
+                    t->solid_items[t->solid_items_start[k]++] = item;
+            }
+        }
+        if (pass == 0) {
+            for (int k = 0; k < n; k++)
+                t->solid_items_start[k + 1] += t->solid_items_start[k];
+            total = t->solid_items_start[n];
+            t->solid_items = malloc(sizeof(int) * (size_t)(total + 1));
+            if (!t->solid_items)
+                goto nomem;
+        }
+    }
+    for (int k = n; k > 0; k--) /* the fill moved each start to the next one's */
+        t->solid_items_start[k] = t->solid_items_start[k - 1];
+    t->solid_items_start[0] = 0;
+    free(mark);
+    return IACSG_OK;
+nomem:
+    free(mark);
+    return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
+}
+
+iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_error *err) {
+    memset(t, 0, sizeof *t);
+    t->nsolids = s->nsolids;
+    t->nitems = s->nitems;
+    size_t region_nodes = 0;
+    for (int i = 0; i < s->nitems; i++)
+        region_nodes += s->items[i].kind == SCENE_REGION ? 2 * (size_t)scene_tree_size(s, s->items[i].tree) : 0;
+    unsigned char *used = calloc((size_t)s->nsolids + 1, 1);
+    t->nodes = malloc(sizeof(uint32_t) * ((size_t)s->nnodes + region_nodes + 1));
+    t->items = malloc(sizeof(int) * SCENE_ITEM_INTS * (size_t)(s->nitems + 1));
+    t->surfaces = malloc(sizeof(int) * (size_t)(s->nitems + 1));
+    t->albedo = malloc(3 * sizeof(float) * (size_t)(s->nitems + 1));
+    iacsg_status st = used && t->nodes && t->items && t->surfaces && t->albedo
+                          ? IACSG_OK
+                          : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
+    if (st == IACSG_OK && s->nnodes > 0)
+        memcpy(t->nodes, s->nodes, sizeof(uint32_t) * (size_t)s->nnodes);
+    t->nnodes = s->nnodes;
+    for (int i = 0; st == IACSG_OK && i < s->nitems; i++) {
+        const scene_item *it = &s->items[i];
+        int *out = t->items + SCENE_ITEM_INTS * i;
+        out[SCENE_ITEM_KIND] = it->kind == SCENE_REGION ? SCENE_KIND_REGION : SCENE_KIND_SURFACE;
+        out[SCENE_ITEM_SOLID] = it->solid;
+        out[SCENE_ITEM_ROOT] = it->tree;
+        out[SCENE_ITEM_SIZE] = it->tree >= 0 ? scene_tree_size(s, it->tree) : 0;
+        if (it->material >= 0)
+            memcpy(t->albedo + 3 * i, s->materials[it->material].rgb, 3 * sizeof(float));
+        else
+            scene_palette(i, t->albedo + 3 * i);
+        if (it->kind == SCENE_SURFACE) {
+            t->surfaces[t->nsurfaces++] = i;
+            continue;
+        }
+        out[SCENE_ITEM_ROOT] = t->nnodes;
+        int need = relinearise(s, it->tree, t);
+        out[SCENE_ITEM_SIZE] = t->nnodes - out[SCENE_ITEM_ROOT];
+        if (need < 0)
+            st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
+        else if (need > SCENE_TREE_STACK)
+            st = iacsg_error_set(err, IACSG_ERR_LIMIT, it->line, it->column,
+                                 "region '%s' is too large to evaluate (a stack of %d, at most %d)",
+                                 it->name ? it->name : "", need, SCENE_TREE_STACK);
+    }
+    for (int k = 0; k < s->nsolids; k++)
+        t->uses_time |= iacsg_expr_uses_time(s->solids[k].expr);
+    if (st == IACSG_OK)
+        st = lists_of(s, t, used, err);
+    if (st == IACSG_OK && !bvh_of(s, used, t))
+        st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
+    free(used);
+    if (st != IACSG_OK)
+        scene_tables_free(t);
+    return st;
+}
+
+void scene_tables_free(scene_tables *t) {
+    free(t->bvh_box);
+    free(t->bvh_link);
+    free(t->nodes);
+    free(t->items);
+    free(t->solid_items_start);
+    free(t->solid_items);
+    free(t->surfaces);
+    free(t->albedo);
+    memset(t, 0, sizeof *t);
+}
+
+int iacsg_scene_uses_time(const iacsg_scene *s) {
+    int uses = s->expr && iacsg_expr_uses_time(s->expr);
+    for (int k = 0; k < s->nsolids; k++)
+        uses |= iacsg_expr_uses_time(s->solids[k].expr);
+    return uses;
+}
+
+int iacsg_scene_bounds(const iacsg_scene *s, const double time[2], double box[6]) {
+    if (s->nitems == 0)
+        return s->expr && iacsg_expr_bounds(s->expr, time, box) != IACSG_BOUNDS_NONE;
+    unsigned char *used = calloc((size_t)s->nsolids + 1, 1);
+    if (!used)
+        return 0;
+    for (int i = 0; i < s->nitems; i++) {
+        if (s->items[i].tree >= 0)
+            mark_solids(s, s->items[i].tree, used);
+        if (s->items[i].solid >= 0)
+            used[s->items[i].solid] = 1;
+    }
+    int ok = 1, any = 0;
+    for (int k = 0; k < 3; k++) {
+        box[k] = INFINITY;
+        box[k + 3] = -INFINITY;
+    }
+    for (int k = 0; ok && k < s->nsolids; k++) {
+        double b[6];
+        if (!used[k])
+            continue;
+        int in_cube = 0;
+        ok = solid_box(s->solids[k].expr, time, b, &in_cube);
+        for (int c = 0; ok && c < 3; c++) {
+            box[c] = fmin(box[c], b[c]);
+            box[c + 3] = fmax(box[c + 3], b[c + 3]);
+        }
+        any = 1;
+    }
+    free(used);
+    return ok && any;
+}
