@@ -37,33 +37,43 @@ typedef struct {
 
 #define WEAVE_NONE 0x7fffffff
 
-/* The region that claims the current partition (returns 0 when none may be in), and an overlapping one. */
-IA_FN int weave_claim(const scene_ray *r, int *winner, int *other) {
-    int may = WEAVE_NONE, first = WEAVE_NONE, second = WEAVE_NONE; /* first, second: certainly in */
+/* The value (classify.h) of item's tree over the current partition. */
+IA_FN int weave_value(const scene_ray *r, int item) {
+    const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * item;
+    return classify_tree(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], r->state);
+}
+
+/* The first declared region that may be in over the current partition (returns 0 when none may be), among the
+ * regions of the solids that are not OUT there; with `certain`, the first that is certainly in, other than
+ * `except`. */
+IA_FN int weave_first_region(const scene_ray *r, int certain, int except, int *first) {
+    int best = WEAVE_NONE;
     for (int c = 0; c < r->nstarted; c++) {
         int k = r->walks.solid[c];
         if (r->state[k] == SCENE_OUT)
             continue;
         for (int j = r->solid_items_start[k]; j < r->solid_items_start[k + 1]; j++) {
             int item = r->solid_items[j];
-            if ((item >= may && item >= second) || item == first)
-                continue; /* it can change neither the winner nor the overlap */
-            const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * item;
-            int v = classify_tree(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], r->state);
-            if (v & CLASSIFY_MAY_IN)
-                may = item < may ? item : may;
-            if (v == CLASSIFY_MAY_IN && item < first) {
-                second = first;
-                first = item;
-            } else if (v == CLASSIFY_MAY_IN && item < second) {
-                second = item;
-            }
+            if (item >= best || item == except)
+                continue;
+            int v = weave_value(r, item);
+            if (certain ? v == CLASSIFY_MAY_IN : (v & CLASSIFY_MAY_IN) != 0)
+                best = item;
         }
     }
-    if (may == WEAVE_NONE)
-        return 0;
-    *winner = may;
-    *other = first == may && second != WEAVE_NONE ? second : -1;
+    *first = best;
+    return best != WEAVE_NONE;
+}
+
+/* After a claim: whether the winner is certainly in over the current partition (1, and *other the first other
+ * region certainly in there, or -1), may still be in (0), or is certainly out (-1: it claimed on undecided
+ * states alone). */
+IA_FN int weave_overlap(const scene_ray *r, int winner, int *other) {
+    int v = weave_value(r, winner);
+    if (v != CLASSIFY_MAY_IN)
+        return v & CLASSIFY_MAY_IN ? 0 : -1;
+    if (!weave_first_region(r, 1, winner, other))
+        *other = -1;
     return 1;
 }
 
@@ -113,11 +123,14 @@ IA_FN int weave_next_walk(scene_ray *r, const bvh_walk *b) {
 
 /* Weaves the candidates' walks along the ray over [tn, tf] (b): returns 1 at the first claimed partition
  * (*hit), 0 when no partition starting before tf is claimed, -1 when the ray meets more boxes than r has room
- * for. */
+ * for. The claimed partition is mostly a BOUNDARY leaf, where no region is certainly in: for the overlap, the
+ * weave goes on to the first partition where the winner is certainly in (at most WEAVE_OVERLAP_PARTITIONS
+ * further) and names another region certainly in there. */
+#define WEAVE_OVERLAP_PARTITIONS 8
 IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_real time, weave_hit *hit) {
     const ia_real *o = b->o, *d = b->d;
     ia_real tf = b->tf;
-    int pending = 0, pending_solid = -1; /* a partition starts at pending_t, not yet classified */
+    int pending = 0, pending_solid = -1, found = 0, confirming = WEAVE_OVERLAP_PARTITIONS;
     ia_real pending_t = 0;
     r->nstarted = 0;
     r->ncand = 0;
@@ -126,19 +139,31 @@ IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_real time, 
     for (;;) {
         int c = weave_next_walk(r, b);
         if (c == -2)
-            return -1;
+            return found ? 1 : -1;
         ia_real at = c >= 0 ? r->walks.pos[c] : IA_INF;
         if (pending && at > pending_t) { /* no walk can change a state before `at` any more */
-            r->partitions += 1;
-            if (weave_claim(r, &hit->item, &hit->overlap)) {
+            pending = 0;
+            if (found) { /* confirming the claim for the overlap */
+                int other = -1, v = weave_overlap(r, hit->item, &other);
+                hit->overlap = v > 0 ? other : -1;
+                if (v != 0 || --confirming == 0)
+                    return 1;
+            } else if (weave_first_region(r, 0, -1, &hit->item)) {
+                r->partitions += 1;
+                found = 1;
                 hit->t = pending_t;
                 hit->solid = pending_solid;
-                return 1;
+                hit->overlap = -1;
+                int other = -1, v = weave_overlap(r, hit->item, &other);
+                hit->overlap = v > 0 ? other : -1;
+                if (v != 0)
+                    return 1;
+            } else {
+                r->partitions += 1;
             }
-            pending = 0;
         }
         if (!(at < tf))
-            return 0;
+            return found;
         int k = r->walks.solid[c], s = segments_step(&r->walks, c, o, d, eps, time, &r->evals);
         if (s == r->state[k])
             continue;

@@ -18,8 +18,9 @@ static const char usage[] =
     "  -size WxH          image size in pixels [1024x1024]\n"
     "  -eps E             width of the bisection's leaves along the ray, in world units [2^-16]\n"
     "  -bounds X0,Y0,Z0,X1,Y1,Z1\n"
-    "                     the box rays are clipped to [a box proven to enclose the surface when the compiler\n"
-    "                     finds one, else -2,-2,-2,2,2,2; the command says which]\n"
+    "                     the box rays are clipped to [a box proven to enclose the surface (a scene with\n"
+    "                     regions: its solids) when the compiler finds one, else -2,-2,-2,2,2,2; the\n"
+    "                     command says which]\n"
     "  -eye X,Y,Z         eye position [placed by -az/-el]\n"
     "  -at X,Y,Z          point looked at [centre of the bounds]\n"
     "  -up X,Y,Z          up direction [0,0,1]\n"
@@ -30,20 +31,23 @@ static const char usage[] =
     "  -depth FILE        also write the depth: float32, one channel, distance from the eye along the ray,\n"
     "                     +inf where the ray misses\n"
     "  -normals FILE      also write the unit normals: float32, three channels, 0 where the ray misses\n"
+    "  -ids FILE          also write the id of the region or surface hit (numbered in declaration order):\n"
+    "                     float32, one channel, -1 where the ray hits none (an expression: 0 where it hits)\n"
     "  -time T            value of the variable t [0]\n"
     "  -frames N          render N frames for t = 0, 1/N, ..., (N-1)/N into numbered files (name_0000.png)\n"
     "  -fp64              double precision intervals and rays [float]\n"
     "  -fast              no outward rounding: NOT rigorous, may miss surfaces; for measuring the cost of rigor\n"
     "  -device N          OpenCL device number, see `iacsg devices` [0]\n"
-    "  -stats             print rays, interval evaluations per ray (mean, max), kernel build and render time\n"
+    "  -stats             print rays, interval evaluations per ray (mean, max), kernel build and render time;\n"
+    "                     for regions also segments and partitions per ray, overlaps, per-ray buffer bytes\n"
     "\n"
     "Camera: f = normalize(at - eye), r = normalize(f x up), u = r x f. Pixel (i, j), i left to right and j top\n"
     "to bottom, looks along normalize(f + s r + v u) with s = (2(i+1/2)/W - 1) tan(fov/2) W/H and\n"
     "v = (1 - 2(j+1/2)/H) tan(fov/2). With -ortho the ray starts at eye + s r + v u (tan(fov/2) replaced by\n"
     "HEIGHT/2) and goes along f. Only t >= 0 is traced.\n"
     "\n"
-    "Guarantees (without -fast): a surface that a pixel's ray crosses inside the bounds is never missed, and the\n"
-    "depth is never after the ray's first root there.\n";
+    "Guarantees (without -fast): a surface (or region) that a pixel's ray crosses inside the bounds is never\n"
+    "missed, and the depth is never after the ray's first root (the region's first point) there.\n";
 
 int main(int argc, char **argv) {
     if (argc < 2) {

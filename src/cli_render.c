@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 typedef struct {
-    const char *input, *output, *depth_file, *normals_file;
+    const char *input, *output, *depth_file, *normals_file, *ids_file;
     iacsg_view view;
     iacsg_render_config config;
     int have_bounds, have_eye, have_at, have_azel, have_time, frames;
@@ -107,6 +107,8 @@ static int parse_options(int argc, char **argv, render_options *o) {
             o->depth_file = v;
         } else if (strcmp(a, "-normals") == 0) {
             o->normals_file = v;
+        } else if (strcmp(a, "-ids") == 0) {
+            o->ids_file = v;
         } else if (strcmp(a, "-size") == 0) {
             if (!parse_size(v, &o->view.width, &o->view.height))
                 return bad_value(a, v, "WxH with W and H from 1 to 32768, e.g. 1024x768");
@@ -219,11 +221,14 @@ static char *read_input(const char *input, const char **name) {
     return text;
 }
 
-/* The bounds (given, found by the compiler, or the default) and a phrase saying which. */
-static const char *choose_bounds(render_options *o, const iacsg_expr *e) {
+/* The bounds (given, found by the compiler, or the default) and a phrase saying which. A scene with items: the
+ * union of its solids' proven boxes. */
+static const char *choose_bounds(render_options *o, const iacsg_scene *s) {
     if (o->have_bounds)
         return "given";
-    if (iacsg_expr_bounds(e, o->view.bounds))
+    if (s->nitems > 0 && iacsg_scene_bounds(s, o->view.bounds))
+        return "proven to enclose the solids";
+    if (s->nitems == 0 && iacsg_expr_bounds(s->expr, o->view.bounds))
         return "proven to enclose the surface";
     static const double fallback[6] = {-2, -2, -2, 2, 2, 2};
     memcpy(o->view.bounds, fallback, sizeof fallback);
@@ -270,10 +275,10 @@ static void show_progress(double done, void *ctx) {
 
 static iacsg_status write_frame(cli_writer *writer, const render_options *o, const iacsg_frame *fr, int frame,
                                 iacsg_error *err) {
-    const char *paths[3] = {o->output, o->depth_file, o->normals_file};
-    const float *data[3] = {fr->rgb, fr->depth, fr->normal};
-    const int channels[3] = {3, 1, 3};
-    for (int k = 0; k < 3; k++) {
+    const char *paths[4] = {o->output, o->depth_file, o->normals_file, o->ids_file};
+    const float *data[4] = {fr->rgb, fr->depth, fr->normal, fr->ids};
+    const int channels[4] = {3, 1, 3, 1};
+    for (int k = 0; k < 4; k++) {
         if (!paths[k])
             continue;
         char *path = o->frames ? numbered(paths[k], frame) : strdup(paths[k]);
@@ -289,10 +294,23 @@ static iacsg_status write_frame(cli_writer *writer, const render_options *o, con
     return IACSG_OK;
 }
 
-static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr) {
+static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const iacsg_scene *s) {
     printf("device: %s\n", iacsg_renderer_device_name(r));
     printf("rays: %lld\n", fr->rays);
     printf("interval evaluations per ray: mean %.2f, max %u\n", fr->evals_mean, fr->evals_max);
+    if (s->nitems > 0) {
+        printf("segments per ray: mean %.2f, max %u\n", fr->segments_mean, fr->segments_max);
+        printf("partitions per ray: mean %.2f, max %u\n", fr->partitions_mean, fr->partitions_max);
+        printf("overlaps: %lld partitions claimed by two regions", fr->overlaps);
+        for (int k = 0; k < fr->noverlap_pairs; k++) {
+            const char *won = s->items[fr->overlap_pairs[k][0]].name, *lost = s->items[fr->overlap_pairs[k][1]].name;
+            printf("%s%s (%d) over %s (%d)", k ? ", " : "; the first: ", won ? won : "?", fr->overlap_pairs[k][0],
+                   lost ? lost : "?", fr->overlap_pairs[k][1]);
+        }
+        printf("\n");
+        printf("per-ray buffers: %lld bytes a ray (%lld rays traced again with more room)\n", fr->ray_buffer_bytes,
+               fr->retraced_rays);
+    }
     printf("kernel build: %.3f s\n", iacsg_renderer_build_seconds(r));
     printf("render: %.3f s\n", fr->render_seconds);
 }
@@ -316,11 +334,11 @@ static iacsg_status check_directory_writable(const char *path, iacsg_error *err)
 }
 
 /* An output that is the scene file itself would destroy it: refuse before rendering. */
-static iacsg_status check_outputs_spare_input(const char *input, const char *const outputs[3], iacsg_error *err) {
+static iacsg_status check_outputs_spare_input(const char *input, const char *const outputs[4], iacsg_error *err) {
     struct stat in;
     if (stat(input, &in) != 0)
         return IACSG_OK;
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 4; k++) {
         struct stat out;
         if (outputs[k] && stat(outputs[k], &out) == 0 && out.st_dev == in.st_dev && out.st_ino == in.st_ino)
             return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "%s: the output would overwrite the scene file",
@@ -346,13 +364,13 @@ int cli_render(int argc, char **argv) {
     if (!text)
         return 1;
     iacsg_error err = {0};
-    iacsg_expr *e = NULL;
+    iacsg_scene *scene = NULL;
     iacsg_renderer *r = NULL;
     cli_writer *writer = NULL;
     /* first, so that the writer loads while OpenCL starts */
     iacsg_status st = cli_writer_start((size_t)o.view.width * (size_t)o.view.height * 3, &writer, &err);
-    const char *outputs[3] = {o.output, o.depth_file, o.normals_file};
-    for (int k = 0; k < 3 && st == IACSG_OK; k++)
+    const char *outputs[4] = {o.output, o.depth_file, o.normals_file, o.ids_file};
+    for (int k = 0; k < 4 && st == IACSG_OK; k++)
         if (outputs[k]) {
             cli_writer_check(writer, outputs[k]);
             st = check_directory_writable(outputs[k], &err);
@@ -360,16 +378,18 @@ int cli_render(int argc, char **argv) {
     if (st == IACSG_OK && name == o.input) /* a scene file */
         st = check_outputs_spare_input(o.input, outputs, &err);
     if (st == IACSG_OK)
-        st = iacsg_expr_parse(text, name, &e, &err);
+        st = iacsg_scene_parse(text, name, &scene, &err);
     if (st == IACSG_OK) {
-        const char *which = choose_bounds(&o, e);
+        const char *which = choose_bounds(&o, scene);
         const double *b = o.view.bounds;
         printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
         place_camera(&o);
-        st = iacsg_renderer_create_expr(e, &o.config, &r, &err);
+        /* regions or surfaces: the segment path; else the expression by the first-root path */
+        st = iacsg_renderer_create_scene(scene, &o.config, &r, &err);
     }
     o.view.no_depth = !o.depth_file; /* images nobody writes are not computed */
     o.view.no_normals = !o.normals_file;
+    o.view.no_ids = !o.ids_file;
     progress_bar bar = {0, 0};
     if (isatty(STDERR_FILENO)) {
         o.view.progress = show_progress;
@@ -395,14 +415,14 @@ int cli_render(int argc, char **argv) {
             break;
         st = write_frame(writer, &o, &fr, k, &err);
         if (st == IACSG_OK && o.config.stats)
-            print_stats(r, &fr);
+            print_stats(r, &fr, scene);
         iacsg_frame_free(&fr);
     }
     if (st != IACSG_OK)
         print_error(&err, name);
     cli_writer_stop(writer);
     iacsg_renderer_destroy(r);
-    iacsg_expr_destroy(e);
+    iacsg_scene_destroy(scene);
     free(text);
     return st == IACSG_OK ? 0 : 1;
 }

@@ -2,7 +2,9 @@
  * interval arithmetic on an OpenCL device, write images. examples/embed.c shows the whole use.
  *
  *   iacsg_expr_parse / iacsg_expr_destroy            implicits/expr.h   text -> compiled expression
+ *   iacsg_scene_parse / iacsg_scene_destroy          implicits/scene.h  scene text -> solids, regions, surfaces
  *   iacsg_renderer_create_expr / _destroy            src/render.h       expression -> device program
+ *   iacsg_renderer_create_scene                      src/render.h       scene -> device program (either path)
  *   iacsg_render / iacsg_frame_free                  src/render.h       one view at one time -> images in memory
  *   iacsg_image_write                                src/image.h        images -> files
  *
@@ -15,6 +17,7 @@
 #include "error.h"
 #include "image.h"
 #include "implicits/expr.h"
+#include "implicits/scene.h"
 #include "render.h"
 
 #define IACSG_VERSION "0.1.0"

@@ -44,6 +44,10 @@ iacsg_status iacsg_renderer_create_expr(const iacsg_expr *e, const iacsg_render_
 iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_render_config *config,
                                          iacsg_renderer **out, iacsg_error *err);
 
+/* The union of the proven boxes of the solids that a scene's items use (x0,y0,z0,x1,y1,z1), for its default
+ * bounds; returns 0 when one of them has none (src/scene_tables.c). */
+int iacsg_scene_bounds(const iacsg_scene *s, double box[6]);
+
 /* Seconds the build took (clBuildProgram and the device compiling the kernel, see render.c: compile_now), and
  * the device's name (owned by the renderer). */
 double iacsg_renderer_build_seconds(const iacsg_renderer *r);

@@ -1,5 +1,6 @@
 /* src/scene_tables.c -- see scene_tables.h. */
 #include "scene_tables.h"
+#include "render.h"
 #include "kernels/scene_data.h"
 #include <math.h>
 #include <stdlib.h>
@@ -334,7 +335,7 @@ void scene_tables_free(scene_tables *t) {
     memset(t, 0, sizeof *t);
 }
 
-int scene_bounds(const iacsg_scene *s, double box[6]) {
+int iacsg_scene_bounds(const iacsg_scene *s, double box[6]) {
     unsigned char *used = calloc((size_t)s->nsolids + 1, 1);
     if (!used)
         return 0;

@@ -30,9 +30,6 @@ typedef struct {
 iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_error *err);
 void scene_tables_free(scene_tables *t);
 
-/* The union of the proven boxes of the solids the items use (x0,y0,z0,x1,y1,z1); 0 when one has none. */
-int scene_bounds(const iacsg_scene *s, double box[6]);
-
 /* The palette colour (linear) of an item without a material. */
 void scene_palette(int id, float rgb[3]);
 
