@@ -9,8 +9,6 @@
  * The library never prints: every call returns a status and fills an iacsg_error, and this program decides
  * what to say. */
 #include "iacsg.h"
-#include "implicits/scene.h"
-#include "scene_tables.h" /* scene_bounds */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,7 +54,7 @@ static iacsg_status render_cell(const char *path, int cell, float *sheet, int sh
         st = iacsg_renderer_create_scene(s, &config, &r, err);
     if (st == IACSG_OK) {
         iacsg_view view = {.width = cell, .height = cell, .eps = 0x1p-16, .camera = {.up = {0, 0, 1}, .fov = 40}};
-        if (!(s->nitems > 0 ? scene_bounds(s, view.bounds) : iacsg_expr_bounds(s->expr, view.bounds)))
+        if (!(s->nitems > 0 ? iacsg_scene_bounds(s, view.bounds) : iacsg_expr_bounds(s->expr, view.bounds)))
             memcpy(view.bounds, (double[6]){-2, -2, -2, 2, 2, 2}, sizeof view.bounds);
         for (int k = 0; k < 3; k++)
             view.camera.at[k] = 0.5 * (view.bounds[k] + view.bounds[k + 3]);
