@@ -8,7 +8,7 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 #endif
-#ifdef IA_VW
+#if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v9 = iav_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));
     iav v10 = iav_sqr(v9);

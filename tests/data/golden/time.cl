@@ -8,7 +8,7 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 #endif
-#ifdef IA_VW
+#if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v2 = iav_sqr(x);
     iav v4 = iav_sqr(y);
