@@ -3,14 +3,18 @@
  *
  *   surface_condition   a condition (kernels/csg_node.h: INSIDE "f < 0", OUTSIDE "f > 0", and, or, not) over a
  *                       box, three-valued from interval enclosures: may it hold somewhere, may it fail somewhere
- *   surface_first_root  bisection of the ray's t range over traverse.h's gap-free nodes, with its outward-rounded
+ *   surface_walk        bisection of the ray's t range over traverse.h's gap-free nodes, with its outward-rounded
  *                       ray boxes: a node is dropped where F of the surface misses 0 or its condition certainly
- *                       fails; the first node no wider than eps that survives is the hit
+ *                       fails; the first node no wider than eps that survives is the hit (surface_first_root:
+ *                       over the ray's own range)
+ *   surface_block_start the same test over the box of a block of pixels' rays (tile_rays.h), down to the block's
+ *                       width: the rays of the block start their walks there, past what it proved empty for all
  *
  * Guarantee: let p = o + t*d (exact, t in [t_near, t_far]) be a point of the float ray with F(p) = 0 where the
  * condition holds (each compared solid defined at p, with the strict sign). Every node holding t has 0 in its
- * enclosure of F and its condition may hold (inclusion), so it is never dropped; the nodes tile [t_near, t_far]
- * in ray order with no gap (traverse.h), so the hit's start is never after t. Conversely the hit's leaf is at
+ * enclosure of F and its condition may hold (inclusion), so it is never dropped, nor is any node holding t over
+ * a block's box, which holds the ray's (tile_rays.h); the nodes tile [t_near, t_far] in ray order with no gap
+ * (traverse.h), so the hit's start is never after t. Conversely the hit's leaf is at
  * most eps wide, F's enclosure holds 0 over it and the condition may hold there: a miss of the surface by
  * less than the enclosures' width, or a point within a leaf of the condition's boundary, may be a hit (as the
  * first-root path may hit a surface it only grazes).
@@ -23,6 +27,7 @@
 #ifndef KERNELS_SURFACE_H
 #define KERNELS_SURFACE_H
 #include "csg_node.h"
+#include "tile_rays.h"
 #include "traverse.h"
 
 /* The value of a condition over a box: a set of the truth values it may take there. */
@@ -75,35 +80,44 @@ IA_FN int surface_condition(const KERNEL_GLOBAL kernel_u32 *nodes, int root, int
     return (int)(stack & 3);
 }
 
-/* The first point of solid `solid`'s zero set in [t_near, t_far] (finite) of the float ray o + t*d where the
- * condition at node `condition` of nodes (-1: none, the whole zero set) may hold: returns 1 with the hit's leaf
- * [*hit_lo, *hit_hi] (at most eps wide, or at the deepest level), 0 when the ray has none. The tree's root is
- * [t_near, t_near + w], w the width rounded up, each node clipped to t_far. Where a node's condition is certain,
- * its descendants inherit it: `proven` is that node's level, and the walk is inside it while it is deeper (it
- * leaves a node's subtree only by climbing to the node's level or above, traverse.h's node_next). */
-IA_FN int surface_first_root(const ia_real o[3], const ia_real d[3], ia_real t_near, ia_real t_far, ia_real eps,
-                             int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time,
-                             ia_real *hit_lo, ia_real *hit_hi) {
-    if (!(t_near <= t_far))
+/* A surface's verdict on a node over its box: whether it may hold a kept point (0 in F of the solid, and the
+ * condition may hold), and, through *proven, whether the condition is certain on it (see surface_walk). */
+IA_FN int surface_keeps(const ia_interval box[3], int level, int *proven, int solid, int condition, int last,
+                        const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time) {
+    if (!ia_contains_zero(scene_solid_F(solid, box[0], box[1], box[2], time)))
         return 0;
-    ia_real w = ia_hi(t_far - t_near);
-    int last = condition >= 0 ? csg_tree_last(nodes, condition) : -1;
-    int unproven = condition >= 0 ? BISECT_MAX_LEVEL + 1 : -1; /* without a condition every node is certain */
-    int level = 0, proven = unproven;
-    bisect_index i = 0;
+    int holds = level > *proven ? SURFACE_CERTAIN : surface_condition(nodes, condition, last, box, time);
+    if (holds == SURFACE_CERTAIN && level < *proven)
+        *proven = level;
+    return holds & SURFACE_MAY_HOLD;
+}
+
+/* The level below which no node is proven to keep its condition: every node for a surface without one. */
+IA_FN int surface_unproven(int condition) { return condition >= 0 ? BISECT_MAX_LEVEL + 1 : -1; }
+
+/* The first point of solid `solid`'s zero set on the float ray o + t*d, t in [t_near, t_far] (finite), where the
+ * condition at node `condition` of nodes (-1: none, the whole zero set) may hold, walking the tree of
+ * [t0, t0 + w] from node (level, i) on, each node clipped to [t_near, t_far] (no node before it may hold such a
+ * point). Returns 1 with the hit's leaf [*hit_lo, *hit_hi] (at most eps wide, or at the deepest level), 0 when
+ * the ray has none. Where a node's condition is certain, its descendants inherit it: `proven` is that node's
+ * level, and the walk is inside it while it is deeper (it leaves a node's subtree only by climbing to the node's
+ * level or above, traverse.h's node_next). */
+IA_FN int surface_walk(const ia_real o[3], const ia_real d[3], ia_real t0, ia_real w, int level, bisect_index i,
+                       ia_real t_near, ia_real t_far, ia_real eps, int solid, int condition,
+                       const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time, ia_real *hit_lo, ia_real *hit_hi) {
+    int last = condition >= 0 ? csg_tree_last(nodes, condition) : -1, unproven = surface_unproven(condition);
+    int proven = unproven;
     for (;;) {
-        ia_real lo = node_bound(t_near, w, level, i), hi = fmin(node_bound(t_near, w, level, i + 1), t_far);
-        if (lo > t_far) /* so is every later node */
+        ia_real start = node_bound(t0, w, level, i);
+        if (start > t_far) /* so is every later node */
             return 0;
-        ia_interval t = ia_make(lo, hi), box[3];
-        for (int k = 0; k < 3; k++)
-            box[k] = ray_extent(o[k], d[k], t);
+        ia_real lo = fmax(start, t_near), hi = fmin(node_bound(t0, w, level, i + 1), t_far);
         int keep = 0;
-        if (ia_contains_zero(scene_solid_F(solid, box[0], box[1], box[2], time))) {
-            int holds = level > proven ? SURFACE_CERTAIN : surface_condition(nodes, condition, last, box, time);
-            keep = holds & SURFACE_MAY_HOLD;
-            if (holds == SURFACE_CERTAIN && level < proven)
-                proven = level;
+        if (lo <= hi) { /* else the node ends before t_near */
+            ia_interval t = ia_make(lo, hi), box[3];
+            for (int k = 0; k < 3; k++)
+                box[k] = ray_extent(o[k], d[k], t);
+            keep = surface_keeps(box, level, &proven, solid, condition, last, nodes, time);
         }
         if (keep && (hi - lo <= eps || level == BISECT_MAX_LEVEL)) {
             *hit_lo = lo;
@@ -117,6 +131,48 @@ IA_FN int surface_first_root(const ia_real o[3], const ia_real d[3], ia_real t_n
             if (!node_next(&level, &i))
                 return 0;
             if (level <= proven)
+                proven = unproven;
+        }
+    }
+}
+
+/* surface_walk over the ray's own tree, [t_near, t_near + w] with w the width rounded up. */
+IA_FN int surface_first_root(const ia_real o[3], const ia_real d[3], ia_real t_near, ia_real t_far, ia_real eps,
+                             int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time,
+                             ia_real *hit_lo, ia_real *hit_hi) {
+    if (!(t_near <= t_far))
+        return 0;
+    return surface_walk(o, d, t_near, ia_hi(t_far - t_near), 0, 0, t_near, t_far, eps, solid, condition, nodes,
+                        time, hit_lo, hit_hi);
+}
+
+/* Coarse to fine, as kernels/tile.h does for the first-root path: the first node of the frame's tree
+ * [t0, t0 + w] (tile_rays.h: frame_root) that may keep a point of the surface for some ray of a block of pixels,
+ * tested over the box that holds all their rays (tile_rays), and no longer than the block is wide there
+ * (splitting t further would not shrink the box much: `spread` is the block's angular size, or its linear size
+ * when orthographic) or eps. Returns 0 when there is none (no ray of the block can hit the surface), else 1
+ * with the node: each ray of the block walks the same tree from there (surface_walk from
+ * max(*i, node_at(t0, w, *level, t_near))), skipping nodes proven empty for all of them at once. */
+IA_FN int surface_block_start(const tile_rays *r, ia_real spread, int ortho, ia_real t0, ia_real w, ia_real eps,
+                              int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time,
+                              int *level, bisect_index *i) {
+    int last = condition >= 0 ? csg_tree_last(nodes, condition) : -1, unproven = surface_unproven(condition);
+    int proven = unproven;
+    *level = 0;
+    *i = 0;
+    for (;;) {
+        ia_real lo = node_bound(t0, w, *level, *i), hi = node_bound(t0, w, *level, *i + 1);
+        ia_interval box[3];
+        tile_box(r, ia_make(lo, hi), box);
+        if (surface_keeps(box, *level, &proven, solid, condition, last, nodes, time)) {
+            if (hi - lo <= fmax(ortho ? spread : spread * hi, eps) || *level == BISECT_MAX_LEVEL)
+                return 1;
+            *level += 1;
+            *i <<= 1;
+        } else {
+            if (!node_next(level, i))
+                return 0;
+            if (*level <= proven)
                 proven = unproven;
         }
     }

@@ -5,7 +5,8 @@
  *   where the condition holds at a point the value may hold, where it fails it may fail.
  * - surface_first_root on random rays against long double references: a root of the surface solid where the
  *   condition certainly holds is never missed and never passed; every hit is within a few leaves of the surface
- *   where the condition may hold. Also a condition thinner than eps (a band around a sphere's equator).
+ *   where the condition may hold. Also a condition thinner than eps (a band around a sphere's equator), and the
+ *   rays of blocks of pixels walking from their block's first coarse node (surface_block_start).
  * - The evaluation stack's bound: a chain of CSG_STACK_MAX comparisons is evaluated right, one more is refused
  *   when the scene is built, with the surface's place when it comes from the language.
  */
@@ -206,20 +207,19 @@ typedef struct {
 #define SURFACE_EPS IA_R(0x1p-12)
 #define SURFACE_TINY 1e-12L /* the long double references' own error, far below the working precision's */
 
-/* Traces the ray o + t d, t in [t_near, t_far], for the surface of solid 0 kept where the condition at `root` of
- * the scene holds (-1: everywhere), and checks it against the exact references: a crossing of solid 0 where the
- * condition certainly holds is never missed nor passed; a hit is a leaf of at most eps where, widened by a
- * leaf's reach, solid 0 may be 0 and the condition may hold. */
-static void check_surface_ray(const iacsg_scene *scene, int nsolids, int condition, const ia_real o[3],
-                              const ia_real d[3], ia_real t_near, ia_real t_far, surface_tally *tally) {
+/* Checks what the kernel found on the ray o + t d, t in [t_near, t_far] (hit, with the leaf [lo, hi]), for the
+ * surface of solid 0 kept where the condition at `condition` of the scene holds (-1: everywhere), against the
+ * exact references: a crossing of solid 0 where the condition certainly holds is never missed nor passed; a hit
+ * is a leaf of at most eps where, widened by a leaf's reach, solid 0 may be 0 and the condition may hold. */
+static void check_surface_hit(const iacsg_scene *scene, int nsolids, int condition, const ia_real o[3],
+                              const ia_real d[3], ia_real t_near, ia_real t_far, int hit, ia_real lo, ia_real hi,
+                              surface_tally *tally) {
     const ia_real eps = SURFACE_EPS;
     ref_ray ray;
     for (int c = 0; c < 3; c++) {
         ray.o[c] = o[c];
         ray.d[c] = d[c];
     }
-    ia_real lo = 0, hi = 0;
-    int hit = surface_first_root(o, d, t_near, t_far, eps, 0, condition, scene->nodes, ia_point(0), &lo, &hi);
     /* the first crossing of the surface solid where the condition certainly holds */
     long double roots[2], first_kept = INFINITY;
     int nroots = crossings(&solids[0], &ray, t_near, t_far, SURFACE_TINY, roots);
@@ -247,6 +247,15 @@ static void check_surface_ray(const iacsg_scene *scene, int nsolids, int conditi
           (double)lo, (double)hi, glo[0], ghi[0]);
     CHECK(condition < 0 || condition_over_ranges(scene, condition, nsolids, glo, ghi) & SURFACE_MAY_HOLD,
           "ray %ld: hit [%a, %a] where the condition certainly fails", it, (double)lo, (double)hi);
+}
+
+/* surface_first_root on the ray, checked. */
+static void check_surface_ray(const iacsg_scene *scene, int nsolids, int condition, const ia_real o[3],
+                              const ia_real d[3], ia_real t_near, ia_real t_far, surface_tally *tally) {
+    ia_real lo = 0, hi = 0;
+    int hit = surface_first_root(o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes, ia_point(0), &lo,
+                                 &hi);
+    check_surface_hit(scene, nsolids, condition, o, d, t_near, t_far, hit, lo, hi, tally);
 }
 
 /* A unit direction in the working precision from `from` towards `to`. */
@@ -307,6 +316,51 @@ TEST_FP(render_surface_thin_condition) {
     iacsg_scene_destroy(scene);
     test_note("%ld rays at the equator: %ld with a kept root, %ld hits", n, tally.kept, tally.hits);
     CHECK(tally.kept > n / 2, "only %ld of %ld rays cross the band where it certainly holds", tally.kept, n);
+}
+
+/* Coarse to fine: the rays of random 4x4 blocks of pixels (kernels/camera.h) start their walks of the frame's
+ * tree at the block's first coarse node (surface_block_start, over the box of the block's rays), or are misses
+ * when it has none; each ray is checked as above. Counts the evaluations the block's pass saved. */
+TEST_FP(render_surface_block_start) {
+    test_rng_t *rng = test_rng();
+    surface_tally tally = {0};
+    long blocks = test_iters(400), skipped = 0, empty = 0;
+    for (long it = 0; it < blocks; it++) {
+        iacsg_scene *scene;
+        int nsolids = 2 + (int)(test_rand_u64(rng) % 3), root = random_scene(rng, nsolids, &scene);
+        int condition = test_rand_u64(rng) % 8 ? root : -1, ortho = test_rand_u64(rng) % 4 == 0;
+        iacsg_view view = {.width = 64, .height = 64};
+        view.camera = (iacsg_camera){.eye = {uniform(rng, -4, 4), uniform(rng, -4, 4), uniform(rng, 2, 4)},
+                                     .up = {0, 0, 1}, .fov = 40, .ortho_height = ortho ? 3 : 0};
+        ia_real p[PARAM_COUNT];
+        view_params(&view, p);
+        p[PARAM_TMIN] = 0;
+        p[PARAM_TMAX] = 9;
+        ia_real t0, w;
+        frame_root(p, &t0, &w);
+        int i0 = 4 * (int)(test_rand_u64(rng) % 16), j0 = 4 * (int)(test_rand_u64(rng) % 16), level;
+        bisect_index start;
+        tile_rays rays;
+        tile_rays_of(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, &rays);
+        ia_real spread = fmax(camera_s(p, i0 + 3, 64) - camera_s(p, i0, 64), camera_v(p, j0, 64) - camera_v(p, j0 + 3, 64));
+        int found = surface_block_start(&rays, spread, ortho, t0, w, SURFACE_EPS, 0, condition, scene->nodes,
+                                        ia_point(0), &level, &start);
+        empty += !found;
+        for (int k = 0; k < 16; k++) {
+            ia_real o[3], d[3], t_near = uniform(rng, 0, 1), t_far = uniform(rng, 6, 9), lo = 0, hi = 0;
+            camera_ray(p, ortho, i0 + k % 4, j0 + k / 4, 64, 64, o, d);
+            bisect_index i = found ? node_at(t0, w, level, t_near) : 0;
+            int hit = found && surface_walk(o, d, t0, w, level, i > start ? i : start, t_near, t_far, SURFACE_EPS, 0,
+                                            condition, scene->nodes, ia_point(0), &lo, &hi);
+            skipped += found ? level : 0;
+            check_surface_hit(scene, nsolids, condition, o, d, t_near, t_far, hit, lo, hi, &tally);
+        }
+        iacsg_scene_destroy(scene);
+    }
+    test_note("%ld blocks (%ld proven empty), %ld rays: %ld with a kept root, %ld hits; rays started %.1f levels "
+              "down",
+              blocks, empty, tally.rays, tally.kept, tally.hits, (double)skipped / (double)tally.rays);
+    CHECK(tally.kept > tally.rays / 10 && empty > 0 && skipped > tally.rays, "too few cases of each kind");
 }
 
 /* A chain c0 & c1 & ... of k comparisons (left deep, as the parser builds it) over solids 0 and 1. */
