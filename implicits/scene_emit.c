@@ -26,16 +26,26 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
         strbuf_printf(&b,
                       "__attribute__((noinline)) ia_interval scene_s%d_F_call(ia_interval x, ia_interval y, "
                       "ia_interval z, ia_interval t) {\n    return scene_s%d_F(x, y, z, t);\n}\n"
+                      "__attribute__((noinline)) ia_interval scene_s%d_Fd_call(ia_interval x, ia_interval y, "
+                      "ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) "
+                      "{\n    return scene_s%d_Fd(x, y, z, t, dx, dy, dz, dt);\n}\n"
                       "__attribute__((noinline)) ia_real scene_s%d_f_grad_call(ia_real x, ia_real y, ia_real z, "
                       "ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {\n"
                       "    return scene_s%d_f_grad(x, y, z, t, gx, gy, gz);\n}\n",
-                      k, k, k, k);
+                      k, k, k, k, k, k);
     }
     strbuf_printf(&b, "IA_FN ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, "
                       "ia_interval t) {\n    switch (k) {\n");
     for (int k = 0; k < s->nsolids; k++)
         strbuf_printf(&b, "    case %d: return scene_s%d_F_call(x, y, z, t);\n", k, k);
     strbuf_printf(&b, "    }\n    return ia_make(-IA_INF, IA_INF);\n}\n"
+                      "#define SCENE_SOLID_FD 1\n"
+                      "IA_FN ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interval z, "
+                      "ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {\n"
+                      "    switch (k) {\n");
+    for (int k = 0; k < s->nsolids; k++)
+        strbuf_printf(&b, "    case %d: return scene_s%d_Fd_call(x, y, z, t, dx, dy, dz, dt);\n", k, k);
+    strbuf_printf(&b, "    }\n    *dt = ia_make(-IA_INF, IA_INF);\n    return ia_make(-IA_INF, IA_INF);\n}\n"
                       "IA_FN ia_real scene_solid_f_grad(int k, ia_real x, ia_real y, ia_real z, ia_real t, "
                       "ia_real *gx, ia_real *gy, ia_real *gz) {\n    switch (k) {\n");
     for (int k = 0; k < s->nsolids; k++)

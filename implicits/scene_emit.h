@@ -3,6 +3,8 @@
  *   IA_FN ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t);
  *   IA_FN ia_real scene_solid_f_grad(int k, ia_real x, ia_real y, ia_real z, ia_real t,
  *                                    ia_real *gx, ia_real *gy, ia_real *gz);
+ *   IA_FN ia_interval scene_solid_Fd(int k, x, y, z, t, dx, dy, dz, ia_interval *dt);   value and derivative
+ *                                    along the direction (dx, dy, dz), for interval Newton (SCENE_SOLID_FD)
  * which kernels/segments.h and kernels/surface.h call. The solids' code is the scalar code (IACSG_SCALAR_CODE):
  * the segment path traces one ray at a time and only shades in lanes. */
 #ifndef IACSG_SCENE_EMIT_H

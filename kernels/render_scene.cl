@@ -25,7 +25,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                  __global const int *solid_items, __global const int *surfaces, int nsurfaces,
                                  __global const float *albedo, __global int *cand_solid, __global ia_real *cand_range,
                                  __global ia_real *cand_pos, __global int *cand_level, __global bisect_index *cand_index,
-                                 int cand_cap, __global uchar *state, int nsolids, __global float *rgb, __global float *depth,
+                                 __global int *cand_newton, __global ia_real *cand_newton_t, int cand_cap, __global uchar *state, int nsolids, __global float *rgb, __global float *depth,
                                  __global float *normal, __global float *ids, __global int *overlap,
                                  __global uint *counts, __global int *overflow, __global int *noverflow) {
     size_t slot = get_global_id(1) * get_global_size(0) + get_global_id(0);
@@ -38,7 +38,8 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                      items,
                      solid_items_start,
                      solid_items,
-                     {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first, cand_index + first},
+                     {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first, cand_index + first,
+                      cand_newton + first, cand_newton_t + 2 * first},
                      cand_cap,
                      0,
                      0,

@@ -3,8 +3,9 @@
  * layout of the scene's tables.
  *
  * Per-ray buffers. A ray collects its candidates, the solids whose boxes it meets (bvh.h), and keeps per
- * candidate its solid, its box's t range, and where its bisection walk stands (segments.h): SCENE_CANDIDATE_BYTES
- * each, plus one byte per solid of the scene for the states (kept all OUT between rays). That is all: the walks
+ * candidate its solid, its box's t range, and where its bisection walk stands (segments.h): 3 ints, 5 reals and a
+ * node index (36 bytes in float, 64 in double: src/render_scene.c, candidate_bytes), plus one byte per solid of
+ * the scene for the states (kept all OUT between rays). That is all: the walks
  * give the solids' state changes in t order, so partitions are classified as they are passed (weave.h) and
  * neither segments nor partitions are stored. A render starts with room for SCENE_RAY_CANDIDATES; a ray that
  * meets more boxes stops, is listed, and is traced again with four times the room, until it fits (never
@@ -12,10 +13,9 @@
  */
 #ifndef KERNELS_SCENE_DATA_H
 #define KERNELS_SCENE_DATA_H
-#include "traverse.h"
+#include "compat.h"
 
 #define SCENE_RAY_CANDIDATES 32
-#define SCENE_CANDIDATE_BYTES (2 * 4 + 3 * (int)sizeof(ia_real) + (int)sizeof(bisect_index))
 
 /* A solid's state over a part of a ray, decided on the enclosure F of its function over the part's box: OUT
  * where F > 0, IN where F < 0, BOUNDARY where 0 is in F on a leaf of the bisection (width <= eps): the solid

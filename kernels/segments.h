@@ -29,6 +29,8 @@ typedef struct {
     KERNEL_GLOBAL ia_real *pos;
     KERNEL_GLOBAL int *level;
     KERNEL_GLOBAL bisect_index *index;
+    KERNEL_GLOBAL int *newton;       /* -1, or level << 2 | state before the root (see segments_newton) */
+    KERNEL_GLOBAL ia_real *newton_t; /* the interval N holding the roots of that node */
 } segments_walks;
 
 #define SEGMENTS_CLOSING (-1)
@@ -37,7 +39,46 @@ IA_FN void segments_start(const segments_walks *w, int c) {
     w->level[c] = 0;
     w->index[c] = 0;
     w->pos[c] = w->range[2 * c];
+    w->newton[c] = -1;
 }
+
+/* Interval Newton along the ray (where the program has scene_solid_Fd, and not with IA_FAST: unrounded, N can
+ * miss its root). On a node [lo, hi] that holds 0, no wider than SEGMENTS_NEWTON_LEAVES leaves, whose derivative
+ * along the ray D excludes 0: f is monotone there, and N = m - F(m) / D (m the midpoint) holds every root in the
+ * node (the mean value theorem). The walk keeps N for the node's subtree: a descendant wholly before N has the
+ * state f has before the root (IN where D > 0, f rising through 0; else OUT), one wholly after it the other, both
+ * without evaluating F; only nodes over N are split, and once N is under half of a node's width the walk splits
+ * without evaluating, while wider ones narrow N by another step. Returns the node's state when N misses it (no
+ * root: f's sign at m), else -1 with N stored, or -1 and nothing stored where D holds 0. */
+#define SEGMENTS_NEWTON_LEAVES 256
+#if defined(SCENE_SOLID_FD) && !defined(IA_FAST)
+IA_FN int segments_newton(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real lo,
+                          ia_real hi, int level, ia_real time, kernel_u32 *evals) {
+    ia_interval t = ia_make(lo, hi), slope;
+    scene_solid_Fd(w->solid[c], ray_extent(o[0], d[0], t), ray_extent(o[1], d[1], t), ray_extent(o[2], d[2], t),
+                   ia_point(time), ia_point(d[0]), ia_point(d[1]), ia_point(d[2]), &slope);
+    *evals += 1;
+    if (!(slope.lo > 0 || slope.hi < 0))
+        return -1;
+    ia_real m = lo * (ia_real)0.5 + hi * (ia_real)0.5;
+    ia_interval at = ia_point(m);
+    ia_interval fm = scene_solid_F(w->solid[c], ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at),
+                                   ray_extent(o[2], d[2], at), ia_point(time));
+    *evals += 1;
+    ia_interval n = ia_sub(at, ia_div(fm, slope));
+    ia_real a = fmax(lo, n.lo), b = fmin(hi, n.hi);
+    if (w->newton[c] >= 0) { /* within an earlier N's node: both hold */
+        a = fmax(a, w->newton_t[2 * c]);
+        b = fmin(b, w->newton_t[2 * c + 1]);
+    }
+    if (!(a <= b)) /* no root in the node: f keeps the sign it has at m */
+        return fm.hi < 0 ? SCENE_IN : fm.lo > 0 ? SCENE_OUT : -1;
+    w->newton[c] = level << 2 | (slope.lo > 0 ? SCENE_IN : SCENE_OUT);
+    w->newton_t[2 * c] = a;
+    w->newton_t[2 * c + 1] = b;
+    return -1;
+}
+#endif
 
 /* The state of a node from the enclosure over its box, or -1 to split it. */
 IA_FN int segments_state(ia_interval f, ia_real width, ia_real eps, int level) {
@@ -65,11 +106,29 @@ IA_FN int segments_step(const segments_walks *w, int c, const ia_real o[3], cons
     int s;
     for (;;) {
         ia_real lo = node_bound(ta, width, level, i), hi = node_bound(ta, width, level, i + 1);
+        int newton = w->newton[c];
+        if (newton >= 0) { /* inside the subtree of a node with N */
+            ia_real a = w->newton_t[2 * c], b = w->newton_t[2 * c + 1];
+            int before = newton & 3;
+            if (hi < a || lo > b) {
+                s = hi < a ? before : SCENE_IN + SCENE_OUT - before;
+                break;
+            }
+            if (b - a <= (hi - lo) * (ia_real)0.5 && hi - lo > eps && level < BISECT_MAX_LEVEL) {
+                level += 1;
+                i *= 2;
+                continue;
+            }
+        }
         ia_interval t = ia_make(lo, hi);
         ia_interval f = scene_solid_F(w->solid[c], ray_extent(o[0], d[0], t), ray_extent(o[1], d[1], t),
                                       ray_extent(o[2], d[2], t), ia_point(time));
         *evals += 1;
         s = segments_state(f, hi - lo, eps, level);
+#if defined(SCENE_SOLID_FD) && !defined(IA_FAST)
+        if (s < 0 && hi - lo <= SEGMENTS_NEWTON_LEAVES * eps)
+            s = segments_newton(w, c, o, d, lo, hi, level, time, evals);
+#endif
         if (s >= 0)
             break;
         level += 1;
@@ -77,6 +136,8 @@ IA_FN int segments_step(const segments_walks *w, int c, const ia_real o[3], cons
     }
     if (node_next(&level, &i)) {
         w->pos[c] = node_bound(ta, width, level, i);
+        if (level <= w->newton[c] >> 2) /* out of the subtree where N holds */
+            w->newton[c] = -1;
     } else if (s != SCENE_OUT) { /* the final OUT at the range's end */
         level = SEGMENTS_CLOSING;
         w->pos[c] = node_bound(ta, width, 0, 1);

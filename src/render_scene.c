@@ -72,7 +72,7 @@ static iacsg_status upload_tables(iacsg_renderer *r, render_scene *s, iacsg_erro
 /* The buffers of one frame. */
 typedef struct {
     cl_mem params, box, rgb, depth, normal, ids, overlap, counts, list[2], nlist[2];
-    cl_mem cand_solid, cand_range, cand_pos, cand_level, cand_index, state;
+    cl_mem cand_solid, cand_range, cand_pos, cand_level, cand_index, cand_newton, cand_newton_t, state;
     int cand_cap;
     size_t slots; /* work-items the per-ray buffers have room for */
 } scene_buffers;
@@ -80,7 +80,8 @@ typedef struct {
 static void release_scene_buffers(scene_buffers *b) {
     cl_mem *all[] = {&b->params,  &b->box,      &b->rgb,        &b->depth,      &b->normal,  &b->ids,
                      &b->overlap, &b->counts,   &b->list[0],    &b->list[1],    &b->nlist[0], &b->nlist[1],
-                     &b->cand_solid, &b->cand_range, &b->cand_pos, &b->cand_level, &b->cand_index, &b->state};
+                     &b->cand_solid, &b->cand_range, &b->cand_pos, &b->cand_level, &b->cand_index, &b->cand_newton,
+                     &b->cand_newton_t, &b->state};
     for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
         if (*all[k]) {
             clReleaseMemObject(*all[k]);
@@ -90,9 +91,9 @@ static void release_scene_buffers(scene_buffers *b) {
 
 static size_t real_size(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
 
-/* The bytes of a candidate's walk (kernels/segments.h): solid, range, position, level and index. */
+/* The bytes of a candidate's walk (kernels/segments.h): solid, range, position, level, index and Newton's N. */
 static size_t candidate_bytes(const iacsg_renderer *r) {
-    return 2 * sizeof(cl_int) + 3 * real_size(r) + (r->config.fp64 ? sizeof(cl_ulong) : sizeof(cl_uint));
+    return 3 * sizeof(cl_int) + 5 * real_size(r) + (r->config.fp64 ? sizeof(cl_ulong) : sizeof(cl_uint));
 }
 
 /* The bytes of one work-item's slice of the per-ray buffers: its candidates and the states of all solids. */
@@ -103,10 +104,16 @@ static size_t slot_bytes(const iacsg_renderer *r, int cand_cap) {
 /* (Re)allocates the per-ray buffers for `slots` work-items with the given room; the states start OUT. */
 static iacsg_status scratch_buffers(iacsg_renderer *r, scene_buffers *b, size_t slots, int cand_cap,
                                     iacsg_error *err) {
-    cl_mem *all[] = {&b->cand_solid, &b->cand_range, &b->cand_pos, &b->cand_level, &b->cand_index, &b->state};
+    cl_mem *all[] = {&b->cand_solid, &b->cand_range, &b->cand_pos,      &b->cand_level,
+                     &b->cand_index, &b->cand_newton, &b->cand_newton_t, &b->state};
     size_t cands = slots * (size_t)cand_cap;
-    size_t bytes[] = {cands * sizeof(cl_int), cands * 2 * real_size(r), cands * real_size(r), cands * sizeof(cl_int),
+    size_t bytes[] = {cands * sizeof(cl_int),
+                      cands * 2 * real_size(r),
+                      cands * real_size(r),
+                      cands * sizeof(cl_int),
                       cands * (r->config.fp64 ? sizeof(cl_ulong) : sizeof(cl_uint)),
+                      cands * sizeof(cl_int),
+                      cands * 2 * real_size(r),
                       slots * (size_t)(r->scene->t.nsolids + 1)};
     for (size_t k = 0; k < sizeof all / sizeof all[0]; k++) {
         if (*all[k])
@@ -116,7 +123,7 @@ static iacsg_status scratch_buffers(iacsg_renderer *r, scene_buffers *b, size_t 
         CLRT_CHECK(err, rc);
     }
     cl_uchar out = SCENE_OUT;
-    CLRT_CHECK(err, clEnqueueFillBuffer(r->rt.queue, b->state, &out, 1, 0, bytes[5], 0, NULL, NULL));
+    CLRT_CHECK(err, clEnqueueFillBuffer(r->rt.queue, b->state, &out, 1, 0, bytes[7], 0, NULL, NULL));
     b->slots = slots;
     b->cand_cap = cand_cap;
     return IACSG_OK;
@@ -124,7 +131,7 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* The kernel's arguments but 4 (the band), 5 and 6 (the list of pixels), and the overflow list (31, 32). */
+/* The kernel's arguments but 4 (the band), 5 and 6 (the list of pixels), and the overflow list (33, 34). */
 static iacsg_status set_scene_args(iacsg_renderer *r, const iacsg_view *view, const scene_buffers *b,
                                    iacsg_error *err) {
     render_scene *s = r->scene;
@@ -145,12 +152,13 @@ static iacsg_status set_scene_args(iacsg_renderer *r, const iacsg_view *view, co
                 {15, sizeof nsurfaces, &nsurfaces},    {16, sizeof(cl_mem), &s->albedo},
                 {17, sizeof(cl_mem), &b->cand_solid},  {18, sizeof(cl_mem), &b->cand_range},
                 {19, sizeof(cl_mem), &b->cand_pos},    {20, sizeof(cl_mem), &b->cand_level},
-                {21, sizeof(cl_mem), &b->cand_index},  {22, sizeof cand_cap, &cand_cap},
-                {23, sizeof(cl_mem), &b->state},       {24, sizeof nsolids, &nsolids},
-                {25, sizeof(cl_mem), &b->rgb},         {26, sizeof(cl_mem), b->depth ? &b->depth : NULL},
-                {27, sizeof(cl_mem), b->normal ? &b->normal : NULL},
-                {28, sizeof(cl_mem), b->ids ? &b->ids : NULL},
-                {29, sizeof(cl_mem), &b->overlap},     {30, sizeof(cl_mem), b->counts ? &b->counts : NULL}};
+                {21, sizeof(cl_mem), &b->cand_index},  {22, sizeof(cl_mem), &b->cand_newton},
+                {23, sizeof(cl_mem), &b->cand_newton_t}, {24, sizeof cand_cap, &cand_cap},
+                {25, sizeof(cl_mem), &b->state},       {26, sizeof nsolids, &nsolids},
+                {27, sizeof(cl_mem), &b->rgb},         {28, sizeof(cl_mem), b->depth ? &b->depth : NULL},
+                {29, sizeof(cl_mem), b->normal ? &b->normal : NULL},
+                {30, sizeof(cl_mem), b->ids ? &b->ids : NULL},
+                {31, sizeof(cl_mem), &b->overlap},     {32, sizeof(cl_mem), b->counts ? &b->counts : NULL}};
     for (size_t a = 0; a < sizeof args / sizeof args[0]; a++)
         CLRT_CHECK(err, clSetKernelArg(k, (cl_uint)args[a].index, args[a].size, args[a].value));
     return IACSG_OK;
@@ -158,7 +166,7 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* Arguments 4-6 and 31-32: the band's first packet row (with a list: the first packet of 16 listed pixels),
+/* Arguments 4-6 and 33-34: the band's first packet row (with a list: the first packet of 16 listed pixels),
  * the list of pixels to trace (NULL: the band's packets), and the list the overflowing rays go to. */
 static iacsg_status set_launch_args(iacsg_renderer *r, cl_int block_row0, const cl_mem *pixels, cl_int npixels,
                                     const cl_mem *overflow, const cl_mem *noverflow, iacsg_error *err) {
@@ -166,8 +174,8 @@ static iacsg_status set_launch_args(iacsg_renderer *r, cl_int block_row0, const 
     CLRT_CHECK(err, clSetKernelArg(k, 4, sizeof block_row0, &block_row0));
     CLRT_CHECK(err, clSetKernelArg(k, 5, sizeof(cl_mem), pixels));
     CLRT_CHECK(err, clSetKernelArg(k, 6, sizeof npixels, &npixels));
-    CLRT_CHECK(err, clSetKernelArg(k, 31, sizeof(cl_mem), overflow));
-    CLRT_CHECK(err, clSetKernelArg(k, 32, sizeof(cl_mem), noverflow));
+    CLRT_CHECK(err, clSetKernelArg(k, 33, sizeof(cl_mem), overflow));
+    CLRT_CHECK(err, clSetKernelArg(k, 34, sizeof(cl_mem), noverflow));
     return IACSG_OK;
 fail:
     return IACSG_ERR_OPENCL;

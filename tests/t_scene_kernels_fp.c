@@ -185,8 +185,8 @@ TEST_FP(scene_trace_spheres) {
     scene_tables t;
     CHECK(scene_tables_build(s, &t, &err) == IACSG_OK, "%s", err.message);
     host_scene = s;
-    ia_real box[6 * 2 * N], range[2 * N], pos[N];
-    int solid[N], level[N];
+    ia_real box[6 * 2 * N], range[2 * N], pos[N], newton_t[2 * N];
+    int solid[N], level[N], newton[N];
     bisect_index index[N];
     unsigned char state[N] = {0};
     for (int k = 0; k < 6 * t.nbvh; k++)
@@ -202,7 +202,7 @@ TEST_FP(scene_trace_spheres) {
         }
         for (int a = 0; a < 3; a++)
             d[a] /= sqrt(len);
-        scene_ray ray = {t.nodes, t.items, t.solid_items_start, t.solid_items, {solid, range, pos, level, index},
+        scene_ray ray = {t.nodes, t.items, t.solid_items_start, t.solid_items, {solid, range, pos, level, index, newton, newton_t},
                          N, 0, 0, state, 0, 0, 0};
         weave_hit hit = {0, -1, -1, -1};
         int found = scene_trace_ray(&v, &ray, o, d, 0, 8, &hit);
