@@ -7,8 +7,9 @@
  *                       ray boxes: a node is dropped where F of the surface misses 0 or its condition certainly
  *                       fails; the first node no wider than eps that survives is the hit (surface_first_root:
  *                       over the ray's own range)
- *   surface_block_start the same test over the box of a block of pixels' rays (tile_rays.h), down to the block's
- *                       width: the rays of the block start their walks there, past what it proved empty for all
+ *   surface_block       the same test over the box of a block of pixels' rays (tile_rays.h), down to the block's
+ *                       width: the rays of the block start their walks there (surface_first_root_from), past what
+ *                       it proved empty for all of them at once
  *
  * Guarantee: let p = o + t*d (exact, t in [t_near, t_far]) be a point of the float ray with F(p) = 0 where the
  * condition holds (each compared solid defined at p, with the strict sign). Every node holding t has 0 in its
@@ -27,6 +28,7 @@
 #ifndef KERNELS_SURFACE_H
 #define KERNELS_SURFACE_H
 #include "csg_node.h"
+#include "params.h"
 #include "tile_rays.h"
 #include "traverse.h"
 
@@ -147,12 +149,10 @@ IA_FN int surface_first_root(const ia_real o[3], const ia_real d[3], ia_real t_n
 }
 
 /* Coarse to fine, as kernels/tile.h does for the first-root path: the first node of the frame's tree
- * [t0, t0 + w] (tile_rays.h: frame_root) that may keep a point of the surface for some ray of a block of pixels,
- * tested over the box that holds all their rays (tile_rays), and no longer than the block is wide there
- * (splitting t further would not shrink the box much: `spread` is the block's angular size, or its linear size
- * when orthographic) or eps. Returns 0 when there is none (no ray of the block can hit the surface), else 1
- * with the node: each ray of the block walks the same tree from there (surface_walk from
- * max(*i, node_at(t0, w, *level, t_near))), skipping nodes proven empty for all of them at once. */
+ * [t0, t0 + w] that may keep a point of the surface for some ray of a block of pixels, tested over the box that
+ * holds all their rays (tile_rays), and no longer than the block is wide there (splitting t further would not
+ * shrink the box much: `spread` is the block's angular size, or its linear size when orthographic) or eps.
+ * Returns 0 when there is none (no ray of the block can hit the surface), else 1 with the node. */
 IA_FN int surface_block_start(const tile_rays *r, ia_real spread, int ortho, ia_real t0, ia_real w, ia_real eps,
                               int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time,
                               int *level, bisect_index *i) {
@@ -176,6 +176,43 @@ IA_FN int surface_block_start(const tile_rays *r, ia_real spread, int ortho, ia_
                 proven = unproven;
         }
     }
+}
+
+/* Where the rays of a block of pixels start their walks for one surface: the frame's tree, and its node (level
+ * -1: no ray of the block can hit the surface). */
+typedef struct {
+    ia_real t0, w;
+    int level;
+    bisect_index i;
+} surface_start;
+
+/* The surfaces of a scene that get a block pass; the others are walked ray by ray from the top. */
+#define SURFACE_BLOCK_MAX 8
+
+/* The start of the rays of pixels i0..i1 x j0..j1 (in the image) of the frame of parameter block p. */
+IA_FN void surface_block(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1, int j0, int j1, int width,
+                         int height, int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes,
+                         ia_interval time, surface_start *start) {
+    tile_rays rays;
+    tile_rays_of(p, ortho, i0, i1, j0, j1, width, height, &rays);
+    ia_real spread = fmax(camera_s(p, i1, width) - camera_s(p, i0, width),
+                          camera_v(p, j0, height) - camera_v(p, j1, height));
+    frame_root(p, &start->t0, &start->w);
+    if (!surface_block_start(&rays, spread, ortho, start->t0, start->w, p[PARAM_EPS], solid, condition, nodes, time,
+                             &start->level, &start->i))
+        start->level = -1;
+}
+
+/* surface_walk for one ray of the block, on its part [t_near, t_far] inside the frame's root. */
+IA_FN int surface_first_root_from(const surface_start *start, const ia_real o[3], const ia_real d[3], ia_real t_near,
+                                  ia_real t_far, ia_real eps, int solid, int condition,
+                                  const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time, ia_real *hit_lo,
+                                  ia_real *hit_hi) {
+    if (start->level < 0 || !(t_near <= t_far))
+        return 0;
+    bisect_index i = node_at(start->t0, start->w, start->level, t_near);
+    return surface_walk(o, d, start->t0, start->w, start->level, i > start->i ? i : start->i, t_near, t_far, eps,
+                        solid, condition, nodes, time, hit_lo, hit_hi);
 }
 
 #endif

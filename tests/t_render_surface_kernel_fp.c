@@ -6,7 +6,7 @@
  * - surface_first_root on random rays against long double references: a root of the surface solid where the
  *   condition certainly holds is never missed and never passed; every hit is within a few leaves of the surface
  *   where the condition may hold. Also a condition thinner than eps (a band around a sphere's equator), and the
- *   rays of blocks of pixels walking from their block's first coarse node (surface_block_start).
+ *   rays of blocks of pixels walking from their block's first coarse node (surface_block).
  * - The evaluation stack's bound: a chain of CSG_STACK_MAX comparisons is evaluated right, one more is refused
  *   when the scene is built, with the surface's place when it comes from the language.
  */
@@ -319,8 +319,8 @@ TEST_FP(render_surface_thin_condition) {
 }
 
 /* Coarse to fine: the rays of random 4x4 blocks of pixels (kernels/camera.h) start their walks of the frame's
- * tree at the block's first coarse node (surface_block_start, over the box of the block's rays), or are misses
- * when it has none; each ray is checked as above. Counts the evaluations the block's pass saved. */
+ * tree at the block's first coarse node (surface_block, over the box of the block's rays), or are misses when it
+ * has none; each ray is checked as above. Counts how deep in the tree the rays start. */
 TEST_FP(render_surface_block_start) {
     test_rng_t *rng = test_rng();
     surface_tally tally = {0};
@@ -336,23 +336,17 @@ TEST_FP(render_surface_block_start) {
         view_params(&view, p);
         p[PARAM_TMIN] = 0;
         p[PARAM_TMAX] = 9;
-        ia_real t0, w;
-        frame_root(p, &t0, &w);
-        int i0 = 4 * (int)(test_rand_u64(rng) % 16), j0 = 4 * (int)(test_rand_u64(rng) % 16), level;
-        bisect_index start;
-        tile_rays rays;
-        tile_rays_of(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, &rays);
-        ia_real spread = fmax(camera_s(p, i0 + 3, 64) - camera_s(p, i0, 64), camera_v(p, j0, 64) - camera_v(p, j0 + 3, 64));
-        int found = surface_block_start(&rays, spread, ortho, t0, w, SURFACE_EPS, 0, condition, scene->nodes,
-                                        ia_point(0), &level, &start);
-        empty += !found;
+        p[PARAM_EPS] = SURFACE_EPS;
+        int i0 = 4 * (int)(test_rand_u64(rng) % 16), j0 = 4 * (int)(test_rand_u64(rng) % 16);
+        surface_start start;
+        surface_block(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, 0, condition, scene->nodes, ia_point(0), &start);
+        empty += start.level < 0;
         for (int k = 0; k < 16; k++) {
             ia_real o[3], d[3], t_near = uniform(rng, 0, 1), t_far = uniform(rng, 6, 9), lo = 0, hi = 0;
             camera_ray(p, ortho, i0 + k % 4, j0 + k / 4, 64, 64, o, d);
-            bisect_index i = found ? node_at(t0, w, level, t_near) : 0;
-            int hit = found && surface_walk(o, d, t0, w, level, i > start ? i : start, t_near, t_far, SURFACE_EPS, 0,
-                                            condition, scene->nodes, ia_point(0), &lo, &hi);
-            skipped += found ? level : 0;
+            int hit = surface_first_root_from(&start, o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes,
+                                              ia_point(0), &lo, &hi);
+            skipped += start.level > 0 ? start.level : 0;
             check_surface_hit(scene, nsolids, condition, o, d, t_near, t_far, hit, lo, hi, &tally);
         }
         iacsg_scene_destroy(scene);
