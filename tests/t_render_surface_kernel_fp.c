@@ -1,5 +1,6 @@
 /* tests/t_render_surface_kernel_fp.c -- the level-set surface stage (kernels/surface.h), compiled here as host C
- * with the same precision, over solids whose values along a line are known exactly: planes, spheres and boxes.
+ * with the same precision (and with interval Newton, as the device has it), over solids whose values along a
+ * line are known exactly: planes, spheres and boxes.
  *
  * - surface_condition over random boxes against the host's point reference (scene_tree_eval) at points of the box:
  *   where the condition holds at a point the value may hold, where it fails it may fail.
@@ -38,6 +39,29 @@ static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interva
     if (s->kind == REF_SPHERE)
         return ia_sub(f, ia_sqr(ia_point((ia_real)s->r)));
     return f;
+}
+
+/* Its derivative along the direction (dx, dy, dz), for interval Newton (surface.h): the box's is the hull of its
+ * three pieces' (Clarke's generalised derivative of the max lies in it, and the mean value theorem holds with
+ * it). */
+#define SCENE_SOLID_FD 1
+static ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx,
+                                  ia_interval dy, ia_interval dz, ia_interval *dt) {
+    const ref_solid *s = &solids[k];
+    ia_interval p[3] = {x, y, z}, v[3] = {dx, dy, dz}, der = ia_point(0);
+    for (int c = 0; c < 3; c++) {
+        ia_interval u = ia_sub(p[c], ia_point((ia_real)s->c[c]));
+        if (s->kind == REF_HALFSPACE)
+            der = ia_add(der, ia_mul_r(v[c], (ia_real)s->c[c]));
+        else if (s->kind == REF_SPHERE)
+            der = ia_add(der, ia_mul(ia_mul_r(u, 2), v[c]));
+        else {
+            ia_interval piece = u.lo > 0 ? v[c] : u.hi < 0 ? ia_neg(v[c]) : ia_hull(v[c], ia_neg(v[c]));
+            der = c == 0 ? piece : ia_hull(der, piece);
+        }
+    }
+    *dt = der;
+    return scene_solid_F(k, x, y, z, t);
 }
 
 #include "kernels/surface.h"
