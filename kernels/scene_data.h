@@ -4,10 +4,10 @@
  *
  * Per-ray buffers. A ray collects its candidates, the solids whose boxes it meets (bvh.h), and keeps per
  * candidate its solid, its box's t range, and where its bisection walk stands (segments.h): 3 ints, 5 reals and a
- * node index (36 bytes in float, 64 in double: src/render_scene.c, candidate_bytes), plus one byte per solid of
- * the scene for the states (kept all OUT between rays). That is all: the walks
- * give the solids' state changes in t order, so partitions are classified as they are passed (weave.h) and
- * neither segments nor partitions are stored. A render starts with room for SCENE_RAY_CANDIDATES; a ray that
+ * node index (36 bytes in float, 60 in double: src/render_scene.c, candidate_bytes), plus one byte per solid of
+ * the scene for the states (kept all OUT between rays). That is all: the walks give the solids' state changes
+ * in t order, so partitions are classified as they are passed (weave.h) and neither segments nor partitions
+ * are stored. A render starts with room for SCENE_RAY_CANDIDATES; a ray that
  * meets more boxes stops, is listed, and is traced again with four times the room, until it fits (never
  * truncated).
  */

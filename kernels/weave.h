@@ -3,12 +3,13 @@
  * state, and each partition is classified (classify.h) once no walk can change a state before its end: against
  * the regions that use a solid which is not OUT there (the per-solid lists of src/render_scene.c). The first
  * partition that some region may be in is the hit; the region declared first among those that may be in claims
- * it. Where another region is certainly in as well as a certainly-in winner, the partition is an overlap.
+ * it. At the first partition from there on where the winner is certainly in, another region certainly in makes
+ * an overlap (weave_ray).
  *
  * Why not Domingues' linked list of partitions: the walks give the state changes already in order, so a
  * partition is classified as the weave passes it and never stored; the per-ray buffer is the candidates alone
- * (scene_data.h). What a partition is in is the table of states per solid (bytes, not bits: the host resets
- * only the candidates' entries after each ray).
+ * (scene_data.h). What a partition is in is the table of states per solid (bytes, not bits: each ray resets only
+ * its candidates' entries when it is done).
  */
 #ifndef KERNELS_WEAVE_H
 #define KERNELS_WEAVE_H

@@ -198,12 +198,12 @@ static void release_buffers(frame_buffers *b) {
 }
 
 /* The frame's buffers must fit the device: checked up front, so that a too-large image gets a message in
- * terms of -size rather than an OpenCL error code. The largest buffer holds 3 floats a pixel, and the frame's
- * buffers together 7 (8 with -stats). */
-static iacsg_status check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n,
+ * terms of -size rather than an OpenCL error code. The largest buffer holds 3 floats a pixel; the frame's buffers
+ * together `per_pixel` 4-byte values a pixel (the first-root path: 7, 8 with -stats). */
+iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n, double per_pixel,
                                         iacsg_error *err) {
     double mib = 1024.0 * 1024.0;
-    double largest = 3.0 * (double)n * sizeof(float), total = (r->config.stats ? 8.0 : 7.0) * (double)n * sizeof(float);
+    double largest = 3.0 * (double)n * sizeof(float), total = per_pixel * (double)n * sizeof(float);
     if (largest <= (double)r->rt.max_alloc_size && total <= (double)r->rt.global_mem_size)
         return IACSG_OK;
     return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0,
@@ -384,7 +384,7 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
     if (st == IACSG_OK)
-        st = check_device_memory(r, view, n, err);
+        st = render_check_device_memory(r, view, n, r->config.stats ? 8 : 7, err);
     if (st == IACSG_OK)
         st = create_buffers(r, params, n, tiles_n, frame, &buffers, err);
     if (st == IACSG_OK)

@@ -30,6 +30,9 @@ iacsg_status render_build(iacsg_renderer *r, const char *const *sources, size_t 
 iacsg_status render_check_view(const iacsg_view *v, iacsg_error *err);
 /* The parameter block (kernels/params.h) in the working precision. */
 iacsg_status render_fill_params(const iacsg_view *v, int fp64, void *block, iacsg_error *err);
+/* An error naming -size when a frame's buffers, `per_pixel` 4-byte values a pixel, cannot fit the device. */
+iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n, double per_pixel,
+                                        iacsg_error *err);
 /* A frame's image of `count` floats, page-aligned. */
 float *render_image_alloc(size_t count);
 

@@ -451,6 +451,9 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
                              view->height);
     scene_buffers b = {0};
     b.cand_cap = r->config.ray_candidates > 0 ? r->config.ray_candidates : SCENE_RAY_CANDIDATES;
+    /* rgb, depth, normal, ids, overlap, two lists of re-traced pixels (and 3 counts with stats) */
+    if (st == IACSG_OK)
+        st = render_check_device_memory(r, view, n, r->config.stats ? 15 : 12, err);
     if (st == IACSG_OK)
         st = frame_buffers_of(r, view, params, n, frame, &b, err);
     double t0 = render_now_seconds();
