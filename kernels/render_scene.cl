@@ -32,8 +32,14 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     int i0 = (int)get_global_id(0) * PACKET_W, j0 = (block_row0 + (int)get_global_id(1)) * PACKET_H;
     if (!pixels && (i0 >= width || j0 >= height))
         return;
-    scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS],
-                       ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI])};
+    ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
+    /* a block pass per surface over the packet's rays (surface.h), not for a list of pixels to trace again */
+    surface_start starts[SURFACE_BLOCK_MAX];
+    for (int s = 0; !pixels && s < min(nsurfaces, SURFACE_BLOCK_MAX); s++)
+        surface_block(params, flags & RENDER_ORTHO, i0, min(i0 + PACKET_W, width) - 1, j0, min(j0 + PACKET_H, height) - 1,
+                      width, height, items[SCENE_ITEM_INTS * surfaces[s] + SCENE_ITEM_SOLID],
+                      items[SCENE_ITEM_INTS * surfaces[s] + SCENE_ITEM_ROOT], nodes, time, &starts[s]);
+    scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, pixels ? 0 : starts};
     size_t first = slot * (size_t)cand_cap;
     scene_ray ray = {nodes,
                      items,

@@ -20,7 +20,8 @@ typedef struct {
     const KERNEL_GLOBAL int *surfaces; /* the items that are surfaces */
     int nsurfaces;
     ia_real eps;
-    ia_interval time; /* encloses the value of t */
+    ia_interval time;            /* encloses the value of t */
+    const surface_start *starts; /* the first SURFACE_BLOCK_MAX surfaces' block starts (surface.h), or 0 */
 } scene_view;
 
 #define SCENE_TRACE_OVERFLOW (-1)
@@ -32,8 +33,11 @@ IA_FN int scene_trace_surfaces(const scene_view *v, const scene_ray *r, const ia
         int item = v->surfaces[s];
         const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * item;
         ia_real lo, hi, end = found ? hit->t : tf;
-        if (surface_first_root(o, d, tn, end, v->eps, it[SCENE_ITEM_SOLID], it[SCENE_ITEM_ROOT], r->nodes,
-                               v->time, &lo, &hi) &&
+        int solid = it[SCENE_ITEM_SOLID], cond = it[SCENE_ITEM_ROOT];
+        if ((v->starts && s < SURFACE_BLOCK_MAX
+                 ? surface_first_root_from(&v->starts[s], o, d, tn, end, v->eps, solid, cond, r->nodes, v->time, &lo,
+                                           &hi)
+                 : surface_first_root(o, d, tn, end, v->eps, solid, cond, r->nodes, v->time, &lo, &hi)) &&
             (!found || lo < hit->t)) {
             found = 1;
             hit->t = lo;

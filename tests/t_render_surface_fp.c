@@ -2,7 +2,7 @@
  * pixel's id and depth against the exact host reference (tests/t_scene_ref.h: the first crossing of the
  * surface's solid where its condition holds, in long double): a plane's zero set kept inside a sphere (a disc), a
  * sphere's zero set kept where a box is negative, a condition with `!` and `|`, a whole zero set (no condition),
- * and surfaces in front of and behind a region. */
+ * surfaces in front of and behind a region, and more surfaces than get a block pass. */
 #include "t_scene_check.h"
 
 static const iacsg_camera view_front = {.eye = {3, -4, 2.5}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 35};
@@ -50,4 +50,19 @@ TEST_FP(render_surface_with_region) {
     ref_add_surface(&rs, plane, "<2");
     ref_add_region(&rs, "<3");
     ref_check_scene("with_region", &rs, &view_front, NULL);
+}
+
+/* More surfaces than get a block pass (SURFACE_BLOCK_MAX, kernels/surface.h): the first ones start their rays'
+ * walks at their blocks' nodes, the rest walk from the top; every other one is cut by a tilted plane. */
+TEST_FP(render_surface_many) {
+    static ref_scene rs;
+    ref_scene_init(&rs);
+    for (int k = 0; k < 12; k++)
+        ref_add_solid(&rs, ref_sphere(-1.5 + 0.75 * (k % 4), -1 + 0.75 * (k / 4), 0, 0.3125));
+    int cut = ref_add_solid(&rs, ref_halfspace(0.25, 0, 1, 0.0625));
+    char condition[16];
+    snprintf(condition, sizeof condition, "<%d", cut);
+    for (int k = 0; k < 12; k++)
+        ref_add_surface(&rs, k, k % 2 ? condition : NULL);
+    ref_check_scene("many", &rs, &view_front, NULL);
 }

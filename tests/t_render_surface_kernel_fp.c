@@ -1,11 +1,13 @@
 /* tests/t_render_surface_kernel_fp.c -- the level-set surface stage (kernels/surface.h), compiled here as host C
- * with the same precision, over solids whose values along a line are known exactly: planes, spheres and boxes.
+ * with the same precision (and with interval Newton, as the device has it), over solids whose values along a
+ * line are known exactly: planes, spheres and boxes.
  *
  * - surface_condition over random boxes against the host's point reference (scene_tree_eval) at points of the box:
  *   where the condition holds at a point the value may hold, where it fails it may fail.
  * - surface_first_root on random rays against long double references: a root of the surface solid where the
  *   condition certainly holds is never missed and never passed; every hit is within a few leaves of the surface
- *   where the condition may hold.
+ *   where the condition may hold. Also a condition thinner than eps (a band around a sphere's equator), and the
+ *   rays of blocks of pixels walking from their block's first coarse node (surface_block).
  * - The evaluation stack's bound: a chain of CSG_STACK_MAX comparisons is evaluated right, one more is refused
  *   when the scene is built, with the surface's place when it comes from the language.
  */
@@ -37,6 +39,29 @@ static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interva
     if (s->kind == REF_SPHERE)
         return ia_sub(f, ia_sqr(ia_point((ia_real)s->r)));
     return f;
+}
+
+/* Its derivative along the direction (dx, dy, dz), for interval Newton (surface.h): the box's is the hull of its
+ * three pieces' (Clarke's generalised derivative of the max lies in it, and the mean value theorem holds with
+ * it). */
+#define SCENE_SOLID_FD 1
+static ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx,
+                                  ia_interval dy, ia_interval dz, ia_interval *dt) {
+    const ref_solid *s = &solids[k];
+    ia_interval p[3] = {x, y, z}, v[3] = {dx, dy, dz}, der = ia_point(0);
+    for (int c = 0; c < 3; c++) {
+        ia_interval u = ia_sub(p[c], ia_point((ia_real)s->c[c]));
+        if (s->kind == REF_HALFSPACE)
+            der = ia_add(der, ia_mul_r(v[c], (ia_real)s->c[c]));
+        else if (s->kind == REF_SPHERE)
+            der = ia_add(der, ia_mul(ia_mul_r(u, 2), v[c]));
+        else {
+            ia_interval piece = u.lo > 0 ? v[c] : u.hi < 0 ? ia_neg(v[c]) : ia_hull(v[c], ia_neg(v[c]));
+            der = c == 0 ? piece : ia_hull(der, piece);
+        }
+    }
+    *dt = der;
+    return scene_solid_F(k, x, y, z, t);
 }
 
 #include "kernels/surface.h"
@@ -198,64 +223,162 @@ TEST_FP(render_surface_condition_encloses_points) {
     CHECK(holds > n / 20 && fails > n / 20 && undecided > n / 20, "a kind of value is too rare to test");
 }
 
+/* What the checks of surface rays saw. */
+typedef struct {
+    long rays, kept, hits, dropped;
+} surface_tally;
+
+#define SURFACE_EPS IA_R(0x1p-12)
+#define SURFACE_TINY 1e-12L /* the long double references' own error, far below the working precision's */
+
+/* Checks what the kernel found on the ray o + t d, t in [t_near, t_far] (hit, with the leaf [lo, hi]), for the
+ * surface of solid 0 kept where the condition at `condition` of the scene holds (-1: everywhere), against the
+ * exact references: a crossing of solid 0 where the condition certainly holds is never missed nor passed; a hit
+ * is a leaf of at most eps where, widened by a leaf's reach, solid 0 may be 0 and the condition may hold. */
+static void check_surface_hit(const iacsg_scene *scene, int nsolids, int condition, const ia_real o[3],
+                              const ia_real d[3], ia_real t_near, ia_real t_far, int hit, ia_real lo, ia_real hi,
+                              surface_tally *tally) {
+    const ia_real eps = SURFACE_EPS;
+    ref_ray ray;
+    for (int c = 0; c < 3; c++) {
+        ray.o[c] = o[c];
+        ray.d[c] = d[c];
+    }
+    /* the first crossing of the surface solid where the condition certainly holds */
+    long double roots[2], first_kept = INFINITY;
+    int nroots = crossings(&solids[0], &ray, t_near, t_far, SURFACE_TINY, roots);
+    for (int r = nroots - 1; r >= 0; r--) {
+        long double glo[MAX_SOLIDS], ghi[MAX_SOLIDS];
+        ranges_on_segment(nsolids, &ray, roots[r], roots[r], SURFACE_TINY, glo, ghi);
+        int v = condition < 0 ? SURFACE_CERTAIN : condition_over_ranges(scene, condition, nsolids, glo, ghi);
+        if (v == SURFACE_CERTAIN)
+            first_kept = roots[r];
+        tally->dropped += v == SURFACE_MAY_FAIL;
+    }
+    long it = tally->rays++;
+    tally->kept += first_kept < INFINITY;
+    tally->hits += hit;
+    CHECK(hit || first_kept == INFINITY, "ray %ld: missed the kept root at t = %.17Lg", it, first_kept);
+    CHECK(!hit || lo <= first_kept + SURFACE_TINY, "ray %ld: hit at %.9g, after the kept root at %.17Lg", it,
+          (double)lo, first_kept);
+    if (!hit)
+        return;
+    CHECK(hi - lo <= eps && t_near <= lo && hi <= t_far, "ray %ld: leaf [%a, %a] wider than eps or outside", it,
+          (double)lo, (double)hi);
+    long double glo[MAX_SOLIDS], ghi[MAX_SOLIDS], spread = 2 * (long double)eps;
+    ranges_on_segment(nsolids, &ray, lo, hi, spread, glo, ghi);
+    CHECK(glo[0] <= 0 && ghi[0] >= 0, "ray %ld: hit [%a, %a] where the surface solid is in [%Lg, %Lg]", it,
+          (double)lo, (double)hi, glo[0], ghi[0]);
+    CHECK(condition < 0 || condition_over_ranges(scene, condition, nsolids, glo, ghi) & SURFACE_MAY_HOLD,
+          "ray %ld: hit [%a, %a] where the condition certainly fails", it, (double)lo, (double)hi);
+}
+
+/* surface_first_root on the ray, checked. */
+static void check_surface_ray(const iacsg_scene *scene, int nsolids, int condition, const ia_real o[3],
+                              const ia_real d[3], ia_real t_near, ia_real t_far, surface_tally *tally) {
+    ia_real lo = 0, hi = 0;
+    int hit = surface_first_root(o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes, ia_point(0), &lo,
+                                 &hi);
+    check_surface_hit(scene, nsolids, condition, o, d, t_near, t_far, hit, lo, hi, tally);
+}
+
+/* A unit direction in the working precision from `from` towards `to`. */
+static void direction(const ia_real from[3], const ia_real to[3], ia_real d[3]) {
+    ia_real len = 0;
+    for (int c = 0; c < 3; c++) {
+        d[c] = to[c] - from[c];
+        len += d[c] * d[c];
+    }
+    len = sqrt(len);
+    for (int c = 0; c < 3; c++)
+        d[c] /= len;
+}
+
 TEST_FP(render_surface_first_root_vs_exact) {
     test_rng_t *rng = test_rng();
-    long kept = 0, hits = 0, dropped = 0, n = test_iters(3000);
-    const ia_real eps = IA_R(0x1p-12);
-    const long double tiny = 1e-12L;
+    surface_tally tally = {0};
+    long n = test_iters(3000);
     for (long it = 0; it < n; it++) {
         iacsg_scene *scene;
         int nsolids = 2 + (int)(test_rand_u64(rng) % 3), root = random_scene(rng, nsolids, &scene);
-        int condition = test_rand_u64(rng) % 8 ? root : -1;
-        /* a ray from a point around the scene towards a point near its middle, direction unit in ia_real */
-        ia_real o[3], d[3], len = 0;
+        /* a ray from a point around the scene towards a point near its middle */
+        ia_real o[3], to[3], d[3];
         for (int c = 0; c < 3; c++) {
             o[c] = uniform(rng, -4, 4);
-            d[c] = uniform(rng, -0.7, 0.7) - o[c];
-            len += d[c] * d[c];
+            to[c] = uniform(rng, -0.7, 0.7);
         }
-        len = sqrt(len);
-        ref_ray ray;
-        for (int c = 0; c < 3; c++) {
-            d[c] /= len;
-            ray.o[c] = o[c];
-            ray.d[c] = d[c];
-        }
-        ia_real t_near = uniform(rng, 0, 1), t_far = t_near + uniform(rng, 4, 8), lo = 0, hi = 0;
-        int hit = surface_first_root(o, d, t_near, t_far, eps, 0, condition, scene->nodes, ia_point(0), &lo, &hi);
-        /* the first crossing of the surface solid where the condition certainly holds */
-        long double roots[2], first_kept = INFINITY;
-        int nroots = crossings(&solids[0], &ray, t_near, t_far, tiny, roots);
-        for (int r = nroots - 1; r >= 0; r--) {
-            long double glo[MAX_SOLIDS], ghi[MAX_SOLIDS];
-            ranges_on_segment(nsolids, &ray, roots[r], roots[r], tiny, glo, ghi);
-            int v = condition < 0 ? SURFACE_CERTAIN : condition_over_ranges(scene, root, nsolids, glo, ghi);
-            if (v == SURFACE_CERTAIN)
-                first_kept = roots[r];
-            dropped += v == SURFACE_MAY_FAIL;
-        }
-        kept += first_kept < INFINITY;
-        hits += hit;
-        CHECK(hit || first_kept == INFINITY, "case %ld: missed the kept root at t = %.17Lg", it, first_kept);
-        CHECK(!hit || lo <= first_kept + tiny, "case %ld: hit at %.9g, after the kept root at %.17Lg", it,
-              (double)lo, first_kept);
-        if (hit) {
-            CHECK(hi - lo <= eps && t_near <= lo && hi <= t_far, "case %ld: leaf [%a, %a] wider than eps or outside",
-                  it, (double)lo, (double)hi);
-            /* justified: over the leaf, widened by a leaf's reach, the surface solid may be 0 and the condition
-             * may hold */
-            long double glo[MAX_SOLIDS], ghi[MAX_SOLIDS], spread = 2 * (long double)eps;
-            ranges_on_segment(nsolids, &ray, lo, hi, spread, glo, ghi);
-            CHECK(glo[0] <= 0 && ghi[0] >= 0, "case %ld: hit [%a, %a] where the surface solid is in [%Lg, %Lg]",
-                  it, (double)lo, (double)hi, glo[0], ghi[0]);
-            CHECK(condition < 0 || condition_over_ranges(scene, root, nsolids, glo, ghi) & SURFACE_MAY_HOLD,
-                  "case %ld: hit [%a, %a] where the condition certainly fails", it, (double)lo, (double)hi);
+        direction(o, to, d);
+        ia_real t_near = uniform(rng, 0, 1), t_far = t_near + uniform(rng, 4, 8);
+        check_surface_ray(scene, nsolids, test_rand_u64(rng) % 8 ? root : -1, o, d, t_near, t_far, &tally);
+        iacsg_scene_destroy(scene);
+    }
+    test_note("%ld rays: %ld with a kept root, %ld hits, %ld roots dropped by their condition", n, tally.kept,
+              tally.hits, tally.dropped);
+    CHECK(tally.kept > n / 10 && tally.dropped > n / 10, "too few kept or dropped roots to test");
+}
+
+/* A condition thinner than eps: the unit sphere kept in the slab |z| < 2^-15 (an eighth of eps), a band around
+ * its equator. Rays aimed at points of the equator cross the sphere inside the band: none may be missed. */
+TEST_FP(render_surface_thin_condition) {
+    test_rng_t *rng = test_rng();
+    solids[0] = ref_sphere(0, 0, 0, 1);
+    solids[1] = ref_box(0, 0, 0, 2, 2, 0x1p-15);
+    iacsg_scene *scene = scene_create();
+    CHECK(scene, "out of memory");
+    uint32_t inside_slab = CSG_NODE(CSG_INSIDE, 1);
+    int root = scene_add_tree(scene, &inside_slab, 1, NULL);
+    surface_tally tally = {0};
+    long n = test_iters(2000);
+    for (long it = 0; it < n; it++) {
+        double phi = 6.283185307179586 * test_rand_unit(rng), elevation = 1.4 * test_rand_unit(rng) - 0.7;
+        ia_real to[3] = {(ia_real)cos(phi), (ia_real)sin(phi), 0}, o[3], d[3];
+        for (int c = 0; c < 3; c++) /* from outside, on the side of the point the ray aims at */
+            o[c] = to[c] * (ia_real)3 + (c == 2 ? (ia_real)(3 * elevation) : uniform(rng, -1, 1));
+        direction(o, to, d);
+        check_surface_ray(scene, 2, root, o, d, 0, 6, &tally);
+    }
+    iacsg_scene_destroy(scene);
+    test_note("%ld rays at the equator: %ld with a kept root, %ld hits", n, tally.kept, tally.hits);
+    CHECK(tally.kept > n / 2, "only %ld of %ld rays cross the band where it certainly holds", tally.kept, n);
+}
+
+/* Coarse to fine: the rays of random 4x4 blocks of pixels (kernels/camera.h) start their walks of the frame's
+ * tree at the block's first coarse node (surface_block, over the box of the block's rays), or are misses when it
+ * has none; each ray is checked as above. Counts how deep in the tree the rays start. */
+TEST_FP(render_surface_block_start) {
+    test_rng_t *rng = test_rng();
+    surface_tally tally = {0};
+    long blocks = test_iters(400), skipped = 0, empty = 0;
+    for (long it = 0; it < blocks; it++) {
+        iacsg_scene *scene;
+        int nsolids = 2 + (int)(test_rand_u64(rng) % 3), root = random_scene(rng, nsolids, &scene);
+        int condition = test_rand_u64(rng) % 8 ? root : -1, ortho = test_rand_u64(rng) % 4 == 0;
+        iacsg_view view = {.width = 64, .height = 64};
+        view.camera = (iacsg_camera){.eye = {uniform(rng, -4, 4), uniform(rng, -4, 4), uniform(rng, 2, 4)},
+                                     .up = {0, 0, 1}, .fov = 40, .ortho_height = ortho ? 3 : 0};
+        ia_real p[PARAM_COUNT];
+        view_params(&view, p);
+        p[PARAM_TMIN] = 0;
+        p[PARAM_TMAX] = 9;
+        p[PARAM_EPS] = SURFACE_EPS;
+        int i0 = 4 * (int)(test_rand_u64(rng) % 16), j0 = 4 * (int)(test_rand_u64(rng) % 16);
+        surface_start start;
+        surface_block(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, 0, condition, scene->nodes, ia_point(0), &start);
+        empty += start.level < 0;
+        for (int k = 0; k < 16; k++) {
+            ia_real o[3], d[3], t_near = uniform(rng, 0, 1), t_far = uniform(rng, 6, 9), lo = 0, hi = 0;
+            camera_ray(p, ortho, i0 + k % 4, j0 + k / 4, 64, 64, o, d);
+            int hit = surface_first_root_from(&start, o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes,
+                                              ia_point(0), &lo, &hi);
+            skipped += start.level > 0 ? start.level : 0;
+            check_surface_hit(scene, nsolids, condition, o, d, t_near, t_far, hit, lo, hi, &tally);
         }
         iacsg_scene_destroy(scene);
     }
-    test_note("%ld rays: %ld with a kept root, %ld hits, %ld roots dropped by their condition", n, kept, hits,
-              dropped);
-    CHECK(kept > n / 10 && dropped > n / 10, "too few kept or dropped roots to test");
+    test_note("%ld blocks (%ld proven empty), %ld rays: %ld with a kept root, %ld hits; rays started %.1f levels "
+              "down",
+              blocks, empty, tally.rays, tally.kept, tally.hits, (double)skipped / (double)tally.rays);
+    CHECK(tally.kept > tally.rays / 10 && empty > 0 && skipped > tally.rays, "too few cases of each kind");
 }
 
 /* A chain c0 & c1 & ... of k comparisons (left deep, as the parser builds it) over solids 0 and 1. */

@@ -191,7 +191,7 @@ TEST_FP(scene_trace_spheres) {
     unsigned char state[N] = {0};
     for (int k = 0; k < 6 * t.nbvh; k++)
         box[k] = (ia_real)t.bvh_box[k]; /* the spheres' boxes are dyadic with few bits: exact */
-    scene_view v = {box, t.bvh_link, t.nbvh, t.surfaces, 0, (ia_real)0x1p-12, {0, 0}};
+    scene_view v = {box, t.bvh_link, t.nbvh, t.surfaces, 0, (ia_real)0x1p-12, {0, 0}, 0};
     long rays = test_iters(3000), hits = 0, near = 0;
     for (long it = 0; it < rays; it++) {
         ia_real o[3], d[3], len = 0;
