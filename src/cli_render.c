@@ -368,6 +368,18 @@ static iacsg_status check_outputs_spare_input(const char *input, const char *con
     return IACSG_OK;
 }
 
+iacsg_status parse_input(const char *text, const char *name, iacsg_scene **out, iacsg_error *err) {
+    iacsg_status st = iacsg_scene_parse(text, name, out, err);
+    if (st != IACSG_OK || (*out)->nitems == 0 || strcmp(name, "<expr>") != 0)
+        return st;
+    iacsg_scene_destroy(*out);
+    *out = NULL;
+    iacsg_expr *e = NULL;
+    st = iacsg_expr_parse(text, name, &e, err); /* refuses the region or surface, at its place */
+    iacsg_expr_destroy(e);
+    return st != IACSG_OK ? st : iacsg_error_set(err, IACSG_ERR_SYNTAX, 1, 1, "regions need a scene file");
+}
+
 /* The error's line without "iacsg: ": "NAME:LINE:COL: message", or the message without a place. */
 static void format_error(char *line, size_t size, const iacsg_error *err, const char *name) {
     if (err->line > 0)
@@ -423,7 +435,7 @@ int cli_render(int argc, char **argv) {
     if (st == IACSG_OK && name == o.input) /* a scene file */
         st = check_outputs_spare_input(o.input, outputs, &err);
     if (st == IACSG_OK)
-        st = iacsg_scene_parse(text, name, &scene, &err);
+        st = parse_input(text, name, &scene, &err);
     if (st == IACSG_OK) {
         char phrase[256];
         const char *which = choose_bounds(&o, scene, phrase, sizeof phrase);

@@ -22,6 +22,11 @@ int parse_options(int argc, char **argv, render_options *o);
  * (*name = "<expr>"). The result is malloc'ed; NULL (after a message) when the file cannot be read. */
 char *read_input(const char *input, const char **name);
 
+/* Compiles what read_input gave: a scene file may declare regions and surfaces; an expression on the command
+ * line (name "<expr>") is one solid, and a region in it is refused where it stands (iacsg_expr_parse's
+ * message). */
+iacsg_status parse_input(const char *text, const char *name, iacsg_scene **out, iacsg_error *err);
+
 /* Sets o->view.bounds (given, found by the compiler for the times rendered, or the default) and returns a
  * phrase saying which and what was proven (in `phrase`, or a constant). A scene with items: the union of its
  * solids' proven boxes. */

@@ -37,6 +37,9 @@ static void make_fixture(const char *dir) {
     write_file(dir, "final-expression.csg", "solid ball = sphere\nregion r = ball\nbox\n", 1, "");
     write_file(dir, "region-no-expression.csg", "region body = \n", 1, "");
     write_file(dir, "where-no-condition.csg", "surface s = plane where\n", 1, "");
+    write_file(dir, "unknown-solid.csg", "solid ball = sphere\nregion r = ball | bal\n", 1, "");
+    write_file(dir, "unknown-material.csg", "material red = rgb(1, 0, 0)\nsolid ball = sphere\nregion r = ball : rde\n", 1,
+               "");
     write_file(dir, "material-twice.csg", "material red = rgb(1, 0, 0)\nmaterial red = rgb(0, 1, 0)\nsphere\n", 1, "");
     char path[4096];
     snprintf(path, sizeof path, "%s/deep.csg", dir);

@@ -72,3 +72,21 @@ TEST(render_scene_cli_ids) {
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     CHECK(system(cmd) == 0, "cannot clean %s", dir);
 }
+
+/* Regions need a scene file: on the command line, an expression is one solid, and a region in it is refused at
+ * its place, with no image written. */
+TEST(render_scene_cli_region_in_expression) {
+    char dir[256], path[1024], cmd[1024];
+    snprintf(dir, sizeof dir, "/tmp/iacsg-scene-expr-%ld", (long)getpid());
+    CHECK(mkdir(dir, 0700) == 0, "cannot create %s", dir);
+    int rc = run_in(dir, "'solid a = sphere; region r = a'");
+    snprintf(path, sizeof path, "%s/out.txt", dir);
+    char *out = test_read_file(path, NULL);
+    CHECK(rc == 1 && out && strstr(out, "iacsg: <expr>:1:19: a region makes a multi-material scene"), "exit %d: %s", rc,
+          out ? out : "");
+    free(out);
+    snprintf(path, sizeof path, "%s/iacsg.png", dir);
+    CHECK(access(path, F_OK) != 0, "an image was written");
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0, "cannot clean %s", dir);
+}
