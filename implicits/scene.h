@@ -25,8 +25,9 @@ typedef struct {
     float specular, shininess; /* optional keywords; defaults SCENE_DEFAULT_SPECULAR, _SHININESS */
 } scene_material;
 
-#define SCENE_DEFAULT_SPECULAR 0.25f
-#define SCENE_DEFAULT_SHININESS 32.0f
+/* The first-root path's highlight (kernels/light.h), so that a solid looks the same on either path. */
+#define SCENE_DEFAULT_SPECULAR 0.45f
+#define SCENE_DEFAULT_SHININESS 48.0f
 
 typedef struct {
     char *name;       /* NULL for an expression written inline in a region or a condition */

@@ -2,7 +2,7 @@
  * light and a fill light, the lights fixed to the camera (upper left and right of the eye), over a vertical
  * gradient background. Colours are linear and are encoded for display with gamma 2 at the end (a square root:
  * pow() cost a tenth of the whole render). The first-root path (shade.h) lights one albedo, the segment path
- * (render_scene.cl) each pixel's region's.
+ * (render_scene.cl) each pixel's material: its albedo, highlight weight and exponent.
  */
 #ifndef KERNELS_LIGHT_H
 #define KERNELS_LIGHT_H
@@ -35,10 +35,10 @@ IA_FN void shade_light_direction(const KERNEL_CONSTANT ia_real *p, ia_real a, ia
         l[k] /= len;
 }
 
-/* One light's diffuse and specular terms for unit normals n, view directions d (from the eye) and the unit light
- * direction l. */
+/* One light's diffuse term and the cosine nh between the normal and the half vector (0 where the light is behind
+ * the surface), for unit normals n, view directions d (from the eye) and the unit light direction l. */
 IA_FN void shade_light(const ia_realv n[3], const ia_realv d[3], const ia_real l[3], ia_realv *diffuse,
-                       ia_realv *specular) {
+                       ia_realv *nh_out) {
     ia_realv h[3], hh = IAV_R(0), nl = IAV_R(0), nh = IAV_R(0);
     for (int k = 0; k < 3; k++) {
         nl += n[k] * l[k];
@@ -48,22 +48,21 @@ IA_FN void shade_light(const ia_realv n[3], const ia_realv d[3], const ia_real l
     for (int k = 0; k < 3; k++)
         nh += n[k] * h[k];
     nh = select(IAV_R(0), fmax(nh / sqrt(hh), IAV_R(0)), hh > 0);
-    ia_realv nh4 = (nh * nh) * (nh * nh), nh16 = (nh4 * nh4) * (nh4 * nh4); /* shininess 48 = 16 + 32 */
     *diffuse = fmax(nl, IAV_R(0));
-    *specular = select(IAV_R(0), nh16 * (nh16 * nh16), nl > 0);
+    *nh_out = select(IAV_R(0), nh, nl > 0);
 }
 
-/* The displayed colours rgb of the lanes: surface points of the given linear albedo with unit normals n seen along
- * d in the lanes of `surface`, the background of their rows j (as floats) of `height` in the others. */
-IA_FN void shade_lit_pixels(const KERNEL_CONSTANT ia_real *p, ia_maskv surface, const ia_realv n[3],
-                            const ia_realv d[3], shade_colorv j, int height, const shade_colorv albedo[3],
-                            shade_colorv rgb[3]) {
-    ia_real key[3], fill[3];
-    shade_light_direction(p, (ia_real)-0.6, (ia_real)0.8, key);
-    shade_light_direction(p, (ia_real)0.9, (ia_real)-0.2, fill);
-    ia_realv kd, ks, fd, fs;
-    shade_light(n, d, key, &kd, &ks);
-    shade_light(n, d, fill, &fd, &fs);
+/* nh^48, the first-root path's highlight, by squaring (pow() cost a tenth of the whole render). */
+IA_FN ia_realv shade_power48(ia_realv nh) {
+    ia_realv nh4 = (nh * nh) * (nh * nh), nh16 = (nh4 * nh4) * (nh4 * nh4); /* 48 = 16 + 32 */
+    return nh16 * (nh16 * nh16);
+}
+
+/* The displayed colours rgb: albedo lit by the key and fill lights' diffuse terms kd, fd, plus the highlights
+ * ks, fs (weights included), in the lanes of `surface`; the background of their rows j (as floats) of `height`
+ * in the others. */
+IA_FN void shade_combine(ia_maskv surface, shade_colorv j, int height, const shade_colorv albedo[3], ia_realv kd,
+                         ia_realv fd, ia_realv ks, ia_realv fs, shade_colorv rgb[3]) {
     shade_colorv key_d = shade_to_color(kd), key_s = shade_to_color(ks);
     shade_colorv fill_d = shade_to_color(fd), fill_s = shade_to_color(fs);
     /* the background: a gradient from a light grey-blue at the top to a dark one below */
@@ -71,9 +70,41 @@ IA_FN void shade_lit_pixels(const KERNEL_CONSTANT ia_real *p, ia_maskv surface, 
     IAV_CAT(int, IA_VW) on_surface = IAV_CAT(convert_int, IA_VW)(surface) != 0;
     const float top[3] = {0.42f, 0.46f, 0.52f}, bottom[3] = {0.13f, 0.14f, 0.17f};
     for (int c = 0; c < 3; c++) {
-        shade_colorv lin = albedo[c] * (0.10f + 0.85f * key_d + 0.30f * fill_d) + 0.45f * key_s + 0.10f * fill_s;
+        shade_colorv lin = albedo[c] * (0.10f + 0.85f * key_d + 0.30f * fill_d) + key_s + fill_s;
         rgb[c] = select(top[c] + (bottom[c] - top[c]) * v, sqrt(fmin(lin, 1.0f)), on_surface);
     }
+}
+
+/* The key light (upper left of the eye) and the fill light (lower right), fixed to the camera. */
+IA_FN void shade_lights(const KERNEL_CONSTANT ia_real *p, const ia_realv n[3], const ia_realv d[3], ia_realv *kd,
+                        ia_realv *knh, ia_realv *fd, ia_realv *fnh) {
+    ia_real key[3], fill[3];
+    shade_light_direction(p, (ia_real)-0.6, (ia_real)0.8, key);
+    shade_light_direction(p, (ia_real)0.9, (ia_real)-0.2, fill);
+    shade_light(n, d, key, kd, knh);
+    shade_light(n, d, fill, fd, fnh);
+}
+
+/* The first-root path's colours: one albedo, highlights of weight 0.45 (key) and 0.10 (fill), exponent 48. */
+IA_FN void shade_lit_pixels(const KERNEL_CONSTANT ia_real *p, ia_maskv surface, const ia_realv n[3],
+                            const ia_realv d[3], shade_colorv j, int height, const shade_colorv albedo[3],
+                            shade_colorv rgb[3]) {
+    ia_realv kd, knh, fd, fnh;
+    shade_lights(p, n, d, &kd, &knh, &fd, &fnh);
+    ia_realv ks = IAV_R(0.45) * shade_power48(knh), fs = IAV_R(0.10) * shade_power48(fnh);
+    shade_combine(surface, j, height, albedo, kd, fd, ks, fs, rgb);
+}
+
+/* The segment path's colours: each lane's material, its highlight weight `specular` on the key light (the fill
+ * light's in the first-root path's proportion, 0.10 / 0.45) and its exponent `shininess`. */
+IA_FN void shade_lit_materials(const KERNEL_CONSTANT ia_real *p, ia_maskv surface, const ia_realv n[3],
+                               const ia_realv d[3], shade_colorv j, int height, const shade_colorv albedo[3],
+                               ia_realv specular, ia_realv shininess, shade_colorv rgb[3]) {
+    ia_realv kd, knh, fd, fnh;
+    shade_lights(p, n, d, &kd, &knh, &fd, &fnh);
+    ia_realv ks = select(IAV_R(0), exp2(shininess * log2(knh)), knh > 0);
+    ia_realv fs = select(IAV_R(0), exp2(shininess * log2(fnh)), fnh > 0);
+    shade_combine(surface, j, height, albedo, kd, fd, specular * ks, specular * (IAV_R(0.10 / 0.45) * fs), rgb);
 }
 
 #endif

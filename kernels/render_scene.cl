@@ -57,6 +57,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     int pixel[PACKET_LANES];
     ia_real dk[3][PACKET_LANES], gk[3][PACKET_LANES], on[PACKET_LANES];
     float rows[PACKET_LANES], color[3][PACKET_LANES];
+    ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
     for (int k = 0; k < PACKET_LANES; k++) {
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
         if (pixels) {
@@ -84,8 +85,10 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
         for (int c = 0; c < 3; c++) {
             dk[c][k] = d[c];
             gk[c][k] = gradient[c];
-            color[c][k] = found ? albedo[3 * hit.item + c] : 0;
+            color[c][k] = found ? albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_RGB + c] : 0;
         }
+        specular[k] = found ? albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SPECULAR] : 0;
+        shininess[k] = found ? albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SHININESS] : 1;
         if (pixel[k] < 0)
             continue;
         if (depth)
@@ -109,7 +112,8 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     }
     shade_normals(g, d, n);
     ia_maskv hit_v = IAV_LOAD(on) != 0;
-    shade_lit_pixels(params, hit_v, n, d, IAV_CAT(vload, IA_VW)(0, rows), height, albedo_v, rgb_v);
+    shade_lit_materials(params, hit_v, n, d, IAV_CAT(vload, IA_VW)(0, rows), height, albedo_v, IAV_LOAD(specular),
+                        IAV_LOAD(shininess), rgb_v);
     ia_real nk[3][PACKET_LANES];
     for (int c = 0; c < 3; c++) {
         IAV_STORE(select(IAV_R(0), n[c], hit_v), nk[c]);

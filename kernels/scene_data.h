@@ -35,6 +35,8 @@
  * kernels/csg_node.h, relinearised so that its evaluation needs at most SCENE_TREE_STACK values at once
  * (kernels/classify.h). */
 enum { SCENE_ITEM_KIND = 0, SCENE_ITEM_ROOT = 1, SCENE_ITEM_SIZE = 2, SCENE_ITEM_SOLID = 3, SCENE_ITEM_INTS = 4 };
+/* An item's material: SCENE_MATERIAL_FLOATS floats, its linear albedo, highlight weight and exponent. */
+enum { SCENE_MATERIAL_RGB = 0, SCENE_MATERIAL_SPECULAR = 3, SCENE_MATERIAL_SHININESS = 4, SCENE_MATERIAL_FLOATS = 5 };
 #define SCENE_KIND_REGION 0
 #define SCENE_KIND_SURFACE 1
 #define SCENE_TREE_STACK 64

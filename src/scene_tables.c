@@ -283,7 +283,7 @@ iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_err
     t->nodes = malloc(sizeof(uint32_t) * ((size_t)s->nnodes + region_nodes + 1));
     t->items = malloc(sizeof(int) * SCENE_ITEM_INTS * (size_t)(s->nitems + 1));
     t->surfaces = malloc(sizeof(int) * (size_t)(s->nitems + 1));
-    t->albedo = malloc(3 * sizeof(float) * (size_t)(s->nitems + 1));
+    t->albedo = malloc(SCENE_MATERIAL_FLOATS * sizeof(float) * (size_t)(s->nitems + 1));
     iacsg_status st = used && t->nodes && t->items && t->surfaces && t->albedo
                           ? IACSG_OK
                           : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
@@ -297,10 +297,14 @@ iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_err
         out[SCENE_ITEM_SOLID] = it->solid;
         out[SCENE_ITEM_ROOT] = it->tree;
         out[SCENE_ITEM_SIZE] = it->tree >= 0 ? scene_tree_size(s, it->tree) : 0;
+        float *m = t->albedo + SCENE_MATERIAL_FLOATS * i;
         if (it->material >= 0)
-            memcpy(t->albedo + 3 * i, s->materials[it->material].rgb, 3 * sizeof(float));
+            memcpy(m + SCENE_MATERIAL_RGB, s->materials[it->material].rgb, 3 * sizeof(float));
         else
-            scene_palette(i, t->albedo + 3 * i);
+            scene_palette(i, m + SCENE_MATERIAL_RGB);
+        const scene_material *mat = it->material >= 0 ? &s->materials[it->material] : NULL;
+        m[SCENE_MATERIAL_SPECULAR] = mat ? mat->specular : SCENE_DEFAULT_SPECULAR;
+        m[SCENE_MATERIAL_SHININESS] = mat ? mat->shininess : SCENE_DEFAULT_SHININESS;
         if (it->kind == SCENE_SURFACE) {
             t->surfaces[t->nsurfaces++] = i;
             continue;

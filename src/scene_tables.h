@@ -23,7 +23,7 @@ typedef struct {
     int nitems;
     int *solid_items_start, *solid_items; /* nsolids + 1, and the regions */
     int *surfaces, nsurfaces;
-    float *albedo; /* 3 per item */
+    float *albedo; /* the item's material: SCENE_MATERIAL_FLOATS per item (kernels/scene_data.h) */
     int uses_time; /* some solid depends on t (the boxes hold for t in [0, 1]) */
     int in_cube;   /* some box holds only inside the cube of IACSG_BOUNDS_CUBE */
 } scene_tables;
