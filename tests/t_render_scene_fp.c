@@ -463,7 +463,7 @@ TEST_FP(render_scene_many) {
     iacsg_view v = test_view(200, 0x1p-12);
     note("216 spheres in 8 regions", check_scene(&t, &v, &plain_config, NULL));
     t.nregions = 0;
-    static char single[216][8];
+    static char single[216][12]; /* room for any int, as -Wformat-truncation reckons */
     for (int k = 0; k < 216; k++) {
         snprintf(single[k], sizeof single[k], "%d", k);
         t.regions[t.nregions++] = single[k];
