@@ -1,21 +1,14 @@
 /* src/camera.c -- see camera.h. */
 #include "camera.h"
 #include "kernels/params.h"
+#include "vec3.h"
 #include <math.h>
 
 static const double pi = 3.14159265358979323846;
 
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-static void cross3(const double a[3], const double b[3], double out[3]) {
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* Scales v to unit length; returns 0 (leaving v) when it is too short to have a direction. */
 static int normalize3(double v[3]) {
-    double len = sqrt(dot3(v, v));
+    double len = sqrt(vec3_dot(v, v));
     if (!(len > 1e-300) || !isfinite(len))
         return 0;
     for (int k = 0; k < 3; k++)
@@ -56,10 +49,10 @@ iacsg_status iacsg_camera_params(const iacsg_camera *c, int width, int height, d
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the eye and the target point coincide");
     if (!normalize3(up))
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the up vector is zero");
-    cross3(f, up, r);
-    if (sqrt(dot3(r, r)) < 1e-9 || !normalize3(r))
+    vec3_cross(f, up, r);
+    if (sqrt(vec3_dot(r, r)) < 1e-9 || !normalize3(r))
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the up vector is parallel to the view direction");
-    cross3(r, f, u);
+    vec3_cross(r, f, u);
     double half;
     if (c->ortho_height > 0)
         half = c->ortho_height / 2;

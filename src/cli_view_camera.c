@@ -1,5 +1,6 @@
 /* src/cli_view_camera.c -- see cli_view_camera.h. */
 #include "cli_view_camera.h"
+#include "vec3.h"
 #include <math.h>
 
 #define DEGREES_PER_PIXEL 0.4
@@ -8,17 +9,9 @@
 
 static const double pi = 3.14159265358979323846;
 
-static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-static void cross(const double a[3], const double b[3], double out[3]) {
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* Scales v to length 1; returns its former length. */
 static double normalize(double v[3]) {
-    double n = sqrt(dot(v, v));
+    double n = sqrt(vec3_dot(v, v));
     if (n > 0)
         for (int k = 0; k < 3; k++)
             v[k] /= n;
@@ -28,7 +21,7 @@ static double normalize(double v[3]) {
 /* A unit vector perpendicular to the unit vector u. */
 static void any_perpendicular(const double u[3], double out[3]) {
     const double x[3] = {1, 0, 0}, y[3] = {0, 1, 0};
-    cross(u, fabs(u[0]) < 0.9 ? x : y, out);
+    vec3_cross(u, fabs(u[0]) < 0.9 ? x : y, out);
     normalize(out);
 }
 
@@ -39,12 +32,12 @@ void view_camera_orbit(iacsg_camera *c, double dx, double dy) {
         d[k] = c->eye[k] - c->at[k];
     double dist = normalize(d);
     /* d = cos(polar) up + sin(polar) h, with h the unit horizontal direction of the eye */
-    double polar = acos(fmax(-1.0, fmin(1.0, dot(d, up))));
+    double polar = acos(fmax(-1.0, fmin(1.0, vec3_dot(d, up))));
     for (int k = 0; k < 3; k++)
-        h[k] = d[k] - dot(d, up) * up[k];
+        h[k] = d[k] - vec3_dot(d, up) * up[k];
     if (normalize(h) < 1e-12)
         any_perpendicular(up, h);
-    cross(up, h, side);
+    vec3_cross(up, h, side);
     double turn = -dx * DEGREES_PER_PIXEL * pi / 180;
     double margin = POLE_MARGIN_DEGREES * pi / 180;
     polar = fmax(margin, fmin(pi - margin, polar - dy * DEGREES_PER_PIXEL * pi / 180));
@@ -69,10 +62,10 @@ void view_camera_pan(iacsg_camera *c, double dx, double dy, int height) {
     for (int k = 0; k < 3; k++)
         f[k] = c->at[k] - c->eye[k];
     double dist = normalize(f);
-    cross(f, c->up, right);
+    vec3_cross(f, c->up, right);
     if (normalize(right) < 1e-12)
         any_perpendicular(f, right);
-    cross(right, f, screen_up);
+    vec3_cross(right, f, screen_up);
     double view_height = c->ortho_height > 0 ? c->ortho_height : 2 * dist * tan(c->fov * pi / 360);
     double per_pixel = view_height / (height > 0 ? height : 1);
     for (int k = 0; k < 3; k++) {
