@@ -1,6 +1,7 @@
 /* kernels/render_scene.cl -- the entry point of the segment path, iacsg_render_scene: one work-item per packet
  * of PACKET_W x PACKET_H pixels, either a block of the band of packet rows from block_row0 or, when `pixels` is
- * not NULL, the listed pixels 16 (block_row0 + g) + 0..15 (rays traced again with larger buffers).
+ * not NULL, the listed pixels 16 (block_row0 + g) + 0..15 (rays traced again with larger buffers). Rows from
+ * row_end on (past the view's band of rows, iacsg_view.row_count) are neither traced nor written.
  *
  * Per pixel: the camera ray (camera.h) clipped to the bounds, traced one at a time (scene_trace.h) with the
  * work-item's slice of the per-ray buffers; a ray that overflows them is appended to `overflow` and writes
@@ -27,7 +28,8 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                  __global ia_real *cand_pos, __global int *cand_level, __global bisect_index *cand_index,
                                  __global int *cand_newton, __global ia_real *cand_newton_t, int cand_cap, __global uchar *state, int nsolids, __global float *rgb, __global float *depth,
                                  __global float *normal, __global float *ids, __global int *overlap,
-                                 __global uint *counts, __global int *overflow, __global int *noverflow) {
+                                 __global uint *counts, __global int *overflow, __global int *noverflow,
+                                 int row_end) {
     size_t slot = get_global_id(1) * get_global_size(0) + get_global_id(0);
     int i0 = (int)get_global_id(0) * PACKET_W, j0 = (block_row0 + (int)get_global_id(1)) * PACKET_H;
     if (!pixels && (i0 >= width || j0 >= height))
@@ -65,7 +67,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
             i = n < npixels ? pixels[n] % width : width;
             j = n < npixels ? pixels[n] / width : height;
         }
-        pixel[k] = i < width && j < height ? j * width + i : -1;
+        pixel[k] = i < width && j < row_end ? j * width + i : -1; /* the band's rows only */
         rows[k] = (float)min(j, height - 1);
         ia_real o[3], d[3], tn, tf;
         camera_ray(params, flags & RENDER_ORTHO, min(i, width - 1), min(j, height - 1), width, height, o, d);

@@ -298,19 +298,21 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* Each band of rows, one launch (each block's tiles, then its pixels). With a progress or cancel callback, waits
- * for each band. */
-static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
+/* The view's rows, [row_first, row_first + row_count) or all of them, in bands of `band_units` units of `unit_rows`
+ * rows, one launch each over `groups_x` x (the band's units) work-items, kernel argument 4 the band's first unit.
+ * With a progress or cancel callback, waits for each band. Both paths: units of blocks here, of packets in
+ * render_scene.c, each a divisor of IACSG_ROW_ALIGN so that a band starts on a whole unit. */
+iacsg_status render_launch_bands(iacsg_renderer *r, const iacsg_view *view, size_t groups_x, int unit_rows,
+                                 int band_units, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
-    size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
-    int band = view->progress || view->cancel ? BAND_ROWS_PROGRESS : BAND_ROWS;
+    int band = band_units * unit_rows;
     int first = view->row_first, end = view->row_count ? first + view->row_count : view->height;
-    for (cl_int row0 = first; row0 < end; row0 += band) {
+    for (int row0 = first; row0 < end; row0 += band) {
         int rows = end - row0 < band ? end - row0 : band;
-        cl_int block_row0 = row0 / BLOCK_ROWS;
-        size_t global[2] = {(tiles_x + PACKET_W - 1) / PACKET_W, (size_t)(rows + BLOCK_ROWS - 1) / BLOCK_ROWS};
-        CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &block_row0));
-        size_t local[2] = {1, 1}; /* blocks are independent: let the device spread them over all its cores */
+        cl_int unit0 = row0 / unit_rows;
+        size_t global[2] = {groups_x, (size_t)(rows + unit_rows - 1) / unit_rows};
+        CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &unit0));
+        size_t local[2] = {1, 1}; /* work-items are independent: let the device spread them over all its cores */
         CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
         if (view->progress || view->cancel)
             CLRT_CHECK(err, clFinish(q));
@@ -322,6 +324,13 @@ static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacs
     return IACSG_OK;
 fail:
     return IACSG_ERR_OPENCL;
+}
+
+/* Each band of rows, one launch (each block's tiles, then its pixels). */
+static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
+    size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
+    int band = view->progress || view->cancel ? BAND_ROWS_PROGRESS : BAND_ROWS;
+    return render_launch_bands(r, view, (tiles_x + PACKET_W - 1) / PACKET_W, BLOCK_ROWS, band / BLOCK_ROWS, err);
 }
 
 /* Brings the images (and the counts, with stats) to the host and waits for them. */

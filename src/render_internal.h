@@ -33,6 +33,9 @@ iacsg_status render_fill_params(const iacsg_view *v, int fp64, void *block, iacs
 /* An error naming -size when a frame's buffers, `per_pixel` 4-byte values a pixel, cannot fit the device. */
 iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n, double per_pixel,
                                         iacsg_error *err);
+/* Launches r->kernel over the view's rows in bands (render.c). */
+iacsg_status render_launch_bands(iacsg_renderer *r, const iacsg_view *view, size_t groups_x, int unit_rows,
+                                 int band_units, iacsg_error *err);
 /* A frame's image of `count` floats, page-aligned. */
 float *render_image_alloc(size_t count);
 

@@ -22,6 +22,7 @@ extern const char iacsg_cl_scene_kernels[]; /* the flattened kernels of the segm
 
 /* The per-ray buffers of all work-items of one launch together stay below this; bands are cut to fit. */
 #define SCENE_SCRATCH_BUDGET (64.0 * 1024 * 1024)
+_Static_assert(IACSG_ROW_ALIGN % PACKET_H == 0, "iacsg_view.row_first is aligned to whole packets");
 
 struct render_scene {
     scene_tables t;
@@ -138,7 +139,7 @@ static iacsg_status set_scene_args(iacsg_renderer *r, const iacsg_view *view, co
     cl_kernel k = r->kernel;
     cl_int flags = view->camera.ortho_height > 0 ? RENDER_ORTHO : 0, width = view->width, height = view->height;
     cl_int nbvh = s->t.nbvh, nsurfaces = s->t.nsurfaces, nsolids = s->t.nsolids + 1;
-    cl_int cand_cap = b->cand_cap;
+    cl_int cand_cap = b->cand_cap, row_end = view->row_count ? view->row_first + view->row_count : view->height;
     struct {
         int index;
         size_t size;
@@ -158,7 +159,8 @@ static iacsg_status set_scene_args(iacsg_renderer *r, const iacsg_view *view, co
                 {27, sizeof(cl_mem), &b->rgb},         {28, sizeof(cl_mem), b->depth ? &b->depth : NULL},
                 {29, sizeof(cl_mem), b->normal ? &b->normal : NULL},
                 {30, sizeof(cl_mem), b->ids ? &b->ids : NULL},
-                {31, sizeof(cl_mem), &b->overlap},     {32, sizeof(cl_mem), b->counts ? &b->counts : NULL}};
+                {31, sizeof(cl_mem), &b->overlap},     {32, sizeof(cl_mem), b->counts ? &b->counts : NULL},
+                {35, sizeof row_end, &row_end}};
     for (size_t a = 0; a < sizeof args / sizeof args[0]; a++)
         CLRT_CHECK(err, clSetKernelArg(k, (cl_uint)args[a].index, args[a].size, args[a].value));
     return IACSG_OK;
@@ -299,19 +301,22 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
+/* A fill, not a non-blocking write: the write would read `zero` after it went out of scope (it did, listing
+ * garbage pixels for re-tracing), while a fill copies its pattern at once. */
 static iacsg_status zero_count(iacsg_renderer *r, cl_mem count, iacsg_error *err) {
     cl_int zero = 0;
-    CLRT_CHECK(err, clEnqueueWriteBuffer(r->rt.queue, count, CL_FALSE, 0, sizeof zero, &zero, 0, NULL, NULL));
+    CLRT_CHECK(err, clEnqueueFillBuffer(r->rt.queue, count, &zero, sizeof zero, 0, sizeof zero, 0, NULL, NULL));
     return IACSG_OK;
 fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* The first pass: bands of packet rows, each cut so that its work-items' per-ray buffers fit the budget. Rays
- * that overflow are listed in list[0]. */
+/* The first pass: the view's rows (render_launch_bands) in bands of packet rows, each cut so that its work-items'
+ * per-ray buffers fit the budget. Rays that overflow are listed in list[0]. */
 static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_buffers *b, iacsg_error *err) {
     size_t groups_x = ((size_t)view->width + PACKET_W - 1) / PACKET_W;
-    size_t packet_rows = ((size_t)view->height + PACKET_H - 1) / PACKET_H;
+    int rows = view->row_count ? view->row_count : view->height;
+    size_t packet_rows = ((size_t)rows + PACKET_H - 1) / PACKET_H;
     double per_row = (double)groups_x * (double)slot_bytes(r, b->cand_cap);
     size_t band = (size_t)fmax(1, fmin((double)(view->progress ? 2 : 16), SCENE_SCRATCH_BUDGET / per_row));
     band = band < packet_rows ? band : packet_rows;
@@ -321,22 +326,9 @@ static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_
     if (st == IACSG_OK)
         st = set_scene_args(r, view, b, err);
     cl_mem none = NULL;
-    for (size_t row = 0; st == IACSG_OK && row < packet_rows; row += band) {
-        size_t global[2] = {groups_x, row + band <= packet_rows ? band : packet_rows - row}, local[2] = {1, 1};
-        st = set_launch_args(r, (cl_int)row, &none, 0, &b->list[0], &b->nlist[0], err);
-        if (st != IACSG_OK)
-            break;
-        CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
-        if (view->progress || view->cancel)
-            CLRT_CHECK(err, clFinish(r->rt.queue));
-        if (view->progress)
-            view->progress((double)(row + global[1]) / (double)packet_rows, view->progress_ctx);
-        if (view->cancel && view->cancel(view->cancel_ctx))
-            return iacsg_error_set(err, IACSG_ERR_CANCELLED, 0, 0, "render cancelled");
-    }
-    return st;
-fail:
-    return IACSG_ERR_OPENCL;
+    if (st == IACSG_OK)
+        st = set_launch_args(r, 0, &none, 0, &b->list[0], &b->nlist[0], err);
+    return st == IACSG_OK ? render_launch_bands(r, view, groups_x, PACKET_H, (int)band, err) : st;
 }
 
 /* Traces the listed rays again with four times the room until none overflows. */
@@ -465,9 +457,12 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
         st = read_scene_back(r, &b, n, overlap, counts, err);
     if (st == IACSG_OK) {
         frame->render_seconds = render_now_seconds() - t0;
-        frame->rays = (long long)n;
+        /* the rays of the rows traced */
+        size_t at = (size_t)view->row_first * (size_t)view->width;
+        size_t traced = view->row_count ? (size_t)view->row_count * (size_t)view->width : n;
+        frame->rays = (long long)traced;
         frame->ray_buffer_bytes = (long long)slot_bytes(r, b.cand_cap);
-        summarize(overlap, counts, frame->ids, n, frame);
+        summarize(overlap + at, counts ? counts + 3 * at : NULL, frame->ids + at, traced, frame);
         if (view->no_ids) {
             free(frame->ids);
             frame->ids = NULL;

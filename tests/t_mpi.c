@@ -150,6 +150,22 @@ TEST(mpi_bands_match_single_process) {
     remove_dir(dir);
 }
 
+/* A scene with regions (the segment path): bands of 32 rows over 2 ranks, the ids gathered too. */
+TEST(mpi_scene_bands_match_single_process) {
+    char dir[256], scene[512], args[1024];
+    make_dir(dir, sizeof dir, "mpi-scene-bands");
+    snprintf(scene, sizeof scene, "'%s/examples/fig2_cube_sphere_regions.csg' -size 256x256", test_source_dir());
+    snprintf(args, sizeof args, "%s -o s.png -ids s.exr", scene);
+    int rc = run_in(dir, "", args);
+    CHECK(rc == 0, "the single-process render exited with %d", rc);
+    snprintf(args, sizeof args, "%s -o m.png -ids m.exr", scene);
+    rc = run_in(dir, MPIRUN, args);
+    CHECK(rc == 0, "mpirun -np 2 exited with %d", rc);
+    CHECK(same_bytes(dir, "s.png", "m.png"), "the image gathered from bands differs from the single-process one");
+    CHECK(same_pixels(dir, "s.exr", "m.exr"), "the ids gathered from bands differ from the single-process ones");
+    remove_dir(dir);
+}
+
 /* Rank 1 is killed (SIGKILL) when handed its first frame (the ranks start together, so it gets one): the job
  * fails with one line naming rank 1 and that frame, leaves only complete frames, and the same command with
  * -resume renders the rest, as an uninterrupted run would. */
