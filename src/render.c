@@ -70,6 +70,12 @@ iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_confi
         return st;
     const char *sources[] = {iacsg_cl_ia, expr_cl, iacsg_cl_kernels};
     st = render_build(r, sources, 3, "iacsg_render", err);
+    return render_finish(r, st, compile_now, out, err);
+}
+
+iacsg_status render_finish(iacsg_renderer *r, iacsg_status st,
+                           iacsg_status (*compile_now)(iacsg_renderer *, iacsg_error *), iacsg_renderer **out,
+                           iacsg_error *err) {
     if (st == IACSG_OK) {
         double t0 = render_now_seconds();
         st = compile_now(r, err);

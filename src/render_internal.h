@@ -27,6 +27,12 @@ iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out
 iacsg_status render_build(iacsg_renderer *r, const char *const *sources, size_t count, const char *kernel,
                           iacsg_error *err);
 
+/* The end of a renderer's creation: when st is IACSG_OK, compile_now (one empty launch, so that the device compiles
+ * the kernel now and the time counts as build time); then *out = r, or r destroyed and the failure returned. */
+iacsg_status render_finish(iacsg_renderer *r, iacsg_status st,
+                           iacsg_status (*compile_now)(iacsg_renderer *, iacsg_error *), iacsg_renderer **out,
+                           iacsg_error *err);
+
 iacsg_status render_check_view(const iacsg_view *v, iacsg_error *err);
 /* The parameter block (kernels/params.h) in the working precision. */
 iacsg_status render_fill_params(const iacsg_view *v, int fp64, void *block, iacsg_error *err);

@@ -223,17 +223,7 @@ iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_rende
     free(solids_cl);
     if (st == IACSG_OK)
         st = upload_tables(r, r->scene, err);
-    if (st == IACSG_OK) {
-        double t0 = render_now_seconds();
-        st = scene_compile_now(r, err);
-        r->build_seconds += render_now_seconds() - t0;
-    }
-    if (st != IACSG_OK) {
-        iacsg_renderer_destroy(r);
-        return st;
-    }
-    *out = r;
-    return IACSG_OK;
+    return render_finish(r, st, scene_compile_now, out, err);
 }
 
 /* The BVH's boxes in the working precision, rounded outward. They hold where the bounds were proven
