@@ -548,7 +548,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
      * function for other programs (device evaluation); the point value and gradient for both. A program gets
      * only what it uses: clang parses every function it is given, and for 1024 spheres each of these is 3400
      * statements. A program that traces rays one by one but shades in lanes (the segment path) defines
-     * IACSG_SCALAR_CODE to get the scalar ones, and the scalar derivative along a ray, P_Fd. */
+     * IACSG_SCALAR_CODE to get the scalar ones, and IACSG_SCALAR_FD for the scalar derivative along a ray, P_Fd. */
     int *parts;
     int nparts = union_parts(d, root, &parts);
     strbuf_printf(&b, "#if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)\n");
@@ -574,7 +574,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     strbuf_printf(&b, ";\n}\n");
     /* the segment path's walks (kernels/segments.h, surface.h) step interval Newton one box at a time with it,
      * for every solid: there a step decides whole subtrees, so unlike the packets' it pays on high powers too */
-    strbuf_printf(&b, "#ifdef IACSG_SCALAR_CODE\n");
+    strbuf_printf(&b, "#ifdef IACSG_SCALAR_FD\n");
     emit_tderiv_function(&b, &em, order, count, root, prefix, AS_INTERVAL_DT);
     strbuf_printf(&b, "#endif\n");
     /* a union in groups: the kernels shade it by differences of iacsg_Fv (kernels/shade.h), its gradient code

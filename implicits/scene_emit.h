@@ -6,7 +6,8 @@
  *   IA_FN ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t,
  *                                    ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt);
  * (the value and the derivative along a ray, [-inf, +inf] where an operation may be undefined, for interval
- * Newton; the program defines SCENE_SOLID_FD), which kernels/segments.h and kernels/surface.h call. The solids' code is the scalar code (IACSG_SCALAR_CODE):
+ * Newton; where the program defines SCENE_SOLID_FD: scenes of at most 64 solids, for the build time), which
+ * kernels/segments.h and kernels/surface.h call. The solids' code is the scalar code (IACSG_SCALAR_CODE):
  * the segment path traces one ray at a time and only shades in lanes. */
 #ifndef IACSG_SCENE_EMIT_H
 #define IACSG_SCENE_EMIT_H

@@ -133,7 +133,7 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v44 = ia_min(v16, v43);
     return v44;
 }
-#ifdef IACSG_SCALAR_CODE
+#ifdef IACSG_SCALAR_FD
 IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
     ia_interval v9 = ia_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));
     ia_interval v9_t = dx;

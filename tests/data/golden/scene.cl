@@ -57,7 +57,7 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v16 = ia_max(v11, v15);
     return v16;
 }
-#ifdef IACSG_SCALAR_CODE
+#ifdef IACSG_SCALAR_FD
 IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
     ia_interval v3 = ia_sqr(x);
     ia_interval v3_t = ia_mul(ia_mul_r(x, 2), dx);

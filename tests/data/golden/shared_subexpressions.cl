@@ -24,7 +24,7 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v6 = ia_min(v3, v5);
     return v6;
 }
-#ifdef IACSG_SCALAR_CODE
+#ifdef IACSG_SCALAR_FD
 IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
     ia_interval v1 = ia_sin(x);
     ia_interval v1_t = ia_mul(ia_cos(x), dx);

@@ -182,7 +182,7 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     int v48_u = v46_u || v47_u;
     return ia_or_outside(v48, v48_u);
 }
-#ifdef IACSG_SCALAR_CODE
+#ifdef IACSG_SCALAR_FD
 IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
     int undefined = 0;
     ia_interval v2 = ia_sqr(x);
