@@ -57,19 +57,22 @@ typedef struct {
 
 /* The text standing for operand node i in the interval code, the vector interval code (ia/vec.h: the same
  * templates with iav_ for ia_), the point code, or its gradient (an iacsg_grad vector: x, y, z, 0); and, for the
- * vector interval code along a ray (AS_VECTOR_DT: values and their derivatives in t, the leaves x, y, z moving
- * at the rates dx, dy, dz), the enclosure of its derivative (AS_VTDERIV). */
-typedef enum { AS_INTERVAL, AS_VECTOR, AS_POINT, AS_DERIV, AS_VECTOR_DT, AS_VTDERIV } role;
+ * interval code along a ray, scalar or over lanes (AS_INTERVAL_DT, AS_VECTOR_DT: values and their derivatives in
+ * t, the leaves x, y, z moving at the rates dx, dy, dz), the enclosure of its derivative (AS_TDERIV,
+ * AS_VTDERIV). */
+typedef enum { AS_INTERVAL, AS_VECTOR, AS_POINT, AS_DERIV, AS_INTERVAL_DT, AS_TDERIV, AS_VECTOR_DT, AS_VTDERIV } role;
 static int is_interval(role r) { return r != AS_POINT && r != AS_DERIV; }
 static int is_vector(role r) { return r == AS_VECTOR || r == AS_VECTOR_DT || r == AS_VTDERIV; }
+static int is_along_ray(role r) { return r == AS_INTERVAL_DT || r == AS_VECTOR_DT; }
+static int is_tderiv(role r) { return r == AS_TDERIV || r == AS_VTDERIV; }
 static void put_operand(strbuf *b, const emitter *em, int i, role r) {
     const dag *d = em->d;
     const dag_node *n = &d->nodes[i];
-    if (r == AS_VTDERIV) {
+    if (is_tderiv(r)) {
         if (n->op <= OP_Z)
             strbuf_printf(b, "d%s", var_names[n->op]);
         else if (!em->axes[i])
-            strbuf_printf(b, "iav_point(0)");
+            strbuf_printf(b, is_vector(r) ? "iav_point(0)" : "ia_point(0)");
         else
             strbuf_printf(b, "v%d_t", i);
     } else if (r == AS_DERIV) {
@@ -153,8 +156,8 @@ static int is_ident_char(char c) {
 static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r) {
     const dag *d = em->d;
     const dag_node *n = &d->nodes[i];
-    role operand_role = r == AS_DERIV ? AS_POINT : r == AS_VTDERIV ? AS_VECTOR : r;
-    role deriv_role = r == AS_VTDERIV ? r : AS_DERIV;
+    role operand_role = r == AS_DERIV ? AS_POINT : r == AS_VTDERIV ? AS_VECTOR : r == AS_TDERIV ? AS_INTERVAL : r;
+    role deriv_role = is_tderiv(r) ? r : AS_DERIV;
     if (n->op == OP_MIN && tpl == dag_ops[OP_MIN].interval && (em->undefined[n->a] || em->undefined[n->b])) {
         put_union(b, em, i, r);
         return;
@@ -234,13 +237,13 @@ static void flag_statement(strbuf *b, const emitter *em, int i, role value, char
     strbuf_printf(b, "%s;\n", n->op == OP_MIN ? ")" : "");
 }
 
-/* The statements computing every non-leaf node, for one of the five functions. Derivatives that are 0 by
+/* The statements computing every non-leaf node, for one of the six functions. Derivatives that are 0 by
  * structure (of nodes that depend on none of x, y, z) are not computed. Where a node may be undefined, the
  * interval code computes its flag, the point code makes it NaN where its own operation is undefined (NaN then
  * spreads through the arithmetic; at a point, tan's poles are never met, so its condition on R is left out),
  * and the derivative along a ray gathers the flags of such operations in `undefined`. */
 static void body(strbuf *b, const emitter *em, const int *order, int count, role r) {
-    role value = r == AS_VECTOR_DT ? AS_VECTOR : r == AS_DERIV ? AS_POINT : r;
+    role value = r == AS_VECTOR_DT ? AS_VECTOR : r == AS_INTERVAL_DT ? AS_INTERVAL : r == AS_DERIV ? AS_POINT : r;
     for (int k = 0; k < count; k++) {
         int i = order[k];
         const dag_node *n = &em->d->nodes[i];
@@ -255,21 +258,21 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
             flag_statement(b, em, i, value, 'u');
         if (em->undefined[i] && is_vector(r))
             flag_statement(b, em, i, value, 'e');
-        if (own && r == AS_VECTOR_DT)
+        if (own && is_along_ray(r))
             strbuf_printf(b, "    undefined |= v%d_u;\n", i);
         if (own && !is_interval(r) && !strstr(dag_ops[n->op].undefined, "R.")) {
             strbuf_printf(b, "    v%d = ", i);
             expand(b, em, i, dag_ops[n->op].undefined, AS_POINT);
             strbuf_printf(b, " ? (ia_real)NAN : v%d;\n", i);
         }
-        if ((r != AS_DERIV && r != AS_VECTOR_DT) || !em->axes[i])
+        if ((r != AS_DERIV && !is_along_ray(r)) || !em->axes[i])
             continue;
         if (r == AS_DERIV) {
             strbuf_printf(b, "    iacsg_grad v%d_d = ", i);
             expand(b, em, i, dag_ops[n->op].derivative, AS_DERIV);
         } else {
-            strbuf_printf(b, "    iav v%d_t = ", i);
-            expand(b, em, i, dag_ops[n->op].tderiv, AS_VTDERIV);
+            strbuf_printf(b, "    %s v%d_t = ", type, i);
+            expand(b, em, i, dag_ops[n->op].tderiv, r == AS_VECTOR_DT ? AS_VTDERIV : AS_TDERIV);
         }
         strbuf_printf(b, ";\n");
     }
@@ -283,21 +286,27 @@ static int any_partial(const emitter *em, const int *order, int count) {
     return 0;
 }
 
-/* The value of the expression over lanes' boxes and the enclosure of its derivative along a ray through them, the
- * boxes moving at the rates dx, dy, dz (the rays' directions): prefix_Fdv, for interval Newton. Where an
- * operation may be undefined on a lane's box (a pole, a domain edge), F may be undefined or jump there, and the
- * mean value theorem Newton relies on fails: the derivative is reported as [-inf, +inf] in that lane. */
+/* The value of the expression over a box and the enclosure of its derivative along a ray through it, the box
+ * moving at the rates dx, dy, dz (the ray's direction), for interval Newton: prefix_Fdv over lanes (r =
+ * AS_VECTOR_DT), prefix_Fd one box at a time (AS_INTERVAL_DT). Where an operation may be undefined on the box (a
+ * pole, a domain edge), F may be undefined or jump there, and the mean value theorem Newton relies on fails: the
+ * derivative is reported as [-inf, +inf] there (in that lane). */
 static void emit_tderiv_function(strbuf *b, const emitter *em, const int *order, int count, int root,
-                                 const char *prefix) {
-    strbuf_printf(b, "IA_FN iav %s_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt) {\n", prefix);
+                                 const char *prefix, role r) {
+    int vector = is_vector(r);
+    const char *type = vector ? "iav" : "ia_interval";
+    strbuf_printf(b, "IA_FN %s %s_Fd%s(%s x, %s y, %s z, %s t, %s dx, %s dy, %s dz, %s *dt) {\n", type, prefix,
+                  vector ? "v" : "", type, type, type, type, type, type, type, type);
     int partial = any_partial(em, order, count);
     if (partial)
-        strbuf_printf(b, "    ia_maskv undefined = 0;\n");
-    body(b, em, order, count, AS_VECTOR_DT);
-    strbuf_printf(b, partial ? "    *dt = iav_entire_where(" : "    *dt = ");
-    put_operand(b, em, root, AS_VTDERIV);
-    strbuf_printf(b, partial ? ", undefined);\n    return " : ";\n    return ");
-    put_solid_value(b, em, root, AS_VECTOR);
+        strbuf_printf(b, vector ? "    ia_maskv undefined = 0;\n" : "    int undefined = 0;\n");
+    body(b, em, order, count, r);
+    strbuf_printf(b, !partial  ? "    *dt = "
+                     : vector ? "    *dt = iav_entire_where("
+                              : "    *dt = undefined ? ia_entire() : ");
+    put_operand(b, em, root, vector ? AS_VTDERIV : AS_TDERIV);
+    strbuf_printf(b, partial && vector ? ", undefined);\n    return " : ";\n    return ");
+    put_solid_value(b, em, root, vector ? AS_VECTOR : AS_INTERVAL);
     strbuf_printf(b, ";\n}\n");
 }
 
@@ -539,7 +548,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
      * function for other programs (device evaluation); the point value and gradient for both. A program gets
      * only what it uses: clang parses every function it is given, and for 1024 spheres each of these is 3400
      * statements. A program that traces rays one by one but shades in lanes (the segment path) defines
-     * IACSG_SCALAR_CODE to get the scalar ones. */
+     * IACSG_SCALAR_CODE to get the scalar ones, and IACSG_SCALAR_FD for the scalar derivative along a ray, P_Fd. */
     int *parts;
     int nparts = union_parts(d, root, &parts);
     strbuf_printf(&b, "#if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)\n");
@@ -554,7 +563,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
         strbuf_printf(&b, ";\n}\n");
         if (newton_pays(d, order, count)) {
             strbuf_printf(&b, "#define IACSG_FDV 1\n");
-            emit_tderiv_function(&b, &em, order, count, root, prefix);
+            emit_tderiv_function(&b, &em, order, count, root, prefix, AS_VECTOR_DT);
         }
     }
     strbuf_printf(&b, "#else\nIA_FN ia_interval %s_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n",
@@ -563,6 +572,11 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
     strbuf_printf(&b, "    return ");
     put_solid_value(&b, &em, root, AS_INTERVAL);
     strbuf_printf(&b, ";\n}\n");
+    /* the segment path's walks (kernels/segments.h, surface.h) step interval Newton one box at a time with it,
+     * for every solid: there a step decides whole subtrees, so unlike the packets' it pays on high powers too */
+    strbuf_printf(&b, "#ifdef IACSG_SCALAR_FD\n");
+    emit_tderiv_function(&b, &em, order, count, root, prefix, AS_INTERVAL_DT);
+    strbuf_printf(&b, "#endif\n");
     /* a union in groups: the kernels shade it by differences of iacsg_Fv (kernels/shade.h), its gradient code
      * would be a quarter of their build */
     if (nparts >= EMIT_GROUP_MIN_PARTS)

@@ -3,9 +3,11 @@
  *   IA_FN ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t);
  *   IA_FN ia_real scene_solid_f_grad(int k, ia_real x, ia_real y, ia_real z, ia_real t,
  *                                    ia_real *gx, ia_real *gy, ia_real *gz);
- * (kernels/segments.h would use a scene_solid_Fd, the value and derivative along a ray, for interval Newton
- * where the program defines SCENE_SOLID_FD; the compiler emits those only over lanes now.)
- * which kernels/segments.h and kernels/surface.h call. The solids' code is the scalar code (IACSG_SCALAR_CODE):
+ *   IA_FN ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t,
+ *                                    ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt);
+ * (the value and the derivative along a ray, [-inf, +inf] where an operation may be undefined, for interval
+ * Newton; where the program defines SCENE_SOLID_FD: scenes of at most 64 solids, for the build time), which
+ * kernels/segments.h and kernels/surface.h call. The solids' code is the scalar code (IACSG_SCALAR_CODE):
  * the segment path traces one ray at a time and only shades in lanes. */
 #ifndef IACSG_SCENE_EMIT_H
 #define IACSG_SCENE_EMIT_H

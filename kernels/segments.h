@@ -42,14 +42,14 @@ IA_FN void segments_start(const segments_walks *w, int c) {
     w->newton[c] = -1;
 }
 
-/* Interval Newton along the ray (where the program has scene_solid_Fd, and not with IA_FAST: unrounded, N can
- * miss its root). On a node [lo, hi] that holds 0, no wider than SEGMENTS_NEWTON_LEAVES leaves, whose derivative
- * along the ray D excludes 0: f is monotone there, and N = m - F(m) / D (m the midpoint) holds every root in the
- * node (the mean value theorem). The walk keeps N for the node's subtree: a descendant wholly before N has the
- * state f has before the root (IN where D > 0, f rising through 0; else OUT), one wholly after it the other, both
- * without evaluating F; only nodes over N are split, and once N is under half of a node's width the walk splits
- * without evaluating, while wider ones narrow N by another step. Returns the node's state when N misses it (no
- * root: f's sign at m), else -1 with N stored, or -1 and nothing stored where D holds 0. */
+/* Interval Newton along the ray (where the program has scene_solid_Fd, and not with IA_FAST: unrounded, N can miss its
+ * root). On a node [lo, hi] that holds 0, no wider than SEGMENTS_NEWTON_LEAVES leaves, whose derivative along the ray D
+ * is bounded and excludes 0 (newton_slope_usable: never across a pole): f is monotone there, and N = m - F(m) / D (m
+ * the midpoint) holds every root in the node (the mean value theorem). The walk keeps N for the node's subtree: a
+ * descendant wholly before N has the state f has before the root (IN where D > 0, f rising through 0; else OUT), one
+ * wholly after it the other, both without evaluating F; only nodes over N are split, and once N is under half of a
+ * node's width the walk splits without evaluating, while wider ones narrow N by another step. Returns the node's state
+ * when N misses it (no root: f's sign at m), else -1 with N stored, or -1 and nothing stored where D is not usable. */
 #define SEGMENTS_NEWTON_LEAVES 256
 #if defined(SCENE_SOLID_FD) && !defined(IA_FAST)
 IA_FN int segments_newton(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real lo,
@@ -58,7 +58,7 @@ IA_FN int segments_newton(const segments_walks *w, int c, const ia_real o[3], co
     scene_solid_Fd(w->solid[c], ray_extent(o[0], d[0], t), ray_extent(o[1], d[1], t), ray_extent(o[2], d[2], t),
                    time, ia_point(d[0]), ia_point(d[1]), ia_point(d[2]), &slope);
     *evals += 1;
-    if (!(slope.lo > 0 || slope.hi < 0))
+    if (!newton_slope_usable(slope))
         return -1;
     ia_real m = lo * (ia_real)0.5 + hi * (ia_real)0.5;
     ia_interval at = ia_point(m);

@@ -100,12 +100,12 @@ IA_FN int surface_keeps(const ia_interval box[3], int level, int *proven, int so
 /* The level below which no node is proven to keep its condition: every node for a surface without one. */
 IA_FN int surface_unproven(int condition) { return condition >= 0 ? BISECT_MAX_LEVEL + 1 : -1; }
 
-/* Interval Newton along the ray (where the program has scene_solid_Fd, and not with IA_FAST: unrounded, N can
- * miss its root), as segments.h does: on a node that may keep a point, no wider than SURFACE_NEWTON_LEAVES
- * leaves, whose derivative D along the ray excludes 0, F is monotone and N = m - F(m) / D (m the midpoint) holds
- * its only root there (the mean value theorem). The walk keeps N for the node's subtree: a descendant wholly
- * outside N holds no root and is dropped without evaluating; one that N fills less than half of is split
- * without evaluating. A leaf is always evaluated: a hit is a leaf where F's enclosure holds 0. */
+/* Interval Newton along the ray (where the program has scene_solid_Fd, and not with IA_FAST: unrounded, N can miss its
+ * root), as segments.h does: on a node that may keep a point, no wider than SURFACE_NEWTON_LEAVES leaves, whose
+ * derivative D along the ray is bounded and excludes 0 (newton_slope_usable), F is monotone and N = m - F(m) / D (m the
+ * midpoint) holds its only root there (the mean value theorem). The walk keeps N for the node's subtree: a descendant
+ * wholly outside N holds no root and is dropped without evaluating; one that N fills less than half of is split without
+ * evaluating. A leaf is always evaluated: a hit is a leaf where F's enclosure holds 0. */
 #define SURFACE_NEWTON_LEAVES 256
 #if defined(SCENE_SOLID_FD) && !defined(IA_FAST)
 #define SURFACE_NEWTON 1
@@ -126,11 +126,11 @@ IA_FN int surface_newton_step(surface_newton *n, int level, const ia_real o[3], 
     scene_solid_Fd(solid, box[0], box[1], box[2], time, ia_point(d[0]), ia_point(d[1]), ia_point(d[2]), &slope);
     ia_real m = lo * (ia_real)0.5 + hi * (ia_real)0.5;
     ia_interval at = ia_point(m);
-    ia_interval fm = !(slope.lo > 0 || slope.hi < 0)
+    ia_interval fm = !newton_slope_usable(slope)
                          ? ia_empty()
                          : scene_solid_F(solid, ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at),
                                          ray_extent(o[2], d[2], at), time);
-    if (ia_is_empty(fm)) /* D holds 0, or f is undefined at m: nothing learnt */
+    if (ia_is_empty(fm)) /* D holds 0 or is unbounded, or f is undefined at m: nothing learnt */
         return 1;
     ia_interval step = ia_sub(at, ia_div(fm, slope));
     ia_real a = fmax(lo, step.lo), b = fmin(hi, step.hi);

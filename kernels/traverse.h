@@ -74,4 +74,13 @@ IA_FN ia_interval ray_extent(ia_real o, ia_real d, ia_interval t) {
     return ia_make(ia_lo(fma(d, first, o)), ia_hi(fma(d, last, o)));
 }
 
+/* Whether an interval Newton step along the ray may use D, the enclosure of the derivative along it over a node:
+ * D must exclude 0 (f monotone there) and be BOUNDED, both ends finite (NaN is not). The emitted derivative code
+ * reports [-inf, +inf] wherever an operation may be undefined on the box, so a bounded D means f is Lipschitz
+ * there and the mean value theorem holds; over a pole D may be one-signed but unbounded, and a step would keep
+ * the wrong side of it (the proof is at kernels/packet.h's Newton, which tests the same). */
+IA_FN int newton_slope_usable(ia_interval d) {
+    return isfinite(d.lo) && isfinite(d.hi) && (d.lo > 0 || d.hi < 0);
+}
+
 #endif

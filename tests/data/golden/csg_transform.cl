@@ -133,6 +133,68 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v44 = ia_min(v16, v43);
     return v44;
 }
+#ifdef IACSG_SCALAR_FD
+IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
+    ia_interval v9 = ia_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v9_t = dx;
+    ia_interval v10 = ia_sqr(v9);
+    ia_interval v10_t = ia_mul(ia_mul_r(v9, 2), v9_t);
+    ia_interval v11 = ia_sqr(y);
+    ia_interval v11_t = ia_mul(ia_mul_r(y, 2), dy);
+    ia_interval v12 = ia_add(v10, v11);
+    ia_interval v12_t = ia_add(v10_t, v11_t);
+    ia_interval v13 = ia_sqr(z);
+    ia_interval v13_t = ia_mul(ia_mul_r(z, 2), dz);
+    ia_interval v14 = ia_add(v12, v13);
+    ia_interval v14_t = ia_add(v12_t, v13_t);
+    ia_interval v16 = ia_add_r(v14, IACSG_K(-0x1p-2f, -0x1p-2));
+    ia_interval v16_t = v14_t;
+    ia_interval v17 = ia_abs(x);
+    ia_interval v17_t = ia_dabs(x, dx);
+    ia_interval v18 = ia_abs(y);
+    ia_interval v18_t = ia_dabs(y, dy);
+    ia_interval v19 = ia_abs(z);
+    ia_interval v19_t = ia_dabs(z, dz);
+    ia_interval v20 = ia_add_r(v17, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v20_t = v17_t;
+    ia_interval v21 = ia_add_r(v18, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v21_t = v18_t;
+    ia_interval v22 = ia_add_r(v19, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v22_t = v19_t;
+    ia_interval v23 = ia_max(v20, v21);
+    ia_interval v23_t = ia_dmax(v20, v21, v20_t, v21_t);
+    ia_interval v24 = ia_max(v22, v23);
+    ia_interval v24_t = ia_dmax(v22, v23, v22_t, v23_t);
+    ia_interval v30 = ia_mul(x, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
+    ia_interval v30_t = ia_add(ia_mul(dx, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1))), ia_mul(x, ia_point(0)));
+    ia_interval v32 = ia_mul(y, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
+    ia_interval v32_t = ia_add(ia_mul(dy, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1))), ia_mul(y, ia_point(0)));
+    ia_interval v33 = ia_add(v30, v32);
+    ia_interval v33_t = ia_add(v30_t, v32_t);
+    ia_interval v34 = ia_mul(y, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
+    ia_interval v34_t = ia_add(ia_mul(dy, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1))), ia_mul(y, ia_point(0)));
+    ia_interval v35 = ia_mul(x, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
+    ia_interval v35_t = ia_add(ia_mul(dx, ia_make(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1))), ia_mul(x, ia_point(0)));
+    ia_interval v36 = ia_sub(v34, v35);
+    ia_interval v36_t = ia_sub(v34_t, v35_t);
+    ia_interval v37 = ia_sqr(v33);
+    ia_interval v37_t = ia_mul(ia_mul_r(v33, 2), v33_t);
+    ia_interval v38 = ia_sqr(v36);
+    ia_interval v38_t = ia_mul(ia_mul_r(v36, 2), v36_t);
+    ia_interval v39 = ia_add(v37, v38);
+    ia_interval v39_t = ia_add(v37_t, v38_t);
+    ia_interval v41 = ia_add_r(v39, IACSG_K(-0x1p-4f, -0x1p-4));
+    ia_interval v41_t = v39_t;
+    ia_interval v42 = ia_neg(v41);
+    ia_interval v42_t = ia_neg(v41_t);
+    ia_interval v43 = ia_max(v24, v42);
+    ia_interval v43_t = ia_dmax(v24, v42, v24_t, v42_t);
+    ia_interval v44 = ia_min(v16, v43);
+    ia_interval v44_t = ia_dmin(v16, v43, v16_t, v43_t);
+    *dt = v44_t;
+    return v44;
+}
+#endif
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v9 = x + IACSG_K(-0x1p+0f, -0x1p+0);

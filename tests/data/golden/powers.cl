@@ -55,6 +55,41 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     int v16_u = v13_u || v15_u;
     return ia_or_outside(v16, v16_u);
 }
+#ifdef IACSG_SCALAR_FD
+IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
+    int undefined = 0;
+    ia_interval v2 = ia_pown(x, 3);
+    ia_interval v2_t = ia_mul(ia_mul_r(ia_pown(x, 3 - 1), 3), dx);
+    ia_interval v5 = ia_sqrt(y);
+    int v5_u = (y.lo < 0);
+    undefined |= v5_u;
+    ia_interval v5_t = ia_div(dy, ia_mul_r(v5, 2));
+    ia_interval v6 = ia_add(v2, v5);
+    int v6_u = v5_u;
+    ia_interval v6_t = ia_add(v2_t, v5_t);
+    ia_interval v10 = ia_pown(z, -2);
+    int v10_u = (-2 < 0 && z.lo <= 0 && z.hi >= 0);
+    undefined |= v10_u;
+    ia_interval v10_t = ia_mul(ia_mul_r(ia_pown(z, -2 - 1), -2), dz);
+    ia_interval v11 = ia_add(v6, v10);
+    int v11_u = v6_u || v10_u;
+    ia_interval v11_t = ia_add(v6_t, v10_t);
+    ia_interval v12 = ia_sqr(x);
+    ia_interval v12_t = ia_mul(ia_mul_r(x, 2), dx);
+    ia_interval v13 = ia_add(v11, v12);
+    int v13_u = v11_u;
+    ia_interval v13_t = ia_add(v11_t, v12_t);
+    ia_interval v15 = ia_pow(y, ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
+    int v15_u = (y.lo < 0 || (y.lo <= 0 && ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).lo <= 0));
+    undefined |= v15_u;
+    ia_interval v15_t = ia_mul(v15, ia_add(ia_mul(ia_point(0), ia_log(y)), ia_div(ia_mul(ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)), dy), y)));
+    ia_interval v16 = ia_add(v13, v15);
+    int v16_u = v13_u || v15_u;
+    ia_interval v16_t = ia_add(v13_t, v15_t);
+    *dt = undefined ? ia_entire() : v16_t;
+    return ia_or_outside(v16, v16_u);
+}
+#endif
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v2 = pown(x, 3);

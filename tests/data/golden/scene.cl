@@ -57,6 +57,30 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v16 = ia_max(v11, v15);
     return v16;
 }
+#ifdef IACSG_SCALAR_FD
+IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
+    ia_interval v3 = ia_sqr(x);
+    ia_interval v3_t = ia_mul(ia_mul_r(x, 2), dx);
+    ia_interval v5 = ia_sqr(y);
+    ia_interval v5_t = ia_mul(ia_mul_r(y, 2), dy);
+    ia_interval v6 = ia_add(v3, v5);
+    ia_interval v6_t = ia_add(v3_t, v5_t);
+    ia_interval v8 = ia_sqr(z);
+    ia_interval v8_t = ia_mul(ia_mul_r(z, 2), dz);
+    ia_interval v9 = ia_add(v6, v8);
+    ia_interval v9_t = ia_add(v6_t, v8_t);
+    ia_interval v11 = ia_sub(v9, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    ia_interval v11_t = ia_sub(v9_t, ia_point(0));
+    ia_interval v14 = ia_sub(v6, ia_make(IACSG_K(0x1.70a3d2p-4f, 0x1.70a3d70a3d709p-4), IACSG_K(0x1.70a3dap-4f, 0x1.70a3d70a3d70dp-4)));
+    ia_interval v14_t = ia_sub(v6_t, ia_point(0));
+    ia_interval v15 = ia_neg(v14);
+    ia_interval v15_t = ia_neg(v14_t);
+    ia_interval v16 = ia_max(v11, v15);
+    ia_interval v16_t = ia_dmax(v11, v15, v11_t, v15_t);
+    *dt = v16_t;
+    return v16;
+}
+#endif
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v3 = x * x;

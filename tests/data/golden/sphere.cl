@@ -45,6 +45,24 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v11 = ia_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
     return v11;
 }
+#ifdef IACSG_SCALAR_FD
+IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
+    ia_interval v3 = ia_sqr(x);
+    ia_interval v3_t = ia_mul(ia_mul_r(x, 2), dx);
+    ia_interval v5 = ia_sqr(y);
+    ia_interval v5_t = ia_mul(ia_mul_r(y, 2), dy);
+    ia_interval v6 = ia_add(v3, v5);
+    ia_interval v6_t = ia_add(v3_t, v5_t);
+    ia_interval v8 = ia_sqr(z);
+    ia_interval v8_t = ia_mul(ia_mul_r(z, 2), dz);
+    ia_interval v9 = ia_add(v6, v8);
+    ia_interval v9_t = ia_add(v6_t, v8_t);
+    ia_interval v11 = ia_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v11_t = v9_t;
+    *dt = v11_t;
+    return v11;
+}
+#endif
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v3 = x * x;

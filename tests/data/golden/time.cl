@@ -182,6 +182,83 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     int v48_u = v46_u || v47_u;
     return ia_or_outside(v48, v48_u);
 }
+#ifdef IACSG_SCALAR_FD
+IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
+    int undefined = 0;
+    ia_interval v2 = ia_sqr(x);
+    ia_interval v2_t = ia_mul(ia_mul_r(x, 2), dx);
+    ia_interval v4 = ia_sqr(y);
+    ia_interval v4_t = ia_mul(ia_mul_r(y, 2), dy);
+    ia_interval v5 = ia_add(v2, v4);
+    ia_interval v5_t = ia_add(v2_t, v4_t);
+    ia_interval v8 = ia_sub(v5, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    ia_interval v8_t = ia_sub(v5_t, ia_point(0));
+    ia_interval v9 = ia_sqr(v8);
+    ia_interval v9_t = ia_mul(ia_mul_r(v8, 2), v8_t);
+    ia_interval v11 = ia_sqr(z);
+    ia_interval v11_t = ia_mul(ia_mul_r(z, 2), dz);
+    ia_interval v14 = ia_add_r(v11, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v14_t = v11_t;
+    ia_interval v15 = ia_sqr(v14);
+    ia_interval v15_t = ia_mul(ia_mul_r(v14, 2), v14_t);
+    ia_interval v16 = ia_add(v9, v15);
+    ia_interval v16_t = ia_add(v9_t, v15_t);
+    ia_interval v17 = ia_add(v4, v11);
+    ia_interval v17_t = ia_add(v4_t, v11_t);
+    ia_interval v18 = ia_sub(v17, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    ia_interval v18_t = ia_sub(v17_t, ia_point(0));
+    ia_interval v19 = ia_sqr(v18);
+    ia_interval v19_t = ia_mul(ia_mul_r(v18, 2), v18_t);
+    ia_interval v20 = ia_add_r(v2, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v20_t = v2_t;
+    ia_interval v21 = ia_sqr(v20);
+    ia_interval v21_t = ia_mul(ia_mul_r(v20, 2), v20_t);
+    ia_interval v22 = ia_add(v19, v21);
+    ia_interval v22_t = ia_add(v19_t, v21_t);
+    ia_interval v23 = ia_mul(v16, v22);
+    ia_interval v23_t = ia_add(ia_mul(v16_t, v22), ia_mul(v16, v22_t));
+    ia_interval v24 = ia_add(v2, v11);
+    ia_interval v24_t = ia_add(v2_t, v11_t);
+    ia_interval v25 = ia_sub(v24, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
+    ia_interval v25_t = ia_sub(v24_t, ia_point(0));
+    ia_interval v26 = ia_sqr(v25);
+    ia_interval v26_t = ia_mul(ia_mul_r(v25, 2), v25_t);
+    ia_interval v27 = ia_add_r(v4, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v27_t = v4_t;
+    ia_interval v28 = ia_sqr(v27);
+    ia_interval v28_t = ia_mul(ia_mul_r(v27, 2), v27_t);
+    ia_interval v29 = ia_add(v26, v28);
+    ia_interval v29_t = ia_add(v26_t, v28_t);
+    ia_interval v30 = ia_mul(v23, v29);
+    ia_interval v30_t = ia_add(ia_mul(v23_t, v29), ia_mul(v23, v29_t));
+    ia_interval v32 = ia_sub(v30, ia_make(IACSG_K(0x1.47ae14p-6f, 0x1.47ae147ae147ap-6), IACSG_K(0x1.47ae16p-6f, 0x1.47ae147ae147bp-6)));
+    ia_interval v32_t = ia_sub(v30_t, ia_point(0));
+    ia_interval v33 = ia_add(v5, v11);
+    ia_interval v33_t = ia_add(v5_t, v11_t);
+    ia_interval v34 = ia_add_r(v33, IACSG_K(-0x1p+0f, -0x1p+0));
+    ia_interval v34_t = v33_t;
+    ia_interval v40 = ia_add_r(t, IACSG_K(-0x1p-1f, -0x1p-1));
+    ia_interval v41 = ia_mul_r(v40, IACSG_K(-0x1.8p+3f, -0x1.8p+3));
+    ia_interval v42 = ia_exp(v41);
+    ia_interval v43 = ia_add_r(v42, IACSG_K(0x1p+0f, 0x1p+0));
+    ia_interval v44 = ia_recip(v43);
+    int v44_u = (v43.lo <= 0 && v43.hi >= 0);
+    undefined |= v44_u;
+    ia_interval v45 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v44);
+    int v45_u = v44_u;
+    ia_interval v46 = ia_mul(v32, v45);
+    int v46_u = v45_u;
+    ia_interval v46_t = ia_add(ia_mul(v32_t, v45), ia_mul(v32, ia_point(0)));
+    ia_interval v47 = ia_mul(v34, v44);
+    int v47_u = v44_u;
+    ia_interval v47_t = ia_add(ia_mul(v34_t, v44), ia_mul(v34, ia_point(0)));
+    ia_interval v48 = ia_add(v46, v47);
+    int v48_u = v46_u || v47_u;
+    ia_interval v48_t = ia_add(v46_t, v47_t);
+    *dt = undefined ? ia_entire() : v48_t;
+    return ia_or_outside(v48, v48_u);
+}
+#endif
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v2 = x * x;

@@ -84,6 +84,37 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     int v16_u = v13_u;
     return ia_or_outside(v16, v16_u);
 }
+#ifdef IACSG_SCALAR_FD
+IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
+    int undefined = 0;
+    ia_interval v4 = ia_sqr(x);
+    ia_interval v4_t = ia_mul(ia_mul_r(x, 2), dx);
+    ia_interval v6 = ia_sqr(y);
+    ia_interval v6_t = ia_mul(ia_mul_r(y, 2), dy);
+    ia_interval v7 = ia_add(v4, v6);
+    ia_interval v7_t = ia_add(v4_t, v6_t);
+    ia_interval v8 = ia_sqrt(v7);
+    int v8_u = (v7.lo < 0);
+    undefined |= v8_u;
+    ia_interval v8_t = ia_div(v7_t, ia_mul_r(v8, 2));
+    ia_interval v10 = ia_sqr(z);
+    ia_interval v10_t = ia_mul(ia_mul_r(z, 2), dz);
+    ia_interval v11 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
+    int v11_u = v8_u;
+    ia_interval v11_t = ia_sub(ia_point(0), v8_t);
+    ia_interval v12 = ia_sqr(v11);
+    int v12_u = v11_u;
+    ia_interval v12_t = ia_mul(ia_mul_r(v11, 2), v11_t);
+    ia_interval v13 = ia_add(v10, v12);
+    int v13_u = v12_u;
+    ia_interval v13_t = ia_add(v10_t, v12_t);
+    ia_interval v16 = ia_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
+    int v16_u = v13_u;
+    ia_interval v16_t = v13_t;
+    *dt = undefined ? ia_entire() : v16_t;
+    return ia_or_outside(v16, v16_u);
+}
+#endif
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real v4 = x * x;
