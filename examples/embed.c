@@ -79,11 +79,14 @@ int main(int argc, char **argv) {
     if (columns > count)
         columns = count;
     int rows = (count + columns - 1) / columns, width = columns * cell, height = rows * cell;
-    float *sheet = calloc((size_t)width * height * 3, sizeof(float));
+    size_t floats = (size_t)width * height * 3;
+    float *sheet = malloc(floats * sizeof(float));
     if (!sheet) {
         fprintf(stderr, "embed: out of memory\n");
         return 1;
     }
+    for (size_t k = 0; k < floats; k++)
+        sheet[k] = 0.37f; /* empty cells: the renders' background at its darkest, display-encoded */
     iacsg_error err = {0};
     iacsg_status st = IACSG_OK;
     for (int k = 0; k < count && st == IACSG_OK; k++) {
