@@ -12,31 +12,15 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
 #include "kernels/tile.h"
 #include "t_render_util.h"
 
-static double uniform(test_rng_t *rng, double lo, double hi) { return lo + (hi - lo) * test_rand_unit(rng); }
-
 TEST_FP(render_tile_box_holds_its_rays) {
     test_rng_t *rng = test_rng();
     long checked = 0;
     for (long it = 0; it < test_iters(3000); it++) {
-        int ortho = (int)(test_rand_u64(rng) & 1), w = 1 + (int)(test_rand_u64(rng) % 300),
-            h = 1 + (int)(test_rand_u64(rng) % 300);
-        iacsg_view v = {.width = w, .height = h,
-                        .camera = {.eye = {uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5)},
-                                   .at = {uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)},
-                                   .up = {uniform(rng, -1, 1), uniform(rng, -1, 1), 1},
-                                   .fov = uniform(rng, 5, 150),
-                                   .ortho_height = ortho ? uniform(rng, 0.1, 8) : 0}};
-        double pd[PARAM_COUNT];
-        iacsg_error err = {0};
-        if (iacsg_camera_params(&v.camera, w, h, pd, &err) != IACSG_OK)
+        random_tile t;
+        if (!random_tile_draw(rng, &t))
             continue; /* a degenerate random view */
-        ia_real p[PARAM_COUNT];
-        view_params(&v, p);
-        int tx = (int)(test_rand_u64(rng) % (unsigned)((w + TILE_SIZE - 1) / TILE_SIZE));
-        int ty = (int)(test_rand_u64(rng) % (unsigned)((h + TILE_SIZE - 1) / TILE_SIZE));
-        int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
-        int i1 = (i0 + TILE_SIZE < w ? i0 + TILE_SIZE : w) - 1, j1 = (j0 + TILE_SIZE < h ? j0 + TILE_SIZE : h) - 1;
-        ia_real a = (ia_real)uniform(rng, 0, 10), b = a + (ia_real)uniform(rng, 0, 1);
+        const ia_real *p = t.p, a = t.a, b = t.b;
+        int ortho = t.ortho, w = t.w, h = t.h, i0 = t.i0, i1 = t.i1, j0 = t.j0, j1 = t.j1;
         ia_interval box[3];
         tile_rays rays;
         tile_rays_of(p, ortho, i0, i1, j0, j1, w, h, &rays);

@@ -116,6 +116,46 @@ static inline void view_params(const iacsg_view *view, ia_real p[PARAM_COUNT]) {
         p[k] = (ia_real)pd[k];
 }
 
+/* A random view (up to 300x300, perspective or orthographic), one random tile of it and a random span [a, b] of
+ * ray parameters: what the tile-box tests check each pixel ray of the tile against. */
+typedef struct {
+    int ortho, w, h, i0, i1, j0, j1;
+    ia_real p[PARAM_COUNT], a, b;
+} random_tile;
+
+static inline double test_uniform(test_rng_t *rng, double lo, double hi) {
+    return lo + (hi - lo) * test_rand_unit(rng);
+}
+
+/* Draws *t; 0 for a degenerate view (the eye at the target, up along the view), which the caller skips. */
+static inline int random_tile_draw(test_rng_t *rng, random_tile *t) {
+    int ortho = (int)(test_rand_u64(rng) & 1), w = 1 + (int)(test_rand_u64(rng) % 300),
+        h = 1 + (int)(test_rand_u64(rng) % 300);
+    iacsg_view v = {.width = w, .height = h,
+                    .camera = {.eye = {test_uniform(rng, -5, 5), test_uniform(rng, -5, 5), test_uniform(rng, -5, 5)},
+                               .at = {test_uniform(rng, -1, 1), test_uniform(rng, -1, 1), test_uniform(rng, -1, 1)},
+                               .up = {test_uniform(rng, -1, 1), test_uniform(rng, -1, 1), 1},
+                               .fov = test_uniform(rng, 5, 150),
+                               .ortho_height = ortho ? test_uniform(rng, 0.1, 8) : 0}};
+    double pd[PARAM_COUNT];
+    iacsg_error err = {0};
+    if (iacsg_camera_params(&v.camera, w, h, pd, &err) != IACSG_OK)
+        return 0;
+    view_params(&v, t->p);
+    int tx = (int)(test_rand_u64(rng) % (unsigned)((w + TILE_SIZE - 1) / TILE_SIZE));
+    int ty = (int)(test_rand_u64(rng) % (unsigned)((h + TILE_SIZE - 1) / TILE_SIZE));
+    t->ortho = ortho;
+    t->w = w;
+    t->h = h;
+    t->i0 = tx * TILE_SIZE;
+    t->j0 = ty * TILE_SIZE;
+    t->i1 = (t->i0 + TILE_SIZE < w ? t->i0 + TILE_SIZE : w) - 1;
+    t->j1 = (t->j0 + TILE_SIZE < h ? t->j0 + TILE_SIZE : h) - 1;
+    t->a = (ia_real)test_uniform(rng, 0, 10);
+    t->b = t->a + (ia_real)test_uniform(rng, 0, 1);
+    return 1;
+}
+
 /* Pixel (i, j)'s float ray, exactly as the device traced it (camera.h over the same parameter block), in
  * double for the exact intersections. */
 static inline void pixel_ray(const ia_real p[PARAM_COUNT], const iacsg_view *view, int i, int j, double o[3],
