@@ -101,6 +101,21 @@ static int enter(parser *p, long at) {
     return 0;
 }
 
+/* '(' inner ')' at token `at`, nesting counted: an expression's group, or a condition's. */
+static int parse_group(parser *p, long at, int (*inner)(parser *)) {
+    if (!enter(p, at))
+        return -1;
+    p->pos++;
+    int r = inner(p);
+    p->depth--;
+    if (r < 0)
+        return -1;
+    if (!at_punct(p, ')'))
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected ')'");
+    p->pos++;
+    return r;
+}
+
 static int push_arg(parser *p, int value, long keyword) {
     if (p->npending == p->cappending) {
         int cap = p->cappending ? p->cappending * 2 : 32;
@@ -194,19 +209,8 @@ static int parse_primary(parser *p) {
         }
         return add_node(p, AST_NAME, at, 0, -1, -1);
     }
-    if (at_punct(p, '(')) {
-        if (!enter(p, at))
-            return -1;
-        p->pos++;
-        int r = parse_expr(p);
-        p->depth--;
-        if (r < 0)
-            return -1;
-        if (!at_punct(p, ')'))
-            return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected ')'");
-        p->pos++;
-        return r;
-    }
+    if (at_punct(p, '('))
+        return parse_group(p, at, parse_expr);
     return fail_at(p, t, IACSG_ERR_SYNTAX, "expected a number, a name or '('");
 }
 
@@ -369,19 +373,8 @@ static int parse_cond(parser *p);
 /* '(' cond ')' or E ('<' | '>') 0. */
 static int parse_comparison(parser *p) {
     long at = p->pos;
-    if (at_punct(p, '(') && group_is_condition(p)) {
-        if (!enter(p, at))
-            return -1;
-        p->pos++;
-        int r = parse_cond(p);
-        p->depth--;
-        if (r < 0)
-            return -1;
-        if (!at_punct(p, ')'))
-            return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected ')'");
-        p->pos++;
-        return r;
-    }
+    if (at_punct(p, '(') && group_is_condition(p))
+        return parse_group(p, at, parse_cond);
     if (at_statement_end(p) || at_punct(p, ':'))
         return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected a comparison such as 'ball < 0'");
     int e = parse_expr(p);
