@@ -6,7 +6,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #define X(name) void test_##name(void);
 #include "tests.inc"
@@ -95,6 +97,17 @@ const char *test_source_dir(void) {
 }
 
 /* With no arguments every test runs except the benchmarks (bench_*), which run only when named. */
+void test_make_dir(char *dir, size_t size, const char *tag) {
+    snprintf(dir, size, "/tmp/iacsg-%s-%ld", tag, (long)getpid());
+    CHECK(mkdir(dir, 0700) == 0, "cannot create %s", dir);
+}
+
+void test_remove_dir(const char *dir) {
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK(system(cmd) == 0, "cannot clean %s", dir);
+}
+
 char *test_read_file(const char *path, size_t *size) {
     FILE *f = fopen(path, "rb");
     if (!f)

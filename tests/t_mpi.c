@@ -32,16 +32,6 @@ static int run_in(const char *dir, const char *prefix, const char *args) {
     return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 
-static void make_dir(char *dir, size_t size, const char *tag) {
-    snprintf(dir, size, "/tmp/iacsg-%s-%ld", tag, (long)getpid());
-    CHECK(mkdir(dir, 0700) == 0, "cannot create %s", dir);
-}
-static void remove_dir(const char *dir) {
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    CHECK(system(cmd) == 0, "cannot clean %s", dir);
-}
-
 /* Whether dir/a and dir/b hold the same bytes (both must exist). */
 static int same_bytes(const char *dir, const char *a, const char *b) {
     char pa[1024], pb[1024];
@@ -128,32 +118,32 @@ static void check_frames_equal(const char *dir) {
 
 TEST(mpi_frames_match_single_process) {
     char dir[256];
-    make_dir(dir, sizeof dir, "mpi-frames");
+    test_make_dir(dir, sizeof dir, "mpi-frames");
     int rc = run_in(dir, "", SCENE " -size 160x120 -frames 8 -o s.png");
     CHECK(rc == 0, "the single-process render exited with %d", rc);
     rc = run_in(dir, MPIRUN, SCENE " -size 160x120 -frames 8 -o m.png");
     CHECK(rc == 0, "mpirun -np 2 exited with %d", rc);
     check_frames_equal(dir);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* 2048 rows in bands of 256 over 2 ranks, the depth gathered too. */
 TEST(mpi_bands_match_single_process) {
     char dir[256];
-    make_dir(dir, sizeof dir, "mpi-bands");
+    test_make_dir(dir, sizeof dir, "mpi-bands");
     int rc = run_in(dir, "", "'min(sphere, torus)' -size 2048x2048 -o s.png -depth s.exr");
     CHECK(rc == 0, "the single-process render exited with %d", rc);
     rc = run_in(dir, MPIRUN, "'min(sphere, torus)' -size 2048x2048 -o m.png -depth m.exr");
     CHECK(rc == 0, "mpirun -np 2 exited with %d", rc);
     CHECK(same_bytes(dir, "s.png", "m.png"), "the image gathered from bands differs from the single-process one");
     CHECK(same_pixels(dir, "s.exr", "m.exr"), "the depth gathered from bands differs from the single-process one");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* A scene with regions (the segment path): bands of 32 rows over 2 ranks, the ids gathered too. */
 TEST(mpi_scene_bands_match_single_process) {
     char dir[256], scene[512], args[1024];
-    make_dir(dir, sizeof dir, "mpi-scene-bands");
+    test_make_dir(dir, sizeof dir, "mpi-scene-bands");
     snprintf(scene, sizeof scene, "'%s/examples/fig2_cube_sphere_regions.csg' -size 256x256", test_source_dir());
     snprintf(args, sizeof args, "%s -o s.png -ids s.exr", scene);
     int rc = run_in(dir, "", args);
@@ -163,7 +153,7 @@ TEST(mpi_scene_bands_match_single_process) {
     CHECK(rc == 0, "mpirun -np 2 exited with %d", rc);
     CHECK(same_bytes(dir, "s.png", "m.png"), "the image gathered from bands differs from the single-process one");
     CHECK(same_pixels(dir, "s.exr", "m.exr"), "the ids gathered from bands differ from the single-process ones");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* Rank 1 is killed (SIGKILL) when handed its first frame (the ranks start together, so it gets one): the job
@@ -171,7 +161,7 @@ TEST(mpi_scene_bands_match_single_process) {
  * -resume renders the rest, as an uninterrupted run would. */
 TEST(mpi_killed_rank_then_resume) {
     char dir[256], line[512], stray[256];
-    make_dir(dir, sizeof dir, "mpi-kill");
+    test_make_dir(dir, sizeof dir, "mpi-kill");
     int rc = run_in(dir, "", SCENE " -size 320x240 -frames 8 -o s.png");
     CHECK(rc == 0, "the single-process render exited with %d", rc);
     rc = run_in(dir, "IACSG_TEST_KILL=1:1 " MPIRUN, SCENE " -size 320x240 -frames 8 -o m.png");
@@ -186,27 +176,27 @@ TEST(mpi_killed_rank_then_resume) {
     rc = run_in(dir, MPIRUN, SCENE " -size 320x240 -frames 8 -o m.png -resume");
     CHECK(rc == 0, "-resume exited with %d", rc);
     check_frames_equal(dir);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* A rank that cannot open its device: one line naming the rank, a failed job, no file. */
 TEST(mpi_device_failure_one_line) {
     char dir[256], line[512], stray[256];
-    make_dir(dir, sizeof dir, "mpi-fail");
+    test_make_dir(dir, sizeof dir, "mpi-fail");
     int rc = run_in(dir, MPIRUN, SCENE " -size 64x64 -frames 4 -device 99 -o m.png");
     CHECK(rc != 0 && rc != 124, "a device failure: mpirun exited with %d", rc);
     int lines = error_lines(dir, line, sizeof line);
     CHECK(lines == 1 && strstr(line, "iacsg: rank ") == line && strstr(line, " failed"),
           "expected one line naming the failed rank, got %d lines, the first '%s'", lines, line);
     CHECK(stray_files(dir, stray, sizeof stray) == 0 && !frame_exists(dir, "m", 0), "a file was left: %s", stray);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* Rank 1 killed on its first band of a frame shared in bands: no image at all (rank 0 never writes a frame with a
  * band missing), one line naming rank 1's rows; the rerun writes the whole frame. */
 TEST(mpi_bands_killed_rank_leaves_no_file) {
     char dir[256], line[512], stray[256];
-    make_dir(dir, sizeof dir, "mpi-bands-kill");
+    test_make_dir(dir, sizeof dir, "mpi-bands-kill");
     int rc = run_in(dir, "IACSG_TEST_KILL=1:1 " MPIRUN, "'min(sphere, torus)' -size 512x512 -o m.png");
     CHECK(rc != 0 && rc != 124, "a killed rank: mpirun exited with %d", rc);
     int lines = error_lines(dir, line, sizeof line);
@@ -217,5 +207,5 @@ TEST(mpi_bands_killed_rank_leaves_no_file) {
     CHECK(rc == 0, "the single-process render exited with %d", rc);
     rc = run_in(dir, MPIRUN, "'min(sphere, torus)' -size 512x512 -o m.png -resume");
     CHECK(rc == 0 && same_bytes(dir, "s.png", "m.png"), "the rerun (exit %d) differs from the single process", rc);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }

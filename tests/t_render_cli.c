@@ -20,17 +20,6 @@ static int run_iacsg(const char *dir, const char *args) {
     return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 
-/* A fresh directory /tmp/iacsg-<tag>-<pid> into dir, and its removal. */
-static void make_dir(char *dir, size_t size, const char *tag) {
-    snprintf(dir, size, "/tmp/iacsg-%s-%ld", tag, (long)getpid());
-    CHECK(mkdir(dir, 0700) == 0, "cannot create %s", dir);
-}
-static void remove_dir(const char *dir) {
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    CHECK(system(cmd) == 0, "cannot clean %s", dir);
-}
-
 static int exists(const char *dir, const char *name) {
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", dir, name);
@@ -39,7 +28,7 @@ static int exists(const char *dir, const char *name) {
 
 TEST(render_cli_writes_images) {
     char dir[256], path[1024];
-    make_dir(dir, sizeof dir, "cli");
+    test_make_dir(dir, sizeof dir, "cli");
     int rc = run_iacsg(dir, "'x^2+y^2+z^2-1' -size 40x30 -eye 0,-5,0 -fov 30 -o out.png -depth depth.exr");
     CHECK(rc == 0, "render exited with %d", rc);
     CHECK(exists(dir, "out.png"), "no out.png");
@@ -66,14 +55,14 @@ TEST(render_cli_writes_images) {
     CHECK(run_iacsg(dir, "'sphere' -size 8x8 -o nowhere/out.png") == 1, "an unwritable output did not exit 1");
     CHECK(stat(path, &after) == 0 && after.st_size == before.st_size && after.st_mtime == before.st_mtime,
           "a failed command changed out.png");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* The command writes its images through a child process (src/cli_writer.c), converting the colours to 8 bits
  * itself: the file holds exactly the bytes OpenImageIO makes of the library's float frame. */
 TEST(render_cli_png_matches_library) {
     char dir[256], path[1024];
-    make_dir(dir, sizeof dir, "cli-png");
+    test_make_dir(dir, sizeof dir, "cli-png");
     const char *expr = "min((x-0.5)^2+y^2+z^2-1, (1-sqrt(x^2+y^2))^2+z^2-0.125)";
     char args[512];
     snprintf(args, sizeof args, "'%s' -size 64x48 -eye 0,-4,2.5 -at 0,0,0 -bounds -2,-2,-2,2,2,2 -o cli.png", expr);
@@ -112,13 +101,13 @@ TEST(render_cli_png_matches_library) {
     free(from_cli);
     free(from_library);
     CHECK(differ == 0, "%ld channel values differ between the command's PNG and the library's", differ);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* Without its image library beside it, the command says so in one line, exits 1 and writes nothing. */
 TEST(render_cli_without_image_library) {
     char dir[256], cmd[2048];
-    make_dir(dir, sizeof dir, "cli-nolib");
+    test_make_dir(dir, sizeof dir, "cli-nolib");
     snprintf(cmd, sizeof cmd, "cp '%s' '%s/iacsg' && cd '%s' && ./iacsg sphere -size 8x8 -o out.png 2>err.txt >/dev/null",
              test_binary_path(), dir, dir);
     int rc = system(cmd);
@@ -132,5 +121,5 @@ TEST(render_cli_without_image_library) {
     fclose(f);
     const char *expected = "iacsg: cannot load the image library";
     CHECK(strncmp(line, expected, strlen(expected)) == 0, "stderr: %s", line);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }

@@ -32,9 +32,8 @@ static float *read_ids(const char *dir, const char *name, int w, int h) {
 }
 
 TEST(render_scene_cli_ids) {
-    char dir[256], path[1024], cmd[1024];
-    snprintf(dir, sizeof dir, "/tmp/iacsg-scene-cli-%ld", (long)getpid());
-    CHECK(mkdir(dir, 0700) == 0, "cannot create %s", dir);
+    char dir[256], path[1024];
+    test_make_dir(dir, sizeof dir, "scene-cli");
     snprintf(path, sizeof path, "%s/two.csg", dir);
     FILE *f = fopen(path, "w");
     CHECK(f != NULL, "cannot write %s", path);
@@ -69,16 +68,14 @@ TEST(render_scene_cli_ids) {
     ids = read_ids(dir, "plain.tif", 16, 16);
     CHECK(ids[8 * 16 + 8] == 0 && ids[0] == -1, "an expression's ids: middle %g, corner %g", ids[8 * 16 + 8], ids[0]);
     free(ids);
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    CHECK(system(cmd) == 0, "cannot clean %s", dir);
+    test_remove_dir(dir);
 }
 
 /* Regions need a scene file: on the command line, an expression is one solid, and a region in it is refused at
  * its place, with no image written. */
 TEST(render_scene_cli_region_in_expression) {
-    char dir[256], path[1024], cmd[1024];
-    snprintf(dir, sizeof dir, "/tmp/iacsg-scene-expr-%ld", (long)getpid());
-    CHECK(mkdir(dir, 0700) == 0, "cannot create %s", dir);
+    char dir[256], path[1024];
+    test_make_dir(dir, sizeof dir, "scene-expr");
     int rc = run_in(dir, "'solid a = sphere; region r = a'");
     snprintf(path, sizeof path, "%s/out.txt", dir);
     char *out = test_read_file(path, NULL);
@@ -87,6 +84,5 @@ TEST(render_scene_cli_region_in_expression) {
     free(out);
     snprintf(path, sizeof path, "%s/iacsg.png", dir);
     CHECK(access(path, F_OK) != 0, "an image was written");
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    CHECK(system(cmd) == 0, "cannot clean %s", dir);
+    test_remove_dir(dir);
 }

@@ -55,5 +55,9 @@ const char *test_source_dir(void);
 char *test_read_file(const char *path, size_t *size);
 /* The iacsg command under test: IACSG_BIN, else the binary of this build directory. */
 const char *test_binary_path(void);
+/* A fresh directory /tmp/iacsg-<tag>-<pid> into dir (the test fails if it cannot be made), and its removal with
+ * everything in it. */
+void test_make_dir(char *dir, size_t size, const char *tag);
+void test_remove_dir(const char *dir);
 
 #endif
