@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 typedef struct {
     double c[3], r; /* dyadic values, exact in float and double */
@@ -154,6 +155,20 @@ static inline int random_tile_draw(test_rng_t *rng, random_tile *t) {
     t->a = (ia_real)test_uniform(rng, 0, 10);
     t->b = t->a + (ia_real)test_uniform(rng, 0, 1);
     return 1;
+}
+
+/* The OpenCL C the compiler emits for expr, which must carry the derivative code of interval Newton (the
+ * caller free()s it). */
+static inline char *newton_expr_cl(const char *expr) {
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    char *cl = NULL;
+    CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s", err.message);
+    iacsg_status st = iacsg_expr_emit_cl(e, "iacsg", &cl, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    CHECK(strstr(cl, "IACSG_FDV"), "'%s': no derivative code, so no interval Newton to test", expr);
+    return cl;
 }
 
 /* Pixel (i, j)'s float ray, exactly as the device traced it (camera.h over the same parameter block), in
