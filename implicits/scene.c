@@ -14,6 +14,9 @@ void iacsg_scene_destroy(iacsg_scene *s) {
     for (int k = 0; k < s->nsolids; k++) {
         free(s->solids[k].name);
         iacsg_expr_destroy(s->solids[k].expr);
+        if (s->solids[k].prim)
+            free(s->solids[k].prim->params);
+        free(s->solids[k].prim);
     }
     for (int k = 0; k < s->nitems; k++)
         free(s->items[k].name);
@@ -71,13 +74,34 @@ int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iac
 
 int scene_add_solid(iacsg_scene *s, const char *name, iacsg_expr *e, iacsg_error *err) {
     int ok = grow((void **)&s->solids, s->nsolids, &s->cap_solids, sizeof *s->solids, 1);
-    scene_solid solid = {copy_name(name, &ok), e, 0, 0};
+    scene_solid solid = {copy_name(name, &ok), e, NULL, 0, 0};
     if (!ok) {
         free(solid.name);
         iacsg_expr_destroy(e);
         return out_of_memory(err);
     }
     s->solids[s->nsolids] = solid;
+    return s->nsolids++;
+}
+
+int scene_add_primitive(iacsg_scene *s, const char *name, scene_prim_type type, const double *params, int nparams,
+                        const double mat[16], iacsg_error *err) {
+    scene_prim *p = malloc(sizeof *p);
+    double *copy = malloc((size_t)(nparams > 0 ? nparams : 1) * sizeof *copy);
+    int ok = p && copy && grow((void **)&s->solids, s->nsolids, &s->cap_solids, sizeof *s->solids, 1);
+    char *copied = copy_name(name, &ok);
+    if (!ok) {
+        free(p);
+        free(copy);
+        free(copied);
+        return out_of_memory(err);
+    }
+    memcpy(copy, params, (size_t)nparams * sizeof *copy);
+    p->type = type;
+    p->nparams = nparams;
+    p->params = copy;
+    memcpy(p->mat, mat, sizeof p->mat);
+    s->solids[s->nsolids] = (scene_solid){copied, NULL, p, 0, 0};
     return s->nsolids++;
 }
 

@@ -29,10 +29,34 @@ typedef struct {
 #define SCENE_DEFAULT_SPECULAR 0.45f
 #define SCENE_DEFAULT_SHININESS 48.0f
 
+/* A BRL-CAD primitive (implicits/brlcad_*.c reads them). Its parameters are as the database stores them, in the
+ * primitive's own frame, in mm, in the layout listed here; mat is the matrix accumulated down the combination
+ * tree, 16 numbers row-major as the database writes them (x' = M x on homogeneous points: translation in mat[3],
+ * mat[7], mat[11]; mat[15] divides, a uniform scale). The renderer places it in the world. */
+typedef enum {
+    SCENE_PRIM_HALF, /* N d (4): inside where N . x <= d (N not necessarily unit) */
+    SCENE_PRIM_ARB8, /* 8 vertices, absolute (24); arb4..arb7 repeat vertices as BRL-CAD stores them */
+    SCENE_PRIM_ELL,  /* V A B C (12): centre and three mutually perpendicular semi-axes */
+    SCENE_PRIM_TGC,  /* V H A B C D (18): base centre, height vector, base semi-axes A B, top semi-axes C D
+                        (C parallel to A, D to B); rcc, rec, trc and tec are its special cases */
+    SCENE_PRIM_TOR,  /* V N r_a r_h (8): centre, axis normal (any length), major and minor radii */
+    SCENE_PRIM_EHY,  /* V H A r_1 r_2 c (12): vertex, height vector, unit major axis direction, semi-axes, c */
+    SCENE_PRIM_PIPE, /* n points, each x y z od id bend (6n): outer and inner diameters, bend radius */
+    SCENE_PRIM_TYPES
+} scene_prim_type;
+
 typedef struct {
-    char *name;       /* NULL for an expression written inline in a region or a condition */
-    iacsg_expr *expr; /* f < 0 inside */
-    int line, column; /* where it is declared (or written inline), for messages */
+    scene_prim_type type;
+    int nparams;
+    double *params;
+    double mat[16];
+} scene_prim;
+
+typedef struct {
+    char *name;        /* NULL for an expression written inline in a region or a condition */
+    iacsg_expr *expr;  /* f < 0 inside; NULL for a primitive */
+    scene_prim *prim;  /* a primitive, or NULL for an expression */
+    int line, column;  /* where it is declared (or written inline), for messages */
 } scene_solid;
 
 typedef enum { SCENE_REGION, SCENE_SURFACE } scene_item_kind;
@@ -74,6 +98,9 @@ void iacsg_scene_destroy(iacsg_scene *s);
 iacsg_scene *scene_create(void);
 int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iacsg_error *err);
 int scene_add_solid(iacsg_scene *s, const char *name, iacsg_expr *e, iacsg_error *err);
+/* A primitive (layout of params above, copied with mat); its name may be NULL. */
+int scene_add_primitive(iacsg_scene *s, const char *name, scene_prim_type type, const double *params, int nparams,
+                        const double mat[16], iacsg_error *err);
 /* Appends a tree of n nodes whose operands of binary nodes are indices relative to its first node (as a front
  * end builds one on its own); returns the index of its root in s->nodes, operands rebased. */
 int scene_add_tree(iacsg_scene *s, const uint32_t *nodes, int n, iacsg_error *err);
