@@ -690,3 +690,10 @@ int prim_world_box(const scene_prim *p, double box[6]) {
     prim_placed_free(&placed);
     return bounded;
 }
+
+float prim_float_bound(double x, int upper) {
+    float f = (float)x;
+    if (upper ? (double)f < x : (double)f > x)
+        f = nextafterf(f, upper ? INFINITY : -INFINITY);
+    return f;
+}

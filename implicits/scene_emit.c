@@ -51,9 +51,7 @@ static void emit_dispatcher(strbuf *b, int nsolids, int which) {
 /* A bound as a literal of either precision: the double itself, and its float rounded outward (down for a lower
  * bound), for kernels/prim.h's PRIM_R. */
 static void emit_bound(strbuf *b, double x, int upper) {
-    float f = (float)x;
-    if (upper ? (double)f < x : (double)f > x)
-        f = nextafterf(f, upper ? INFINITY : -INFINITY);
+    float f = prim_float_bound(x, upper);
     if (isinf(f) || isinf(x)) {
         strbuf_printf(b, "PRIM_R(%sINFINITY, %sINFINITY)", x < 0 ? "-" : "", f < 0 ? "-" : "");
         return;
