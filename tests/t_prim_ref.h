@@ -338,6 +338,13 @@ static inline int ref_pipe_part_inside(const ref_pipe_part *pp, const ld p[3]) {
     return rho < ro && (pp->r[2] == 0 && pp->r[3] == 0 ? 1 : rho > ri); /* no bore: the axis is inside */
 }
 
+static inline int ref_pipe_inside(const ref_pipe_part *parts, int n, const ld p[3]) {
+    for (int k = 0; k < n; k++)
+        if (ref_pipe_part_inside(&parts[k], p))
+            return 1;
+    return 0;
+}
+
 /* Whether the point p (local frame) is inside the primitive. */
 static inline int prim_ref_inside_local(const scene_prim *sp, const ld p[3]) {
     const double *q = sp->params;
@@ -383,11 +390,7 @@ static inline int prim_ref_inside_local(const scene_prim *sp, const ld p[3]) {
     }
     case SCENE_PRIM_PIPE: {
         ref_pipe_part parts[REF_PIPE_MAX_PARTS];
-        int n = ref_pipe_parts(q, sp->nparams / 6, parts);
-        for (int k = 0; k < n; k++)
-            if (ref_pipe_part_inside(&parts[k], p))
-                return 1;
-        return 0;
+        return ref_pipe_inside(parts, ref_pipe_parts(q, sp->nparams / 6, parts), p);
     }
     default:
         return 0;
@@ -533,13 +536,15 @@ static inline int prim_ref_crossings(const scene_prim *sp, const ref_line *r, ld
     cand[0] = lo;
     qsort(cand + 1, (size_t)n, sizeof(ld), ref_cmp_ld);
     cand[n + 1] = hi;
+    ref_pipe_part parts[REF_PIPE_MAX_PARTS]; /* a pipe's, made once */
+    int nparts = sp->type == SCENE_PRIM_PIPE ? ref_pipe_parts(sp->params, sp->nparams / 6, parts) : 0;
     int count = 0, prev = -1;
     for (int k = 0; k <= n; k++) {
         if (!(cand[k] < cand[k + 1]))
             continue;
         ld p[3];
         ref_at(r, cand[k] + (cand[k + 1] - cand[k]) / 2, p);
-        int in = prim_ref_inside_local(sp, p);
+        int in = sp->type == SCENE_PRIM_PIPE ? ref_pipe_inside(parts, nparts, p) : prim_ref_inside_local(sp, p);
         if (prev < 0)
             *inside_at_lo = in;
         else if (in != prev)
