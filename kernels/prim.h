@@ -16,8 +16,8 @@
  * The implicits, and why each is tight (F's overestimate shrinks with the box, so bisection converges, and no
  * f is 0 except on the surface: a zero elsewhere would be split down to BOUNDARY leaves, which the weave may claim):
  *   HALF  n.x - d (n, d: 4 intervals). Linear: each coordinate occurs once, F is exact up to rounding.
- *   ARB8  max over its faces of n_i.(x - a_i), a_i a vertex of face i, n_i outward (6 planes, 36 intervals; a
- *         degenerate arb repeats a plane). The faces are BRL-CAD's (rt_arb_info: the first three distinct,
+ *   ARB8  max over its faces of n_i.x - d_i, n_i outward, d_i = n_i.a_i for a vertex a_i of face i (6 planes, 24
+ *         intervals; a degenerate arb repeats a plane). The faces are BRL-CAD's (rt_arb_info: the first three distinct,
  *         non-collinear vertices in its order; vertices within BRL-CAD's 0.0005 mm merged), so the solid is the
  *         intersection of the faces' half-spaces, within the box of the vertices (the BVH's range clips it
  *         there, which only matters for a non-planar face). Each plane is linear: exact up to rounding.
@@ -52,11 +52,18 @@
 #else
 #define PRIM_R(d, f) (f)
 #endif
+#if IA_DEVICE /* the scene program stores parameters 8 at a time */
+#ifdef IA_FP64
+typedef double8 prim_real8;
+#else
+typedef float8 prim_real8;
+#endif
+#endif
 
 #define PRIM_ARB_PLANES 6
 /* The number of intervals of each type's parameters (a pipe's depend on its parts). */
 #define PRIM_HALF_N 4
-#define PRIM_ARB8_N (6 * PRIM_ARB_PLANES)
+#define PRIM_ARB8_N (4 * PRIM_ARB_PLANES)
 #define PRIM_ELL_N 12
 #define PRIM_TGC_N 14
 #define PRIM_TOR_N 14
@@ -115,11 +122,8 @@ IA_FN ia_interval prim_half_F(const ia_real *p, ia_interval x, ia_interval y, ia
 
 IA_FN ia_interval prim_arb8_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
     ia_interval f = ia_make(-IA_INF, -IA_INF);
-    for (int j = 0; j < PRIM_ARB_PLANES; j++) {
-        int a = 6 * j + 3;
-        f = ia_max(f, prim_dot3(p, 6 * j, ia_sub(x, prim_iv(p, a)), ia_sub(y, prim_iv(p, a + 1)),
-                                ia_sub(z, prim_iv(p, a + 2))));
-    }
+    for (int j = 0; j < PRIM_ARB_PLANES; j++)
+        f = ia_max(f, prim_half_F(p + 8 * j, x, y, z));
     return f;
 }
 
@@ -216,9 +220,7 @@ IA_FN ia_real prim_half_grad(const ia_real *p, ia_real x, ia_real y, ia_real z, 
 IA_FN ia_real prim_arb8_grad(const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real g[3]) {
     ia_real best = -IA_INF;
     for (int j = 0; j < PRIM_ARB_PLANES; j++) {
-        ia_real n[3] = {prim_mid(p, 6 * j), prim_mid(p, 6 * j + 1), prim_mid(p, 6 * j + 2)};
-        ia_real f = n[0] * (x - prim_mid(p, 6 * j + 3)) + n[1] * (y - prim_mid(p, 6 * j + 4)) +
-                    n[2] * (z - prim_mid(p, 6 * j + 5));
+        ia_real n[3], f = prim_half_grad(p + 8 * j, x, y, z, n);
         if (f > best) {
             best = f;
             for (int c = 0; c < 3; c++)
