@@ -127,35 +127,55 @@ IA_FN ia_interval prim_arb8_F(const ia_real *p, ia_interval x, ia_interval y, ia
     return f;
 }
 
-IA_FN ia_interval prim_ell_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
-    ia_interval s[3];
-    prim_frame(p, 0, x, y, z, s);
-    return ia_add_r(ia_add(ia_add(ia_sqr(s[0]), ia_sqr(s[1])), ia_sqr(s[2])), -1);
+/* ds = G d: the direction (dx, dy, dz) in the frame at `at`. */
+IA_FN void prim_frame_dir(const ia_real *p, int at, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval ds[3]) {
+    for (int r = 0; r < 3; r++)
+        ds[r] = prim_dot3(p, at + 3 + 3 * r, dx, dy, dz);
 }
 
-IA_FN ia_interval prim_tgc_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
-    ia_interval s[3];
-    prim_frame(p, 0, x, y, z, s);
-    ia_interval ra = ia_add_r(ia_mul(prim_iv(p, 12), s[2]), 1), rb = ia_add_r(ia_mul(prim_iv(p, 13), s[2]), 1);
-    ia_interval side = ia_add_r(ia_add(prim_ratio(ia_sqr(s[0]), ia_sqr(ra)), prim_ratio(ia_sqr(s[1]), ia_sqr(rb))), -1);
-    return ia_max(ia_max(ia_neg(s[2]), ia_add_r(s[2], -1)), side);
-}
-
-IA_FN ia_interval prim_tor_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
-    ia_interval s[3];
-    prim_frame(p, 0, x, y, z, s);
-    ia_interval rho = ia_sqrt(ia_add(ia_sqr(s[0]), ia_sqr(s[1])));
-    return ia_sub(ia_add(ia_sqr(ia_sub(rho, prim_iv(p, 12))), ia_sqr(s[2])), prim_iv(p, 13));
-}
-
-IA_FN ia_interval prim_ehy_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
-    ia_interval s[3];
-    prim_frame(p, 0, x, y, z, s);
-    ia_interval k1 = prim_iv(p, 12), k2 = prim_iv(p, 13), k2sq = prim_iv(p, 14);
-    ia_interval sheet = ia_add(ia_sub(ia_mul(k1, ia_add_r(ia_add(ia_sqr(s[0]), ia_sqr(s[1])), -1)),
-                                      ia_sqr(ia_add(s[2], k2))),
-                               k2sq);
-    return ia_max(ia_max(s[2], ia_sub(ia_make(-1, -1), s[2])), sheet);
+/* A frame type's f over the box from its s, and when dt is not NULL, in *dt f's derivative along a direction whose
+ * frame coordinates are ds (unbounded where a quotient's denominator may be 0: interval Newton then bisects). A max
+ * differentiates as Clarke's derivative (ia_dmax), for which the mean value theorem Newton needs still holds. */
+IA_FN ia_interval prim_frame_value(int type, const ia_real *p, const ia_interval s[3], const ia_interval ds[3],
+                                   ia_interval *dt) {
+    ia_interval f = ia_entire(), d = ia_entire();
+    ia_interval s01 = ia_add(ia_sqr(s[0]), ia_sqr(s[1]));
+    ia_interval ds01 = dt ? ia_mul_r(ia_add(ia_mul(s[0], ds[0]), ia_mul(s[1], ds[1])), 2) : d; /* (s0^2 + s1^2)' */
+    if (type == PRIM_ELL) {
+        f = ia_add_r(ia_add(s01, ia_sqr(s[2])), -1);
+        if (dt)
+            d = ia_add(ds01, ia_mul_r(ia_mul(s[2], ds[2]), 2));
+    } else if (type == PRIM_TGC) {
+        ia_interval alpha = prim_iv(p, 12), beta = prim_iv(p, 13);
+        ia_interval ra = ia_add_r(ia_mul(alpha, s[2]), 1), rb = ia_add_r(ia_mul(beta, s[2]), 1);
+        ia_interval u2 = ia_sqr(s[0]), v2 = ia_sqr(s[1]);
+        ia_interval side = ia_add_r(ia_add(prim_ratio(u2, ia_sqr(ra)), prim_ratio(v2, ia_sqr(rb))), -1);
+        ia_interval below = ia_neg(s[2]), above = ia_add_r(s[2], -1), cap = ia_max(below, above);
+        f = ia_max(cap, side);
+        if (dt) { /* (u^2 / ra^2)' = 2 (u u' ra - u^2 alpha w') / ra^3 */
+            ia_interval du = ia_div(ia_mul_r(ia_sub(ia_mul(ia_mul(s[0], ds[0]), ra), ia_mul(ia_mul(u2, alpha), ds[2])), 2),
+                                    ia_pown(ra, 3));
+            ia_interval dv = ia_div(ia_mul_r(ia_sub(ia_mul(ia_mul(s[1], ds[1]), rb), ia_mul(ia_mul(v2, beta), ds[2])), 2),
+                                    ia_pown(rb, 3));
+            d = ia_dmax(cap, side, ia_dmax(below, above, ia_neg(ds[2]), ds[2]), ia_add(du, dv));
+        }
+    } else if (type == PRIM_TOR) {
+        ia_interval rho = ia_sqrt(s01), off = ia_sub(rho, prim_iv(p, 12));
+        f = ia_sub(ia_add(ia_sqr(off), ia_sqr(s[2])), prim_iv(p, 13));
+        if (dt) /* rho' = (s0^2 + s1^2)' / (2 rho) */
+            d = ia_add(ia_div(ia_mul(off, ds01), rho), ia_mul_r(ia_mul(s[2], ds[2]), 2));
+    } else if (type == PRIM_EHY) {
+        ia_interval k1 = prim_iv(p, 12), k2 = prim_iv(p, 13), zk = ia_add(s[2], k2);
+        ia_interval sheet = ia_add(ia_sub(ia_mul(k1, ia_add_r(s01, -1)), ia_sqr(zk)), prim_iv(p, 14));
+        ia_interval below = ia_sub(ia_make(-1, -1), s[2]), cap = ia_max(s[2], below);
+        f = ia_max(cap, sheet);
+        if (dt)
+            d = ia_dmax(cap, sheet, ia_dmax(s[2], below, ds[2], ia_neg(ds[2])),
+                        ia_sub(ia_mul(k1, ds01), ia_mul_r(ia_mul(zk, ds[2]), 2)));
+    }
+    if (dt)
+        *dt = d;
+    return f;
 }
 
 /* A pipe part's cell: the start plane (x - a).t >= 0 and the end plane (x - b).u <= 0, and its tube over the box:
@@ -350,18 +370,12 @@ PRIM_FN ia_interval prim_F(int type, const ia_real *p, ia_interval x, ia_interva
         return prim_half_F(p, x, y, z);
     case PRIM_ARB8:
         return prim_arb8_F(p, x, y, z);
-    case PRIM_ELL:
-        return prim_ell_F(p, x, y, z);
-    case PRIM_TGC:
-        return prim_tgc_F(p, x, y, z);
-    case PRIM_TOR:
-        return prim_tor_F(p, x, y, z);
-    case PRIM_EHY:
-        return prim_ehy_F(p, x, y, z);
     case PRIM_PIPE:
         return prim_pipe_F(p, x, y, z);
     }
-    return ia_entire();
+    ia_interval s[3];
+    prim_frame(p, 0, x, y, z, s);
+    return prim_frame_value(type, p, s, s, 0);
 }
 
 PRIM_FN ia_real prim_f_grad(int type, const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real *gx, ia_real *gy,
@@ -395,13 +409,24 @@ PRIM_FN ia_real prim_f_grad(int type, const ia_real *p, ia_real x, ia_real y, ia
     return f;
 }
 
-/* F and in *dt the derivative along (dx, dy, dz), for interval Newton: not yet derived for primitives, so both are
- * unbounded, which the walk reads as "not usable" and bisects (kernels/segments.h), without evaluating anything. */
+/* F, and in *dt its derivative along (dx, dy, dz), for interval Newton. A pipe's f jumps at its end caps (it is +inf
+ * outside every part), so its derivative is unbounded: the walk bisects there. */
 PRIM_FN ia_interval prim_Fd(int type, const ia_real *p, ia_interval x, ia_interval y, ia_interval z, ia_interval dx,
                             ia_interval dy, ia_interval dz, ia_interval *dt) {
-    (void)type, (void)p, (void)x, (void)y, (void)z, (void)dx, (void)dy, (void)dz;
-    *dt = ia_entire();
-    return ia_entire();
+    if (type == PRIM_HALF || type == PRIM_ARB8 || type == PRIM_PIPE) {
+        ia_interval f = ia_make(-IA_INF, -IA_INF), d = ia_make(-IA_INF, -IA_INF);
+        for (int j = 0; type != PRIM_PIPE && j < (type == PRIM_HALF ? 1 : PRIM_ARB_PLANES); j++) {
+            ia_interval fj = prim_half_F(p + 8 * j, x, y, z), dj = prim_dot3(p + 8 * j, 0, dx, dy, dz);
+            d = j == 0 ? dj : ia_dmax(f, fj, d, dj);
+            f = ia_max(f, fj);
+        }
+        *dt = type == PRIM_PIPE ? ia_entire() : d;
+        return type == PRIM_PIPE ? prim_pipe_F(p, x, y, z) : f;
+    }
+    ia_interval s[3], ds[3];
+    prim_frame(p, 0, x, y, z, s);
+    prim_frame_dir(p, 0, dx, dy, dz, ds);
+    return prim_frame_value(type, p, s, ds, dt);
 }
 
 #endif

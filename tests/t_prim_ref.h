@@ -255,7 +255,9 @@ static inline int ref_pipe_parts(const double *q, int npoints, ref_pipe_part *pa
         }
         if (ref_norm(n1) > 0) {
             ref_unit(h);
-            memcpy(start_t, h, sizeof h);
+            /* after a bend, the plane where they meet (its end's direction equals this axis in exact arithmetic;
+             * one value for both, as rounding would leave a sliver between two) */
+            memcpy(start_t, n > 0 && parts[n - 1].bend ? parts[n - 1].u : h, sizeof h);
             ld n2[3], nrm[3], dist = 0;
             int bend = 0;
             if (i3 >= 0) {
@@ -276,7 +278,8 @@ static inline int ref_pipe_parts(const double *q, int npoints, ref_pipe_part *pa
             memcpy(lp->a, curr, sizeof curr);
             memcpy(lp->t, start_t, sizeof start_t);
             memcpy(lp->b, end, sizeof end);
-            memcpy(lp->u, h, sizeof h);
+            for (int c = 0; c < 3; c++) /* before a bend, its start plane (the same) */
+                lp->u[c] = bend ? -n1[c] : h[c];
             memcpy(lp->c, curr, sizeof curr);
             memcpy(lp->axis, h, sizeof h);
             lp->r[0] = curr_r[0];
