@@ -1,11 +1,12 @@
 /* kernels/prim.h -- BRL-CAD's primitive solids as inclusion functions: for each type the interval enclosure F of an
  * implicit f (f < 0 inside) over a box, f and its gradient at a point (the normal), and Fd, F with the derivative
  * along a ray's direction (the walks' interval Newton). Written in the subset of C11 and OpenCL C of ia/, so the
- * host tests run the device's code. The scene program calls them out of line (prim_F, prim_f_grad, prim_Fd), each
- * solid only filling its parameters: a primitive costs its scene a few lines of code to build, not a function.
+ * host tests run the device's code. The scene program calls them out of line (prim_F, prim_f_grad, prim_Fd, one
+ * copy per program), each solid only storing its parameters into a private array (scene_emit.c): a primitive costs
+ * its scene a case of stores to build (a few ms with PoCL), not a compiled function (about 30 ms).
  *
  *   implicits/prim_place.c: database parameters and matrix --> world parameters as intervals (outward) -->
- *   implicits/scene_emit.c: literals per solid --> prim_F / prim_f_grad / prim_Fd here
+ *   implicits/scene_emit.c: stores of literals per solid --> prim_F / prim_f_grad / prim_Fd here
  *
  * Parameters. p holds intervals as lo, hi pairs (prim_iv), each holding the exact real number the placement
  * defines from the database's numbers, so F over a box holds f of the primitive exactly as the database defines
@@ -32,6 +33,16 @@
  *   EHY   max(z, -1 - z, k1 (x^2 + y^2 - 1) - (z + k2)^2 + k2^2), (x, y, z) = s = BRL-CAD's S R (p - V) (z from 0 at
  *         the base to -1 at the tip), k1 = 2 c' + 1, k2 = c' + 1, c' = c / |H| (ehy.c's quadric, rearranged so that
  *         z occurs once; 15 intervals). Over -1 <= z <= 0 it is 0 only on the sheet.
+ *   PIPE  librt's parts (pipe.c): straight frusta between the points and torus bends at them, each in its cell
+ *         between two planes (PRIM_PIPE_PART_N intervals a part). f is the tube of a part whose cell holds x (a
+ *         frustum's max(rho - ro(w), ri(w) - rho), a bend's max(d - ro, ri - d), d the distance from its core
+ *         circle), +inf where none does. A union of closed parts that abut would be 0 all over the faces where
+ *         they meet, inside the wall; here a box across a plane two consecutive parts share is in their union and
+ *         gets the hull of both tubes, negative there (prim_pipe_F).
+ *
+ * Fd: the derivative along the ray from the same parts (a frame type's from s and G d; a max's by ia_dmax, Clarke's
+ * derivative, for which the mean value theorem Newton relies on still holds); unbounded where a quotient's
+ * denominator may be 0 and for pipes, whose f jumps at the end caps: the walk then bisects.
  */
 #ifndef KERNELS_PRIM_H
 #define KERNELS_PRIM_H
