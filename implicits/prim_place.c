@@ -200,6 +200,10 @@ static void ellipse_reach(const iv k[9], int ncols, iv scale0, iv scale1, iv r[3
     }
 }
 
+/* sqrt(1 - u_c^2) for a unit vector u, as the other two components' length (no cancellation where u_c is near 1):
+ * how far a unit circle across u reaches in coordinate c. */
+static iv across(const iv u[3], int c) { return ia_sqrt(ia_add(ia_sqr(u[(c + 1) % 3]), ia_sqr(u[(c + 2) % 3]))); }
+
 /* ---- the types */
 
 /* P and G of a frame: G = W, the verified inverse of K (the canonical shape's axes in the world, columns). */
@@ -402,7 +406,7 @@ static int place_tor(const scene_prim *sp, const placement *m, writer *w, const 
     int ok = put_n(w, p, 3) && put_n(w, fr, 9) && put(w, ra) && put(w, ia_sqr(rh));
     /* the core circle's reach in coordinate c is r_a sqrt(1 - n_c^2), the tube's r_h */
     for (int c = 0; c < 3; c++)
-        r[c] = ia_add(ia_mul(ra, ia_sqrt(ia_sub(pt(1), ia_sqr(fr[6 + c])))), rh);
+        r[c] = ia_add(ia_mul(ra, across(fr + 6, c)), rh);
     box_empty(w->out->box);
     box_add(w->out->box, p, r);
     return ok;
@@ -495,7 +499,7 @@ static int pipe_linear(pipe_builder *pb, const pipe_plane *start, int shares, co
                 (r0[1].hi > 0 || r1[1].hi > 0 ? PRIM_PIPE_INNER : 0);
     iv reach[3];
     for (int c = 0; c < 3; c++) /* a disk of radius r across h reaches r sqrt(1 - h_c^2) */
-        reach[c] = ia_sqrt(ia_sub(pt(1), ia_sqr(h[c])));
+        reach[c] = across(h, c);
     iv r[3];
     scale3(reach, r0[0], r);
     box_add(pb->box, start->a, r);
@@ -509,7 +513,7 @@ static int pipe_bend(pipe_builder *pb, const pipe_plane *start, int shares, cons
                      const iv n[3], iv bend, const iv r[2]) {
     iv radii[4] = {bend, r[0], r[1], pt(0)}, reach[3];
     for (int k = 0; k < 3; k++)
-        reach[k] = ia_add(ia_mul(bend, ia_sqrt(ia_sub(pt(1), ia_sqr(n[k])))), r[0]);
+        reach[k] = ia_add(ia_mul(bend, across(n, k)), r[0]);
     box_add(pb->box, c, reach);
     int flags = PRIM_PIPE_BEND | (shares ? PRIM_PIPE_SHARES_START : 0) | (r[1].hi > 0 ? PRIM_PIPE_INNER : 0);
     return pipe_part(pb, flags, start, end, c, n, radii);
