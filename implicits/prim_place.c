@@ -525,24 +525,9 @@ static void unit3(const iv v[3], iv out[3]) {
         out[c] = ia_div(v[c], len);
 }
 
-/* Points x y z od id bend: placed, the lengths divided by mat[15] (librt's rt_pipe_mat). */
-static int place_pipe(const scene_prim *sp, const placement *m, writer *w, const char **why) {
-    int n = sp->nparams / 6;
-    if (sp->nparams % 6 != 0 || n < 2)
-        return *why = "a pipe needs whole points (x y z od id bend), at least two", -1;
-    iv(*pts)[3] = malloc(sizeof *pts * (size_t)n), (*radii)[2] = malloc(sizeof *radii * (size_t)n);
-    iv *bends = malloc(sizeof *bends * (size_t)n);
-    int ok = pts && radii && bends && put(w, pt(0));
-    *why = "a part of it is degenerate";
-    for (int i = 0; ok > 0 && i < n; i++) {
-        const double *q = sp->params + 6 * i;
-        if (!(q[3] > 0 && q[4] >= 0 && q[4] < q[3] && q[5] >= 0))
-            ok = (*why = "a point's diameters and bend radius are not 0 <= id < od, bend >= 0", -1);
-        place_point(m, q, pts[i]);
-        radii[i][0] = ia_div(pt(q[3] / 2), pt(m->scale));
-        radii[i][1] = ia_div(pt(q[4] / 2), pt(m->scale));
-        bends[i] = ia_div(pt(q[5]), pt(m->scale));
-    }
+/* The parts of a pipe through the placed points (librt's pipe_elements_calculate), written after the count. */
+static int pipe_build(writer *w, const iv (*pts)[3], const iv (*radii)[2], const iv *bends, int n, const char **why) {
+    int ok = 1;
     pipe_builder pb = {w, 0, w->out->box};
     box_empty(pb.box);
     pipe_plane start, shared;
@@ -626,6 +611,29 @@ static int place_pipe(const scene_prim *sp, const placement *m, writer *w, const
         ok = (*why = "all its points coincide", -1);
     if (ok > 0)
         w->out->lo[0] = w->out->hi[0] = pb.parts;
+    return ok;
+}
+
+/* Points x y z od id bend: placed, the lengths divided by mat[15] (librt's rt_pipe_mat). */
+static int place_pipe(const scene_prim *sp, const placement *m, writer *w, const char **why) {
+    int n = sp->nparams / 6;
+    if (sp->nparams % 6 != 0 || n < 2)
+        return *why = "a pipe needs whole points (x y z od id bend), at least two", -1;
+    iv(*pts)[3] = malloc(sizeof *pts * (size_t)n), (*radii)[2] = malloc(sizeof *radii * (size_t)n);
+    iv *bends = malloc(sizeof *bends * (size_t)n);
+    int ok = pts && radii && bends && put(w, pt(0));
+    *why = "a part of it is degenerate";
+    for (int i = 0; ok > 0 && i < n; i++) {
+        const double *q = sp->params + 6 * i;
+        if (!(q[3] > 0 && q[4] >= 0 && q[4] < q[3] && q[5] >= 0))
+            ok = (*why = "a point's diameters and bend radius are not 0 <= id < od, bend >= 0", -1);
+        place_point(m, q, pts[i]);
+        radii[i][0] = ia_div(pt(q[3] / 2), pt(m->scale));
+        radii[i][1] = ia_div(pt(q[4] / 2), pt(m->scale));
+        bends[i] = ia_div(pt(q[5]), pt(m->scale));
+    }
+    if (ok > 0)
+        ok = pipe_build(w, (const iv(*)[3])pts, (const iv(*)[2])radii, bends, n, why);
     free(pts);
     free(radii);
     free(bends);
