@@ -10,9 +10,11 @@
  *
  * Parameters. p holds intervals as lo, hi pairs (prim_iv), each holding the exact real number the placement
  * defines from the database's numbers, so F over a box holds f of the primitive exactly as the database defines
- * it at every point of the box. Many types work in a frame: s = G (x - P), P the primitive's world origin, G a
- * 3x3 matrix (rows), intervals 0-2 and 3-11, enclosing the exact inverse of the map from the canonical shape to
- * the world (a verified inverse: prim_place.c), so any affine matrix in the database places it exactly.
+ * it at every point of the box. ELL, TGC, TOR and EHY work in a frame: s = G (x - P), P the primitive's world
+ * origin, G a 3x3 matrix (rows), intervals 0-2 and 3-11. For ell and tgc G encloses the exact inverse of the map
+ * from the canonical shape to the world (a verified inverse, prim_place.c), so any affine matrix places them as
+ * librt does; a torus's G is an orthonormal frame around its placed axis and an ehy's ehy.c's S R times the
+ * matrix's inverse (librt takes their matrices for rotations and uniform scales).
  *
  * The implicits, and why each is tight (F's overestimate shrinks with the box, so bisection converges, and no
  * f is 0 except on the surface: a zero elsewhere would be split down to BOUNDARY leaves, which the weave may claim):
