@@ -1,10 +1,12 @@
 /* tests/t_prim_errors.c -- primitives that describe no solid are refused with one clear message naming the solid,
  * its type and the reason (implicits/prim_place.c), by prim_place and so by the scene's code generation
  * (scene_emit_cl), before anything is built; a valid one of each type is accepted with its world box (a half-space:
- * an infinite one; a pipe's bend: its whole torus's, which holds here the bend's own). */
+ * an infinite one; a pipe's bend: its whole torus's, which holds here the bend's own); and the float program's
+ * parameters are the double bounds rounded outward to the nearest floats. */
 #include "implicits/prim_place.h"
 #include "implicits/scene_emit.h"
 #include "test.h"
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -92,4 +94,21 @@ TEST(prim_errors_valid_boxes) {
                         : box[c] >= expect[k][c] && box[c] <= expect[k][c] + 1e-12,
                   "type %d: box[%d] = %.17g, the shape's %.17g", valid[k].type, c, box[c], expect[k][c]);
     }
+}
+
+/* A float program's parameters: each double bound rounded outward to the nearest float on its side (so the float
+ * intervals hold the double ones, and no wider than one float step). */
+TEST(prim_float_bound_outward) {
+    test_rng_t *rng = test_rng();
+    long n = test_iters(100000);
+    for (long k = 0; k < n; k++) {
+        double x = ldexp(test_rand_unit(rng) - 0.5, (int)(test_rand_u64(rng) % 200) - 100);
+        if (k % 7 == 0)
+            x = (double)(float)x; /* exactly a float: kept */
+        float lo = prim_float_bound(x, 0), hi = prim_float_bound(x, 1);
+        CHECK((double)lo <= x && x <= (double)hi, "%a: [%a, %a] does not hold it", x, (double)lo, (double)hi);
+        CHECK((double)nextafterf(lo, INFINITY) > x && (double)nextafterf(hi, -INFINITY) < x,
+              "%a: [%a, %a] is not the nearest floats", x, (double)lo, (double)hi);
+    }
+    CHECK(prim_float_bound(1e300, 1) == INFINITY && prim_float_bound(1e300, 0) == FLT_MAX, "beyond the floats' range");
 }
