@@ -1,5 +1,6 @@
 /* src/cli_main.c -- the `iacsg` command: dispatches to a subcommand (src/cli.h), or renders. */
 #include "cli.h"
+#include "cli_brlcad.h"
 #include "iacsg.h"
 #include <stdio.h>
 #include <string.h>
@@ -92,6 +93,10 @@ int main(int argc, char **argv) {
         return cli_compile(argc - 1, argv + 1);
     if (strcmp(cmd, "view") == 0)
         return cli_view(argc - 1, argv + 1);
+    if (strcmp(cmd, "objects") == 0)
+        return cli_objects(argc - 1, argv + 1);
+    if (strcmp(cmd, "regions") == 0)
+        return cli_regions(argc - 1, argv + 1);
     if (strcmp(cmd, "devices") == 0)
         return cli_devices(argc - 1, argv + 1);
     return cli_render(argc, argv);
