@@ -150,11 +150,11 @@ int brlcad_db_add_comb(brlcad_db *db, const char *name, size_t n, int line, iacs
     return k;
 }
 
-int brlcad_db_leaf(brlcad_db *db, const char *name, size_t n, const double *mat, iacsg_error *err) {
+int brlcad_db_leaf(brlcad_db *db, const char *name, size_t n, int line, const double *mat, iacsg_error *err) {
     if (!grow(&db->nodes, db->nnodes, &db->cap_nodes, sizeof *db->nodes, 1) ||
         (mat && !grow(&db->mats, 16 * db->nmats, &db->cap_mats, sizeof *db->mats, 16)))
         return out_of_memory(err);
-    brl_node node = {BRL_LEAF, -1, -1, copy_n(name, n), -1, -1};
+    brl_node node = {BRL_LEAF, -1, -1, copy_n(name, n), -1, -1, line};
     if (!node.name)
         return out_of_memory(err);
     if (mat) {
@@ -168,7 +168,7 @@ int brlcad_db_leaf(brlcad_db *db, const char *name, size_t n, const double *mat,
 int brlcad_db_binary(brlcad_db *db, brl_op op, int left, int right, iacsg_error *err) {
     if (!grow(&db->nodes, db->nnodes, &db->cap_nodes, sizeof *db->nodes, 1))
         return out_of_memory(err);
-    db->nodes[db->nnodes] = (brl_node){op, left, right, NULL, -1, -1};
+    db->nodes[db->nnodes] = (brl_node){op, left, right, NULL, -1, -1, 0};
     return db->nnodes++;
 }
 
@@ -197,7 +197,7 @@ static iacsg_status resolve_tree(brlcad_db *db, int k, int *stack, iacsg_error *
         }
         n->object = brlcad_db_find(db, n->name);
         if (n->object < 0)
-            return iacsg_error_set(err, IACSG_ERR_NAME, db->objects[k].line, 1,
+            return iacsg_error_set(err, IACSG_ERR_NAME, n->line, 1,
                                    "combination '%s' has a member '%s' that the database does not define",
                                    db->objects[k].name, n->name);
         db->objects[n->object].referenced = 1;

@@ -24,6 +24,7 @@ typedef struct {
     char *name;      /* leaf: the member's name */
     int object;      /* leaf: the member's object index, once resolved (brlcad_db_finish) */
     int mat;         /* leaf: index of its 16 numbers in mats, or -1 for the identity */
+    int line;        /* leaf: where the member is written */
 } brl_node;
 
 typedef struct {
@@ -72,7 +73,7 @@ int brlcad_db_add_prim(brlcad_db *db, const char *name, size_t n, int line, scen
                        const double *params, int nparams, iacsg_error *err);
 int brlcad_db_add_comb(brlcad_db *db, const char *name, size_t n, int line, iacsg_error *err);
 /* Tree nodes: a leaf naming a member (mat NULL: the identity), and a binary node. -1 when out of memory. */
-int brlcad_db_leaf(brlcad_db *db, const char *name, size_t n, const double *mat, iacsg_error *err);
+int brlcad_db_leaf(brlcad_db *db, const char *name, size_t n, int line, const double *mat, iacsg_error *err);
 int brlcad_db_binary(brlcad_db *db, brl_op op, int left, int right, iacsg_error *err);
 int brlcad_db_add_colour(brlcad_db *db, int low, int high, const int rgb[3], iacsg_error *err);
 /* Resolves every member name, refuses dangling references and cycles, lists the top objects. */

@@ -196,7 +196,7 @@ static iacsg_status member_records(brlcad_db *db, v4_reader *r, v4_line *l, int 
         int identity = 1;
         for (int k = 0; k < 16; k++)
             identity &= m[k] == (k % 5 == 0);
-        int leaf = brlcad_db_leaf(db, l->start[2], l->len[2], identity ? NULL : m, err);
+        int leaf = brlcad_db_leaf(db, l->start[2], l->len[2], l->line, identity ? NULL : m, err);
         if (leaf < 0) {
             st = err->status;
             break;

@@ -293,7 +293,7 @@ static int parse_tree(brlcad_db *db, const word *w, const char *comb, int depth,
         double m[16];
         if (n == 3 && numbers(&v[2], m, 16, comb, "a member's matrix", err) != IACSG_OK)
             return -1;
-        return brlcad_db_leaf(db, v[1].s, v[1].n, n == 3 ? m : NULL, err);
+        return brlcad_db_leaf(db, v[1].s, v[1].n, v[1].line, n == 3 ? m : NULL, err);
     }
     static const char ops[] = "un-^";
     static const brl_op kinds[] = {BRL_UNION, BRL_INTERSECT, BRL_SUBTRACT, BRL_XOR};
