@@ -41,6 +41,8 @@ KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/tra
 SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h kernels/csg_node.h \
                        kernels/scene_data.h kernels/bvh.h kernels/segments.h kernels/classify.h kernels/weave.h \
                        kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h kernels/light.h kernels/render_scene.cl
+# BRL-CAD's primitives, between the ia/ headers and the scene's solids (which call them).
+PRIM_KERNEL_SOURCES = kernels/prim.h
 TEST_CL_SOURCES = $(sort $(wildcard tests/*.cl))
 
 LIB_C = $(filter-out src/cli%.c,$(wildcard ia/*.c implicits/*.c src/*.c))
@@ -50,7 +52,8 @@ TEST_C = $(filter-out %_fp.c,$(wildcard tests/*.c))
 TEST_FP_C = $(wildcard tests/*_fp.c)
 
 LIB_OBJ = $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o) $(BUILD)/embedded_ia.o \
-          $(if $(KERNEL_SOURCES),$(BUILD)/embedded_kernels.o) $(BUILD)/embedded_scene_kernels.o
+          $(if $(KERNEL_SOURCES),$(BUILD)/embedded_kernels.o) $(BUILD)/embedded_scene_kernels.o \
+          $(BUILD)/embedded_prim.o
 CLI_OBJ = $(CLI_C:%.c=$(BUILD)/%.o)
 TEST_OBJ = $(TEST_C:%.c=$(BUILD)/%.o) $(TEST_FP_C:%.c=$(BUILD)/%.f32.o) $(TEST_FP_C:%.c=$(BUILD)/%.f64.o) \
            $(if $(TEST_CL_SOURCES),$(BUILD)/embedded_tests.o)
@@ -133,6 +136,8 @@ $(BUILD)/embedded_kernels.c: $(KERNEL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_kernels $(KERNEL_SOURCES) > $@
 $(BUILD)/embedded_scene_kernels.c: $(SCENE_KERNEL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_scene_kernels $(SCENE_KERNEL_SOURCES) > $@
+$(BUILD)/embedded_prim.c: $(PRIM_KERNEL_SOURCES) $(BUILD)/embed
+	$(BUILD)/embed iacsg_cl_prim $(PRIM_KERNEL_SOURCES) > $@
 $(BUILD)/embedded_tests.c: $(TEST_CL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_tests $(TEST_CL_SOURCES) > $@
 

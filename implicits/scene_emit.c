@@ -7,7 +7,9 @@
  * third of the evaluations, but for 1000 spheres the build took 73 s instead of 15-19 s. Outside 0..nsolids-1 the
  * enclosures are everything, which rejects nothing (and stops Newton: its derivative is unbounded). */
 #include "scene_emit.h"
+#include "prim_place.h"
 #include "strbuf.h"
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -46,6 +48,52 @@ static void emit_dispatcher(strbuf *b, int nsolids, int which) {
     strbuf_printf(b, "    }\n    %s\n}\n", otherwise);
 }
 
+/* A bound as a literal of either precision: the double itself, and its float rounded outward (down for a lower
+ * bound), for kernels/prim.h's PRIM_R. */
+static void emit_bound(strbuf *b, double x, int upper) {
+    float f = (float)x;
+    if (upper ? (double)f < x : (double)f > x)
+        f = nextafterf(f, upper ? INFINITY : -INFINITY);
+    if (isinf(f) || isinf(x)) {
+        strbuf_printf(b, "PRIM_R(%sINFINITY, %sINFINITY)", x < 0 ? "-" : "", f < 0 ? "-" : "");
+        return;
+    }
+    strbuf_printf(b, "PRIM_R(%a, %af)", x, (double)f);
+}
+
+/* A primitive's functions: its placed parameters (a macro the three share), then calls of kernels/prim.h's. */
+static iacsg_status emit_primitive(strbuf *b, const scene_solid *solid, int k, iacsg_error *err) {
+    prim_placed placed;
+    iacsg_status st = prim_place(solid->prim, solid->name, &placed, err);
+    if (st != IACSG_OK)
+        return st;
+    strbuf_printf(b, "#define SCENE_S%d_P {", k);
+    for (int i = 0; i < placed.n; i++) {
+        strbuf_printf(b, i ? ",\\\n  " : "");
+        emit_bound(b, placed.lo[i], 0);
+        strbuf_printf(b, ", ");
+        emit_bound(b, placed.hi[i], 1);
+    }
+    strbuf_printf(b, "}\n");
+    strbuf_printf(b,
+                  "IA_FN ia_interval scene_s%d_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n"
+                  "    const ia_real p[] = SCENE_S%d_P;\n    (void)t;\n    return prim_F(%d, p, x, y, z);\n}\n",
+                  k, k, placed.type);
+    strbuf_printf(b,
+                  "IA_FN ia_real scene_s%d_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, "
+                  "ia_real *gz) {\n    const ia_real p[] = SCENE_S%d_P;\n    (void)t;\n"
+                  "    return prim_f_grad(%d, p, x, y, z, gx, gy, gz);\n}\n",
+                  k, k, placed.type);
+    strbuf_printf(b,
+                  "#ifdef IACSG_SCALAR_FD\nIA_FN ia_interval scene_s%d_Fd(ia_interval x, ia_interval y, ia_interval z, "
+                  "ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {\n"
+                  "    const ia_real p[] = SCENE_S%d_P;\n    (void)t;\n    return prim_Fd(%d, p, x, y, z, dx, dy, dz, dt);\n"
+                  "}\n#endif\n",
+                  k, k, placed.type);
+    prim_placed_free(&placed);
+    return IACSG_OK;
+}
+
 iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err) {
     *source = NULL;
     strbuf b = {0};
@@ -55,12 +103,14 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
     for (int k = 0; k < s->nsolids; k++) {
         char prefix[32], *code = NULL;
         snprintf(prefix, sizeof prefix, "scene_s%d", k);
-        iacsg_status st = iacsg_expr_emit_cl(s->solids[k].expr, prefix, &code, err);
+        iacsg_status st = s->solids[k].prim ? emit_primitive(&b, &s->solids[k], k, err)
+                                            : iacsg_expr_emit_cl(s->solids[k].expr, prefix, &code, err);
         if (st != IACSG_OK) {
             free(strbuf_finish(&b));
             return st;
         }
-        strbuf_printf(&b, "%s", code);
+        if (code)
+            strbuf_printf(&b, "%s", code);
         free(code);
     }
     for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0] - !with_fd; which++)

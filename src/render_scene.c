@@ -1,6 +1,7 @@
 /* src/render_scene.c -- the segment path (kernels/render_scene.cl): a renderer for a scene's regions and
  * surfaces. One program per scene: the ia/ headers, the solids' code (implicits/scene_emit.c) and the segment
- * path's kernels. The scene's tables (src/scene_tables.c) live on the device for the renderer's life.
+ * path's kernels (BRL-CAD's primitives, kernels/prim.h, come before the solids, which call them). The scene's
+ * tables (src/scene_tables.c) live on the device for the renderer's life.
  *
  * A frame: the bands of rows, each one launch with a packet of 4x4 pixels per work-item and a slice of the
  * per-ray buffers per work-item (kernels/scene_data.h); then the rays that met more boxes than the buffers have
@@ -19,6 +20,7 @@
 #include <string.h>
 
 extern const char iacsg_cl_scene_kernels[]; /* the flattened kernels of the segment path (Makefile) */
+extern const char iacsg_cl_prim[];          /* the primitives' inclusion functions (kernels/prim.h) */
 
 /* The per-ray buffers of all work-items of one launch together stay below this; bands are cut to fit. */
 #define SCENE_SCRATCH_BUDGET (64.0 * 1024 * 1024)
@@ -217,8 +219,8 @@ iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_rende
     if (st == IACSG_OK)
         st = scene_emit_cl(s, &solids_cl, err);
     if (st == IACSG_OK) {
-        const char *sources[] = {iacsg_cl_ia, solids_cl, iacsg_cl_scene_kernels};
-        st = render_build(r, sources, 3, "iacsg_render_scene", err);
+        const char *sources[] = {iacsg_cl_ia, iacsg_cl_prim, solids_cl, iacsg_cl_scene_kernels};
+        st = render_build(r, sources, 4, "iacsg_render_scene", err);
     }
     free(solids_cl);
     if (st == IACSG_OK)

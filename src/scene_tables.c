@@ -1,6 +1,7 @@
 /* src/scene_tables.c -- see scene_tables.h. */
 #include "scene_tables.h"
 #include "render.h"
+#include "implicits/prim_place.h"
 #include "kernels/scene_data.h"
 #include <math.h>
 #include <stdlib.h>
@@ -38,7 +39,10 @@ static void refine_box(const iacsg_expr *e, double b[6]) {
 /* The solid's box for the kernels, for times in `time`: its proven box when its inside lies within it (f > 0 at
  * a point outside it, and so all over the connected outside, where f has no zero), else an infinite box. 1 if
  * bounded; *in_cube is set when the box holds only inside the cube of IACSG_BOUNDS_CUBE. */
-static int solid_box(const iacsg_expr *e, const double time[2], double box[6], int *in_cube) {
+static int solid_box(const scene_solid *solid, const double time[2], double box[6], int *in_cube) {
+    if (solid->prim) /* placed in the world (its parameters' intervals), not depending on t */
+        return prim_world_box(solid->prim, box);
+    const iacsg_expr *e = solid->expr;
     double b[6];
     iacsg_bounds_proof proof = iacsg_expr_bounds(e, time, b);
     int bounded = proof != IACSG_BOUNDS_NONE;
@@ -130,7 +134,7 @@ static int bvh_of(const iacsg_scene *s, const unsigned char *used, scene_tables 
         if (!used[k])
             continue;
         static const double times[2] = {0, 1}; /* the boxes hold for t in [0, 1] (render_scene.c) */
-        if (solid_box(s->solids[k].expr, times, boxes + 6 * k, &t->in_cube)) {
+        if (solid_box(&s->solids[k], times, boxes + 6 * k, &t->in_cube)) {
             bounded[nbounded++] = k;
             continue;
         }
@@ -320,7 +324,7 @@ iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_err
                                  it->name ? it->name : "", need, SCENE_TREE_STACK);
     }
     for (int k = 0; k < s->nsolids; k++)
-        t->uses_time |= iacsg_expr_uses_time(s->solids[k].expr);
+        t->uses_time |= s->solids[k].expr && iacsg_expr_uses_time(s->solids[k].expr);
     if (st == IACSG_OK)
         st = lists_of(s, t, used, err);
     if (st == IACSG_OK && !bvh_of(s, used, t))
@@ -346,7 +350,7 @@ void scene_tables_free(scene_tables *t) {
 int iacsg_scene_uses_time(const iacsg_scene *s) {
     int uses = s->expr && iacsg_expr_uses_time(s->expr);
     for (int k = 0; k < s->nsolids; k++)
-        uses |= iacsg_expr_uses_time(s->solids[k].expr);
+        uses |= s->solids[k].expr && iacsg_expr_uses_time(s->solids[k].expr);
     return uses;
 }
 
@@ -372,7 +376,7 @@ int iacsg_scene_bounds(const iacsg_scene *s, const double time[2], double box[6]
         if (!used[k])
             continue;
         int in_cube = 0;
-        ok = solid_box(s->solids[k].expr, time, b, &in_cube);
+        ok = solid_box(&s->solids[k], time, b, &in_cube);
         for (int c = 0; ok && c < 3; c++) {
             box[c] = fmin(box[c], b[c]);
             box[c + 3] = fmax(box[c + 3], b[c + 3]);

@@ -1,0 +1,286 @@
+/* kernels/prim.h -- BRL-CAD's primitive solids as inclusion functions: for each type the interval enclosure F of an
+ * implicit f (f < 0 inside) over a box, f and its gradient at a point (the normal), and Fd, F with the derivative
+ * along a ray's direction (the walks' interval Newton). Written in the subset of C11 and OpenCL C of ia/, so the
+ * host tests run the device's code. The scene program calls them out of line (prim_F, prim_f_grad, prim_Fd), each
+ * solid only filling its parameters: a primitive costs its scene a few lines of code to build, not a function.
+ *
+ *   implicits/prim_place.c: database parameters and matrix --> world parameters as intervals (outward) -->
+ *   implicits/scene_emit.c: literals per solid --> prim_F / prim_f_grad / prim_Fd here
+ *
+ * Parameters. p holds intervals as lo, hi pairs (prim_iv), each holding the exact real number the placement
+ * defines from the database's numbers, so F over a box holds f of the primitive exactly as the database defines
+ * it at every point of the box. Many types work in a frame: s = G (x - P), P the primitive's world origin, G a
+ * 3x3 matrix (rows), intervals 0-2 and 3-11, enclosing the exact inverse of the map from the canonical shape to
+ * the world (a verified inverse: prim_place.c), so any affine matrix in the database places it exactly.
+ *
+ * The implicits, and why each is tight (F's overestimate shrinks with the box, so bisection converges, and no
+ * f is 0 except on the surface: a zero elsewhere would be split down to BOUNDARY leaves, which the weave may claim):
+ *   HALF  n.x - d (n, d: 4 intervals). Linear: each coordinate occurs once, F is exact up to rounding.
+ *   ARB8  max over its faces of n_i.(x - a_i), a_i a vertex of face i, n_i outward (6 planes, 36 intervals; a
+ *         degenerate arb repeats a plane). The faces are BRL-CAD's (rt_arb_info: the first three distinct,
+ *         non-collinear vertices in its order; vertices within BRL-CAD's 0.0005 mm merged), so the solid is the
+ *         intersection of the faces' half-spaces, within the box of the vertices (the BVH's range clips it
+ *         there, which only matters for a non-planar face). Each plane is linear: exact up to rounding.
+ *   ELL   |s|^2 - 1, s in the frame of V and the semi-axes (12 intervals): a sum of squares of linear forms.
+ *   TGC   max(-w, w - 1, u^2 / ra^2 + v^2 / rb^2 - 1), (u, v, w) = s in the frame of V, A, B, H; ra = 1 + alpha w,
+ *         rb = 1 + beta w (alpha = |C| / |A| - 1, beta = |D| / |B| - 1; 14 intervals): the ellipse at height w
+ *         scaled to the unit circle. The quotients make f = +inf, never 0, on the plane of a cone's apex (ra or rb
+ *         0), where the product form u^2 rb^2 + v^2 ra^2 - ra^2 rb^2 is 0 all over the plane.
+ *   TOR   (sqrt(s1^2 + s2^2) - r_a)^2 + s3^2 - r_h^2, s in an orthonormal frame with the axis third (r_a, r_h^2;
+ *         14 intervals): the squared distance to the core circle, each part occurring once (the quartic's two
+ *         occurrences of s1^2 + s2^2 would double its width).
+ *   EHY   max(z, -1 - z, k1 (x^2 + y^2 - 1) - (z + k2)^2 + k2^2), (x, y, z) = s = BRL-CAD's S R (p - V) (z from 0 at
+ *         the base to -1 at the tip), k1 = 2 c' + 1, k2 = c' + 1, c' = c / |H| (ehy.c's quadric, rearranged so that
+ *         z occurs once; 15 intervals). Over -1 <= z <= 0 it is 0 only on the sheet.
+ */
+#ifndef KERNELS_PRIM_H
+#define KERNELS_PRIM_H
+#include "../ia/ia.h"
+
+/* The types, as implicits/scene.h numbers them (SCENE_PRIM_*; prim_place.c checks). */
+#define PRIM_HALF 0
+#define PRIM_ARB8 1
+#define PRIM_ELL 2
+#define PRIM_TGC 3
+#define PRIM_TOR 4
+#define PRIM_EHY 5
+#define PRIM_PIPE 6
+
+/* A literal of the working precision: the double, or its float rounded the same way (outward, prim_place.c). */
+#ifdef IA_FP64
+#define PRIM_R(d, f) (d)
+#else
+#define PRIM_R(d, f) (f)
+#endif
+
+#define PRIM_ARB_PLANES 6
+/* The number of intervals of each type's parameters (a pipe's depend on its parts). */
+#define PRIM_HALF_N 4
+#define PRIM_ARB8_N (6 * PRIM_ARB_PLANES)
+#define PRIM_ELL_N 12
+#define PRIM_TGC_N 14
+#define PRIM_TOR_N 14
+#define PRIM_EHY_N 15
+
+/* The k-th interval of p, and its midpoint (the point code's parameter). */
+IA_FN ia_interval prim_iv(const ia_real *p, int k) { return ia_make(p[2 * k], p[2 * k + 1]); }
+IA_FN ia_real prim_mid(const ia_real *p, int k) { return p[2 * k] * (ia_real)0.5 + p[2 * k + 1] * (ia_real)0.5; }
+
+/* a.b + c (three terms of a dot product, the third given). */
+IA_FN ia_interval prim_dot3(const ia_real *p, int k, ia_interval x, ia_interval y, ia_interval z) {
+    return ia_add(ia_add(ia_mul(prim_iv(p, k), x), ia_mul(prim_iv(p, k + 1), y)), ia_mul(prim_iv(p, k + 2), z));
+}
+
+/* s = G (x - P) over a box: P at interval `at`, G's rows after it. */
+IA_FN void prim_frame(const ia_real *p, int at, ia_interval x, ia_interval y, ia_interval z, ia_interval s[3]) {
+    ia_interval qx = ia_sub(x, prim_iv(p, at)), qy = ia_sub(y, prim_iv(p, at + 1)), qz = ia_sub(z, prim_iv(p, at + 2));
+    for (int r = 0; r < 3; r++)
+        s[r] = prim_dot3(p, at + 3 + 3 * r, qx, qy, qz);
+}
+
+/* The same at a point (midpoints of the parameters), and G^T g: a gradient in s back to the world. */
+IA_FN void prim_frame_point(const ia_real *p, int at, ia_real x, ia_real y, ia_real z, ia_real s[3]) {
+    ia_real q[3] = {x - prim_mid(p, at), y - prim_mid(p, at + 1), z - prim_mid(p, at + 2)};
+    for (int r = 0; r < 3; r++)
+        s[r] = prim_mid(p, at + 3 + 3 * r) * q[0] + prim_mid(p, at + 4 + 3 * r) * q[1] + prim_mid(p, at + 5 + 3 * r) * q[2];
+}
+IA_FN void prim_frame_back(const ia_real *p, int at, const ia_real g[3], ia_real *gx, ia_real *gy, ia_real *gz) {
+    ia_real out[3];
+    for (int c = 0; c < 3; c++)
+        out[c] = prim_mid(p, at + 3 + c) * g[0] + prim_mid(p, at + 6 + c) * g[1] + prim_mid(p, at + 9 + c) * g[2];
+    *gx = out[0];
+    *gy = out[1];
+    *gz = out[2];
+}
+
+/* num / den for den >= 0 (a square), +inf where den is 0 and num > 0 (a cone's apex plane: outside); where both
+ * may be 0 (the apex itself) anything from 0 up. */
+IA_FN ia_interval prim_ratio(ia_interval num, ia_interval den) {
+    if (den.hi <= 0)
+        return ia_make(num.lo > 0 ? IA_REAL_MAX : (ia_real)0, IA_INF);
+    return ia_div(num, ia_make(fmax(den.lo, (ia_real)0), den.hi));
+}
+
+/* ---- the enclosures over a box */
+
+IA_FN ia_interval prim_half_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
+    return ia_sub(prim_dot3(p, 0, x, y, z), prim_iv(p, 3));
+}
+
+IA_FN ia_interval prim_arb8_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
+    ia_interval f = ia_make(-IA_INF, -IA_INF);
+    for (int j = 0; j < PRIM_ARB_PLANES; j++) {
+        int a = 6 * j + 3;
+        f = ia_max(f, prim_dot3(p, 6 * j, ia_sub(x, prim_iv(p, a)), ia_sub(y, prim_iv(p, a + 1)),
+                                ia_sub(z, prim_iv(p, a + 2))));
+    }
+    return f;
+}
+
+IA_FN ia_interval prim_ell_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
+    ia_interval s[3];
+    prim_frame(p, 0, x, y, z, s);
+    return ia_add_r(ia_add(ia_add(ia_sqr(s[0]), ia_sqr(s[1])), ia_sqr(s[2])), -1);
+}
+
+IA_FN ia_interval prim_tgc_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
+    ia_interval s[3];
+    prim_frame(p, 0, x, y, z, s);
+    ia_interval ra = ia_add_r(ia_mul(prim_iv(p, 12), s[2]), 1), rb = ia_add_r(ia_mul(prim_iv(p, 13), s[2]), 1);
+    ia_interval side = ia_add_r(ia_add(prim_ratio(ia_sqr(s[0]), ia_sqr(ra)), prim_ratio(ia_sqr(s[1]), ia_sqr(rb))), -1);
+    return ia_max(ia_max(ia_neg(s[2]), ia_add_r(s[2], -1)), side);
+}
+
+IA_FN ia_interval prim_tor_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
+    ia_interval s[3];
+    prim_frame(p, 0, x, y, z, s);
+    ia_interval rho = ia_sqrt(ia_add(ia_sqr(s[0]), ia_sqr(s[1])));
+    return ia_sub(ia_add(ia_sqr(ia_sub(rho, prim_iv(p, 12))), ia_sqr(s[2])), prim_iv(p, 13));
+}
+
+IA_FN ia_interval prim_ehy_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
+    ia_interval s[3];
+    prim_frame(p, 0, x, y, z, s);
+    ia_interval k1 = prim_iv(p, 12), k2 = prim_iv(p, 13), k2sq = prim_iv(p, 14);
+    ia_interval sheet = ia_add(ia_sub(ia_mul(k1, ia_add_r(ia_add(ia_sqr(s[0]), ia_sqr(s[1])), -1)),
+                                      ia_sqr(ia_add(s[2], k2))),
+                               k2sq);
+    return ia_max(ia_max(s[2], ia_sub(ia_make(-1, -1), s[2])), sheet);
+}
+
+/* ---- f and its gradient at a point. Where f is a max, the gradient of the largest part (of a face, of a cap). */
+
+IA_FN ia_real prim_half_grad(const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real g[3]) {
+    for (int c = 0; c < 3; c++)
+        g[c] = prim_mid(p, c);
+    return g[0] * x + g[1] * y + g[2] * z - prim_mid(p, 3);
+}
+
+IA_FN ia_real prim_arb8_grad(const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real g[3]) {
+    ia_real best = -IA_INF;
+    for (int j = 0; j < PRIM_ARB_PLANES; j++) {
+        ia_real n[3] = {prim_mid(p, 6 * j), prim_mid(p, 6 * j + 1), prim_mid(p, 6 * j + 2)};
+        ia_real f = n[0] * (x - prim_mid(p, 6 * j + 3)) + n[1] * (y - prim_mid(p, 6 * j + 4)) +
+                    n[2] * (z - prim_mid(p, 6 * j + 5));
+        if (f > best) {
+            best = f;
+            for (int c = 0; c < 3; c++)
+                g[c] = n[c];
+        }
+    }
+    return best;
+}
+
+/* A frame type's f and gradient in s, given s. */
+IA_FN ia_real prim_ell_grad_s(const ia_real *p, const ia_real s[3], ia_real g[3]) {
+    (void)p;
+    for (int c = 0; c < 3; c++)
+        g[c] = 2 * s[c];
+    return s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 1;
+}
+
+IA_FN ia_real prim_tgc_grad_s(const ia_real *p, const ia_real s[3], ia_real g[3]) {
+    ia_real alpha = prim_mid(p, 12), beta = prim_mid(p, 13);
+    ia_real ra = 1 + alpha * s[2], rb = 1 + beta * s[2];
+    ia_real u = s[0] / ra, v = s[1] / rb, side = u * u + v * v - 1;
+    g[0] = g[1] = 0;
+    g[2] = s[2] < (ia_real)0.5 ? -1 : 1;
+    ia_real cap = fmax(-s[2], s[2] - 1);
+    if (side >= cap) {
+        g[0] = 2 * u / ra;
+        g[1] = 2 * v / rb;
+        g[2] = -2 * (u * u * alpha / ra + v * v * beta / rb);
+        return side;
+    }
+    return cap;
+}
+
+IA_FN ia_real prim_tor_grad_s(const ia_real *p, const ia_real s[3], ia_real g[3]) {
+    ia_real rho = sqrt(s[0] * s[0] + s[1] * s[1]), ra = prim_mid(p, 12);
+    ia_real k = rho > 0 ? 2 * (rho - ra) / rho : 0;
+    g[0] = k * s[0];
+    g[1] = k * s[1];
+    g[2] = 2 * s[2];
+    return (rho - ra) * (rho - ra) + s[2] * s[2] - prim_mid(p, 13);
+}
+
+IA_FN ia_real prim_ehy_grad_s(const ia_real *p, const ia_real s[3], ia_real g[3]) {
+    ia_real k1 = prim_mid(p, 12), k2 = prim_mid(p, 13);
+    ia_real sheet = k1 * (s[0] * s[0] + s[1] * s[1] - 1) - (s[2] + k2) * (s[2] + k2) + k2 * k2;
+    ia_real cap = fmax(s[2], -1 - s[2]);
+    g[0] = g[1] = 0;
+    g[2] = s[2] > (ia_real)-0.5 ? 1 : -1;
+    if (sheet >= cap) {
+        g[0] = 2 * k1 * s[0];
+        g[1] = 2 * k1 * s[1];
+        g[2] = -2 * (s[2] + k2);
+        return sheet;
+    }
+    return cap;
+}
+
+/* ---- the entry points, out of line: one copy per program, which each solid calls with its parameters. */
+
+#if IA_DEVICE
+#define PRIM_FN __attribute__((noinline))
+#else
+#define PRIM_FN IA_FN
+#endif
+
+PRIM_FN ia_interval prim_F(int type, const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
+    switch (type) {
+    case PRIM_HALF:
+        return prim_half_F(p, x, y, z);
+    case PRIM_ARB8:
+        return prim_arb8_F(p, x, y, z);
+    case PRIM_ELL:
+        return prim_ell_F(p, x, y, z);
+    case PRIM_TGC:
+        return prim_tgc_F(p, x, y, z);
+    case PRIM_TOR:
+        return prim_tor_F(p, x, y, z);
+    case PRIM_EHY:
+        return prim_ehy_F(p, x, y, z);
+    }
+    return ia_entire();
+}
+
+PRIM_FN ia_real prim_f_grad(int type, const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real *gx, ia_real *gy,
+                            ia_real *gz) {
+    ia_real g[3] = {0, 0, 0}, s[3], f = 0;
+    if (type == PRIM_HALF || type == PRIM_ARB8) {
+        f = type == PRIM_HALF ? prim_half_grad(p, x, y, z, g) : prim_arb8_grad(p, x, y, z, g);
+        *gx = g[0];
+        *gy = g[1];
+        *gz = g[2];
+        return f;
+    }
+    prim_frame_point(p, 0, x, y, z, s);
+    switch (type) {
+    case PRIM_ELL:
+        f = prim_ell_grad_s(p, s, g);
+        break;
+    case PRIM_TGC:
+        f = prim_tgc_grad_s(p, s, g);
+        break;
+    case PRIM_TOR:
+        f = prim_tor_grad_s(p, s, g);
+        break;
+    case PRIM_EHY:
+        f = prim_ehy_grad_s(p, s, g);
+        break;
+    }
+    prim_frame_back(p, 0, g, gx, gy, gz);
+    return f;
+}
+
+/* F and in *dt the derivative along (dx, dy, dz), for interval Newton: not yet derived for primitives, so both are
+ * unbounded, which the walk reads as "not usable" and bisects (kernels/segments.h), without evaluating anything. */
+PRIM_FN ia_interval prim_Fd(int type, const ia_real *p, ia_interval x, ia_interval y, ia_interval z, ia_interval dx,
+                            ia_interval dy, ia_interval dz, ia_interval *dt) {
+    (void)type, (void)p, (void)x, (void)y, (void)z, (void)dx, (void)dy, (void)dz;
+    *dt = ia_entire();
+    return ia_entire();
+}
+
+#endif
