@@ -190,9 +190,9 @@ static iacsg_status resolve_tree(brlcad_db *db, int k, int *stack, iacsg_error *
         stack[top++] = db->objects[k].tree;
     while (top > 0) {
         brl_node *n = &db->nodes[stack[--top]];
-        if (n->op != BRL_LEAF) {
-            stack[top++] = n->left;
+        if (n->op != BRL_LEAF) { /* the left one on top: members are resolved in the order written */
             stack[top++] = n->right;
+            stack[top++] = n->left;
             continue;
         }
         n->object = brlcad_db_find(db, n->name);

@@ -408,8 +408,6 @@ iacsg_status load_input(const render_options *o, const char *text, const char *n
                         iacsg_error *err) {
     if (cli_brlcad_input(o->input) && name == o->input)
         return cli_brlcad_scene(text, o->objects, o->nobjects, out, err);
-    if (o->nobjects > 0)
-        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "objects are named only after a BRL-CAD model (.asc)");
     return parse_input(text, name, out, err);
 }
 
