@@ -236,12 +236,6 @@ static iacsg_status refuse_cycles(const brlcad_db *db, const int *leaves, const 
                                      db->objects[child].name, db->objects[obj].name);
                 break;
             }
-            if (depth + 1 >= BRL_DEPTH_MAX) {
-                st = iacsg_error_set(err, IACSG_ERR_LIMIT, db->objects[child].line, 1,
-                                     "combination '%s' is nested more than %d levels deep", db->objects[child].name,
-                                     BRL_DEPTH_MAX);
-                break;
-            }
             state[child] = 1;
             depth++;
             path[2 * depth] = child;

@@ -11,8 +11,8 @@
 #include "scene.h"
 #include <stddef.h>
 
-/* Nesting of combination trees and of combinations in one another: deeper databases are refused, so that the
- * recursive walks stay within the stack. BRL-CAD's own models nest a few dozen levels. */
+/* Nesting of a v5 combination's tree: deeper ones are refused, so that the recursive parse stays within the
+ * stack (brlcad_tree.c bounds its walks the same way). BRL-CAD's own models nest at most a few dozen levels. */
 #define BRL_DEPTH_MAX 4096
 
 typedef enum { BRL_LEAF, BRL_UNION, BRL_INTERSECT, BRL_SUBTRACT, BRL_XOR } brl_op;

@@ -40,7 +40,7 @@ typedef struct {
 } path_node;
 
 /* A tree larger than this after the push-down (which copies subtrees) is refused rather than exhausting memory. */
-#define X_NODES_MAX (1 << 24)
+#define X_NODES_MAX (1 << 22)
 /* The recursive walks go at most this deep in all (combination nesting times tree depth). */
 #define WALK_DEPTH_MAX 10000
 

@@ -1,8 +1,11 @@
 /* tests/t_brlcad_errors.c -- every refusal of the BRL-CAD reader: the message names the object or record, the
  * line is the right one, and nothing is returned. */
+#include "brlcad_exercise.h"
 #include "implicits/brlcad.h"
 #include "implicits/scene.h"
 #include "test.h"
+#include <dirent.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -100,4 +103,36 @@ TEST(brlcad_bad_objects) {
     CHECK(brlcad_model_build(db, NULL, 0, &m, &err) != IACSG_OK && !m.scene, "air was rendered");
     CHECK(strstr(err.message, "hold no region to render"), "%s", err.message);
     brlcad_db_destroy(db);
+}
+
+/* Every input kept in tests/data/fuzz-brlcad/ (hostile seeds and crashes the fuzzer found) is read or refused
+ * with a message, and every sample database makes a sound scene. */
+TEST(brlcad_fuzz_regressions) {
+    static const char *const dirs[] = {"tests/data/fuzz-brlcad", "tests/data/brlcad"};
+    for (int d = 0; d < 2; d++) {
+        char dir[4096];
+        snprintf(dir, sizeof dir, "%s/%s", test_source_dir(), dirs[d]);
+        DIR *dp = opendir(dir);
+        CHECK(dp, "cannot open %s", dir);
+        int n = 0;
+        struct dirent *e;
+        while ((e = readdir(dp))) {
+            size_t len = strlen(e->d_name);
+            if (len < 5 || strcmp(e->d_name + len - 4, ".asc") != 0)
+                continue;
+            char path[8192];
+            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+            size_t size = 0;
+            char *data = test_read_file(path, &size);
+            CHECK(data, "cannot read %s", path);
+            int r = brlcad_exercise(data, size);
+            free(data);
+            CHECK(r >= 0, "%s: refused without a message, or its scene is unsound", path);
+            CHECK(r == 1 || d == 0, "%s: a sample database is refused", path);
+            n++;
+        }
+        closedir(dp);
+        CHECK(n > 0, "no databases in %s", dir);
+        test_note("%s: %d databases", dirs[d], n);
+    }
 }
