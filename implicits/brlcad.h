@@ -37,4 +37,8 @@ iacsg_status brlcad_model_build(const brlcad_db *db, const char *const *objects,
                                 iacsg_error *err);
 void brlcad_model_free(brlcad_model *m);
 
+/* The box of a scene's bounded primitive solids, as rt's model box (librt leaves infinite solids, as half-spaces,
+ * out of it); 0 if it has none. */
+int brlcad_scene_bounds(const iacsg_scene *s, double box[6]);
+
 #endif

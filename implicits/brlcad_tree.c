@@ -16,6 +16,7 @@
  * Matrices compose from the top down: a member's matrix M under an accumulated P gives P M.
  */
 #include "brlcad_db.h"
+#include "prim_place.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -504,4 +505,23 @@ void brlcad_model_free(brlcad_model *m) {
     iacsg_scene_destroy(m->scene);
     free(m->region_ids);
     memset(m, 0, sizeof *m);
+}
+
+int brlcad_scene_bounds(const iacsg_scene *s, double box[6]) {
+    int any = 0;
+    for (int k = 0; k < 3; k++) {
+        box[k] = INFINITY;
+        box[k + 3] = -INFINITY;
+    }
+    for (int k = 0; k < s->nsolids; k++) {
+        double b[6];
+        if (!s->solids[k].prim || !prim_world_box(s->solids[k].prim, b))
+            continue; /* unbounded (a half-space), or not valid: the renderer says why */
+        for (int j = 0; j < 3; j++) {
+            box[j] = fmin(box[j], b[j]);
+            box[j + 3] = fmax(box[j + 3], b[j + 3]);
+        }
+        any = 1;
+    }
+    return any;
 }

@@ -3,9 +3,7 @@
 #include "cli.h"
 #include "cli_brlcad.h"
 #include "implicits/brlcad.h"
-#include "implicits/prim_place.h"
 #include "implicits/scene.h"
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,25 +34,6 @@ iacsg_status cli_brlcad_scene(const char *text, const char *const *objects, int 
         brlcad_model_free(&m);
     }
     return st;
-}
-
-int cli_brlcad_bounds(const iacsg_scene *s, double box[6]) {
-    int any = 0;
-    for (int k = 0; k < 3; k++) {
-        box[k] = INFINITY;
-        box[k + 3] = -INFINITY;
-    }
-    for (int k = 0; k < s->nsolids; k++) {
-        double b[6];
-        if (!s->solids[k].prim || !prim_world_box(s->solids[k].prim, b))
-            continue; /* unbounded (a half-space), or not valid: the renderer says why */
-        for (int j = 0; j < 3; j++) {
-            box[j] = fmin(box[j], b[j]);
-            box[j + 3] = fmax(box[j + 3], b[j + 3]);
-        }
-        any = 1;
-    }
-    return any;
 }
 
 /* The model file's text, or NULL after a message; for the listing commands. */
@@ -109,6 +88,10 @@ int cli_regions(int argc, char **argv) {
         return report(&err, argv[1]);
     printf("# index region_id path (%d regions, %d solid instances, %d air regions left out)\n", m.scene->nitems,
            m.ninstances, m.nair);
+    double b[6];
+    if (brlcad_scene_bounds(m.scene, b))
+        printf("# bounds of the bounded solids: %.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", b[0], b[1], b[2], b[3], b[4],
+               b[5]);
     for (int k = 0; k < m.scene->nitems; k++)
         printf("%d %d %s\n", k, m.region_ids[k], m.scene->items[k].name);
     brlcad_model_free(&m);

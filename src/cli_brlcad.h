@@ -11,9 +11,6 @@ int cli_brlcad_input(const char *input);
 iacsg_status cli_brlcad_scene(const char *text, const char *const *objects, int nobjects, iacsg_scene **out,
                               iacsg_error *err);
 
-/* The box of a model's bounded solids, rt's model box (librt leaves infinite solids out of it); 0 if none. */
-int cli_brlcad_bounds(const iacsg_scene *s, double box[6]);
-
 int cli_objects(int argc, char **argv); /* iacsg objects MODEL.asc */
 int cli_regions(int argc, char **argv); /* iacsg regions MODEL.asc [OBJECT ...] */
 

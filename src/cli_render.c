@@ -7,6 +7,7 @@
 #include "cli_writer.h"
 #include "clrt.h"
 #include "iacsg.h"
+#include "implicits/brlcad.h"
 #include "implicits/scene.h"
 #include "ia/decimal.h"
 #include <errno.h>
@@ -263,7 +264,7 @@ const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase,
     rendered_times(o, t);
     if (s->nitems > 0 && iacsg_scene_bounds(s, t, o->view.bounds))
         return "proven to enclose the solids";
-    if (s->nitems > 0 && cli_brlcad_input(o->input) && cli_brlcad_bounds(s, o->view.bounds))
+    if (s->nitems > 0 && cli_brlcad_input(o->input) && brlcad_scene_bounds(s, o->view.bounds))
         return "the bounded solids' box, as rt's model box: an unbounded one (a half-space) is drawn inside it only";
     const iacsg_expr *e = s->nitems > 0 ? NULL : s->expr;
     char when[64] = "";
