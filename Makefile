@@ -6,7 +6,8 @@
 #   make gallery    render examples/*.csg into the contact sheet docs/gallery.png
 #   make deps       install the Debian packages the project needs (apt-get; sudo when not root)
 #   make bench-ia   nanoseconds per interval operation, host and device, rigorous and fast
-#   make bench      render the benchmark suite of issue 5 and write BENCHMARKS.md (BENCH_QUICK=1: a quick look)
+#   make bench      render the benchmark suite of issue 5 and write BENCHMARKS.md (BENCH_QUICK=1: a quick look;
+#                   BRLCAD=DIR: rt of a BRL-CAD build beside iacsg on the BRL-CAD models)
 #   make fuzz       libFuzzer on the expression compiler and the BRL-CAD reader, FUZZ_SECONDS each (default 60)
 #   make install    PREFIX=/usr/local DESTDIR=: the command, libraries, headers, iacsg.pc, man pages, examples
 #   make uninstall  removes what make install put there (same PREFIX and DESTDIR)
@@ -174,7 +175,7 @@ bench-ia: deps
 # Not part of `make test`: about 15 minutes (tests/bench/bench.sh says what it measures and how).
 bench: deps
 	@$(MAKE) --no-print-directory $(BUILD)/iacsg
-	BENCH_QUICK=$(BENCH_QUICK) BENCH_BUILD=$(BUILD)/bench sh tests/bench/bench.sh $(BUILD)/iacsg
+	BENCH_QUICK=$(BENCH_QUICK) BENCH_BUILD=$(BUILD)/bench BRLCAD=$(BRLCAD) sh tests/bench/bench.sh $(BUILD)/iacsg
 
 # libFuzzer over the lexer, parser and compiler, seeded from examples/ and tests/data/fuzz/. New crashes land in
 # build-fuzz/crash-*: copy each into tests/data/fuzz/ so that every `make test` replays it.
