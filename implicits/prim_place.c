@@ -19,6 +19,9 @@ _Static_assert(SCENE_PRIM_HALF == PRIM_HALF && SCENE_PRIM_ARB8 == PRIM_ARB8 && S
  * RT_SLOPPY_DOT_TOL mm to the line of the first two does not make a plane (arb8.c). */
 #define BRL_TOL_DIST 0.0005
 #define BRL_SLOPPY_DOT_TOL 0.0087
+/* Pipes (pipe.c): points nearer than RT_LEN_TOL mm are one; SQRT_SMALL_FASTF decides "in line". */
+#define BRL_LEN_TOL 1.0e-8
+#define BRL_SQRT_SMALL 1.0e-18
 
 typedef ia_interval iv;
 
@@ -444,6 +447,188 @@ static int place_ehy(const scene_prim *sp, const placement *m, writer *w, const 
     return ok;
 }
 
+/* ---- pipes: librt's pipe_elements_calculate, its choices on the midpoints, its geometry in intervals */
+
+/* A plane of a part's cell: a point and the direction of travel there. */
+typedef struct {
+    iv a[3], t[3];
+} pipe_plane;
+
+typedef struct {
+    writer *w;
+    int parts;
+    double *box;
+} pipe_builder;
+
+static int near_zero3(const iv v[3], double tol) {
+    return fabs(ia_mid(v[0])) < tol && fabs(ia_mid(v[1])) < tol && fabs(ia_mid(v[2])) < tol;
+}
+
+static iv distance3(const iv a[3], const iv b[3]) {
+    iv d[3];
+    sub3(a, b, d);
+    return norm3(d);
+}
+
+/* One part: its flags, cell planes, frame (origin and the rows of axis_frame(axis)) and radii. */
+static int pipe_part(pipe_builder *pb, int flags, const pipe_plane *start, const pipe_plane *end, const iv origin[3],
+                     const iv axis[3], const iv radii[4]) {
+    iv frame[9];
+    if (!axis_frame(axis, frame))
+        return -1;
+    writer *w = pb->w;
+    pb->parts++;
+    return put(w, pt(flags)) && put_n(w, start->a, 3) && put_n(w, start->t, 3) && put_n(w, end->a, 3) &&
+           put_n(w, end->t, 3) && put_n(w, origin, 3) && put_n(w, frame, 9) && put_n(w, radii, 4);
+}
+
+/* A straight part from a to b, radii (outer, inner) going from r0 to r1, in the cell between the planes. */
+static int pipe_linear(pipe_builder *pb, const pipe_plane *start, int shares, const pipe_plane *end, const iv r0[2],
+                       const iv r1[2]) {
+    iv h[3], len = distance3(end->a, start->a);
+    sub3(end->a, start->a, h);
+    if (!(len.lo > 0))
+        return -1;
+    iv radii[4] = {r0[0], ia_div(ia_sub(r1[0], r0[0]), len), r0[1], ia_div(ia_sub(r1[1], r0[1]), len)};
+    for (int c = 0; c < 3; c++)
+        h[c] = ia_div(h[c], len);
+    int flags = PRIM_PIPE_LINEAR | (shares ? PRIM_PIPE_SHARES_START : 0) |
+                (r0[1].hi > 0 || r1[1].hi > 0 ? PRIM_PIPE_INNER : 0);
+    iv reach[3];
+    for (int c = 0; c < 3; c++) /* a disk of radius r across h reaches r sqrt(1 - h_c^2) */
+        reach[c] = ia_sqrt(ia_sub(pt(1), ia_sqr(h[c])));
+    iv r[3];
+    scale3(reach, r0[0], r);
+    box_add(pb->box, start->a, r);
+    scale3(reach, r1[0], r);
+    box_add(pb->box, end->a, r);
+    return pipe_part(pb, flags, start, end, start->a, h, radii);
+}
+
+/* A bend: the torus of centre c, axis n, radius bend, tube radii r (outer, inner), between the planes. */
+static int pipe_bend(pipe_builder *pb, const pipe_plane *start, int shares, const pipe_plane *end, const iv c[3],
+                     const iv n[3], iv bend, const iv r[2]) {
+    iv radii[4] = {bend, r[0], r[1], pt(0)}, reach[3];
+    for (int k = 0; k < 3; k++)
+        reach[k] = ia_add(ia_mul(bend, ia_sqrt(ia_sub(pt(1), ia_sqr(n[k])))), r[0]);
+    box_add(pb->box, c, reach);
+    int flags = PRIM_PIPE_BEND | (shares ? PRIM_PIPE_SHARES_START : 0) | (r[1].hi > 0 ? PRIM_PIPE_INNER : 0);
+    return pipe_part(pb, flags, start, end, c, n, radii);
+}
+
+static void unit3(const iv v[3], iv out[3]) {
+    iv len = norm3(v);
+    for (int c = 0; c < 3; c++)
+        out[c] = ia_div(v[c], len);
+}
+
+/* Points x y z od id bend: placed, the lengths divided by mat[15] (librt's rt_pipe_mat). */
+static int place_pipe(const scene_prim *sp, const placement *m, writer *w, const char **why) {
+    int n = sp->nparams / 6;
+    if (sp->nparams % 6 != 0 || n < 2)
+        return *why = "a pipe needs whole points (x y z od id bend), at least two", -1;
+    iv(*pts)[3] = malloc(sizeof *pts * (size_t)n), (*radii)[2] = malloc(sizeof *radii * (size_t)n);
+    iv *bends = malloc(sizeof *bends * (size_t)n);
+    int ok = pts && radii && bends && put(w, pt(0));
+    *why = "a part of it is degenerate";
+    for (int i = 0; ok > 0 && i < n; i++) {
+        const double *q = sp->params + 6 * i;
+        if (!(q[3] > 0 && q[4] >= 0 && q[4] < q[3] && q[5] >= 0))
+            ok = (*why = "a point's diameters and bend radius are not 0 <= id < od, bend >= 0", -1);
+        place_point(m, q, pts[i]);
+        radii[i][0] = ia_div(pt(q[3] / 2), pt(m->scale));
+        radii[i][1] = ia_div(pt(q[4] / 2), pt(m->scale));
+        bends[i] = ia_div(pt(q[5]), pt(m->scale));
+    }
+    pipe_builder pb = {w, 0, w->out->box};
+    box_empty(pb.box);
+    pipe_plane start, shared;
+    int have_shared = 0, i2 = 1, i3 = n > 2 ? 2 : -1;
+    iv curr[3], curr_r[2];
+    memcpy(curr, pts[0], sizeof curr);
+    memcpy(curr_r, radii[0], sizeof curr_r);
+    while (ok > 0) {
+        iv n1[3], n2[3], norm[3], n1u[3], n2u[3], h[3];
+        sub3(curr, pts[i2], n1);
+        if (!near_zero3(n1, BRL_LEN_TOL)) {
+            /* the straight part's start: the plane shared with the part before, or across its own axis */
+            sub3(pts[i2], curr, h);
+            unit3(h, h);
+            memcpy(start.a, curr, sizeof start.a);
+            memcpy(start.t, have_shared ? shared.t : h, sizeof start.t);
+            int shares = have_shared;
+            have_shared = 0;
+            double dist = NAN;
+            if (i3 >= 0) {
+                sub3(pts[i3], pts[i2], n2);
+                cross3(n1, n2, norm);
+                unit3(n1, n1u);
+                unit3(n2, n2u);
+                double cosine = ia_mid(dot3(n1u, n2u));
+                dist = ia_mid(bends[i2]) * tan((3.14159265358979323846 - acos(cosine)) / 2); /* as pipe.c */
+            }
+            if (i3 < 0 || isnan(dist) || near_zero3(norm, BRL_SQRT_SMALL) || fabs(dist) < BRL_SQRT_SMALL) {
+                /* the last part, or collinear: straight to the point */
+                pipe_plane end;
+                memcpy(end.a, pts[i2], sizeof end.a);
+                memcpy(end.t, h, sizeof end.t);
+                ok = pipe_linear(&pb, &start, shares, &end, curr_r, radii[i2]);
+                memcpy(curr, pts[i2], sizeof curr);
+                /* exactly in line (not a sharp corner of bend radius 0): the next part starts on this plane */
+                have_shared = i3 >= 0 && !isnan(dist) && near_zero3(norm, BRL_SQRT_SMALL);
+                shared = end;
+            } else {
+                /* the bend's ends at bend * cot(theta / 2) from the corner (theta between the segments) */
+                iv cosine = dot3(n1u, n2u), bs[3], be[3], normu[3], v1[3], centre[3], diff[3];
+                iv along = ia_mul(bends[i2], ia_sqrt(ia_div(ia_add_r(cosine, 1), ia_sub(pt(1), cosine))));
+                for (int c = 0; c < 3; c++) {
+                    bs[c] = ia_add(pts[i2][c], ia_mul(along, n1u[c]));
+                    be[c] = ia_add(pts[i2][c], ia_mul(along, n2u[c]));
+                }
+                unit3(norm, normu);
+                pipe_plane bend_start, bend_end;
+                for (int c = 0; c < 3; c++) {
+                    bend_start.t[c] = ia_neg(n1u[c]);
+                    bend_end.t[c] = n2u[c];
+                }
+                memcpy(bend_end.a, be, sizeof be);
+                sub3(curr, bs, diff);
+                if (ia_mid(norm3(diff)) <= BRL_LEN_TOL) { /* too short to trace: the bend starts here */
+                    memcpy(bs, curr, sizeof bs);
+                    memcpy(bend_start.a, bs, sizeof bs);
+                    if (shares)
+                        memcpy(bend_start.t, start.t, sizeof bend_start.t);
+                } else {
+                    memcpy(bend_start.a, bs, sizeof bs);
+                    ok = pipe_linear(&pb, &start, shares, &bend_start, curr_r, radii[i2]);
+                    shares = 1;
+                }
+                cross3(n1u, normu, v1);
+                for (int c = 0; c < 3; c++)
+                    centre[c] = ia_sub(bs[c], ia_mul(bends[i2], v1[c]));
+                if (ok > 0)
+                    ok = pipe_bend(&pb, &bend_start, shares, &bend_end, centre, normu, bends[i2], radii[i2]);
+                memcpy(curr, be, sizeof curr);
+                have_shared = 1;
+                shared = bend_end;
+            }
+        }
+        if (i3 < 0)
+            break;
+        memcpy(curr_r, radii[i2], sizeof curr_r);
+        i2 = i3;
+        i3 = i3 + 1 < n ? i3 + 1 : -1;
+    }
+    if (ok > 0 && pb.parts == 0)
+        ok = (*why = "all its points coincide", -1);
+    if (ok > 0)
+        w->out->lo[0] = w->out->hi[0] = pb.parts;
+    free(pts);
+    free(radii);
+    free(bends);
+    return ok;
+}
+
 static const struct {
     const char *name;
     int nparams; /* 0: variable */
@@ -451,8 +636,15 @@ static const struct {
 } types[] = {
     [PRIM_HALF] = {"half", 4, place_half}, [PRIM_ARB8] = {"arb8", 24, place_arb8}, [PRIM_ELL] = {"ell", 12, place_ell},
     [PRIM_TGC] = {"tgc", 18, place_tgc},   [PRIM_TOR] = {"tor", 8, place_tor},     [PRIM_EHY] = {"ehy", 12, place_ehy},
-    [PRIM_PIPE] = {"pipe", 0, NULL},
+    [PRIM_PIPE] = {"pipe", 0, place_pipe},
 };
+
+static int all_finite(const double *x, int n) {
+    for (int k = 0; k < n; k++)
+        if (!isfinite(x[k]))
+            return 0;
+    return 1;
+}
 
 iacsg_status prim_place(const scene_prim *sp, const char *name, prim_placed *out, iacsg_error *err) {
     memset(out, 0, sizeof *out);
@@ -466,13 +658,11 @@ iacsg_status prim_place(const scene_prim *sp, const char *name, prim_placed *out
         why = "it has the wrong number of parameters";
     else if (!placement_of(sp->mat, &m))
         why = "its matrix is not affine and invertible";
+    else if (!all_finite(sp->params, sp->nparams))
+        why = "a parameter is not a finite number";
     else {
-        for (int k = 0; k < sp->nparams; k++)
-            if (!isfinite(sp->params[k]))
-                why = "a parameter is not a finite number";
         writer w = {out, 0};
-        if (!strstr(why, "finite"))
-            ok = types[sp->type].place(sp, &m, &w, &why);
+        ok = types[sp->type].place(sp, &m, &w, &why);
     }
     if (ok == 1)
         return IACSG_OK;

@@ -61,6 +61,12 @@
 #define PRIM_TGC_N 14
 #define PRIM_TOR_N 14
 #define PRIM_EHY_N 15
+/* A pipe: its number of parts, then per part PRIM_PIPE_PART_N intervals (see prim_pipe_F). */
+#define PRIM_PIPE_PART_N 29
+#define PRIM_PIPE_LINEAR 0
+#define PRIM_PIPE_BEND 1
+#define PRIM_PIPE_SHARES_START 2 /* its start plane is the previous part's end plane */
+#define PRIM_PIPE_INNER 4        /* it has a bore */
 
 /* The k-th interval of p, and its midpoint (the point code's parameter). */
 IA_FN ia_interval prim_iv(const ia_real *p, int k) { return ia_make(p[2 * k], p[2 * k + 1]); }
@@ -148,6 +154,57 @@ IA_FN ia_interval prim_ehy_F(const ia_real *p, ia_interval x, ia_interval y, ia_
     return ia_max(ia_max(s[2], ia_sub(ia_make(-1, -1), s[2])), sheet);
 }
 
+/* A pipe part's cell: the start plane (x - a).t >= 0 and the end plane (x - b).u <= 0, and its tube over the box:
+ * a frustum's max(rho - ro(w), ri(w) - rho) (rho the distance from the axis, w the length along it), a bend's
+ * max(d - ro, ri - d) (d the distance from the bend's core circle, rho as a torus's). */
+IA_FN ia_interval prim_pipe_plane(const ia_real *q, int at, ia_interval x, ia_interval y, ia_interval z) {
+    return prim_dot3(q, at + 3, ia_sub(x, prim_iv(q, at)), ia_sub(y, prim_iv(q, at + 1)), ia_sub(z, prim_iv(q, at + 2)));
+}
+
+IA_FN ia_interval prim_pipe_tube(const ia_real *q, int flags, ia_interval x, ia_interval y, ia_interval z) {
+    ia_interval s[3];
+    prim_frame(q, 13, x, y, z, s);
+    ia_interval rho = ia_sqrt(ia_add(ia_sqr(s[0]), ia_sqr(s[1]))), outer, inner;
+    if (flags & PRIM_PIPE_BEND) {
+        ia_interval d = ia_sqrt(ia_add(ia_sqr(ia_sub(rho, prim_iv(q, 25))), ia_sqr(s[2])));
+        outer = ia_sub(d, prim_iv(q, 26));
+        inner = ia_sub(prim_iv(q, 27), d);
+    } else {
+        outer = ia_sub(rho, ia_add(prim_iv(q, 25), ia_mul(prim_iv(q, 26), s[2])));
+        inner = ia_sub(ia_add(prim_iv(q, 27), ia_mul(prim_iv(q, 28), s[2])), rho);
+    }
+    return flags & PRIM_PIPE_INNER ? ia_max(outer, inner) : outer;
+}
+
+/* The pipe: f = min over its parts of the tube where x is in the part's (closed) cell, +inf in none. A box that
+ * is partly in a cell gives [F.lo, +inf] (f may be +inf there); one that lies across the plane that two
+ * consecutive parts share and is otherwise in both cells is all in their union, where f is within the hull of
+ * both tubes: so the joints inside the wall, where f is negative on both sides, are proven inside, not split down
+ * to BOUNDARY leaves (a union of closed parts that abut has f = 0 all over the shared face). */
+IA_FN ia_interval prim_pipe_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
+    int parts = (int)p[0];
+    ia_real lo = IA_INF, hi = IA_INF;
+    ia_interval before = ia_empty(); /* the previous part's tube, when the box is in its cell but for its end */
+    for (int k = 0; k < parts; k++) {
+        const ia_real *q = p + 2 + 2 * PRIM_PIPE_PART_N * k;
+        int flags = (int)q[0];
+        ia_interval a = prim_pipe_plane(q, 1, x, y, z), b = prim_pipe_plane(q, 7, x, y, z);
+        if (a.hi < 0 || b.lo > 0) {
+            before = ia_empty();
+            continue;
+        }
+        ia_interval tube = prim_pipe_tube(q, flags, x, y, z);
+        int start_in = a.lo >= 0, end_in = b.hi <= 0;
+        ia_interval part = start_in && end_in ? tube : ia_make(tube.lo, IA_INF);
+        if (!start_in && end_in && (flags & PRIM_PIPE_SHARES_START) && !ia_is_empty(before))
+            part = ia_hull(tube, before);
+        lo = fmin(lo, part.lo);
+        hi = fmin(hi, part.hi);
+        before = start_in && !end_in ? tube : ia_empty();
+    }
+    return ia_make(lo, hi);
+}
+
 /* ---- f and its gradient at a point. Where f is a max, the gradient of the largest part (of a face, of a cap). */
 
 IA_FN ia_real prim_half_grad(const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real g[3]) {
@@ -166,6 +223,64 @@ IA_FN ia_real prim_arb8_grad(const ia_real *p, ia_real x, ia_real y, ia_real z, 
             best = f;
             for (int c = 0; c < 3; c++)
                 g[c] = n[c];
+        }
+    }
+    return best;
+}
+
+/* A pipe at a point: min over the parts of max(tube, the cell's planes) (closed parts; the planes give the end
+ * caps' normals), the gradient of the part and term that give it. */
+IA_FN ia_real prim_pipe_grad(const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real g[3]) {
+    int parts = (int)prim_mid(p, 0);
+    ia_real best = IA_INF;
+    for (int k = 0; k < parts; k++) {
+        const ia_real *q = p + 2 + 2 * PRIM_PIPE_PART_N * k;
+        int flags = (int)q[0];
+        ia_real s[3], gs[3] = {0, 0, 0}, pos[3] = {x, y, z}, a = 0, b = 0, f;
+        for (int c = 0; c < 3; c++) {
+            a -= (pos[c] - prim_mid(q, 1 + c)) * prim_mid(q, 4 + c);
+            b += (pos[c] - prim_mid(q, 7 + c)) * prim_mid(q, 10 + c);
+        }
+        prim_frame_point(q, 13, x, y, z, s);
+        ia_real rho = sqrt(s[0] * s[0] + s[1] * s[1]);
+        if (flags & PRIM_PIPE_BEND) {
+            ia_real d = sqrt((rho - prim_mid(q, 25)) * (rho - prim_mid(q, 25)) + s[2] * s[2]);
+            ia_real k_rho = d > 0 && rho > 0 ? (rho - prim_mid(q, 25)) / (d * rho) : 0;
+            gs[0] = k_rho * s[0];
+            gs[1] = k_rho * s[1];
+            gs[2] = d > 0 ? s[2] / d : 0;
+            f = d - prim_mid(q, 26);
+            if ((flags & PRIM_PIPE_INNER) && prim_mid(q, 27) - d > f) {
+                f = prim_mid(q, 27) - d;
+                for (int c = 0; c < 3; c++)
+                    gs[c] = -gs[c];
+            }
+        } else {
+            ia_real out_w = prim_mid(q, 26), in_w = prim_mid(q, 28);
+            gs[0] = rho > 0 ? s[0] / rho : 0;
+            gs[1] = rho > 0 ? s[1] / rho : 0;
+            gs[2] = -out_w;
+            f = rho - prim_mid(q, 25) - out_w * s[2];
+            ia_real inner = prim_mid(q, 27) + in_w * s[2] - rho;
+            if ((flags & PRIM_PIPE_INNER) && inner > f) {
+                f = inner;
+                gs[0] = -gs[0];
+                gs[1] = -gs[1];
+                gs[2] = in_w;
+            }
+        }
+        ia_real gw[3];
+        prim_frame_back(q, 13, gs, &gw[0], &gw[1], &gw[2]);
+        if (a > f || b > f) { /* beyond an end cap */
+            int end = b > a;
+            f = end ? b : a;
+            for (int c = 0; c < 3; c++)
+                gw[c] = end ? prim_mid(q, 10 + c) : -prim_mid(q, 4 + c);
+        }
+        if (f < best) {
+            best = f;
+            for (int c = 0; c < 3; c++)
+                g[c] = gw[c];
         }
     }
     return best;
@@ -241,6 +356,8 @@ PRIM_FN ia_interval prim_F(int type, const ia_real *p, ia_interval x, ia_interva
         return prim_tor_F(p, x, y, z);
     case PRIM_EHY:
         return prim_ehy_F(p, x, y, z);
+    case PRIM_PIPE:
+        return prim_pipe_F(p, x, y, z);
     }
     return ia_entire();
 }
@@ -248,8 +365,10 @@ PRIM_FN ia_interval prim_F(int type, const ia_real *p, ia_interval x, ia_interva
 PRIM_FN ia_real prim_f_grad(int type, const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real *gx, ia_real *gy,
                             ia_real *gz) {
     ia_real g[3] = {0, 0, 0}, s[3], f = 0;
-    if (type == PRIM_HALF || type == PRIM_ARB8) {
-        f = type == PRIM_HALF ? prim_half_grad(p, x, y, z, g) : prim_arb8_grad(p, x, y, z, g);
+    if (type == PRIM_HALF || type == PRIM_ARB8 || type == PRIM_PIPE) {
+        f = type == PRIM_HALF   ? prim_half_grad(p, x, y, z, g)
+            : type == PRIM_ARB8 ? prim_arb8_grad(p, x, y, z, g)
+                                : prim_pipe_grad(p, x, y, z, g);
         *gx = g[0];
         *gy = g[1];
         *gz = g[2];
