@@ -76,6 +76,8 @@ def main():
         for name, p in parts:
             d_in = sum((p[k] - o[k]) * f[k] for k in range(3))
             d_out = sum((p[3 + k] - o[k]) * f[k] for k in range(3))
+            if not all(math.isfinite(x) for x in p[3:6]):  # a half-space's: its out point is at infinity
+                d_out = math.inf
             fields += [name, "%.9g" % d_in, "%.9g" % d_out]
         print(" ".join(fields))
 
