@@ -214,5 +214,5 @@ TEST(brlcad_against_nirt) {
     closedir(d);
     CHECK(scenes > 0, "no data in %s", dir);
     CHECK(open * 50 <= rays && extra * 100 <= 8 * rays, "of %d rays, %d undecided and different (at most 2%%), "
-          "%d hits before nirt's (at most 8%%)", rays, open, extra); 8%% allowed)", rays, open, extra);
+          "%d hits before nirt's (at most 8%%)", rays, open, extra);
 }
