@@ -507,21 +507,61 @@ void brlcad_model_free(brlcad_model *m) {
     memset(m, 0, sizeof *m);
 }
 
+/* The box of region `item`'s tree as rt_bound_tree makes it: a union's hull, an intersection's overlap, the left
+ * side of a difference; from the last node back to the root, boxes of finished subtrees on a stack. 0 when
+ * unbounded (a half-space under a union) or when a solid is not valid (the renderer says why). */
+static int region_box(const iacsg_scene *s, int item, double box[6]) {
+    int root = s->items[item].tree, n = scene_tree_size(s, root), top = 0, ok = 1;
+    double(*stack)[6] = malloc((size_t)n * sizeof *stack);
+    if (!stack)
+        return 0;
+    for (int k = root + n - 1; k >= root; k--) {
+        int op = CSG_NODE_OP(s->nodes[k]);
+        if (op == CSG_INSIDE) {
+            const scene_prim *p = s->solids[CSG_NODE_ARG(s->nodes[k])].prim;
+            if (!p || !prim_world_box(p, stack[top])) /* unbounded: the infinite box, as librt */
+                for (int j = 0; j < 3; j++)
+                    stack[top][j] = -INFINITY, stack[top][j + 3] = INFINITY;
+            top++;
+            continue;
+        }
+        /* children come after their parent: the left operand is on top, the right below it */
+        double *l = stack[top - 1], *r = stack[top - 2];
+        for (int j = 0; j < 3 && op != CSG_DIFFERENCE; j++) {
+            int u = op == CSG_UNION;
+            r[j] = u ? fmin(l[j], r[j]) : fmax(l[j], r[j]);
+            r[j + 3] = u ? fmax(l[j + 3], r[j + 3]) : fmin(l[j + 3], r[j + 3]);
+        }
+        if (op == CSG_DIFFERENCE)
+            memcpy(r, l, sizeof stack[0]);
+        top--;
+    }
+    memcpy(box, stack[0], sizeof stack[0]);
+    free(stack);
+    for (int j = 0; j < 6; j++)
+        ok &= isfinite(box[j]);
+    return ok;
+}
+
 int brlcad_scene_bounds(const iacsg_scene *s, double box[6]) {
     int any = 0;
     for (int k = 0; k < 3; k++) {
         box[k] = INFINITY;
         box[k + 3] = -INFINITY;
     }
-    for (int k = 0; k < s->nsolids; k++) {
+    for (int r = 0; r < s->nitems; r++) {
         double b[6];
-        if (!s->solids[k].prim || !prim_world_box(s->solids[k].prim, b))
-            continue; /* unbounded (a half-space), or not valid: the renderer says why */
+        if (s->items[r].kind != SCENE_REGION || !region_box(s, r, b))
+            continue; /* an unbounded region (a half-space) is left out, as librt leaves it out */
         for (int j = 0; j < 3; j++) {
             box[j] = fmin(box[j], b[j]);
             box[j + 3] = fmax(box[j + 3], b[j + 3]);
         }
         any = 1;
+    }
+    for (int j = 0; j < 3 && any; j++) { /* whole mm outward, as rt_prep rounds its model box */
+        box[j] = floor(box[j]);
+        box[j + 3] = ceil(box[j + 3]);
     }
     return any;
 }

@@ -90,7 +90,7 @@ int cli_regions(int argc, char **argv) {
            m.ninstances, m.nair);
     double b[6];
     if (brlcad_scene_bounds(m.scene, b))
-        printf("# bounds of the bounded solids: %.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", b[0], b[1], b[2], b[3], b[4],
+        printf("# bounds (rt's model box): %.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", b[0], b[1], b[2], b[3], b[4],
                b[5]);
     for (int k = 0; k < m.scene->nitems; k++)
         printf("%d %d %s\n", k, m.region_ids[k], m.scene->items[k].name);

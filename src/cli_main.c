@@ -81,7 +81,7 @@ static const char usage_more[] =
     "read: arb8 (and arb4-7), tgc (rcc, rec, trc, tec), ell (sph), tor, half, pipe, ehy; any other, a dangling\n"
     "member, a cycle or a malformed line is refused with its line. Colours: the combination's, else the colour\n"
     "table's, else the palette. The view defaults to rt's: orthographic (-ortho the bounds' diagonal, unless\n"
-    "-ortho or -fov is given), -az 35 -el 25, centred on the bounds; lengths are in mm.\n";
+    "-ortho or -fov is given), -az 35 -el 25, centred on the bounds, which are rt's model box; lengths in mm.\n";
 
 int main(int argc, char **argv) {
     if (argc < 2) {

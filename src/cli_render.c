@@ -262,10 +262,10 @@ const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase,
         return "given";
     double t[2];
     rendered_times(o, t);
+    if (s->nitems > 0 && cli_brlcad_input(o->input) && brlcad_scene_bounds(s, o->view.bounds))
+        return "rt's model box: its regions' proven boxes; an unbounded region (a half-space) is drawn inside it only";
     if (s->nitems > 0 && iacsg_scene_bounds(s, t, o->view.bounds))
         return "proven to enclose the solids";
-    if (s->nitems > 0 && cli_brlcad_input(o->input) && brlcad_scene_bounds(s, o->view.bounds))
-        return "the bounded solids' box, as rt's model box: an unbounded one (a half-space) is drawn inside it only";
     const iacsg_expr *e = s->nitems > 0 ? NULL : s->expr;
     char when[64] = "";
     if (e && iacsg_expr_uses_time(e) && o->frames)

@@ -3,7 +3,7 @@
 
     tests/data/brlcad/nirt_rays.py BRLCAD_BIN IACSG SIZE MODEL.asc [OBJECT ...] > nirt/MODEL.txt
 
-For the view iacsg takes by default for a model (orthographic, -az 35 -el 25, centred on the bounded solids' box
+For the view iacsg takes by default for a model (orthographic, -az 35 -el 25, centred on rt's model box
 that `iacsg regions` prints, as high as its diagonal), each pixel's ray of a SIZE x SIZE image (the camera formula
 of `iacsg --help`) is shot by nirt (asc2g makes the .g): every partition it crosses, with its region path and the
 in and out distances from the ray's origin. Output: the model and objects, the camera (eye, at, ortho height,
@@ -21,7 +21,7 @@ import tempfile
 def main():
     bindir, iacsg, size, model, objects = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5:]
     header = subprocess.run([iacsg, "regions", model] + objects, check=True, capture_output=True, text=True).stdout
-    bounds = [float(v) for v in header.split("# bounds of the bounded solids: ")[1].split("\n")[0].split(",")]
+    bounds = [float(v) for v in header.split("# bounds (rt's model box): ")[1].split("\n")[0].split(",")]
     tops = objects or subprocess.run([iacsg, "objects", model], check=True, capture_output=True,
                                      text=True).stdout.split()
     at = [(bounds[k] + bounds[k + 3]) / 2 for k in range(3)]
