@@ -263,7 +263,7 @@ static int place_arb8(const scene_prim *sp, const placement *m, writer *w, const
             }
         }
     }
-    iv planes[PRIM_ARB_PLANES][6];
+    iv planes[PRIM_ARB_PLANES][4];
     int nplanes = 0;
     for (int f = 0; f < 6; f++) {
         int pts[3], npts = 0;
@@ -304,17 +304,16 @@ static int place_arb8(const scene_prim *sp, const placement *m, writer *w, const
         if (side.hi < 0)
             for (int c = 0; c < 3; c++)
                 n[c] = ia_neg(n[c]);
-        for (int c = 0; c < 3; c++) {
+        for (int c = 0; c < 3; c++)
             planes[nplanes][c] = n[c];
-            planes[nplanes][3 + c] = v[pts[0]][c];
-        }
+        planes[nplanes][3] = dot3(n, v[pts[0]]);
         nplanes++;
     }
     if (nplanes < 4)
         return *why = "it has fewer than four faces", -1;
     int ok = 1;
     for (int j = 0; j < PRIM_ARB_PLANES; j++)
-        ok = ok && put_n(w, planes[j < nplanes ? j : 0], 6);
+        ok = ok && put_n(w, planes[j < nplanes ? j : 0], 4);
     return ok;
 }
 
@@ -689,4 +688,11 @@ int prim_world_box(const scene_prim *p, double box[6]) {
         box[c] = bounded ? placed.box[c] : c < 3 ? -INFINITY : INFINITY;
     prim_placed_free(&placed);
     return bounded;
+}
+
+float prim_float_bound(double x, int upper) {
+    float f = (float)x;
+    if (upper ? (double)f < x : (double)f > x)
+        f = nextafterf(f, upper ? INFINITY : -INFINITY);
+    return f;
 }

@@ -20,6 +20,9 @@ typedef struct {
 iacsg_status prim_place(const scene_prim *p, const char *name, prim_placed *out, iacsg_error *err);
 void prim_placed_free(prim_placed *out);
 
+/* A bound as a float, rounded outward (down for a lower bound): the parameters of a float program. */
+float prim_float_bound(double x, int upper);
+
 /* The primitive's world box (infinite where it is unbounded, as a half-space); 1 if bounded, 0 if not or if the
  * primitive is not valid (prim_place says why when the program is made). */
 int prim_world_box(const scene_prim *p, double box[6]);

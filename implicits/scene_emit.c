@@ -51,9 +51,7 @@ static void emit_dispatcher(strbuf *b, int nsolids, int which) {
 /* A bound as a literal of either precision: the double itself, and its float rounded outward (down for a lower
  * bound), for kernels/prim.h's PRIM_R. */
 static void emit_bound(strbuf *b, double x, int upper) {
-    float f = (float)x;
-    if (upper ? (double)f < x : (double)f > x)
-        f = nextafterf(f, upper ? INFINITY : -INFINITY);
+    float f = prim_float_bound(x, upper);
     if (isinf(f) || isinf(x)) {
         strbuf_printf(b, "PRIM_R(%sINFINITY, %sINFINITY)", x < 0 ? "-" : "", f < 0 ? "-" : "");
         return;
@@ -61,60 +59,82 @@ static void emit_bound(strbuf *b, double x, int upper) {
     strbuf_printf(b, "PRIM_R(%a, %af)", x, (double)f);
 }
 
-/* A primitive's functions: its placed parameters (a macro the three share), then calls of kernels/prim.h's. */
-static iacsg_status emit_primitive(strbuf *b, const scene_solid *solid, int k, iacsg_error *err) {
+/* A primitive: its placed parameters as stores into p (in `params`, the case k of its group's scene_gG_P, which
+ * returns its type: one copy for its three functions, and stores, not an initialised array, which compilers put in
+ * __constant memory, 64 KB on some GPUs), and its functions (in `code`), calls of kernels/prim.h's out-of-line
+ * functions with them. */
+static iacsg_status emit_primitive(strbuf *params, strbuf *code, const scene_solid *solid, int k, iacsg_error *err) {
     prim_placed placed;
     iacsg_status st = prim_place(solid->prim, solid->name, &placed, err);
     if (st != IACSG_OK)
         return st;
-    strbuf_printf(b, "#define SCENE_S%d_P {", k);
-    for (int i = 0; i < placed.n; i++) {
-        strbuf_printf(b, i ? ",\\\n  " : "");
-        emit_bound(b, placed.lo[i], 0);
-        strbuf_printf(b, ", ");
-        emit_bound(b, placed.hi[i], 1);
+    int g = k / SCENE_EMIT_GROUP;
+    strbuf_printf(params, "    case %d:\n", k);
+    int nreal = 2 * placed.n, padded = (nreal + 7) / 8 * 8;
+    for (int i = 0; i < padded; i++) {
+        if (i % 8 == 0)
+            strbuf_printf(params, "        vstore8((prim_real8)(");
+        if (i < nreal)
+            emit_bound(params, i % 2 ? placed.hi[i / 2] : placed.lo[i / 2], i % 2);
+        else
+            strbuf_printf(params, "0");
+        strbuf_printf(params, i % 8 == 7 ? "), %d, p);\n" : ", ", i / 8);
     }
-    strbuf_printf(b, "}\n");
-    strbuf_printf(b,
-                  "IA_FN ia_interval scene_s%d_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n"
-                  "    const ia_real p[] = SCENE_S%d_P;\n    (void)t;\n    return prim_F(%d, p, x, y, z);\n}\n",
-                  k, k, placed.type);
-    strbuf_printf(b,
-                  "IA_FN ia_real scene_s%d_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, "
-                  "ia_real *gz) {\n    const ia_real p[] = SCENE_S%d_P;\n    (void)t;\n"
-                  "    return prim_f_grad(%d, p, x, y, z, gx, gy, gz);\n}\n",
-                  k, k, placed.type);
-    strbuf_printf(b,
-                  "#ifdef IACSG_SCALAR_FD\nIA_FN ia_interval scene_s%d_Fd(ia_interval x, ia_interval y, ia_interval z, "
-                  "ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {\n"
-                  "    const ia_real p[] = SCENE_S%d_P;\n    (void)t;\n    return prim_Fd(%d, p, x, y, z, dx, dy, dz, dt);\n"
-                  "}\n#endif\n",
-                  k, k, placed.type);
+    strbuf_printf(params, "        return %d;\n", placed.type);
+    const char *fill = "    ia_real p[%d];\n    int type = scene_g%d_P(%d, p);\n    (void)t;\n";
+    strbuf_printf(code, "IA_FN ia_interval scene_s%d_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n", k);
+    strbuf_printf(code, fill, (2 * placed.n + 7) / 8 * 8, g, k);
+    strbuf_printf(code, "    return prim_F(type, p, x, y, z);\n}\n");
+    strbuf_printf(code, "IA_FN ia_real scene_s%d_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, "
+                        "ia_real *gy, ia_real *gz) {\n", k);
+    strbuf_printf(code, fill, (2 * placed.n + 7) / 8 * 8, g, k);
+    strbuf_printf(code, "    return prim_f_grad(type, p, x, y, z, gx, gy, gz);\n}\n");
+    strbuf_printf(code, "#ifdef IACSG_SCALAR_FD\nIA_FN ia_interval scene_s%d_Fd(ia_interval x, ia_interval y, ia_interval z, "
+                        "ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {\n", k);
+    strbuf_printf(code, fill, (2 * placed.n + 7) / 8 * 8, g, k);
+    strbuf_printf(code, "    return prim_Fd(type, p, x, y, z, dx, dy, dz, dt);\n}\n#endif\n");
     prim_placed_free(&placed);
     return IACSG_OK;
 }
 
 iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err) {
     *source = NULL;
-    strbuf b = {0};
-    int with_fd = s->nsolids <= SCENE_EMIT_FD_MAX_SOLIDS;
+    strbuf b = {0}, params = {0}, code = {0};
+    int with_fd = s->nsolids <= SCENE_EMIT_FD_MAX_SOLIDS, open_group = -1;
     strbuf_printf(&b, "/* generated by iacsg: the %d solids of a scene */\n#define IACSG_SCALAR_CODE 1\n%s", s->nsolids,
                   with_fd ? "#define IACSG_SCALAR_FD 1\n#define SCENE_SOLID_FD 1\n" : "");
-    for (int k = 0; k < s->nsolids; k++) {
-        char prefix[32], *code = NULL;
+    iacsg_status st = IACSG_OK;
+    for (int k = 0; st == IACSG_OK && k < s->nsolids; k++) {
+        char prefix[32], *text = NULL;
         snprintf(prefix, sizeof prefix, "scene_s%d", k);
-        iacsg_status st = s->solids[k].prim ? emit_primitive(&b, &s->solids[k], k, err)
-                                            : iacsg_expr_emit_cl(s->solids[k].expr, prefix, &code, err);
-        if (st != IACSG_OK) {
-            free(strbuf_finish(&b));
-            return st;
+        if (s->solids[k].prim && open_group != k / SCENE_EMIT_GROUP) { /* the group's parameter function */
+            if (open_group >= 0)
+                strbuf_printf(&params, "    }\n    return -1;\n}\n");
+            open_group = k / SCENE_EMIT_GROUP;
+            strbuf_printf(&params, "__attribute__((noinline)) int scene_g%d_P(int k, ia_real *p) {\n    switch (k) {\n",
+                          open_group);
         }
-        if (code)
-            strbuf_printf(&b, "%s", code);
-        free(code);
+        st = s->solids[k].prim ? emit_primitive(&params, &code, &s->solids[k], k, err)
+                               : iacsg_expr_emit_cl(s->solids[k].expr, prefix, &text, err);
+        if (text)
+            strbuf_printf(&code, "%s", text);
+        free(text);
     }
-    for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0] - !with_fd; which++)
-        emit_dispatcher(&b, s->nsolids, (int)which);
+    if (open_group >= 0)
+        strbuf_printf(&params, "    }\n    return -1;\n}\n");
+    char *params_text = strbuf_finish(&params), *code_text = strbuf_finish(&code);
+    if (st == IACSG_OK) {
+        strbuf_printf(&b, "%s%s", params_text ? params_text : "", code_text ? code_text : "");
+        for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0] - !with_fd; which++)
+            emit_dispatcher(&b, s->nsolids, (int)which);
+    }
+    free(params_text);
+    free(code_text);
     *source = strbuf_finish(&b);
+    if (st != IACSG_OK) {
+        free(*source);
+        *source = NULL;
+        return st;
+    }
     return *source ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory generating code");
 }

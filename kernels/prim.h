@@ -1,11 +1,12 @@
 /* kernels/prim.h -- BRL-CAD's primitive solids as inclusion functions: for each type the interval enclosure F of an
  * implicit f (f < 0 inside) over a box, f and its gradient at a point (the normal), and Fd, F with the derivative
  * along a ray's direction (the walks' interval Newton). Written in the subset of C11 and OpenCL C of ia/, so the
- * host tests run the device's code. The scene program calls them out of line (prim_F, prim_f_grad, prim_Fd), each
- * solid only filling its parameters: a primitive costs its scene a few lines of code to build, not a function.
+ * host tests run the device's code. The scene program calls them out of line (prim_F, prim_f_grad, prim_Fd, one
+ * copy per program), each solid only storing its parameters into a private array (scene_emit.c): a primitive costs
+ * its scene a case of stores to build (a few ms with PoCL), not a compiled function (about 30 ms).
  *
  *   implicits/prim_place.c: database parameters and matrix --> world parameters as intervals (outward) -->
- *   implicits/scene_emit.c: literals per solid --> prim_F / prim_f_grad / prim_Fd here
+ *   implicits/scene_emit.c: stores of literals per solid --> prim_F / prim_f_grad / prim_Fd here
  *
  * Parameters. p holds intervals as lo, hi pairs (prim_iv), each holding the exact real number the placement
  * defines from the database's numbers, so F over a box holds f of the primitive exactly as the database defines
@@ -16,8 +17,8 @@
  * The implicits, and why each is tight (F's overestimate shrinks with the box, so bisection converges, and no
  * f is 0 except on the surface: a zero elsewhere would be split down to BOUNDARY leaves, which the weave may claim):
  *   HALF  n.x - d (n, d: 4 intervals). Linear: each coordinate occurs once, F is exact up to rounding.
- *   ARB8  max over its faces of n_i.(x - a_i), a_i a vertex of face i, n_i outward (6 planes, 36 intervals; a
- *         degenerate arb repeats a plane). The faces are BRL-CAD's (rt_arb_info: the first three distinct,
+ *   ARB8  max over its faces of n_i.x - d_i, n_i outward, d_i = n_i.a_i for a vertex a_i of face i (6 planes, 24
+ *         intervals; a degenerate arb repeats a plane). The faces are BRL-CAD's (rt_arb_info: the first three distinct,
  *         non-collinear vertices in its order; vertices within BRL-CAD's 0.0005 mm merged), so the solid is the
  *         intersection of the faces' half-spaces, within the box of the vertices (the BVH's range clips it
  *         there, which only matters for a non-planar face). Each plane is linear: exact up to rounding.
@@ -32,6 +33,16 @@
  *   EHY   max(z, -1 - z, k1 (x^2 + y^2 - 1) - (z + k2)^2 + k2^2), (x, y, z) = s = BRL-CAD's S R (p - V) (z from 0 at
  *         the base to -1 at the tip), k1 = 2 c' + 1, k2 = c' + 1, c' = c / |H| (ehy.c's quadric, rearranged so that
  *         z occurs once; 15 intervals). Over -1 <= z <= 0 it is 0 only on the sheet.
+ *   PIPE  librt's parts (pipe.c): straight frusta between the points and torus bends at them, each in its cell
+ *         between two planes (PRIM_PIPE_PART_N intervals a part). f is the tube of a part whose cell holds x (a
+ *         frustum's max(rho - ro(w), ri(w) - rho), a bend's max(d - ro, ri - d), d the distance from its core
+ *         circle), +inf where none does. A union of closed parts that abut would be 0 all over the faces where
+ *         they meet, inside the wall; here a box across a plane two consecutive parts share is in their union and
+ *         gets the hull of both tubes, negative there (prim_pipe_F).
+ *
+ * Fd: the derivative along the ray from the same parts (a frame type's from s and G d; a max's by ia_dmax, Clarke's
+ * derivative, for which the mean value theorem Newton relies on still holds); unbounded where a quotient's
+ * denominator may be 0 and for pipes, whose f jumps at the end caps: the walk then bisects.
  */
 #ifndef KERNELS_PRIM_H
 #define KERNELS_PRIM_H
@@ -52,11 +63,18 @@
 #else
 #define PRIM_R(d, f) (f)
 #endif
+#if IA_DEVICE /* the scene program stores parameters 8 at a time */
+#ifdef IA_FP64
+typedef double8 prim_real8;
+#else
+typedef float8 prim_real8;
+#endif
+#endif
 
 #define PRIM_ARB_PLANES 6
 /* The number of intervals of each type's parameters (a pipe's depend on its parts). */
 #define PRIM_HALF_N 4
-#define PRIM_ARB8_N (6 * PRIM_ARB_PLANES)
+#define PRIM_ARB8_N (4 * PRIM_ARB_PLANES)
 #define PRIM_ELL_N 12
 #define PRIM_TGC_N 14
 #define PRIM_TOR_N 14
@@ -115,43 +133,60 @@ IA_FN ia_interval prim_half_F(const ia_real *p, ia_interval x, ia_interval y, ia
 
 IA_FN ia_interval prim_arb8_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
     ia_interval f = ia_make(-IA_INF, -IA_INF);
-    for (int j = 0; j < PRIM_ARB_PLANES; j++) {
-        int a = 6 * j + 3;
-        f = ia_max(f, prim_dot3(p, 6 * j, ia_sub(x, prim_iv(p, a)), ia_sub(y, prim_iv(p, a + 1)),
-                                ia_sub(z, prim_iv(p, a + 2))));
-    }
+    for (int j = 0; j < PRIM_ARB_PLANES; j++)
+        f = ia_max(f, prim_half_F(p + 8 * j, x, y, z));
     return f;
 }
 
-IA_FN ia_interval prim_ell_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
-    ia_interval s[3];
-    prim_frame(p, 0, x, y, z, s);
-    return ia_add_r(ia_add(ia_add(ia_sqr(s[0]), ia_sqr(s[1])), ia_sqr(s[2])), -1);
+/* ds = G d: the direction (dx, dy, dz) in the frame at `at`. */
+IA_FN void prim_frame_dir(const ia_real *p, int at, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval ds[3]) {
+    for (int r = 0; r < 3; r++)
+        ds[r] = prim_dot3(p, at + 3 + 3 * r, dx, dy, dz);
 }
 
-IA_FN ia_interval prim_tgc_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
-    ia_interval s[3];
-    prim_frame(p, 0, x, y, z, s);
-    ia_interval ra = ia_add_r(ia_mul(prim_iv(p, 12), s[2]), 1), rb = ia_add_r(ia_mul(prim_iv(p, 13), s[2]), 1);
-    ia_interval side = ia_add_r(ia_add(prim_ratio(ia_sqr(s[0]), ia_sqr(ra)), prim_ratio(ia_sqr(s[1]), ia_sqr(rb))), -1);
-    return ia_max(ia_max(ia_neg(s[2]), ia_add_r(s[2], -1)), side);
-}
-
-IA_FN ia_interval prim_tor_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
-    ia_interval s[3];
-    prim_frame(p, 0, x, y, z, s);
-    ia_interval rho = ia_sqrt(ia_add(ia_sqr(s[0]), ia_sqr(s[1])));
-    return ia_sub(ia_add(ia_sqr(ia_sub(rho, prim_iv(p, 12))), ia_sqr(s[2])), prim_iv(p, 13));
-}
-
-IA_FN ia_interval prim_ehy_F(const ia_real *p, ia_interval x, ia_interval y, ia_interval z) {
-    ia_interval s[3];
-    prim_frame(p, 0, x, y, z, s);
-    ia_interval k1 = prim_iv(p, 12), k2 = prim_iv(p, 13), k2sq = prim_iv(p, 14);
-    ia_interval sheet = ia_add(ia_sub(ia_mul(k1, ia_add_r(ia_add(ia_sqr(s[0]), ia_sqr(s[1])), -1)),
-                                      ia_sqr(ia_add(s[2], k2))),
-                               k2sq);
-    return ia_max(ia_max(s[2], ia_sub(ia_make(-1, -1), s[2])), sheet);
+/* A frame type's f over the box from its s, and when dt is not NULL, in *dt f's derivative along a direction whose
+ * frame coordinates are ds (unbounded where a quotient's denominator may be 0: interval Newton then bisects). A max
+ * differentiates as Clarke's derivative (ia_dmax), for which the mean value theorem Newton needs still holds. */
+IA_FN ia_interval prim_frame_value(int type, const ia_real *p, const ia_interval s[3], const ia_interval ds[3],
+                                   ia_interval *dt) {
+    ia_interval f = ia_entire(), d = ia_entire();
+    ia_interval s01 = ia_add(ia_sqr(s[0]), ia_sqr(s[1]));
+    ia_interval ds01 = dt ? ia_mul_r(ia_add(ia_mul(s[0], ds[0]), ia_mul(s[1], ds[1])), 2) : d; /* (s0^2 + s1^2)' */
+    if (type == PRIM_ELL) {
+        f = ia_add_r(ia_add(s01, ia_sqr(s[2])), -1);
+        if (dt)
+            d = ia_add(ds01, ia_mul_r(ia_mul(s[2], ds[2]), 2));
+    } else if (type == PRIM_TGC) {
+        ia_interval alpha = prim_iv(p, 12), beta = prim_iv(p, 13);
+        ia_interval ra = ia_add_r(ia_mul(alpha, s[2]), 1), rb = ia_add_r(ia_mul(beta, s[2]), 1);
+        ia_interval u2 = ia_sqr(s[0]), v2 = ia_sqr(s[1]);
+        ia_interval side = ia_add_r(ia_add(prim_ratio(u2, ia_sqr(ra)), prim_ratio(v2, ia_sqr(rb))), -1);
+        ia_interval below = ia_neg(s[2]), above = ia_add_r(s[2], -1), cap = ia_max(below, above);
+        f = ia_max(cap, side);
+        if (dt) { /* (u^2 / ra^2)' = 2 (u u' ra - u^2 alpha w') / ra^3 */
+            ia_interval du = ia_div(ia_mul_r(ia_sub(ia_mul(ia_mul(s[0], ds[0]), ra), ia_mul(ia_mul(u2, alpha), ds[2])), 2),
+                                    ia_pown(ra, 3));
+            ia_interval dv = ia_div(ia_mul_r(ia_sub(ia_mul(ia_mul(s[1], ds[1]), rb), ia_mul(ia_mul(v2, beta), ds[2])), 2),
+                                    ia_pown(rb, 3));
+            d = ia_dmax(cap, side, ia_dmax(below, above, ia_neg(ds[2]), ds[2]), ia_add(du, dv));
+        }
+    } else if (type == PRIM_TOR) {
+        ia_interval rho = ia_sqrt(s01), off = ia_sub(rho, prim_iv(p, 12));
+        f = ia_sub(ia_add(ia_sqr(off), ia_sqr(s[2])), prim_iv(p, 13));
+        if (dt) /* rho' = (s0^2 + s1^2)' / (2 rho) */
+            d = ia_add(ia_div(ia_mul(off, ds01), rho), ia_mul_r(ia_mul(s[2], ds[2]), 2));
+    } else if (type == PRIM_EHY) {
+        ia_interval k1 = prim_iv(p, 12), k2 = prim_iv(p, 13), zk = ia_add(s[2], k2);
+        ia_interval sheet = ia_add(ia_sub(ia_mul(k1, ia_add_r(s01, -1)), ia_sqr(zk)), prim_iv(p, 14));
+        ia_interval below = ia_sub(ia_make(-1, -1), s[2]), cap = ia_max(s[2], below);
+        f = ia_max(cap, sheet);
+        if (dt)
+            d = ia_dmax(cap, sheet, ia_dmax(s[2], below, ds[2], ia_neg(ds[2])),
+                        ia_sub(ia_mul(k1, ds01), ia_mul_r(ia_mul(zk, ds[2]), 2)));
+    }
+    if (dt)
+        *dt = d;
+    return f;
 }
 
 /* A pipe part's cell: the start plane (x - a).t >= 0 and the end plane (x - b).u <= 0, and its tube over the box:
@@ -216,9 +251,7 @@ IA_FN ia_real prim_half_grad(const ia_real *p, ia_real x, ia_real y, ia_real z, 
 IA_FN ia_real prim_arb8_grad(const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real g[3]) {
     ia_real best = -IA_INF;
     for (int j = 0; j < PRIM_ARB_PLANES; j++) {
-        ia_real n[3] = {prim_mid(p, 6 * j), prim_mid(p, 6 * j + 1), prim_mid(p, 6 * j + 2)};
-        ia_real f = n[0] * (x - prim_mid(p, 6 * j + 3)) + n[1] * (y - prim_mid(p, 6 * j + 4)) +
-                    n[2] * (z - prim_mid(p, 6 * j + 5));
+        ia_real n[3], f = prim_half_grad(p + 8 * j, x, y, z, n);
         if (f > best) {
             best = f;
             for (int c = 0; c < 3; c++)
@@ -348,18 +381,12 @@ PRIM_FN ia_interval prim_F(int type, const ia_real *p, ia_interval x, ia_interva
         return prim_half_F(p, x, y, z);
     case PRIM_ARB8:
         return prim_arb8_F(p, x, y, z);
-    case PRIM_ELL:
-        return prim_ell_F(p, x, y, z);
-    case PRIM_TGC:
-        return prim_tgc_F(p, x, y, z);
-    case PRIM_TOR:
-        return prim_tor_F(p, x, y, z);
-    case PRIM_EHY:
-        return prim_ehy_F(p, x, y, z);
     case PRIM_PIPE:
         return prim_pipe_F(p, x, y, z);
     }
-    return ia_entire();
+    ia_interval s[3];
+    prim_frame(p, 0, x, y, z, s);
+    return prim_frame_value(type, p, s, s, 0);
 }
 
 PRIM_FN ia_real prim_f_grad(int type, const ia_real *p, ia_real x, ia_real y, ia_real z, ia_real *gx, ia_real *gy,
@@ -393,13 +420,24 @@ PRIM_FN ia_real prim_f_grad(int type, const ia_real *p, ia_real x, ia_real y, ia
     return f;
 }
 
-/* F and in *dt the derivative along (dx, dy, dz), for interval Newton: not yet derived for primitives, so both are
- * unbounded, which the walk reads as "not usable" and bisects (kernels/segments.h), without evaluating anything. */
+/* F, and in *dt its derivative along (dx, dy, dz), for interval Newton. A pipe's f jumps at its end caps (it is +inf
+ * outside every part), so its derivative is unbounded: the walk bisects there. */
 PRIM_FN ia_interval prim_Fd(int type, const ia_real *p, ia_interval x, ia_interval y, ia_interval z, ia_interval dx,
                             ia_interval dy, ia_interval dz, ia_interval *dt) {
-    (void)type, (void)p, (void)x, (void)y, (void)z, (void)dx, (void)dy, (void)dz;
-    *dt = ia_entire();
-    return ia_entire();
+    if (type == PRIM_HALF || type == PRIM_ARB8 || type == PRIM_PIPE) {
+        ia_interval f = ia_make(-IA_INF, -IA_INF), d = ia_make(-IA_INF, -IA_INF);
+        for (int j = 0; type != PRIM_PIPE && j < (type == PRIM_HALF ? 1 : PRIM_ARB_PLANES); j++) {
+            ia_interval fj = prim_half_F(p + 8 * j, x, y, z), dj = prim_dot3(p + 8 * j, 0, dx, dy, dz);
+            d = j == 0 ? dj : ia_dmax(f, fj, d, dj);
+            f = ia_max(f, fj);
+        }
+        *dt = type == PRIM_PIPE ? ia_entire() : d;
+        return type == PRIM_PIPE ? prim_pipe_F(p, x, y, z) : f;
+    }
+    ia_interval s[3], ds[3];
+    prim_frame(p, 0, x, y, z, s);
+    prim_frame_dir(p, 0, dx, dy, dz, ds);
+    return prim_frame_value(type, p, s, ds, dt);
 }
 
 #endif

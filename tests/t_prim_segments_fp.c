@@ -1,0 +1,11 @@
+/* tests/t_prim_segments_fp.c -- each primitive type through the segment path's bisection walk alone (as scenes of
+ * more than 64 solids run it), against the exact reference: tests/t_prim_walk.h says what is checked. */
+#include "t_prim_walk.h"
+
+TEST_FP(prim_segments_half) { run_type(SCENE_PRIM_HALF, 1, "half"); }
+TEST_FP(prim_segments_arb8) { run_type(SCENE_PRIM_ARB8, 4, "arb8"); }
+TEST_FP(prim_segments_ell) { run_type(SCENE_PRIM_ELL, 2, "ell"); }
+TEST_FP(prim_segments_tgc) { run_type(SCENE_PRIM_TGC, 5, "tgc"); }
+TEST_FP(prim_segments_tor) { run_type(SCENE_PRIM_TOR, 1, "tor"); }
+TEST_FP(prim_segments_ehy) { run_type(SCENE_PRIM_EHY, 1, "ehy"); }
+TEST_FP(prim_segments_pipe) { run_type(SCENE_PRIM_PIPE, 6, "pipe"); }

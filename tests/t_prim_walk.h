@@ -1,0 +1,436 @@
+/* tests/t_prim_walk.h -- the body of the primitive walk tests (t_prim_segments_fp.c: bisection alone, as scenes of
+ * more than 64 solids run; t_prim_newton_fp.c: with interval Newton on prim_Fd, as smaller ones do). Each type
+ * (kernels/prim.h, placed by implicits/prim_place.c) goes through the segment path's walk (kernels/segments.h,
+ * compiled here as the device runs it) along random rays, against the exact long-double crossings of
+ * tests/t_prim_ref.h:
+ *
+ * - every node the walk accepts as IN or OUT holds no crossing and has the reference's state (so no boundary is
+ *   missed and none is late);
+ * - every BOUNDARY leaf lies within PRIM_NEAR eps of the boundary: of a crossing along the ray, or, for a ray that
+ *   grazes the surface, of a point where a cube of that size around the leaf meets both sides (no phantom leaves,
+ *   which the weave could claim as a hit).
+ *
+ * Random placements: a rotation, a uniform scale in mat[15] and a translation (librt's matrices); rays aimed at
+ * random points of the box and at the features: arb vertices and edges, along the axes of cylinders, cones and
+ * tori, through a torus's hole and its plane, along pipes' segments.
+ *
+ * The including file defines PRIM_WALK_NAME (the tests' prefix) and, for Newton, SCENE_SOLID_FD.
+ */
+#ifndef T_PRIM_WALK_H
+#define T_PRIM_WALK_H
+#include "implicits/prim_place.h"
+#include "kernels/prim.h"
+#include "t_prim_ref.h"
+#include "test.h"
+#include <stdio.h>
+
+static int host_type;
+static ia_real *host_params;
+
+/* The device's dispatchers for one primitive solid. */
+static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    (void)k, (void)t;
+    return prim_F(host_type, host_params, x, y, z);
+}
+#ifdef SCENE_SOLID_FD
+static ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx,
+                                  ia_interval dy, ia_interval dz, ia_interval *dt) {
+    (void)k, (void)t;
+    return prim_Fd(host_type, host_params, x, y, z, dx, dy, dz, dt);
+}
+#endif
+
+#include "kernels/segments.h"
+
+
+/* A BOUNDARY leaf must be this many eps from the boundary at most. */
+#define PRIM_NEAR 4
+
+/* ---- random primitives */
+
+static double rnd(test_rng_t *rng, double lo, double hi) { return lo + (hi - lo) * test_rand_unit(rng); }
+
+/* A random rotation (rows), from a unit quaternion. */
+static void random_rotation(test_rng_t *rng, double r[9]) {
+    double q[4], len = 0;
+    for (int k = 0; k < 4; k++) {
+        q[k] = rnd(rng, -1, 1);
+        len += q[k] * q[k];
+    }
+    len = sqrt(len);
+    double w = q[0] / len, x = q[1] / len, y = q[2] / len, z = q[3] / len;
+    double m[9] = {1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
+                   2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+                   2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
+    memcpy(r, m, sizeof m);
+}
+
+/* librt's kind of matrix: rotation, translation, mat[15] = 1 / scale. */
+static void random_matrix(test_rng_t *rng, double mat[16], double *scale) {
+    double r[9];
+    random_rotation(rng, r);
+    *scale = rnd(rng, 0.5, 4);
+    memset(mat, 0, 16 * sizeof(double));
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++)
+            mat[4 * i + j] = r[3 * i + j];
+        mat[4 * i + 3] = rnd(rng, -10, 10);
+    }
+    mat[15] = 1 / *scale;
+}
+
+/* A dyadic number in [lo, hi] on a grid of 1/8 (arb vertices: their planes are exact). */
+static double grid(test_rng_t *rng, double lo, double hi) { return floor(rnd(rng, lo, hi) * 8) / 8; }
+
+/* Fills params with a random primitive of the type (in its own frame); returns the count. `variant` picks a
+ * special case (rcc, cone, arb4, ...). */
+static int random_prim(test_rng_t *rng, int type, int variant, double *q) {
+    double r[9];
+    random_rotation(rng, r);
+    switch (type) {
+    case SCENE_PRIM_HALF: {
+        double len = rnd(rng, 0.5, 2);
+        for (int c = 0; c < 3; c++)
+            q[c] = r[c] * len;
+        q[3] = rnd(rng, -1, 1);
+        return 4;
+    }
+    case SCENE_PRIM_ELL:
+        for (int c = 0; c < 3; c++)
+            q[c] = rnd(rng, -1, 1);
+        for (int a = 0; a < 3; a++) {
+            double len = variant == 1 ? 1 : rnd(rng, 0.2, 1.5); /* variant 1: a sphere */
+            for (int c = 0; c < 3; c++)
+                q[3 + 3 * a + c] = r[3 * a + c] * len;
+        }
+        return 12;
+    case SCENE_PRIM_TGC: {
+        double la = rnd(rng, 0.2, 1), lb = variant == 1 ? la : rnd(rng, 0.2, 1), h[3], hd = 0;
+        static const double tops[][2] = {{1, 1}, {0.5, 0.5}, {0, 0}, {1.5, 0.4}, {0, 1}}; /* rcc, trc, cone, tgc */
+        const double *k = tops[variant % 5];
+        do { /* a height not too near the base's plane: a sheared cylinder at worst */
+            hd = 0;
+            for (int c = 0; c < 3; c++) {
+                h[c] = variant < 2 ? r[6 + c] * rnd(rng, 0.5, 2) : rnd(rng, -2, 2);
+                hd += h[c] * r[6 + c];
+            }
+        } while (fabs(hd) < 0.5);
+        for (int c = 0; c < 3; c++) {
+            q[c] = rnd(rng, -1, 1);
+            q[3 + c] = h[c];
+            q[6 + c] = r[c] * la;
+            q[9 + c] = r[3 + c] * lb;
+            q[12 + c] = r[c] * la * k[0];
+            q[15 + c] = r[3 + c] * lb * k[1];
+        }
+        return 18;
+    }
+    case SCENE_PRIM_TOR: {
+        double ra = rnd(rng, 0.5, 1.5);
+        for (int c = 0; c < 3; c++) {
+            q[c] = rnd(rng, -1, 1);
+            q[3 + c] = r[c] * rnd(rng, 0.5, 2);
+        }
+        q[6] = ra;
+        q[7] = rnd(rng, 0.1, 0.9) * ra;
+        return 8;
+    }
+    case SCENE_PRIM_EHY: {
+        double r1 = rnd(rng, 0.5, 1.5), hl = rnd(rng, 0.5, 2);
+        for (int c = 0; c < 3; c++) {
+            q[c] = rnd(rng, -1, 1);
+            q[3 + c] = r[6 + c] * hl;
+            q[6 + c] = r[c];
+        }
+        q[9] = r1;
+        q[10] = rnd(rng, 0.2, 1) * r1;
+        q[11] = rnd(rng, 0.1, 1);
+        return 12;
+    }
+    case SCENE_PRIM_ARB8: {
+        double x0 = grid(rng, -1, 0), x1 = grid(rng, 0.25, 1), y0 = grid(rng, -1, 0), y1 = grid(rng, 0.25, 1);
+        double z0 = grid(rng, -1, 0), z1 = grid(rng, 0.25, 1), cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+        double inset = grid(rng, 0, 0.2);
+        double base[4][3] = {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}};
+        double top[4][3] = {{x0 + inset, y0 + inset, z1}, {x1 - inset, y0 + inset, z1}, {x1 - inset, y1 - inset, z1},
+                            {x0 + inset, y1 - inset, z1}};
+        double apex[3] = {cx, cy, z1}, ridge0[3] = {x0, cy, z1}, ridge1[3] = {x1, cy, z1};
+        const double *v[8];
+        switch (variant % 4) {
+        case 0: /* arb8: a frustum of a box */
+            for (int k = 0; k < 4; k++)
+                v[k] = base[k], v[4 + k] = top[k];
+            break;
+        case 1: /* arb5: a pyramid */
+            for (int k = 0; k < 4; k++)
+                v[k] = base[k], v[4 + k] = apex;
+            break;
+        case 2: /* arb6: a wedge, the top a ridge (librt: 1 2 3 4 5 5 6 6) */
+            for (int k = 0; k < 4; k++)
+                v[k] = base[k];
+            v[4] = v[5] = ridge0;
+            v[6] = v[7] = ridge1;
+            break;
+        default: /* arb4: a tetrahedron (librt: 1 2 3 3 4 4 4 4) */
+            v[0] = base[0], v[1] = base[1], v[2] = v[3] = base[2];
+            for (int k = 4; k < 8; k++)
+                v[k] = apex;
+        }
+        for (int k = 0; k < 8; k++)
+            memcpy(q + 3 * k, v[k], 3 * sizeof(double));
+        return 24;
+    }
+    default: { /* a pipe: 3 to 5 points turning by 30 to 150 degrees, long enough for their bends */
+        int n = 3 + (int)(test_rand_u64(rng) % 3);
+        double p[3] = {0, 0, 0}, dir[3] = {1, 0, 0}, od = rnd(rng, 0.3, 0.6);
+        for (int i = 0; i < n; i++) {
+            double *pt = q + 6 * i;
+            memcpy(pt, p, sizeof p);
+            pt[3] = od * rnd(rng, 0.8, 1.2);
+            pt[4] = variant % 2 ? 0 : pt[3] * rnd(rng, 0.3, 0.7);
+            pt[5] = variant % 3 == 2 ? 0 : pt[3] * rnd(rng, 1, 1.5); /* some sharp corners */
+            double len = rnd(rng, 3, 5);
+            for (int c = 0; c < 3; c++)
+                p[c] += dir[c] * len;
+            double turn = rnd(rng, 0.5, 2.6), axis[3], rr[9];
+            random_rotation(rng, rr);
+            double nd = 0;
+            for (int c = 0; c < 3; c++)
+                nd += rr[c] * dir[c];
+            for (int c = 0; c < 3; c++)
+                axis[c] = rr[c] - nd * dir[c];
+            double al = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+            for (int c = 0; c < 3; c++)
+                dir[c] = dir[c] * cos(turn) + axis[c] / al * sin(turn);
+        }
+        return 6 * n;
+    }
+    }
+}
+
+/* ---- rays */
+
+typedef struct {
+    ia_real o[3], d[3];
+} test_ray;
+
+/* A point of the primitive's box, or of one of its features (local frame, then placed). */
+static void feature_point(test_rng_t *rng, const scene_prim *sp, const double box[6], double target[3],
+                          double axis[3]) {
+    const double *q = sp->params;
+    double local[3] = {0, 0, 0};
+    int kind = (int)(test_rand_u64(rng) % 3);
+    axis[0] = axis[1] = axis[2] = 0;
+    if (kind == 0 || sp->type == SCENE_PRIM_HALF) {
+        for (int c = 0; c < 3; c++)
+            target[c] = rnd(rng, box[c], box[c + 3]);
+        return;
+    }
+    switch (sp->type) {
+    case SCENE_PRIM_ARB8: { /* a vertex, or a point of an edge */
+        int a = (int)(test_rand_u64(rng) % 8), b = (int)(test_rand_u64(rng) % 8);
+        double u = kind == 1 ? 0 : test_rand_unit(rng);
+        for (int c = 0; c < 3; c++)
+            local[c] = q[3 * a + c] + u * (q[3 * b + c] - q[3 * a + c]);
+        break;
+    }
+    case SCENE_PRIM_TGC:
+    case SCENE_PRIM_EHY: /* on the axis, along it */
+    case SCENE_PRIM_TOR:
+    case SCENE_PRIM_ELL:
+        for (int c = 0; c < 3; c++) {
+            local[c] = q[c];
+            axis[c] = sp->type == SCENE_PRIM_ELL ? q[3 + c] : q[3 + c];
+        }
+        break;
+    default: { /* along a pipe's segment */
+        int i = (int)(test_rand_u64(rng) % (uint64_t)(sp->nparams / 6 - 1));
+        for (int c = 0; c < 3; c++) {
+            local[c] = q[6 * i + c];
+            axis[c] = q[6 * (i + 1) + c] - q[6 * i + c];
+        }
+    }
+    }
+    const double *m = sp->mat;
+    double placed_axis[3];
+    for (int r = 0; r < 3; r++) {
+        target[r] = (m[4 * r] * local[0] + m[4 * r + 1] * local[1] + m[4 * r + 2] * local[2] + m[4 * r + 3]) / m[15];
+        placed_axis[r] = m[4 * r] * axis[0] + m[4 * r + 1] * axis[1] + m[4 * r + 2] * axis[2];
+    }
+    memcpy(axis, placed_axis, sizeof placed_axis);
+    if (kind == 1 && sp->type == SCENE_PRIM_TOR) /* in the torus's plane, through its centre */
+        axis[0] = axis[1] = axis[2] = 0;
+}
+
+/* ---- one ray: the walk against the reference */
+
+typedef struct {
+    long rays, nodes, boundary_leaves, grazing_leaves;
+    unsigned long long evals;
+    double worst; /* the farthest BOUNDARY leaf from a crossing along the ray, in eps */
+} tally;
+
+/* Whether a cube of half-size h around the line's point at t (local frame) meets both the inside and the outside,
+ * on a grid of 9^3 points (fine enough for the thin wedges at a pipe's mitred corner and the cones at an arb's
+ * vertices that the tests make: they open by at least 0.5 radians). */
+static int meets_both(const scene_prim *sp, const ref_line *r, ld t, ld h) {
+    ld p[3];
+    ref_at(r, t, p);
+    int in = 0, out = 0;
+    for (int k = 0; k < 729 && !(in && out); k++) {
+        ld x[3] = {p[0] + (k % 9 - 4) * h / 4, p[1] + (k / 9 % 9 - 4) * h / 4, p[2] + (k / 81 - 4) * h / 4};
+        *(prim_ref_inside_local(sp, x) ? &in : &out) = 1;
+    }
+    return in && out;
+}
+
+static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, ia_real ta, ia_real w, ia_real eps,
+                      tally *tl) {
+    ld o[3], d[3];
+    for (int c = 0; c < 3; c++)
+        o[c] = ray->o[c], d[c] = ray->d[c];
+    ref_line line = ref_local_line(sp->mat, o, d);
+    ia_real range[2] = {ta, w}, pos[1], newton_t[2];
+    int solid[1] = {0}, level[1], newton[1];
+    bisect_index index[1];
+    segments_walks walk = {solid, range, pos, level, index, newton, newton_t};
+    segments_start(&walk, 0);
+    ia_real end = node_bound(ta, w, 0, 1);
+    ld cross[REF_MAX_CROSSINGS];
+    int inside0, ncross = prim_ref_crossings(sp, &line, (ld)ta, (ld)end, cross, &inside0);
+    kernel_u32 evals = 0;
+    ld len = sqrtl(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    int guard = 0;
+    while (pos[0] < IA_INF) {
+        ia_real a = pos[0];
+        int s = segments_step(&walk, 0, ray->o, ray->d, eps, ia_point(0), &evals);
+        ia_real b = pos[0] < IA_INF ? pos[0] : end;
+        if (s == SCENE_OUT && !(b > a)) /* the final OUT at the range's end */
+            break;
+        CHECK(++guard < 1000000, "the walk does not end");
+        tl->nodes++;
+        ld tol = 1e-12L * (fabsl((ld)a) + fabsl((ld)b) + 1);
+        int near = 0;
+        ld nearest = INFINITY;
+        for (int k = 0; k < ncross; k++) {
+            CHECK(s == SCENE_BOUNDARY || !(cross[k] > a + tol && cross[k] < b - tol),
+                  "type %d: a %s node [%.9g, %.9g] holds the crossing at %.12Lg", sp->type, s == SCENE_IN ? "IN" : "OUT",
+                  (double)a, (double)b, cross[k]);
+            ld gap = cross[k] < a ? a - cross[k] : cross[k] > b ? cross[k] - b : 0;
+            nearest = fminl(nearest, gap);
+        }
+        ld p[3];
+        ref_at(&line, (ld)a + ((ld)b - (ld)a) / 2, p);
+        int in = prim_ref_inside_local(sp, p);
+        if (s != SCENE_BOUNDARY) {
+            CHECK((s == SCENE_IN) == in, "type %d: node [%.9g, %.9g] is %s, the reference %s", sp->type, (double)a,
+                  (double)b, s == SCENE_IN ? "IN" : "OUT", in ? "inside" : "outside");
+            continue;
+        }
+        tl->boundary_leaves++;
+        near = nearest * len <= PRIM_NEAR * eps;
+        if (near) {
+            tl->worst = fmax(tl->worst, (double)(nearest * len / eps));
+            continue;
+        }
+        /* a graze: the boundary passes within PRIM_NEAR eps of the leaf in space (the cube in the local frame,
+         * eps scaled back by the matrix's scale) */
+        tl->grazing_leaves++;
+        CHECK(meets_both(sp, &line, (ld)a + ((ld)b - (ld)a) / 2, (ld)PRIM_NEAR * eps / scale),
+              "type %d: a BOUNDARY leaf [%.9g, %.9g] is %.3Lg eps from the boundary", sp->type, (double)a, (double)b,
+              nearest * len / eps);
+    }
+    tl->rays++;
+    tl->evals += evals;
+}
+
+/* The primitive's parameters in the working precision, rounded outward. */
+static ia_real *params_of(const prim_placed *pl) {
+    ia_real *p = malloc(sizeof(ia_real) * 2 * (size_t)pl->n);
+    CHECK(p, "out of memory");
+    for (int k = 0; k < pl->n; k++) {
+#ifdef IA_FP64
+        p[2 * k] = pl->lo[k];
+        p[2 * k + 1] = pl->hi[k];
+#else
+        p[2 * k] = prim_float_bound(pl->lo[k], 0);
+        p[2 * k + 1] = prim_float_bound(pl->hi[k], 1);
+#endif
+    }
+    return p;
+}
+
+/* The t range of the ray in the box (long double, rounded outward); 0 when it misses. */
+static int clip(const double box[6], const test_ray *ray, ia_real *ta, ia_real *w) {
+    ld lo = 0, hi = INFINITY;
+    for (int c = 0; c < 3; c++) {
+        if (ray->d[c] == 0) {
+            if (ray->o[c] < box[c] || ray->o[c] > box[c + 3])
+                return 0;
+            continue;
+        }
+        ld t1 = (box[c] - (ld)ray->o[c]) / ray->d[c], t2 = (box[c + 3] - (ld)ray->o[c]) / ray->d[c];
+        lo = fmaxl(lo, fminl(t1, t2));
+        hi = fminl(hi, fmaxl(t1, t2));
+    }
+    if (!(lo < hi))
+        return 0;
+    *ta = (ia_real)lo;
+    if ((ld)*ta > lo)
+        *ta = nextafter(*ta, -IA_INF);
+    *w = (ia_real)(hi - (ld)*ta);
+    for (ia_real step = *w * IA_REAL_EPS + IA_REAL_MIN_NORMAL; (ld)node_bound(*ta, *w, 0, 1) < hi; step *= 2)
+        *w += step;
+    return 1;
+}
+
+static void run_type(int type, int variants, const char *name) {
+    test_rng_t *rng = test_rng();
+    tally tl = {0};
+    long prims = test_iters(40), per_prim = 30;
+    for (long it = 0; it < prims; it++) {
+        double q[64], mat[16], scale;
+        int n = random_prim(rng, type, (int)(it % variants), q);
+        random_matrix(rng, mat, &scale);
+        scene_prim sp = {type, n, q, {0}};
+        memcpy(sp.mat, mat, sizeof mat);
+        prim_placed pl;
+        iacsg_error err = {0};
+        CHECK(prim_place(&sp, name, &pl, &err) == IACSG_OK, "%s: %s", name, err.message);
+        double box[6];
+        memcpy(box, pl.box, sizeof box);
+        if (type == SCENE_PRIM_HALF) /* unbounded: a box around its placement */
+            for (int c = 0; c < 3; c++)
+                box[c] = mat[4 * c + 3] - 8 * scale, box[c + 3] = mat[4 * c + 3] + 8 * scale;
+        host_type = pl.type;
+        host_params = params_of(&pl);
+        ia_real eps = (ia_real)(1e-3 * scale);
+        for (long k = 0; k < per_prim; k++) {
+            double target[3], axis[3], dir[3], dl = 0;
+            feature_point(rng, &sp, box, target, axis);
+            int along = axis[0] != 0 || axis[1] != 0 || axis[2] != 0;
+            for (int c = 0; c < 3; c++) {
+                dir[c] = along && k % 2 ? axis[c] : rnd(rng, -1, 1);
+                dl += dir[c] * dir[c];
+            }
+            dl = sqrt(dl);
+            test_ray ray;
+            for (int c = 0; c < 3; c++) {
+                ray.d[c] = (ia_real)(dir[c] / dl);
+                ray.o[c] = (ia_real)(target[c] - 40 * scale * dir[c] / dl);
+            }
+            ia_real ta, w;
+            if (clip(box, &ray, &ta, &w))
+                check_ray(&sp, scale, &ray, ta, w, eps, &tl);
+        }
+        free(host_params);
+        prim_placed_free(&pl);
+    }
+    test_note("%s: %ld rays, %.1f evaluations per ray; %ld boundary leaves, at most %.2f eps from a crossing, %ld "
+              "beside a graze",
+              name, tl.rays, (double)tl.evals / (double)(tl.rays ? tl.rays : 1), tl.boundary_leaves, tl.worst,
+              tl.grazing_leaves);
+    CHECK(tl.rays > prims * per_prim / 3, "%s: too few rays met the box (%ld)", name, tl.rays);
+}
+
+#endif
