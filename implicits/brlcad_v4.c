@@ -25,7 +25,6 @@ typedef struct {
     size_t len[MAX_TOKENS];
     int n;          /* tokens on the line (counted beyond MAX_TOKENS) */
     int line;       /* 1-based */
-    const char *at; /* the line's first character */
 } v4_line;
 
 typedef struct {
@@ -38,7 +37,6 @@ static int next_line(v4_reader *r, v4_line *l) {
     if (r->p >= r->end)
         return 0;
     l->line = ++r->line;
-    l->at = r->p;
     l->n = 0;
     const char *p = r->p;
     while (p < r->end && *p != '\n') {

@@ -68,7 +68,8 @@ static int next_word(cursor *c, int command, word *w, iacsg_error *err) {
             c->p++;
         }
         if (c->p >= c->end)
-            return iacsg_error_set(err, IACSG_ERR_SYNTAX, line, 1, "a '%c' that is never closed", close == '}' ? '{' : '"'),
+            return iacsg_error_set(err, IACSG_ERR_SYNTAX, line, 1, "a '%c' that is never closed",
+                                   close == '}' ? '{' : '"'),
                    -1;
         w->s = s;
         w->n = (size_t)(c->p - s);
@@ -273,7 +274,8 @@ static iacsg_status put_pipe(brlcad_db *db, const word *name, cursor *c, iacsg_e
         if (have[i] != 15)
             st = iacsg_error_set(err, IACSG_ERR_SYNTAX, name->line, 1, "pipe '%s': point %d lacks one of V%d O%d "
                                  "I%d R%d", obj, i, i, i, i, i);
-    if (st == IACSG_OK && brlcad_db_add_prim(db, name->s, name->n, name->line, SCENE_PRIM_PIPE, p, 6 * npoints, err) < 0)
+    if (st == IACSG_OK &&
+        brlcad_db_add_prim(db, name->s, name->n, name->line, SCENE_PRIM_PIPE, p, 6 * npoints, err) < 0)
         st = err->status;
     free(p);
     free(have);

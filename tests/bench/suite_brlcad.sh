@@ -34,7 +34,10 @@ wall_median() {
 bench_brlcad() {
     runs=${BRLCAD_RUNS:-3}
     rtdir=${BRLCAD:-}
-    [ -n "$rtdir" ] && { [ -x "$rtdir/rt" ] && [ -x "$rtdir/asc2g" ] || { log "BRLCAD=$rtdir has no rt and asc2g"; rtdir=; }; }
+    if [ -n "$rtdir" ] && ! { [ -x "$rtdir/rt" ] && [ -x "$rtdir/asc2g" ]; }; then
+        log "BRLCAD=$rtdir has no rt and asc2g"
+        rtdir=
+    fi
     table brlcad "BRL-CAD models: 1024x1024, -az 25 -el 35, against \`rt -s1024 -a 25 -e 35 -P2\`${rtdir:+ ($rtdir)}" \
         "scene (objects)" "rt -P2 wall ms | rt -P1 wall ms | speed-up (rt -P2 / iacsg cached wall)"
     : >"$WORK/brlcad_speedups"
@@ -47,7 +50,8 @@ bench_brlcad() {
             rt2=$(wall_median "$runs" "$rtdir/rt" -s1024 -a 25 -e 35 -P2 -o "$WORK/rt.pix" "$WORK/$1.g" "$2")
             rt1=$(wall_median "$runs" "$rtdir/rt" -s1024 -a 25 -e 35 -P1 -o "$WORK/rt.pix" "$WORK/$1.g" "$2")
         fi
-        sp=$(awk -v a="$rt2" -v b="$W_MS" 'BEGIN {if (a == "-" || b == "-" || b <= 0) print "-"; else printf "%.2f", a / b}')
+        sp=$(awk -v a="$rt2" -v b="$W_MS" 'BEGIN {if (a == "-" || b == "-" || b <= 0) print "-";
+                                                  else printf "%.2f", a / b}')
         [ "$M_OK" = 1 ] && [ "$sp" != - ] && echo "$sp" >>"$WORK/brlcad_speedups"
         EXTRA=" $rt2 | $rt1 | $sp |"
         row_emit
