@@ -10,7 +10,8 @@
  * a region share (truck's r150 = s150 - s151, two boxes with a common bottom; goliath's inner gear and the cut
  * that shares its cap) it shows the region that rt, deciding each point, finds empty there. Undecided rays are
  * bounded by 2%, early hits by 8% of all rays (4.8% measured, 2026-11-23); a miss or a later hit where nirt has a
- * partition, or another region at nirt's depth, fails. nirt's partitions are cut to the bounds, outside which nothing is traced. */
+ * partition, or another region at nirt's depth, fails. nirt's partitions are cut to the bounds, outside which
+ * nothing is traced. */
 #include "implicits/brlcad.h"
 #include "implicits/scene.h"
 #include "render.h"
