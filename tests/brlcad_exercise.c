@@ -2,6 +2,7 @@
 #include "brlcad_exercise.h"
 #include "implicits/brlcad.h"
 #include "implicits/scene.h"
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,6 +41,17 @@ static int scene_ok(const brlcad_model *m) {
     return 1;
 }
 
+/* rt's model box, when there is one, is a box (rounded to whole mm). */
+static int bounds_ok(const brlcad_model *m) {
+    double b[6];
+    if (!brlcad_scene_bounds(m->scene, b))
+        return 1;
+    for (int k = 0; k < 3; k++)
+        if (!(b[k] <= b[k + 3]) || b[k] != floor(b[k]) || b[k + 3] != ceil(b[k + 3]))
+            return 0;
+    return 1;
+}
+
 int brlcad_exercise(const char *data, size_t size) {
     char *text = malloc(size + 1);
     if (!text)
@@ -60,7 +72,7 @@ int brlcad_exercise(const char *data, size_t size) {
         if (st != IACSG_OK)
             result = tops_ok && m.scene == NULL && err.message[0] ? 0 : -1;
         else
-            result = tops_ok && scene_ok(&m) ? 1 : -1;
+            result = tops_ok && scene_ok(&m) && bounds_ok(&m) ? 1 : -1;
         if (st == IACSG_OK)
             brlcad_model_free(&m);
         brlcad_db_destroy(db);

@@ -7,7 +7,8 @@
 
 /* 1 if the input made a scene, 0 if it was refused with a message; -1 if a refusal came without a message or
  * the scene breaks its invariants (a tree's operand or solid out of range, a primitive's parameters of the
- * wrong count, a region without its id). data[size] must be readable and is replaced by a NUL copy inside. */
+ * wrong count, a region without its id, rt's model box not a box). The input is copied and NUL-terminated
+ * inside. */
 int brlcad_exercise(const char *data, size_t size);
 
 #endif
