@@ -200,6 +200,10 @@ static void ellipse_reach(const iv k[9], int ncols, iv scale0, iv scale1, iv r[3
     }
 }
 
+/* sqrt(1 - u_c^2) for a unit vector u, as the other two components' length (no cancellation where u_c is near 1):
+ * how far a unit circle across u reaches in coordinate c. */
+static iv across(const iv u[3], int c) { return ia_sqrt(ia_add(ia_sqr(u[(c + 1) % 3]), ia_sqr(u[(c + 2) % 3]))); }
+
 /* ---- the types */
 
 /* P and G of a frame: G = W, the verified inverse of K (the canonical shape's axes in the world, columns). */
@@ -402,7 +406,7 @@ static int place_tor(const scene_prim *sp, const placement *m, writer *w, const 
     int ok = put_n(w, p, 3) && put_n(w, fr, 9) && put(w, ra) && put(w, ia_sqr(rh));
     /* the core circle's reach in coordinate c is r_a sqrt(1 - n_c^2), the tube's r_h */
     for (int c = 0; c < 3; c++)
-        r[c] = ia_add(ia_mul(ra, ia_sqrt(ia_sub(pt(1), ia_sqr(fr[6 + c])))), rh);
+        r[c] = ia_add(ia_mul(ra, across(fr + 6, c)), rh);
     box_empty(w->out->box);
     box_add(w->out->box, p, r);
     return ok;
@@ -495,7 +499,7 @@ static int pipe_linear(pipe_builder *pb, const pipe_plane *start, int shares, co
                 (r0[1].hi > 0 || r1[1].hi > 0 ? PRIM_PIPE_INNER : 0);
     iv reach[3];
     for (int c = 0; c < 3; c++) /* a disk of radius r across h reaches r sqrt(1 - h_c^2) */
-        reach[c] = ia_sqrt(ia_sub(pt(1), ia_sqr(h[c])));
+        reach[c] = across(h, c);
     iv r[3];
     scale3(reach, r0[0], r);
     box_add(pb->box, start->a, r);
@@ -509,7 +513,7 @@ static int pipe_bend(pipe_builder *pb, const pipe_plane *start, int shares, cons
                      const iv n[3], iv bend, const iv r[2]) {
     iv radii[4] = {bend, r[0], r[1], pt(0)}, reach[3];
     for (int k = 0; k < 3; k++)
-        reach[k] = ia_add(ia_mul(bend, ia_sqrt(ia_sub(pt(1), ia_sqr(n[k])))), r[0]);
+        reach[k] = ia_add(ia_mul(bend, across(n, k)), r[0]);
     box_add(pb->box, c, reach);
     int flags = PRIM_PIPE_BEND | (shares ? PRIM_PIPE_SHARES_START : 0) | (r[1].hi > 0 ? PRIM_PIPE_INNER : 0);
     return pipe_part(pb, flags, start, end, c, n, radii);
@@ -521,24 +525,9 @@ static void unit3(const iv v[3], iv out[3]) {
         out[c] = ia_div(v[c], len);
 }
 
-/* Points x y z od id bend: placed, the lengths divided by mat[15] (librt's rt_pipe_mat). */
-static int place_pipe(const scene_prim *sp, const placement *m, writer *w, const char **why) {
-    int n = sp->nparams / 6;
-    if (sp->nparams % 6 != 0 || n < 2)
-        return *why = "a pipe needs whole points (x y z od id bend), at least two", -1;
-    iv(*pts)[3] = malloc(sizeof *pts * (size_t)n), (*radii)[2] = malloc(sizeof *radii * (size_t)n);
-    iv *bends = malloc(sizeof *bends * (size_t)n);
-    int ok = pts && radii && bends && put(w, pt(0));
-    *why = "a part of it is degenerate";
-    for (int i = 0; ok > 0 && i < n; i++) {
-        const double *q = sp->params + 6 * i;
-        if (!(q[3] > 0 && q[4] >= 0 && q[4] < q[3] && q[5] >= 0))
-            ok = (*why = "a point's diameters and bend radius are not 0 <= id < od, bend >= 0", -1);
-        place_point(m, q, pts[i]);
-        radii[i][0] = ia_div(pt(q[3] / 2), pt(m->scale));
-        radii[i][1] = ia_div(pt(q[4] / 2), pt(m->scale));
-        bends[i] = ia_div(pt(q[5]), pt(m->scale));
-    }
+/* The parts of a pipe through the placed points (librt's pipe_elements_calculate), written after the count. */
+static int pipe_build(writer *w, const iv (*pts)[3], const iv (*radii)[2], const iv *bends, int n, const char **why) {
+    int ok = 1;
     pipe_builder pb = {w, 0, w->out->box};
     box_empty(pb.box);
     pipe_plane start, shared;
@@ -622,6 +611,29 @@ static int place_pipe(const scene_prim *sp, const placement *m, writer *w, const
         ok = (*why = "all its points coincide", -1);
     if (ok > 0)
         w->out->lo[0] = w->out->hi[0] = pb.parts;
+    return ok;
+}
+
+/* Points x y z od id bend: placed, the lengths divided by mat[15] (librt's rt_pipe_mat). */
+static int place_pipe(const scene_prim *sp, const placement *m, writer *w, const char **why) {
+    int n = sp->nparams / 6;
+    if (sp->nparams % 6 != 0 || n < 2)
+        return *why = "a pipe needs whole points (x y z od id bend), at least two", -1;
+    iv(*pts)[3] = malloc(sizeof *pts * (size_t)n), (*radii)[2] = malloc(sizeof *radii * (size_t)n);
+    iv *bends = malloc(sizeof *bends * (size_t)n);
+    int ok = pts && radii && bends && put(w, pt(0));
+    *why = "a part of it is degenerate";
+    for (int i = 0; ok > 0 && i < n; i++) {
+        const double *q = sp->params + 6 * i;
+        if (!(q[3] > 0 && q[4] >= 0 && q[4] < q[3] && q[5] >= 0))
+            ok = (*why = "a point's diameters and bend radius are not 0 <= id < od, bend >= 0", -1);
+        place_point(m, q, pts[i]);
+        radii[i][0] = ia_div(pt(q[3] / 2), pt(m->scale));
+        radii[i][1] = ia_div(pt(q[4] / 2), pt(m->scale));
+        bends[i] = ia_div(pt(q[5]), pt(m->scale));
+    }
+    if (ok > 0)
+        ok = pipe_build(w, (const iv(*)[3])pts, (const iv(*)[2])radii, bends, n, why);
     free(pts);
     free(radii);
     free(bends);

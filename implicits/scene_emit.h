@@ -1,5 +1,7 @@
 /* implicits/scene_emit.h -- the OpenCL C of a scene's solids for the segment path: each solid k's functions
- * (iacsg_expr_emit_cl with the prefix scene_s<k>) and dispatchers over the solid's number,
+ * (iacsg_expr_emit_cl with the prefix scene_s<k>, or for a BRL-CAD primitive calls of kernels/prim.h's functions
+ * with its placed parameters; a primitive that describes no solid is IACSG_ERR_ARG, prim_place.c's message) and
+ * dispatchers over the solid's number,
  *   IA_FN ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t);
  *   IA_FN ia_real scene_solid_f_grad(int k, ia_real x, ia_real y, ia_real z, ia_real t,
  *                                    ia_real *gx, ia_real *gy, ia_real *gz);

@@ -8,9 +8,12 @@
  *   missed and none is late);
  * - every BOUNDARY leaf lies within PRIM_NEAR eps of the boundary: of a crossing along the ray, or, for a ray that
  *   grazes the surface, of a point where a cube of that size around the leaf meets both sides (no phantom leaves,
- *   which the weave could claim as a hit).
+ *   which the weave could claim as a hit); beside an arb's sharp vertex, within that of every face's plane (the max
+ *   of the faces' enclosures can hold 0 up to about PRIM_NEAR eps / sin(angle / 2) from a vertex whose faces meet
+ *   at that angle).
  *
- * Random placements: a rotation, a uniform scale in mat[15] and a translation (librt's matrices); rays aimed at
+ * Random placements: a rotation, a uniform scale in mat[15] and a translation (librt's matrices), and for ell, tgc
+ * and arb8 also any affine matrix (librt applies it to their points and vectors); rays aimed at
  * random points of the box and at the features: arb vertices and edges, along the axes of cylinders, cones and
  * tori, through a torus's hole and its plane, along pipes' segments.
  *
@@ -77,6 +80,24 @@ static void random_matrix(test_rng_t *rng, double mat[16], double *scale) {
         mat[4 * i + 3] = rnd(rng, -10, 10);
     }
     mat[15] = 1 / *scale;
+}
+
+/* Any affine matrix: a rotation times a non-uniform scale times a shear, over mat[15]. librt applies such a matrix
+ * to an ell's, a tgc's and an arb's points and vectors as it is (other types take it for a rotation); *scale: the
+ * smallest stretch, so that eps stays below the primitive's features. */
+static void random_affine(test_rng_t *rng, double mat[16], double *scale) {
+    double r[9], m[9], k[3] = {rnd(rng, 0.5, 2), rnd(rng, 0.5, 2), rnd(rng, 0.5, 2)}, shear = rnd(rng, -0.5, 0.5);
+    random_matrix(rng, mat, scale);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            r[3 * i + j] = mat[4 * i + j];
+    for (int i = 0; i < 3; i++) /* r diag(k) (1 + shear e0 e1^T) */
+        for (int j = 0; j < 3; j++)
+            m[3 * i + j] = r[3 * i + j] * k[j] + (j == 1 ? r[3 * i] * k[0] * shear : 0);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            mat[4 * i + j] = m[3 * i + j];
+    *scale = fmin(fmin(k[0], k[1]), k[2]) * 0.5 / mat[15];
 }
 
 /* A dyadic number in [lo, hi] on a grid of 1/8 (arb vertices: their planes are exact). */
@@ -265,7 +286,7 @@ static void feature_point(test_rng_t *rng, const scene_prim *sp, const double bo
 /* ---- one ray: the walk against the reference */
 
 typedef struct {
-    long rays, nodes, boundary_leaves, grazing_leaves;
+    long rays, nodes, boundary_leaves, grazing_leaves, vertex_leaves;
     unsigned long long evals;
     double worst; /* the farthest BOUNDARY leaf from a crossing along the ray, in eps */
 } tally;
@@ -282,6 +303,17 @@ static int meets_both(const scene_prim *sp, const ref_line *r, ld t, ld h) {
         *(prim_ref_inside_local(sp, x) ? &in : &out) = 1;
     }
     return in && out;
+}
+
+/* Whether the line's point at t (local frame) is within h of every face's plane of the arb. */
+static int near_every_face(const scene_prim *sp, const ref_line *r, ld t, ld h) {
+    ld planes[6][4], p[3];
+    int n = ref_arb_planes(sp->params, planes);
+    ref_at(r, t, p);
+    for (int k = 0; k < n; k++)
+        if ((ref_dot(planes[k], p) - planes[k][3]) / ref_norm(planes[k]) > h)
+            return 0;
+    return 1;
 }
 
 static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, ia_real ta, ia_real w, ia_real eps,
@@ -336,7 +368,13 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
         /* a graze: the boundary passes within PRIM_NEAR eps of the leaf in space (the cube in the local frame,
          * eps scaled back by the matrix's scale) */
         tl->grazing_leaves++;
-        CHECK(meets_both(sp, &line, (ld)a + ((ld)b - (ld)a) / 2, (ld)PRIM_NEAR * eps / scale),
+        ld mid = (ld)a + ((ld)b - (ld)a) / 2, h = (ld)PRIM_NEAR * eps / scale;
+        if (meets_both(sp, &line, mid, h))
+            continue;
+        /* an arb's enclosure is the max of its faces' (each tight): beside a vertex where faces meet at a small
+         * angle it may hold 0 farther out, but never where a face is more than the leaf's reach away */
+        tl->vertex_leaves++;
+        CHECK(sp->type == SCENE_PRIM_ARB8 && near_every_face(sp, &line, mid, h),
               "type %d: a BOUNDARY leaf [%.9g, %.9g] is %.3Lg eps from the boundary", sp->type, (double)a, (double)b,
               nearest * len / eps);
     }
@@ -391,7 +429,11 @@ static void run_type(int type, int variants, const char *name) {
     for (long it = 0; it < prims; it++) {
         double q[64], mat[16], scale;
         int n = random_prim(rng, type, (int)(it % variants), q);
-        random_matrix(rng, mat, &scale);
+        int affine = it % 3 == 2 && (type == SCENE_PRIM_ELL || type == SCENE_PRIM_TGC || type == SCENE_PRIM_ARB8);
+        if (affine)
+            random_affine(rng, mat, &scale);
+        else
+            random_matrix(rng, mat, &scale);
         scene_prim sp = {type, n, q, {0}};
         memcpy(sp.mat, mat, sizeof mat);
         prim_placed pl;
@@ -427,9 +469,9 @@ static void run_type(int type, int variants, const char *name) {
         prim_placed_free(&pl);
     }
     test_note("%s: %ld rays, %.1f evaluations per ray; %ld boundary leaves, at most %.2f eps from a crossing, %ld "
-              "beside a graze",
+              "beside a graze (%ld only near every face at a sharp arb vertex)",
               name, tl.rays, (double)tl.evals / (double)(tl.rays ? tl.rays : 1), tl.boundary_leaves, tl.worst,
-              tl.grazing_leaves);
+              tl.grazing_leaves, tl.vertex_leaves);
     CHECK(tl.rays > prims * per_prim / 3, "%s: too few rays met the box (%ld)", name, tl.rays);
 }
 
