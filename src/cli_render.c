@@ -192,8 +192,8 @@ int parse_options(int argc, char **argv, render_options *o) {
  * (Expressions never do; "x/2" does not start with '/'.) */
 static int looks_like_path(const char *input) {
     size_t n = strlen(input);
-    return (n > 4 && strcmp(input + n - 4, ".csg") == 0) || cli_brlcad_input(input) || input[0] == '/' || strncmp(input, "./", 2) == 0 ||
-           strncmp(input, "../", 3) == 0;
+    return (n > 4 && strcmp(input + n - 4, ".csg") == 0) || cli_brlcad_input(input) || input[0] == '/' ||
+           strncmp(input, "./", 2) == 0 || strncmp(input, "../", 3) == 0;
 }
 
 /* The text of a scene file when `input` names a file, else the input itself as an expression. The result is
@@ -288,7 +288,8 @@ const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase,
     return "the default: no enclosing box could be found";
 }
 
-/* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. */
+/* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. A
+ * BRL-CAD model is seen as rt sees it: orthographic, as high as the bounds' diagonal, unless -ortho or -fov. */
 void place_camera(render_options *o) {
     iacsg_camera *c = &o->view.camera;
     if (cli_brlcad_input(o->input) && !(c->ortho_height > 0) && !o->have_fov) {
