@@ -1,9 +1,9 @@
 /* implicits/brlcad_v5.c -- the v5 ASCII format (g2asc's Tcl): commands of words, a word bare or in braces,
  * braces nesting; a command ends at a newline outside braces or at ';'.
  *
- *   put {name} TYPE KEY VALUE ...     a primitive: ell V A B C; tgc V H A B C D; arb8 V1..V8; tor V H r_a r_h;
- *                                     half N d; ehy V H A r_1 r_2 c; pipe V0 O0 I0 R0 V1 ... (point, outer and
- *                                     inner diameter, bend radius per point)
+ *   put {name} TYPE KEY VALUE ...     a primitive: ell (or sph) V A B C; tgc (or rec) V H A B C D; arb8 V1..V8;
+ *                                     tor V H r_a r_h; half N d; ehy V H A r_1 r_2 c; pipe V0 O0 I0 R0 V1 ...
+ *                                     (point, outer and inner diameter, bend radius per point)
  *   put {name} comb region yes|no tree TREE [KEY VALUE ...]
  *                                     TREE: {l name [{16 numbers}]} or {op TREE TREE}, op one of u n - ^
  *   attr set {name} {key} {value} ... region, region_id, aircode (air), color (rgb), inherit count; the rest
@@ -168,6 +168,9 @@ static const struct {
     {"tor", SCENE_PRIM_TOR, {"V", "H", "r_a", "r_h"}, {3, 3, 1, 1}},
     {"half", SCENE_PRIM_HALF, {"N", "d"}, {3, 1}},
     {"ehy", SCENE_PRIM_EHY, {"V", "H", "A", "r_1", "r_2", "c"}, {3, 3, 3, 1, 1, 1}},
+    /* librt's labels of ell's and tgc's special cases, stored as ell and tgc (g2asc writes those names) */
+    {"sph", SCENE_PRIM_ELL, {"V", "A", "B", "C"}, {3, 3, 3, 3}},
+    {"rec", SCENE_PRIM_TGC, {"V", "H", "A", "B", "C", "D"}, {3, 3, 3, 3, 3, 3}},
 };
 #define NPRIMS ((int)(sizeof prim_table / sizeof prim_table[0]))
 

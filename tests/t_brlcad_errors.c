@@ -45,7 +45,8 @@ static const struct {
     {V4_HEAD "C Y r 1 0 1 0 0 0 0 0 0 0 1 0 0\n", 3, "the text ends before its shader lines"},
     {"I 1 v4\n", 1, "the text ends before the title line"},
     /* v5 */
-    {"put {s} sph V {0 0 0} r 1\n", 1, "'s' is a sph, which iacsg does not read"},
+    {"put {s} rpc V {0 0 0} H {0 0 1} B {0 1 0} r 1\n", 1, "'s' is a rpc, which iacsg does not read"},
+    {"put {s} sph V {0 0 0} r 1\n", 1, "sph 's': unknown key 'r'"},
     {"put {s} ell V {0 0 0} A {1 0 0} B {0 1 0}\n", 1, "ell 's' has no C"},
     {"put {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1} Q {1}\n", 1, "ell 's': unknown key 'Q'"},
     {"put {s} ell V {0 0} A {1 0 0} B {0 1 0} C {0 0 1}\n", 1, "'s': V has 2 numbers, expected 3"},
