@@ -6,8 +6,9 @@
 #   make gallery    render examples/*.csg into the contact sheet docs/gallery.png
 #   make deps       install the Debian packages the project needs (apt-get; sudo when not root)
 #   make bench-ia   nanoseconds per interval operation, host and device, rigorous and fast
-#   make bench      render the benchmark suite of issue 5 and write BENCHMARKS.md (BENCH_QUICK=1: a quick look)
-#   make fuzz       libFuzzer on the expression compiler for FUZZ_SECONDS (default 60)
+#   make bench      render the benchmark suite of issue 5 and write BENCHMARKS.md (BENCH_QUICK=1: a quick look;
+#                   BRLCAD=DIR: rt of a BRL-CAD build beside iacsg on the BRL-CAD models)
+#   make fuzz       libFuzzer on the expression compiler and the BRL-CAD reader, FUZZ_SECONDS each (default 60)
 #   make install    PREFIX=/usr/local DESTDIR=: the command, libraries, headers, iacsg.pc, man pages, examples
 #   make uninstall  removes what make install put there (same PREFIX and DESTDIR)
 #
@@ -174,7 +175,7 @@ bench-ia: deps
 # Not part of `make test`: about 15 minutes (tests/bench/bench.sh says what it measures and how).
 bench: deps
 	@$(MAKE) --no-print-directory $(BUILD)/iacsg
-	BENCH_QUICK=$(BENCH_QUICK) BENCH_BUILD=$(BUILD)/bench sh tests/bench/bench.sh $(BUILD)/iacsg
+	BENCH_QUICK=$(BENCH_QUICK) BENCH_BUILD=$(BUILD)/bench BRLCAD=$(BRLCAD) sh tests/bench/bench.sh $(BUILD)/iacsg
 
 # libFuzzer over the lexer, parser and compiler, seeded from examples/ and tests/data/fuzz/. New crashes land in
 # build-fuzz/crash-*: copy each into tests/data/fuzz/ so that every `make test` replays it.
@@ -185,11 +186,20 @@ build-fuzz/fuzz_expr: $(FUZZ_SRC) $(BUILD)/embedded_ia.c
 	clang -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -I. -Isrc \
 	    -D_POSIX_C_SOURCE=200809L $^ -lOpenCL -lm -o $@
 
+# The BRL-CAD reader's target, seeded with the sample databases; its crashes go into tests/data/fuzz-brlcad/.
+build-fuzz/fuzz_brlcad: tests/fuzz/fuzz_brlcad.c tests/brlcad_exercise.c $(filter-out tests/%,$(FUZZ_SRC)) $(BUILD)/embedded_ia.c
+	@mkdir -p $(dir $@)
+	clang -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -I. -Isrc \
+	    -D_POSIX_C_SOURCE=200809L $^ -lOpenCL -lm -o $@
+
 fuzz: deps
-	@$(MAKE) --no-print-directory build-fuzz/fuzz_expr
-	@mkdir -p build-fuzz/corpus
+	@$(MAKE) --no-print-directory build-fuzz/fuzz_expr build-fuzz/fuzz_brlcad
+	@mkdir -p build-fuzz/corpus build-fuzz/corpus-brlcad
 	build-fuzz/fuzz_expr -max_total_time=$(FUZZ_SECONDS) -timeout=20 -rss_limit_mb=4096 -max_len=8192 \
 	    -print_final_stats=1 -artifact_prefix=build-fuzz/ build-fuzz/corpus examples tests/data/fuzz
+	build-fuzz/fuzz_brlcad -max_total_time=$(FUZZ_SECONDS) -timeout=20 -rss_limit_mb=4096 -max_len=65536 \
+	    -print_final_stats=1 -artifact_prefix=build-fuzz/brlcad- build-fuzz/corpus-brlcad tests/data/brlcad \
+	    tests/data/fuzz-brlcad
 
 # ---- The library and command as installed software (issue 13) --------------------------------------------
 # make install PREFIX=/usr/local DESTDIR= puts, under DESTDIR/PREFIX:

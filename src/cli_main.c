@@ -1,5 +1,6 @@
 /* src/cli_main.c -- the `iacsg` command: dispatches to a subcommand (src/cli.h), or renders. */
 #include "cli.h"
+#include "cli_brlcad.h"
 #include "iacsg.h"
 #include <stdio.h>
 #include <string.h>
@@ -9,6 +10,9 @@ static const char usage[] =
     "       iacsg eval EXPR [options]     evaluate the expression's enclosure over a box on the host\n"
     "       iacsg compile EXPR            print the OpenCL C the compiler emits for it\n"
     "       iacsg view EXPR|SCENE [options]  open a window on it (see Viewer below)\n"
+    "       iacsg MODEL.asc [OBJECT ...] [options]  render a BRL-CAD model's objects (see BRL-CAD models below)\n"
+    "       iacsg objects MODEL.asc       list the model's top objects (those no combination references)\n"
+    "       iacsg regions MODEL.asc [OBJECT ...]  print each region's index (as -ids writes it), id and path\n"
     "       iacsg devices                 list the OpenCL devices (numbers for -device)\n"
     "       iacsg --help | --version\n"
     "\n"
@@ -68,7 +72,15 @@ static const char usage_more[] =
     "  p print the iacsg command line that renders this view to the same image\n"
     "A scene file is reloaded when it changes; an error in it is shown in the title and on stderr, and the last\n"
     "good scene stays. The title shows the frame time and interval evaluations per ray. Needs a display (X11 or\n"
-    "Wayland) and SDL2 (libsdl2-2.0-0), which only the viewer loads.\n";
+    "Wayland) and SDL2 (libsdl2-2.0-0), which only the viewer loads.\n"
+    "\n"
+    "BRL-CAD models: a .asc database (v4 or v5, as g2asc writes it) renders its named top objects, by default\n"
+    "those no combination references, with librt's regions: booleans above region level pushed down, a region\n"
+    "invented for a solid no region holds, air regions left out, one solid per distinct (name, matrix). Primitives\n"
+    "read: arb8 (and arb4-7), tgc (rcc, rec, trc, tec), ell (sph), tor, half, pipe, ehy; any other, a dangling\n"
+    "member, a cycle or a malformed line is refused with its line. Colours: the combination's, else the colour\n"
+    "table's, else the palette. The view defaults to rt's: orthographic (-ortho the bounds' diagonal, unless\n"
+    "-ortho or -fov is given), -az 35 -el 25, centred on the bounds, which are rt's model box; lengths in mm.\n";
 
 int main(int argc, char **argv) {
     if (argc < 2) {
@@ -92,6 +104,10 @@ int main(int argc, char **argv) {
         return cli_compile(argc - 1, argv + 1);
     if (strcmp(cmd, "view") == 0)
         return cli_view(argc - 1, argv + 1);
+    if (strcmp(cmd, "objects") == 0)
+        return cli_objects(argc - 1, argv + 1);
+    if (strcmp(cmd, "regions") == 0)
+        return cli_regions(argc - 1, argv + 1);
     if (strcmp(cmd, "devices") == 0)
         return cli_devices(argc - 1, argv + 1);
     return cli_render(argc, argv);

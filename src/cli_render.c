@@ -1,11 +1,13 @@
 /* src/cli_render.c -- `iacsg EXPR|SCENE [options]`: render to image files; and `iacsg devices`. The options
  * are documented in cli_main.c's usage text and the README. */
 #include "cli.h"
+#include "cli_brlcad.h"
 #include "cli_job.h"
 #include "cli_render.h"
 #include "cli_writer.h"
 #include "clrt.h"
 #include "iacsg.h"
+#include "implicits/brlcad.h"
 #include "implicits/scene.h"
 #include "ia/decimal.h"
 #include <errno.h>
@@ -72,6 +74,14 @@ int parse_options(int argc, char **argv, render_options *o) {
         const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
         double num[6];
         if (a[0] != '-' || a[1] == '\0' || (a[1] >= '0' && a[1] <= '9') || a[1] == '.') {
+            if (o->input && cli_brlcad_input(o->input)) { /* the model's objects to render */
+                if (o->nobjects == RENDER_OBJECTS_MAX) {
+                    fprintf(stderr, "iacsg: more than %d objects named\n", RENDER_OBJECTS_MAX);
+                    return 2;
+                }
+                o->objects[o->nobjects++] = a;
+                continue;
+            }
             if (o->input) {
                 fprintf(stderr, "iacsg: more than one expression: '%s' and '%s' (quote the expression)\n",
                         o->input, a);
@@ -130,6 +140,7 @@ int parse_options(int argc, char **argv, render_options *o) {
         } else if (strcmp(a, "-fov") == 0) {
             if (!parse_numbers(v, &o->view.camera.fov, 1) || !(o->view.camera.fov > 0 && o->view.camera.fov < 180))
                 return bad_value(a, v, "degrees in (0, 180)");
+            o->have_fov = 1;
         } else if (strcmp(a, "-az") == 0 || strcmp(a, "-el") == 0) {
             if (!parse_numbers(v, a[1] == 'a' ? &o->az : &o->el, 1))
                 return bad_value(a, v, "degrees");
@@ -177,12 +188,12 @@ int parse_options(int argc, char **argv, render_options *o) {
     return 0;
 }
 
-/* Whether a text that names no file was meant as a file name: it ends in ".csg" or starts like a path.
+/* Whether a text that names no file was meant as a file name: it ends in ".csg" or ".asc" or starts like a path.
  * (Expressions never do; "x/2" does not start with '/'.) */
 static int looks_like_path(const char *input) {
     size_t n = strlen(input);
-    return (n > 4 && strcmp(input + n - 4, ".csg") == 0) || input[0] == '/' || strncmp(input, "./", 2) == 0 ||
-           strncmp(input, "../", 3) == 0;
+    return (n > 4 && strcmp(input + n - 4, ".csg") == 0) || cli_brlcad_input(input) || input[0] == '/' ||
+           strncmp(input, "./", 2) == 0 || strncmp(input, "../", 3) == 0;
 }
 
 /* The text of a scene file when `input` names a file, else the input itself as an expression. The result is
@@ -222,6 +233,14 @@ char *read_input(const char *input, const char **name) {
         return NULL;
     }
     text[len] = '\0';
+    if (strlen(text) != len) { /* the rest would be lost without a word */
+        int line = 1;
+        for (const char *p = text; *p; p++)
+            line += *p == '\n';
+        fprintf(stderr, "iacsg: %s:%d: a NUL byte in the scene file\n", input, line);
+        free(text);
+        return NULL;
+    }
     return text;
 }
 
@@ -243,6 +262,8 @@ const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase,
         return "given";
     double t[2];
     rendered_times(o, t);
+    if (s->nitems > 0 && cli_brlcad_input(o->input) && brlcad_scene_bounds(s, o->view.bounds))
+        return "rt's model box: its regions' proven boxes; an unbounded region (a half-space) is drawn inside it only";
     if (s->nitems > 0 && iacsg_scene_bounds(s, t, o->view.bounds))
         return "proven to enclose the solids";
     const iacsg_expr *e = s->nitems > 0 ? NULL : s->expr;
@@ -267,9 +288,16 @@ const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase,
     return "the default: no enclosing box could be found";
 }
 
-/* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. */
+/* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. A
+ * BRL-CAD model is seen as rt sees it: orthographic, as high as the bounds' diagonal, unless -ortho or -fov. */
 void place_camera(render_options *o) {
     iacsg_camera *c = &o->view.camera;
+    if (cli_brlcad_input(o->input) && !(c->ortho_height > 0) && !o->have_fov) {
+        double d = 0;
+        for (int k = 0; k < 3; k++)
+            d += (o->view.bounds[k + 3] - o->view.bounds[k]) * (o->view.bounds[k + 3] - o->view.bounds[k]);
+        c->ortho_height = sqrt(d);
+    }
     if (!o->have_at)
         for (int k = 0; k < 3; k++)
             c->at[k] = 0.5 * (o->view.bounds[k] + o->view.bounds[k + 3]);
@@ -380,6 +408,13 @@ iacsg_status parse_input(const char *text, const char *name, iacsg_scene **out, 
     return st != IACSG_OK ? st : iacsg_error_set(err, IACSG_ERR_SYNTAX, 1, 1, "regions need a scene file");
 }
 
+iacsg_status load_input(const render_options *o, const char *text, const char *name, iacsg_scene **out,
+                        iacsg_error *err) {
+    if (cli_brlcad_input(o->input) && name == o->input)
+        return cli_brlcad_scene(text, o->objects, o->nobjects, out, err);
+    return parse_input(text, name, out, err);
+}
+
 /* The error's line without "iacsg: ": "NAME:LINE:COL: message", or the message without a place. */
 static void format_error(char *line, size_t size, const iacsg_error *err, const char *name) {
     if (err->line > 0)
@@ -435,7 +470,7 @@ int cli_render(int argc, char **argv) {
     if (st == IACSG_OK && name == o.input) /* a scene file */
         st = check_outputs_spare_input(o.input, outputs, &err);
     if (st == IACSG_OK)
-        st = parse_input(text, name, &scene, &err);
+        st = load_input(&o, text, name, &scene, &err);
     if (st == IACSG_OK) {
         char phrase[256];
         const char *which = choose_bounds(&o, scene, phrase, sizeof phrase);

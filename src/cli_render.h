@@ -6,12 +6,17 @@
 #include "iacsg.h"
 #include <stddef.h>
 
+#define RENDER_OBJECTS_MAX 256
+
 typedef struct {
     const char *input, *output, *depth_file, *normals_file, *ids_file, *time_text;
     iacsg_view view;
     iacsg_render_config config;
     int have_bounds, have_eye, have_at, have_azel, have_time, have_device, frames, resume;
     double az, el;
+    /* a BRL-CAD model (input *.asc): the objects named after it, and whether -fov asks for perspective */
+    const char *objects[RENDER_OBJECTS_MAX];
+    int nobjects, have_fov;
 } render_options;
 
 /* Fills *o from the command line (argv[0] is the command's name); returns 0, or the exit status after
@@ -27,12 +32,17 @@ char *read_input(const char *input, const char **name);
  * message). */
 iacsg_status parse_input(const char *text, const char *name, iacsg_scene **out, iacsg_error *err);
 
+/* The scene of the options' input: a BRL-CAD model's given objects (src/cli_brlcad.c), else parse_input's. */
+iacsg_status load_input(const render_options *o, const char *text, const char *name, iacsg_scene **out,
+                        iacsg_error *err);
+
 /* Sets o->view.bounds (given, found by the compiler for the times rendered, or the default) and returns a
  * phrase saying which and what was proven (in `phrase`, or a constant). A scene with items: the union of its
  * solids' proven boxes. */
 const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase, size_t size);
 
-/* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. */
+/* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. A
+ * BRL-CAD model is seen as rt sees it: orthographic, as wide as the bounds' diagonal, unless -ortho or -fov. */
 void place_camera(render_options *o);
 
 /* One line on stderr: "iacsg: NAME:LINE:COL: message", or "iacsg: message" without a place. */

@@ -9,7 +9,7 @@ iacsg_status view_scene_load(const render_options *o, view_scene **out, const ch
     if (!text)
         return iacsg_error_set(err, IACSG_ERR_IO, 0, 0, "%s: cannot read the scene file", o->input);
     view_scene *s = calloc(1, sizeof *s);
-    iacsg_status st = s ? parse_input(text, *name, &s->scene, err)
+    iacsg_status st = s ? load_input(o, text, *name, &s->scene, err)
                         : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     free(text);
     if (st != IACSG_OK) {

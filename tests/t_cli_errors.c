@@ -41,6 +41,13 @@ static void make_fixture(const char *dir) {
     write_file(dir, "unknown-material.csg", "material red = rgb(1, 0, 0)\nsolid ball = sphere\nregion r = ball : rde\n", 1,
                "");
     write_file(dir, "material-twice.csg", "material red = rgb(1, 0, 0)\nmaterial red = rgb(0, 1, 0)\nsphere\n", 1, "");
+    /* BRL-CAD models (.asc): one that renders, and one refusal of each kind */
+    write_file(dir, "model.asc", "put {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\nput {r} comb region yes tree {l s}\n",
+               1, "");
+    write_file(dir, "rpc.asc", "I 1 v4\ntitle\nS 26 p 1 0 0 0 0 0 1 0 1 0 1 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n", 1, "");
+    write_file(dir, "dangling.asc", "put {r} comb region yes tree {u {l s} {l t}}\n", 1, "");
+    write_file(dir, "cycle.asc", "put {a} comb region no tree {l b}\nput {b} comb region no tree {l a}\n", 1, "");
+    write_file(dir, "malformed.asc", "put {s} ell V {0 0 0} A {1 0 0} B {0 1} C {0 0 1}\n", 1, "");
     char path[4096];
     snprintf(path, sizeof path, "%s/deep.csg", dir);
     FILE *f = fopen(path, "w");

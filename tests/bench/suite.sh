@@ -200,4 +200,8 @@ bench_suite() {
         say ""
         say "The reference view without \`-stats\` (default kernel cache, kernel without the counter): wall $(ms_of_us "$(median <"$WORK/w")") ms, median of $RUNS."
     fi
+
+    if wants brlcad; then
+        bench_brlcad # suite_brlcad.sh
+    fi
 }
