@@ -63,7 +63,7 @@ static char *copy_name(const char *name, int *ok) {
 int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iacsg_error *err) {
     int ok = grow((void **)&s->materials, s->nmaterials, &s->cap_materials, sizeof *s->materials, 1);
     scene_material m = {copy_name(name, &ok), {rgb[0], rgb[1], rgb[2]}, SCENE_DEFAULT_SPECULAR,
-                        SCENE_DEFAULT_SHININESS};
+                        SCENE_DEFAULT_SHININESS, 0, 1};
     if (!ok) {
         free(m.name);
         return out_of_memory(err);

@@ -30,6 +30,8 @@ static const struct {
 } material_keywords[] = {
     {"specular", offsetof(scene_material, specular), 0, 1},
     {"shininess", offsetof(scene_material, shininess), 0, 10000},
+    {"reflect", offsetof(scene_material, reflect), 0, 1},
+    {"opacity", offsetof(scene_material, opacity), 0, 1},
 };
 #define NKEYWORDS ((int)(sizeof material_keywords / sizeof material_keywords[0]))
 

@@ -2,6 +2,7 @@
  * are documented in cli_main.c's usage text and the README. */
 #include "cli.h"
 #include "cli_job.h"
+#include "cli_effects.h"
 #include "cli_render.h"
 #include "cli_writer.h"
 #include "clrt.h"
@@ -68,6 +69,8 @@ int parse_options(int argc, char **argv, render_options *o) {
     o->view.camera.up[2] = 1;
     o->az = 35;
     o->el = 25;
+    cli_effects_init(&o->effects);
+    int effects = 0;
     for (int k = 1; k < argc; k++) {
         const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
         double num[6];
@@ -80,6 +83,11 @@ int parse_options(int argc, char **argv, render_options *o) {
             o->input = a;
             continue;
         }
+        int fx = cli_effects_option(argc, argv, &k, &o->effects, &effects);
+        if (fx < 0)
+            return 2;
+        if (fx > 0)
+            continue;
         if (strcmp(a, "-fp64") == 0) {
             o->config.fp64 = 1;
             continue;
@@ -162,6 +170,7 @@ int parse_options(int argc, char **argv, render_options *o) {
             return 2;
         }
     }
+    o->view.effects = effects ? &o->effects : NULL;
     if (!o->input) {
         fprintf(stderr, "iacsg: no expression or scene given (see iacsg --help)\n");
         return 2;
@@ -443,6 +452,8 @@ int cli_render(int argc, char **argv) {
         if (cli_job_rank(job) == 0)
             printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
         place_camera(&o);
+        if (cli_effects_scene_wants(scene)) /* materials that reflect or let light through */
+            o.view.effects = &o.effects;
         /* regions or surfaces: the segment path; else the expression by the first-root path */
         st = iacsg_renderer_create_scene(scene, &o.config, &r, &err);
     }

@@ -1,0 +1,573 @@
+/* src/render_effects.c -- the ray-tracing effects of a frame (iacsg_effects, render.h), after its camera rays:
+ *
+ *   frame (each pixel's centre ray: depth, normal, id) --> one path per pixel: (pixel, weight, ray, hit)
+ *     --> shade each hit: its material under the lights, each light seen or not by a shadow ray (traced)
+ *     --> children: a reflected ray (weight reflect), a ray through a transparent hit (weight 1 - opacity),
+ *         traced, shaded in turn, until none is left (-bounces, FX_MAX_LAYERS) --> colours summed per pixel
+ *     --> -aa N: the pixels whose centre rays differ from a neighbour's (edges) get N x N paths of their own
+ *   --> rgb (linear light summed, then gamma 2 as kernels/light.h encodes).
+ *
+ * Every secondary ray is traced on the device by the path's own bisection (render_effects_trace.c), so an
+ * occluder or a reflected surface that the ray crosses inside the bounds is never missed. The shading is the
+ * kernels' (light.h) in double on the host: with the default rig and no effect but -aa or -background, a pixel
+ * gets the colour the plain render gives it.
+ */
+#include "render_effects_trace.h"
+#include "implicits/scene.h"
+#include "kernels/params.h"
+#include "kernels/scene_data.h"
+#include "scene_tables.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A shadow ray's leaves: as wide as the camera rays' (its occluders are found with the same rigour; a coarser
+ * eps was measured no faster here, see BENCHMARKS.md). */
+#define FX_SHADOW_EPS_FACTOR 1.0
+/* Layers of transparent hits a path passes at most, and the weight below which it stops (the rest of it is the
+ * background). */
+#define FX_MAX_LAYERS 16
+#define FX_MIN_WEIGHT (1.0 / 1024)
+/* The constant term of the lighting, and the first-root path's material (kernels/light.h, shade.h). */
+#define FX_AMBIENT 0.10
+static const float fx_expr_albedo[3] = {0.80f, 0.52f, 0.28f};
+/* The plain render's background, top to bottom (kernels/light.h). */
+static const float fx_default_top[3] = {0.42f, 0.46f, 0.52f}, fx_default_bottom[3] = {0.13f, 0.14f, 0.17f};
+/* -aa: a pixel is an edge where its centre ray's id differs from a neighbour's, or its colour by this much in a
+ * channel (shadow and reflection edges), or its depth by this fraction. */
+#define FX_AA_CONTRAST (1.0 / 16)
+#define FX_AA_DEPTH 0.02
+
+typedef struct {
+    double v[3];      /* point: the position; dir: the unit direction towards the light */
+    int point;
+    double intensity; /* the diffuse term's weight */
+    double highlight; /* the highlight's weight (times the material's specular) */
+} fx_light;
+
+typedef struct {
+    int pixel;
+    double w; /* the weight of its colour in the pixel's */
+    int bounces, layers;
+    fx_ray ray;
+    fx_hit hit;
+} fx_path;
+
+typedef struct {
+    double rgb[3]; /* linear */
+    double specular, shininess, reflect, opacity;
+} fx_material;
+
+typedef struct {
+    iacsg_renderer *r;
+    const iacsg_view *view;
+    const iacsg_effects *e;
+    fx_tracer tracer;
+    double cam[PARAM_COUNT]; /* the camera in double (iacsg_camera_params) */
+    fx_light lights[IACSG_MAX_LIGHTS];
+    int nlights;
+    double depth_lo, depth_hi; /* the centre hits' range, for -shade depth */
+    double *accum;             /* 3 per pixel, linear */
+} fx_frame;
+
+/* Whether the effects do anything: else the frame is the plain render, untouched. */
+static int effects_on(const iacsg_effects *e) {
+    return e && (e->shade != IACSG_SHADE_LIT || e->background || e->nlights > 0 || e->shadows ||
+                 e->bounces > 0 || e->reflect > 0 || e->transparency > 0 || e->aa > 1);
+}
+
+int render_effects_need_aovs(const iacsg_view *view) { return effects_on(view->effects); }
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void normalize3(double v[3]) {
+    double len = sqrt(dot3(v, v));
+    for (int k = 0; k < 3; k++)
+        v[k] /= len;
+}
+
+/* The camera ray through the point (x, y) of the image, in pixels from its top left corner (pixel (i, j)'s
+ * centre is (i + 1/2, j + 1/2)): kernels/camera.h's convention, in double. */
+static void camera_ray_at(const fx_frame *f, double x, double y, fx_ray *ray) {
+    const double *p = f->cam;
+    int ortho = f->view->camera.ortho_height > 0;
+    double s = (2 * x / f->view->width - 1) * p[PARAM_SCALE_S], v = (1 - 2 * y / f->view->height) * p[PARAM_SCALE_V];
+    for (int k = 0; k < 3; k++) {
+        double offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
+        ray->o[k] = p[PARAM_EYE + k] + (ortho ? offset : 0);
+        ray->d[k] = p[PARAM_FORWARD + k] + (ortho ? 0 : offset);
+    }
+    normalize3(ray->d);
+    ray->tn = 0;
+    ray->tf = INFINITY;
+}
+
+/* The lights: the view's, or the default rig, the plain render's key and fill lights fixed to the camera. */
+static void resolve_lights(fx_frame *f) {
+    const iacsg_effects *e = f->e;
+    if (e->nlights == 0) {
+        static const double rig[2][4] = {{-0.6, 0.8, 0.85, 1.0}, {0.9, -0.2, 0.30, 0.10 / 0.45}};
+        for (int l = 0; l < 2; l++) {
+            fx_light *L = &f->lights[l];
+            for (int k = 0; k < 3; k++)
+                L->v[k] = -f->cam[PARAM_FORWARD + k] + rig[l][0] * f->cam[PARAM_RIGHT + k] +
+                          rig[l][1] * f->cam[PARAM_UP + k];
+            normalize3(L->v);
+            L->point = 0;
+            L->intensity = rig[l][2];
+            L->highlight = rig[l][3];
+        }
+        f->nlights = 2;
+        return;
+    }
+    for (int l = 0; l < e->nlights && l < IACSG_MAX_LIGHTS; l++) {
+        fx_light *L = &f->lights[l];
+        memcpy(L->v, e->lights[l].xyz, sizeof L->v);
+        L->point = e->lights[l].kind == IACSG_LIGHT_POINT;
+        if (!L->point)
+            normalize3(L->v);
+        L->intensity = L->highlight = e->lights[l].intensity;
+    }
+    f->nlights = e->nlights < IACSG_MAX_LIGHTS ? e->nlights : IACSG_MAX_LIGHTS;
+}
+
+/* The background of row y (display-encoded), as linear light. */
+static void background_at(const fx_frame *f, double y, double lin[3]) {
+    const float *top = f->e->background ? f->e->background_top : fx_default_top;
+    const float *bottom = f->e->background ? f->e->background_bottom : fx_default_bottom;
+    double v = fmin(fmax(y / (f->view->height > 1 ? f->view->height - 1 : 1), 0), 1);
+    for (int c = 0; c < 3; c++) {
+        double shown = top[c] + (bottom[c] - top[c]) * v;
+        lin[c] = shown * shown;
+    }
+}
+
+static void material_of(const fx_frame *f, int item, fx_material *m) {
+    const render_fx *fx = f->r->fx;
+    if (!f->r->scene) {
+        for (int c = 0; c < 3; c++)
+            m->rgb[c] = fx_expr_albedo[c];
+        m->specular = SCENE_DEFAULT_SPECULAR;
+        m->shininess = SCENE_DEFAULT_SHININESS;
+        m->reflect = f->e->reflect;
+        m->opacity = 1 - f->e->transparency;
+        return;
+    }
+    const float *a = render_scene_materials(f->r) + SCENE_MATERIAL_FLOATS * item;
+    for (int c = 0; c < 3; c++)
+        m->rgb[c] = a[SCENE_MATERIAL_RGB + c];
+    m->specular = a[SCENE_MATERIAL_SPECULAR];
+    m->shininess = a[SCENE_MATERIAL_SHININESS];
+    m->reflect = fx && item < fx->nitems ? fx->item_fx[FX_ITEM_FLOATS * item] : 0;
+    m->opacity = fx && item < fx->nitems ? fx->item_fx[FX_ITEM_FLOATS * item + 1] : 1;
+}
+
+/* How far a secondary ray starts off its hit: past the hit leaf's distance from the surface (a few eps) and the
+ * rounding of the hit point (the depth is float32 and the host's ray differs from the device's by ulps). */
+static double offset_of(const fx_frame *f, const double p[3], double t) {
+    double scale = 1 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]) + fabs(t);
+    return 4 * f->view->eps + 4e-6 * scale;
+}
+
+static void hit_point(const fx_path *q, double p[3]) {
+    for (int k = 0; k < 3; k++)
+        p[k] = q->ray.o[k] + q->hit.t * q->ray.d[k];
+}
+
+/* The direction and distance from p to light L. */
+static double towards(const fx_light *L, const double p[3], double l[3]) {
+    if (!L->point) {
+        memcpy(l, L->v, 3 * sizeof(double));
+        return INFINITY;
+    }
+    for (int k = 0; k < 3; k++)
+        l[k] = L->v[k] - p[k];
+    double dist = sqrt(dot3(l, l));
+    for (int k = 0; k < 3; k++)
+        l[k] /= dist;
+    return dist;
+}
+
+/* The shadow ray from the hit of q to light L: from the hit moved off the surface along its normal (which faces
+ * the ray, on the light's side when the light is in front of the surface), to the light. Returns 0 when the
+ * light is behind the surface there (no ray: the diffuse term is 0 anyway). */
+static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx_ray *ray) {
+    double p[3], l[3], n[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
+    hit_point(q, p);
+    towards(L, p, l);
+    if (dot3(n, l) <= 0)
+        return 0;
+    double off = offset_of(f, p, q->hit.t);
+    for (int k = 0; k < 3; k++)
+        ray->o[k] = p[k] + off * n[k];
+    ray->tf = towards(L, ray->o, ray->d);
+    ray->tn = 0;
+    return 1;
+}
+
+/* The linear colour of q's hit under the lights, each seen where `seen` (NULL: all). */
+static void lit_color(const fx_frame *f, const fx_path *q, const fx_material *m, const double albedo[3],
+                      const unsigned char *seen, double lin[3]) {
+    double p[3], n[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]}, diffuse = FX_AMBIENT, highlight = 0;
+    hit_point(q, p);
+    for (int l = 0; l < f->nlights; l++) {
+        double L[3], h[3];
+        towards(&f->lights[l], p, L);
+        double nl = dot3(n, L);
+        if (nl <= 0 || (seen && !seen[l]))
+            continue;
+        for (int k = 0; k < 3; k++)
+            h[k] = L[k] - q->ray.d[k]; /* the half vector between the light and the eye */
+        double hh = sqrt(dot3(h, h)), nh = hh > 0 ? fmax(dot3(n, h) / hh, 0) : 0;
+        diffuse += f->lights[l].intensity * nl;
+        highlight += f->lights[l].highlight * (nh > 0 ? pow(nh, m->shininess) : 0);
+    }
+    for (int c = 0; c < 3; c++)
+        lin[c] = albedo[c] * diffuse + m->specular * highlight;
+}
+
+/* The unlit previews' colour (linear) of a hit, or 0 when the mode lights its hits. */
+static int preview_color(const fx_frame *f, const fx_path *q, double lin[3]) {
+    double shown[3];
+    switch (f->e->shade) {
+    case IACSG_SHADE_NORMALS:
+        for (int c = 0; c < 3; c++)
+            shown[c] = 0.5 + 0.5 * q->hit.n[c];
+        break;
+    case IACSG_SHADE_DEPTH: {
+        double span = f->depth_hi - f->depth_lo;
+        double v = span > 0 ? fmin(fmax((q->hit.t - f->depth_lo) / span, 0), 1) : 0;
+        shown[0] = shown[1] = shown[2] = 1 - 0.85 * v;
+        break;
+    }
+    case IACSG_SHADE_IDS: {
+        float rgb[3];
+        scene_palette(q->hit.item, rgb);
+        for (int c = 0; c < 3; c++)
+            shown[c] = sqrt(rgb[c]);
+        break;
+    }
+    default: return 0;
+    }
+    for (int c = 0; c < 3; c++)
+        lin[c] = shown[c] * shown[c];
+    return 1;
+}
+
+static void add(double *accum, int pixel, double w, const double lin[3]) {
+    for (int c = 0; c < 3; c++)
+        accum[3 * pixel + c] += w * lin[c];
+}
+
+/* Adds the colours of paths[0 .. n) that their hits give now, lit with shadow rays (traced first); *out gets
+ * their children, reflected and transmitted rays not yet traced (*nout of them, malloc'ed). */
+static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n, fx_path **out, size_t *nout,
+                                     iacsg_error *err) {
+    const iacsg_effects *e = f->e;
+    int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
+    size_t nl = (size_t)f->nlights, nshadow = 0;
+    unsigned char *seen = NULL;
+    fx_ray *rays = NULL;
+    fx_hit *hits = NULL;
+    fx_path *kids = malloc((2 * n + 1) * sizeof *kids);
+    if (lit && e->shadows) {
+        seen = malloc(n * nl + 1);
+        rays = calloc(n * nl + 1, sizeof *rays);
+        hits = malloc((n * nl + 1) * sizeof *hits);
+    }
+    if (!kids || (lit && e->shadows && (!seen || !rays || !hits))) {
+        free(kids);
+        free(seen);
+        free(rays);
+        free(hits);
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    }
+    if (seen) { /* one shadow ray per hit and light in front of it */
+        for (size_t i = 0; i < n; i++)
+            for (size_t l = 0; l < nl; l++)
+                if (paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[nshadow]))
+                    nshadow++;
+        iacsg_status st = fx_trace(&f->tracer, rays, nshadow, FX_SHADOW_EPS_FACTOR * f->view->eps, hits, err);
+        if (st != IACSG_OK) {
+            free(kids);
+            free(seen);
+            free(rays);
+            free(hits);
+            return st;
+        }
+        size_t k = 0; /* the same order as the rays were listed */
+        for (size_t i = 0; i < n; i++)
+            for (size_t l = 0; l < nl; l++) {
+                fx_ray unused;
+                int cast = paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &unused);
+                seen[i * nl + l] = cast ? isinf(hits[k++].t) : 0;
+            }
+    }
+    size_t nkids = 0;
+    for (size_t i = 0; i < n; i++) {
+        const fx_path *q = &paths[i];
+        double lin[3];
+        int row = q->pixel / f->view->width;
+        if (q->hit.item < 0) {
+            background_at(f, row, lin);
+            add(f->accum, q->pixel, q->w, lin);
+            continue;
+        }
+        if (preview_color(f, q, lin)) {
+            add(f->accum, q->pixel, q->w, lin);
+            continue;
+        }
+        fx_material m;
+        material_of(f, q->hit.item, &m);
+        double albedo[3];
+        for (int c = 0; c < 3; c++) /* gradient shading: the normal's direction as the colour */
+            albedo[c] = e->shade == IACSG_SHADE_GRADIENT ? pow(0.5 + 0.5 * q->hit.n[c], 2) : m.rgb[c];
+        lit_color(f, q, &m, albedo, seen ? seen + i * nl : NULL, lin);
+        double a = m.opacity, k = q->bounces < e->bounces ? m.reflect : 0;
+        add(f->accum, q->pixel, q->w * a * (1 - k), lin);
+        double p[3], n3[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
+        hit_point(q, p);
+        double off = offset_of(f, p, q->hit.t);
+        if (k > 0 && q->w * a * k >= FX_MIN_WEIGHT) { /* the mirror direction, from off the surface */
+            fx_path *c = &kids[nkids++];
+            *c = *q;
+            c->w = q->w * a * k;
+            c->bounces++;
+            double dn = dot3(q->ray.d, n3);
+            for (int j = 0; j < 3; j++) {
+                c->ray.o[j] = p[j] + off * n3[j];
+                c->ray.d[j] = q->ray.d[j] - 2 * dn * n3[j];
+            }
+            normalize3(c->ray.d);
+            c->ray.tn = 0;
+            c->ray.tf = INFINITY;
+        }
+        double through = q->w * (1 - a);
+        if (through > 0 && (through < FX_MIN_WEIGHT || q->layers + 1 >= FX_MAX_LAYERS)) {
+            background_at(f, row, lin); /* what is left of the path */
+            add(f->accum, q->pixel, through, lin);
+        } else if (through > 0) { /* on through the surface: from just past it, the same direction */
+            fx_path *c = &kids[nkids++];
+            *c = *q;
+            c->w = through;
+            c->layers++;
+            for (int j = 0; j < 3; j++)
+                c->ray.o[j] = p[j] - off * n3[j];
+            c->ray.tn = 0;
+            c->ray.tf = INFINITY;
+        }
+    }
+    free(seen);
+    free(rays);
+    free(hits);
+    *out = kids;
+    *nout = nkids;
+    return IACSG_OK;
+}
+
+/* Traces the rays of paths[0 .. n) into their hits. */
+static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, iacsg_error *err) {
+    fx_ray *rays = calloc(n + 1, sizeof *rays);
+    fx_hit *hits = malloc((n + 1) * sizeof *hits);
+    iacsg_status st = rays && hits ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    for (size_t i = 0; st == IACSG_OK && i < n; i++)
+        rays[i] = paths[i].ray;
+    if (st == IACSG_OK)
+        st = fx_trace(&f->tracer, rays, n, f->view->eps, hits, err);
+    for (size_t i = 0; st == IACSG_OK && i < n; i++)
+        paths[i].hit = hits[i];
+    free(rays);
+    free(hits);
+    return st;
+}
+
+/* Shades paths (their hits known) and all their descendants into f->accum; frees paths. */
+static iacsg_status run_paths(fx_frame *f, fx_path *paths, size_t n, iacsg_error *err) {
+    iacsg_status st = IACSG_OK;
+    while (n > 0 && st == IACSG_OK) {
+        fx_path *kids = NULL;
+        size_t nk = 0;
+        st = shade_generation(f, paths, n, &kids, &nk, err);
+        free(paths);
+        paths = kids;
+        n = nk;
+        if (st == IACSG_OK)
+            st = trace_paths(f, paths, n, err);
+    }
+    free(paths);
+    return st;
+}
+
+/* The rows the view traces. */
+static void traced_rows(const iacsg_view *v, int *row0, int *row1) {
+    *row0 = v->row_first;
+    *row1 = v->row_count ? v->row_first + v->row_count : v->height;
+}
+
+/* One path per pixel of the traced rows, its hit the centre ray's (the frame's depth, normal and id), listed in
+ * blocks of 4x4 pixels so that the secondary rays of a packet come from neighbouring pixels. */
+static fx_path *centre_paths(fx_frame *f, const iacsg_frame *fr, size_t *count) {
+    const iacsg_view *v = f->view;
+    int row0, row1;
+    traced_rows(v, &row0, &row1);
+    fx_path *paths = malloc(((size_t)(row1 - row0) * (size_t)v->width + 1) * sizeof *paths);
+    if (!paths)
+        return NULL;
+    size_t n = 0;
+    f->depth_lo = INFINITY;
+    f->depth_hi = -INFINITY;
+    for (int bj = row0; bj < row1; bj += PACKET_H)
+        for (int bi = 0; bi < v->width; bi += PACKET_W)
+            for (int j = bj; j < bj + PACKET_H && j < row1; j++)
+                for (int i = bi; i < bi + PACKET_W && i < v->width; i++) {
+                    int pixel = j * v->width + i;
+                    fx_path *q = &paths[n++];
+                    memset(q, 0, sizeof *q);
+                    q->pixel = pixel;
+                    q->w = 1;
+                    camera_ray_at(f, i + 0.5, j + 0.5, &q->ray);
+                    q->hit.t = fr->depth[pixel];
+                    int hit = !isinf(q->hit.t);
+                    memcpy(q->hit.n, fr->normal + 3 * pixel, sizeof q->hit.n);
+                    q->hit.item = !hit ? -1 : fr->ids ? (int)fr->ids[pixel] : 0;
+                    if (hit) {
+                        f->depth_lo = fmin(f->depth_lo, q->hit.t);
+                        f->depth_hi = fmax(f->depth_hi, q->hit.t);
+                    }
+                }
+    *count = n;
+    return paths;
+}
+
+/* The display colour of a pixel's summed linear light (kernels/light.h: gamma 2). */
+static void encode(const double *accum, int pixel, float *rgb) {
+    for (int c = 0; c < 3; c++)
+        rgb[3 * pixel + c] = (float)sqrt(fmin(fmax(accum[3 * pixel + c], 0), 1));
+}
+
+/* Whether pixels a and b (both traced) differ enough that the edge between them needs more rays. */
+static int differ(const iacsg_frame *fr, int a, int b) {
+    float ia = isinf(fr->depth[a]) ? -1 : fr->ids ? fr->ids[a] : 0;
+    float ib = isinf(fr->depth[b]) ? -1 : fr->ids ? fr->ids[b] : 0;
+    if (ia != ib)
+        return 1;
+    for (int c = 0; c < 3; c++)
+        if (fabsf(fr->rgb[3 * a + c] - fr->rgb[3 * b + c]) > FX_AA_CONTRAST)
+            return 1;
+    return ia >= 0 && fabsf(fr->depth[a] - fr->depth[b]) > FX_AA_DEPTH * fminf(fr->depth[a], fr->depth[b]);
+}
+
+/* -aa N: the pixels on an edge (differ) get N x N rays of their own, on a regular grid in the pixel, each
+ * weighing 1 / N^2; their centre rays' colours are replaced. */
+static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, iacsg_error *err) {
+    const iacsg_view *v = f->view;
+    int aa = f->e->aa, row0, row1, w = v->width;
+    traced_rows(v, &row0, &row1);
+    size_t npix = (size_t)(row1 - row0) * (size_t)w;
+    unsigned char *edge = calloc(npix + 1, 1);
+    if (!edge)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    size_t nedge = 0;
+    for (int j = row0; j < row1; j++)
+        for (int i = 0; i < w; i++) {
+            int p = j * w + i;
+            if (i + 1 < w && differ(fr, p, p + 1))
+                edge[p - row0 * w] = edge[p + 1 - row0 * w] = 1;
+            if (j + 1 < row1 && differ(fr, p, p + w))
+                edge[p - row0 * w] = edge[p + w - row0 * w] = 1;
+        }
+    for (size_t k = 0; k < npix; k++)
+        nedge += edge[k];
+    size_t n = nedge * (size_t)aa * (size_t)aa;
+    fx_path *paths = malloc((n + 1) * sizeof *paths);
+    iacsg_status st = paths ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    size_t q = 0;
+    for (size_t k = 0; st == IACSG_OK && k < npix; k++) {
+        if (!edge[k])
+            continue;
+        int pixel = (int)k + row0 * w, i = pixel % w, j = pixel / w;
+        for (int c = 0; c < 3; c++)
+            f->accum[3 * pixel + c] = 0;
+        for (int b = 0; b < aa; b++)
+            for (int a = 0; a < aa; a++) {
+                fx_path *s = &paths[q++];
+                memset(s, 0, sizeof *s);
+                s->pixel = pixel;
+                s->w = 1.0 / (aa * aa);
+                camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &s->ray);
+            }
+    }
+    if (st == IACSG_OK)
+        st = trace_paths(f, paths, n, err);
+    if (st == IACSG_OK) {
+        st = run_paths(f, paths, n, err);
+        paths = NULL;
+    }
+    for (size_t k = 0; st == IACSG_OK && k < npix; k++)
+        if (edge[k])
+            encode(f->accum, (int)k + row0 * w, fr->rgb);
+    free(paths);
+    free(edge);
+    return st;
+}
+
+iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err) {
+    if (!effects_on(view->effects))
+        return IACSG_OK;
+    double t0 = render_now_seconds();
+    fx_frame f = {0};
+    f.r = r;
+    f.view = view;
+    f.e = view->effects;
+    iacsg_status st = iacsg_camera_params(&view->camera, view->width, view->height, f.cam, err);
+    if (st == IACSG_OK)
+        st = fx_tracer_open(&f.tracer, r, view, err);
+    size_t n = 0;
+    fx_path *paths = NULL;
+    f.accum = calloc(3 * (size_t)view->width * (size_t)view->height, sizeof *f.accum);
+    if (st == IACSG_OK && (!f.accum || !(paths = centre_paths(&f, frame, &n))))
+        st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    resolve_lights(&f);
+    if (st == IACSG_OK) {
+        /* the centre rays' colours first: -aa decides its edges on them */
+        int row0, row1;
+        traced_rows(view, &row0, &row1);
+        st = run_paths(&f, paths, n, err);
+        for (int p = row0 * view->width; st == IACSG_OK && p < row1 * view->width; p++)
+            encode(f.accum, p, frame->rgb);
+    } else {
+        free(paths);
+    }
+    if (st == IACSG_OK && f.e->aa > 1)
+        st = antialias(&f, frame, err);
+    free(f.accum);
+    fx_tracer_close(&f.tracer);
+    frame->render_seconds += render_now_seconds() - t0;
+    return st;
+}
+
+iacsg_status render_effects_keep_scene(iacsg_renderer *r, const iacsg_scene *s, iacsg_error *err) {
+    render_fx *fx = NULL;
+    iacsg_status st = fx_of(r, &fx, err);
+    if (st != IACSG_OK)
+        return st;
+    fx->item_fx = malloc(FX_ITEM_FLOATS * sizeof(float) * (size_t)(s->nitems + 1));
+    if (!fx->item_fx)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    fx->nitems = s->nitems;
+    for (int i = 0; i < s->nitems; i++) {
+        int m = s->items[i].material;
+        fx->item_fx[FX_ITEM_FLOATS * i] = m >= 0 ? s->materials[m].reflect : 0;
+        fx->item_fx[FX_ITEM_FLOATS * i + 1] = m >= 0 ? s->materials[m].opacity : 1;
+    }
+    return IACSG_OK;
+}
+
+void render_effects_free(render_fx *fx) {
+    if (!fx)
+        return;
+    if (fx->trace)
+        clReleaseKernel(fx->trace);
+    free(fx->item_fx);
+    free(fx);
+}

@@ -1,0 +1,208 @@
+/* src/render_effects_trace.c -- see render_effects_trace.h. The rays go to the device in one buffer per call,
+ * in the working precision (kernels/effects.h); the first-root path traces 16 of them per work-item in SIMD
+ * lanes, the segment path one per work-item with per-ray buffers that every ray fits (render_scene.c). */
+#include "render_effects_trace.h"
+#include "kernels/effects.h"
+#include "kernels/params.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err) {
+    if (!r->fx && !(r->fx = calloc(1, sizeof *r->fx)))
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    *out = r->fx;
+    return IACSG_OK;
+}
+
+static size_t real_bytes(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
+
+/* Stores v as the working precision's real at index k of `block`. */
+static void put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
+    if (r->config.fp64)
+        ((double *)block)[k] = v;
+    else
+        ((float *)block)[k] = (float)v;
+}
+
+/* The tree of the secondary rays covers [0, root_w]: a ray from inside the bounds leaves them within their
+ * diagonal, a camera ray (antialiasing) within the eye's farthest corner; doubled for the origins' offsets. */
+static double root_width(const iacsg_view *v) {
+    double diag2 = 0, far2 = 0;
+    for (int k = 0; k < 3; k++) {
+        double e = v->camera.eye[k], lo = v->bounds[k], hi = v->bounds[k + 3];
+        diag2 += (hi - lo) * (hi - lo);
+        far2 += fmax((e - lo) * (e - lo), (e - hi) * (e - hi));
+    }
+    return 2 * (sqrt(diag2) + sqrt(far2)) + 1;
+}
+
+iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
+    memset(t, 0, sizeof *t);
+    t->r = r;
+    t->view = view;
+    render_fx *fx = NULL;
+    double block[PARAM_COUNT];
+    iacsg_status st = fx_of(r, &fx, err);
+    if (st == IACSG_OK)
+        st = render_fill_params(view, r->config.fp64, block, err);
+    if (st != IACSG_OK)
+        return st;
+    cl_int rc = CL_SUCCESS;
+    if (!fx->trace) { /* PoCL compiles it at its first launch: the first frame with effects pays that */
+        fx->trace = clCreateKernel(r->program, r->scene ? "iacsg_scene_trace_rays" : "iacsg_trace_rays", &rc);
+        CLRT_CHECK(err, rc);
+    }
+    t->params = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * real_bytes(r),
+                               block, &rc);
+    CLRT_CHECK(err, rc);
+    cl_ulong ones[SEGMENTS];
+    for (int k = 0; k < SEGMENTS; k++)
+        ones[k] = ~(cl_ulong)0;
+    t->all_groups = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof ones, ones, &rc);
+    CLRT_CHECK(err, rc);
+    t->root_w = root_width(view);
+    double p[PARAM_COUNT];
+    st = iacsg_camera_params(&view->camera, view->width, view->height, p, err);
+    t->footprint = 2 * p[PARAM_SCALE_V] / view->height * (view->camera.ortho_height > 0 ? 1 : t->root_w);
+    return st;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+void fx_tracer_close(fx_tracer *t) {
+    if (t->params)
+        clReleaseMemObject(t->params);
+    if (t->all_groups)
+        clReleaseMemObject(t->all_groups);
+    t->params = t->all_groups = NULL;
+}
+
+/* The device buffers of one call. */
+typedef struct {
+    cl_mem rays, t, normal, item;
+} trace_buffers;
+
+static void release_trace_buffers(trace_buffers *b) {
+    cl_mem all[] = {b->rays, b->t, b->normal, b->item};
+    for (int k = 0; k < 4; k++)
+        if (all[k])
+            clReleaseMemObject(all[k]);
+}
+
+/* The first-root path: arguments of kernels/effects.cl, one launch of n / 16 work-items. */
+static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
+                                iacsg_error *err) {
+    iacsg_renderer *r = t->r;
+    size_t rb = real_bytes(r);
+    double reals[2];
+    put_real(r, reals, 0, t->root_w);
+    char w_real[8], fp_real[8];
+    memcpy(w_real, reals, rb);
+    put_real(r, reals, 0, t->footprint);
+    memcpy(fp_real, reals, rb);
+    CLRT_CHECK(err, clSetKernelArg(k, 0, sizeof(cl_mem), &t->params));
+    CLRT_CHECK(err, clSetKernelArg(k, 1, sizeof(cl_mem), &b->rays));
+    CLRT_CHECK(err, clSetKernelArg(k, 2, sizeof n, &n));
+    CLRT_CHECK(err, clSetKernelArg(k, 3, rb, w_real));
+    CLRT_CHECK(err, clSetKernelArg(k, 4, rb, eps_real));
+    CLRT_CHECK(err, clSetKernelArg(k, 5, rb, fp_real));
+    CLRT_CHECK(err, clSetKernelArg(k, 6, sizeof(cl_mem), &t->all_groups));
+    CLRT_CHECK(err, clSetKernelArg(k, 7, sizeof(cl_mem), &b->t));
+    CLRT_CHECK(err, clSetKernelArg(k, 8, sizeof(cl_mem), &b->normal));
+    size_t global = ((size_t)n + PACKET_LANES - 1) / PACKET_LANES, local = 1;
+    CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL));
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+/* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items as the per-ray
+ * buffers have room for (one after the other on the in-order queue, which they share). */
+static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
+                                 iacsg_error *err) {
+    iacsg_renderer *r = t->r;
+    void *held = NULL;
+    size_t slots = (size_t)n;
+    iacsg_status st = render_scene_trace_args(r, t->view, k, 8, &slots, &held, err);
+    cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item};
+    cl_uint at[] = {0, 1, 5, 6, 7};
+    for (int a = 0; a < 5 && st == IACSG_OK; a++)
+        if (clSetKernelArg(k, at[a], sizeof(cl_mem), &args[a]) != CL_SUCCESS)
+            st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
+    if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
+                           clSetKernelArg(k, 4, real_bytes(r), eps_real) != CL_SUCCESS))
+        st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
+    for (cl_int first = 0; st == IACSG_OK && first < n; first += (cl_int)slots) {
+        size_t global = (size_t)(n - first) < slots ? (size_t)(n - first) : slots, local = 1;
+        cl_int rc = clSetKernelArg(k, 3, sizeof first, &first);
+        if (rc == CL_SUCCESS)
+            rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_scene_trace_rays)", __func__, __LINE__);
+    }
+    if (st == IACSG_OK && clFinish(r->rt.queue) != CL_SUCCESS)
+        st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clFinish after the scene's trace failed");
+    render_scene_trace_release(held);
+    return st;
+}
+
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err) {
+    if (n == 0)
+        return IACSG_OK;
+    if (n > 0x7fffffff / EFFECTS_RAY_REALS)
+        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "too many secondary rays (%zu) in one pass", n);
+    iacsg_renderer *r = t->r;
+    size_t rb = real_bytes(r);
+    void *host = malloc(n * EFFECTS_RAY_REALS * rb + n * rb + 3 * n * sizeof(float) + n * sizeof(cl_int));
+    if (!host)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for %zu secondary rays", n);
+    for (size_t i = 0; i < n; i++) {
+        const fx_ray *y = &rays[i];
+        double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
+        for (int k = 0; k < EFFECTS_RAY_REALS; k++)
+            put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
+    }
+    char *out_t = (char *)host + n * EFFECTS_RAY_REALS * rb;
+    float *out_n = (float *)(out_t + n * rb);
+    cl_int *out_item = (cl_int *)(out_n + 3 * n);
+    trace_buffers b = {0};
+    cl_int rc = CL_SUCCESS;
+    cl_context ctx = r->rt.context;
+    iacsg_status st = IACSG_OK;
+    b.rays = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * EFFECTS_RAY_REALS * rb, host, &rc);
+    CLRT_CHECK(err, rc);
+    b.t = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * rb, NULL, &rc);
+    CLRT_CHECK(err, rc);
+    b.normal = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), NULL, &rc);
+    CLRT_CHECK(err, rc);
+    if (r->scene) {
+        b.item = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_int), NULL, &rc);
+        CLRT_CHECK(err, rc);
+    }
+    double eps_block[1];
+    put_real(r, eps_block, 0, eps);
+    st = r->scene ? launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err)
+                  : launch_expr(t, r->fx->trace, &b, (cl_int)n, eps_block, err);
+    if (st != IACSG_OK)
+        goto done;
+    CLRT_CHECK(err, clEnqueueReadBuffer(r->rt.queue, b.t, CL_FALSE, 0, n * rb, out_t, 0, NULL, NULL));
+    CLRT_CHECK(err, clEnqueueReadBuffer(r->rt.queue, b.normal, CL_FALSE, 0, 3 * n * sizeof(float), out_n, 0, NULL,
+                                        NULL));
+    if (b.item)
+        CLRT_CHECK(err, clEnqueueReadBuffer(r->rt.queue, b.item, CL_FALSE, 0, n * sizeof(cl_int), out_item, 0, NULL,
+                                            NULL));
+    CLRT_CHECK(err, clFinish(r->rt.queue));
+    for (size_t i = 0; i < n; i++) {
+        hits[i].t = r->config.fp64 ? ((double *)(void *)out_t)[i] : ((float *)(void *)out_t)[i];
+        memcpy(hits[i].n, out_n + 3 * i, sizeof hits[i].n);
+        hits[i].item = isinf(hits[i].t) ? -1 : b.item ? out_item[i] : 0;
+    }
+    goto done;
+fail:
+    st = IACSG_ERR_OPENCL;
+done:
+    release_trace_buffers(&b);
+    free(host);
+    return st;
+}

@@ -1,0 +1,46 @@
+/* src/render_effects_trace.h -- the effects' secondary rays on the device: a list of rays in, each one's first
+ * hit out, traced by the render path's own bisection (kernels/effects.cl for an expression, kernels/scene_effects.cl
+ * for a scene's regions and surfaces). src/render_effects.c decides which rays; this file only traces them. */
+#ifndef IACSG_RENDER_EFFECTS_TRACE_H
+#define IACSG_RENDER_EFFECTS_TRACE_H
+#include "render_internal.h"
+
+typedef struct {
+    double o[3], d[3]; /* origin, direction (unit) */
+    double tn, tf;     /* the part searched, then clipped to the bounds */
+} fx_ray;
+
+typedef struct {
+    double t;   /* the hit leaf's start (never after the first root in [tn, tf]), +inf on a miss */
+    float n[3]; /* the unit normal there, facing the ray */
+    int item;   /* the region or surface hit (an expression: 0), -1 on a miss */
+} fx_hit;
+
+/* What a renderer keeps for its effects (render_internal.h: r->fx), made at the first use. */
+struct render_fx {
+    cl_kernel trace; /* iacsg_trace_rays or iacsg_scene_trace_rays */
+    float *item_fx;  /* a scene's items: reflect, opacity (FX_ITEM_FLOATS each) */
+    int nitems;
+};
+#define FX_ITEM_FLOATS 2
+
+/* Makes r->fx (without its kernel) when it is not there yet. */
+iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err);
+
+/* The device side of one frame's effects: its parameter block and, made at the renderer's first use, the trace
+ * kernel. */
+typedef struct {
+    iacsg_renderer *r;
+    const iacsg_view *view;
+    cl_mem params, all_groups;
+    double root_w;    /* the secondary rays' tree, [0, root_w]: past every ray's exit from the bounds */
+    double footprint; /* a pixel's footprint at the far end of the bounds: where interval Newton starts */
+} fx_tracer;
+
+iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err);
+void fx_tracer_close(fx_tracer *t);
+
+/* Traces rays[0 .. n) with leaves of width eps into hits[0 .. n). */
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err);
+
+#endif
