@@ -8,6 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The device buffers of one call. */
+typedef struct trace_buffers {
+    cl_mem rays, t, normal, item;
+} trace_buffers;
+
 iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err) {
     if (!r->fx && !(r->fx = calloc(1, sizeof *r->fx)))
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
@@ -37,6 +42,20 @@ static double root_width(const iacsg_view *v) {
     return 2 * (sqrt(diag2) + sqrt(far2)) + 1;
 }
 
+static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
+                                iacsg_error *err);
+static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
+                                 iacsg_error *err);
+
+/* PoCL compiles a kernel at its first launch: one launch over no rays makes that happen when the kernel is made,
+ * counted as build time (render.c: compile_now), not inside the first frame with effects. */
+static iacsg_status compile_trace_now(fx_tracer *t, iacsg_error *err) {
+    struct trace_buffers none = {0};
+    double eps[1] = {0};
+    return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, err)
+                       : launch_expr(t, t->r->fx->trace, &none, 0, eps, err);
+}
+
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
     memset(t, 0, sizeof *t);
     t->r = r;
@@ -49,13 +68,18 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
     if (st != IACSG_OK)
         return st;
     cl_int rc = CL_SUCCESS;
-    if (!fx->trace) { /* PoCL compiles it at its first launch: the first frame with effects pays that */
-        fx->trace = clCreateKernel(r->program, r->scene ? "iacsg_scene_trace_rays" : "iacsg_trace_rays", &rc);
-        CLRT_CHECK(err, rc);
-    }
     t->params = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * real_bytes(r),
                                block, &rc);
     CLRT_CHECK(err, rc);
+    if (!fx->trace) {
+        double t0 = render_now_seconds();
+        fx->trace = clCreateKernel(r->program, r->scene ? "iacsg_scene_trace_rays" : "iacsg_trace_rays", &rc);
+        CLRT_CHECK(err, rc);
+        st = compile_trace_now(t, err);
+        r->build_seconds += render_now_seconds() - t0;
+        if (st != IACSG_OK)
+            return st;
+    }
     cl_ulong ones[SEGMENTS];
     for (int k = 0; k < SEGMENTS; k++)
         ones[k] = ~(cl_ulong)0;
@@ -78,10 +102,7 @@ void fx_tracer_close(fx_tracer *t) {
     t->params = t->all_groups = NULL;
 }
 
-/* The device buffers of one call. */
-typedef struct {
-    cl_mem rays, t, normal, item;
-} trace_buffers;
+
 
 static void release_trace_buffers(trace_buffers *b) {
     cl_mem all[] = {b->rays, b->t, b->normal, b->item};
@@ -110,7 +131,7 @@ static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const trace_buffers *
     CLRT_CHECK(err, clSetKernelArg(k, 6, sizeof(cl_mem), &t->all_groups));
     CLRT_CHECK(err, clSetKernelArg(k, 7, sizeof(cl_mem), &b->t));
     CLRT_CHECK(err, clSetKernelArg(k, 8, sizeof(cl_mem), &b->normal));
-    size_t global = ((size_t)n + PACKET_LANES - 1) / PACKET_LANES, local = 1;
+    size_t global = n > 0 ? ((size_t)n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */
     CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL));
     return IACSG_OK;
 fail:
@@ -123,7 +144,7 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
                                  iacsg_error *err) {
     iacsg_renderer *r = t->r;
     void *held = NULL;
-    size_t slots = (size_t)n;
+    size_t slots = n > 0 ? (size_t)n : 1; /* n = 0: one launch that traces nothing (compile_trace_now) */
     iacsg_status st = render_scene_trace_args(r, t->view, k, 8, &slots, &held, err);
     cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item};
     cl_uint at[] = {0, 1, 5, 6, 7};
@@ -133,8 +154,8 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
     if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
                            clSetKernelArg(k, 4, real_bytes(r), eps_real) != CL_SUCCESS))
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
-    for (cl_int first = 0; st == IACSG_OK && first < n; first += (cl_int)slots) {
-        size_t global = (size_t)(n - first) < slots ? (size_t)(n - first) : slots, local = 1;
+    for (cl_int first = 0; st == IACSG_OK && (first < n || first == 0); first += (cl_int)slots) {
+        size_t global = (size_t)(n - first) < slots && n > 0 ? (size_t)(n - first) : slots, local = 1;
         cl_int rc = clSetKernelArg(k, 3, sizeof first, &first);
         if (rc == CL_SUCCESS)
             rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);

@@ -151,3 +151,83 @@ TEST_FP(effects_shadow_boundary_regions) {
                       &view, &fr);
     check_shadows(view, fr);
 }
+
+/* The unit sphere seen along -z, orthographic: the point (s, v) of the image plane is on it iff s^2 + v^2 < 1. */
+static iacsg_view sphere_ortho_view(int size) {
+    iacsg_view v = {.width = size, .height = size, .eps = 0x1p-14,
+                    .camera = {.eye = {0, 0, 4}, .at = {0, 0, 0}, .up = {0, 1, 0}, .fov = 40, .ortho_height = 2.6},
+                    .bounds = {-1.5, -1.5, -1.5, 1.5, 1.5, 1.5}};
+    return v;
+}
+
+/* The fraction of pixel (i, j) of sphere_ortho_view covered by the sphere, sampled on a 32 x 32 grid. */
+static double sphere_coverage(const iacsg_view *v, int i, int j) {
+    double half = v->camera.ortho_height / 2, in = 0;
+    for (int b = 0; b < 32; b++)
+        for (int a = 0; a < 32; a++) {
+            double s = (2 * (i + (a + 0.5) / 32) / v->width - 1) * half;
+            double t = (1 - 2 * (j + (b + 0.5) / 32) / v->height) * half;
+            in += s * s + t * t < 1;
+        }
+    return in / (32 * 32);
+}
+
+/* -aa 4 on a sphere: pixels well inside or outside it (their 3 x 3 neighbourhood all in or all out) keep the
+ * plain render's colour; a pixel a quarter to three quarters covered, next to one wholly covered (colour S) and
+ * one wholly outside (B), takes the blend sqrt(c S^2 + (1 - c) B^2) of its coverage c (linear light, gamma 2),
+ * within what 4 x 4 rays and the shading's change over a pixel allow. (Where the shading itself changes fast,
+ * in the highlight, neighbours differ by more than -aa's contrast threshold, so those pixels are sampled too.) */
+TEST_FP(effects_aa_edges) {
+    iacsg_view view = sphere_ortho_view(96);
+    iacsg_frame plain, aa;
+    render_expr("sphere", &view, &plain);
+    iacsg_effects fx = {.aa = 4};
+    view.effects = &fx;
+    render_expr("sphere", &view, &aa);
+    long inside = 0, same = 0, edges = 0, bad = 0;
+    double worst = 0, worst_edge = 0;
+    for (int j = 1; j + 1 < view.height; j++)
+        for (int i = 1; i + 1 < view.width; i++) {
+            size_t px = (size_t)j * view.width + i, full = 0, empty = 0;
+            double c = sphere_coverage(&view, i, j);
+            int uniform = 1;
+            for (int dj = -1; dj <= 1; dj++)
+                for (int di = -1; di <= 1; di++) {
+                    double cn = sphere_coverage(&view, i + di, j + dj);
+                    uniform &= (cn == 0 && c == 0) || (cn == 1 && c == 1);
+                    size_t n = px + (size_t)(dj * view.width + di);
+                    full = cn == 1 ? n : full;
+                    empty = cn == 0 ? n : empty;
+                }
+            if (uniform) {
+                double diff = 0;
+                for (int k = 0; k < 3; k++)
+                    diff = fmax(diff, fabs(aa.rgb[3 * px + k] - plain.rgb[3 * px + k]));
+                worst = fmax(worst, diff);
+                same += diff <= 1e-5;
+                inside++;
+                continue;
+            }
+            if (!(c >= 0.25 && c <= 0.75) || !full || !empty)
+                continue;
+            double off = 0;
+            for (int k = 0; k < 3; k++) {
+                double S = plain.rgb[3 * full + k], B = plain.rgb[3 * empty + k];
+                off = fmax(off, fabs(aa.rgb[3 * px + k] - sqrt(c * S * S + (1 - c) * B * B)));
+            }
+            worst_edge = fmax(worst_edge, off);
+            if (off > 0.06 && bad++ < 5)
+                test_note("edge pixel (%d, %d), %.2f covered: colour %.3f %.3f %.3f, %.3f off the blend", i, j, c,
+                          aa.rgb[3 * px], aa.rgb[3 * px + 1], aa.rgb[3 * px + 2], off);
+            edges++;
+        }
+    iacsg_frame_free(&plain);
+    iacsg_frame_free(&aa);
+    CHECK(bad == 0, "%ld of %ld edge pixels off the blend of their coverage", bad, edges);
+    CHECK(same >= inside - inside / 20, "only %ld of %ld interior pixels have the plain render's colour", same, inside);
+    CHECK(worst <= 1.0 / 128, "an interior pixel differs from the plain render by %g", worst);
+    CHECK(inside > 4000 && edges > 50, "too few pixels: %ld interior, %ld edges", inside, edges);
+    test_note("%ld of %ld interior pixels have the plain render's colour (the others, in the highlight, where "
+              "neighbours differ by 1/16, were sampled too: within %.1e); %ld edge pixels within %.3f of the blend "
+              "of their coverage", same, inside, worst, edges, worst_edge);
+}
