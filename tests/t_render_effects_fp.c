@@ -231,3 +231,166 @@ TEST_FP(effects_aa_edges) {
               "neighbours differ by 1/16, were sampled too: within %.1e); %ld edge pixels within %.3f of the blend "
               "of their coverage", same, inside, worst, edges, worst_edge);
 }
+
+/* The colour's linear light (gamma 2, kernels/light.h). */
+static double linear(float shown) { return (double)shown * shown; }
+
+/* A sphere that reflects half the light, one bounce: its reflected rays leave it for good (it is convex), so each
+ * of its pixels is half its plain colour and half the background of its row, in linear light (but in the
+ * highlight, where the plain render clips the light at 1 and the blend takes it whole). */
+TEST_FP(effects_reflect_sphere) {
+    iacsg_view view = sphere_ortho_view(96);
+    iacsg_frame plain, mirror;
+    render_expr("sphere", &view, &plain);
+    iacsg_effects fx = {.bounces = 1, .reflect = 0.5};
+    view.effects = &fx;
+    render_expr("sphere", &view, &mirror);
+    long checked = 0;
+    double worst = 0;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 1; i < view.width; i++) {
+            size_t px = (size_t)j * view.width + i, bg = (size_t)j * view.width; /* column 0 misses */
+            double c = sphere_coverage(&view, i, j);
+            int saturated = plain.rgb[3 * px] >= 1; /* the highlight, whose light past 1 the plain render clips */
+            if (c < 1 || saturated)
+                continue;
+            for (int k = 0; k < 3; k++) {
+                double want = sqrt(0.5 * linear(plain.rgb[3 * px + k]) + 0.5 * linear(plain.rgb[3 * bg + k]));
+                worst = fmax(worst, fabs(mirror.rgb[3 * px + k] - want));
+            }
+            checked++;
+        }
+    CHECK(isinf(plain.depth[0]), "column 0 should miss the sphere");
+    iacsg_frame_free(&plain);
+    iacsg_frame_free(&mirror);
+    CHECK(worst <= 1e-4, "a pixel is %g off half its colour and half the background", worst);
+    CHECK(checked > 3000, "only %ld pixels checked", checked);
+    test_note("%ld pixels within %.1e of the blend", checked, worst);
+}
+
+/* A mirror plane (a region whose material reflects all light) under a blue sphere: a pixel of the plane shows
+ * blue exactly where the reflected ray from its point meets the sphere (pixels within a margin of that
+ * silhouette left out). The segment path. */
+TEST_FP(effects_mirror_silhouette) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = {.bounces = 1};
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_scene_text("material mirror = rgb(0.5, 0.5, 0.5) reflect 1\n"
+                      "material blue = rgb(0, 0, 1) specular 0\n"
+                      "region ball = move(sphere(0.5), 0, 0, 0.6) : blue\nregion ground = z : mirror\n",
+                      &view, &fr);
+    sphere ball = {{0, 0, 0.6}, 0.5};
+    ia_real p[PARAM_COUNT];
+    view_params(&view, p);
+    long blue = 0, grey = 0, spared = 0, wrong = 0;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 0; i < view.width; i++) {
+            double o[3], d[3], t1, t2, hit[3], r[3];
+            pixel_ray(p, &view, i, j, o, d);
+            if (sphere_span(ball, o, d, &t1, &t2) || !(d[2] < 0))
+                continue;
+            double t = -o[2] / d[2];
+            for (int k = 0; k < 3; k++) {
+                hit[k] = o[k] + t * d[k];
+                r[k] = k == 2 ? -d[k] : d[k];
+            }
+            if (fabs(hit[0]) > 1.99 || fabs(hit[1]) > 1.99)
+                continue;
+            /* the reflected ray's closest approach to the centre, against the radius */
+            double oc[3] = {ball.c[0] - hit[0], ball.c[1] - hit[1], ball.c[2] - hit[2]}, s = fmax(dot(oc, r), 0), e2 = 0;
+            for (int k = 0; k < 3; k++)
+                e2 += (oc[k] - s * r[k]) * (oc[k] - s * r[k]);
+            double dist = sqrt(e2);
+            if (fabs(dist - ball.r) < 2e-3) {
+                spared++;
+                continue;
+            }
+            int want_blue = dist < ball.r;
+            size_t px = (size_t)j * view.width + i;
+            int shown_blue = fr.rgb[3 * px + 2] - fr.rgb[3 * px] > 0.2;
+            if (shown_blue != want_blue && wrong++ < 5)
+                test_note("pixel (%d, %d): the reflection %s the sphere, shown %.3f %.3f %.3f", i, j,
+                          want_blue ? "meets" : "misses", fr.rgb[3 * px], fr.rgb[3 * px + 1], fr.rgb[3 * px + 2]);
+            blue += want_blue;
+            grey += !want_blue;
+        }
+    iacsg_frame_free(&fr);
+    CHECK(wrong == 0, "%ld pixels of the mirror wrong", wrong);
+    CHECK(blue > 500 && grey > 10000, "too few pixels: %ld reflecting the sphere, %ld not", blue, grey);
+    test_note("%ld mirror pixels show the sphere, %ld the background, as the exact reflection says; %ld within "
+              "2e-3 of its silhouette not checked", blue, grey, spared);
+}
+
+/* The default rig's colour (linear) of a point with unit normal n seen along d (kernels/light.h's lighting, the
+ * first-root path's material): what a layer of a transparent solid contributes, times its opacity. */
+static void default_lit(const double n[3], const double d[3], const double f[3], const double r[3], const double u[3],
+                        double lin[3]) {
+    static const double rig[2][4] = {{-0.6, 0.8, 0.85, 0.45}, {0.9, -0.2, 0.30, 0.10}};
+    static const double albedo[3] = {0.80f, 0.52f, 0.28f};
+    double diffuse = 0.10, highlight = 0;
+    for (int l = 0; l < 2; l++) {
+        double L[3], h[3];
+        for (int k = 0; k < 3; k++)
+            L[k] = -f[k] + rig[l][0] * r[k] + rig[l][1] * u[k];
+        double len = sqrt(dot(L, L));
+        for (int k = 0; k < 3; k++) {
+            L[k] /= len;
+            h[k] = L[k] - d[k];
+        }
+        double nl = dot(n, L), nh = fmax(dot(n, h) / sqrt(dot(h, h)), 0);
+        if (nl > 0) {
+            diffuse += rig[l][2] * nl;
+            highlight += rig[l][3] * pow(nh, 48);
+        }
+    }
+    for (int c = 0; c < 3; c++)
+        lin[c] = albedo[c] * diffuse + highlight;
+}
+
+/* A half-transparent solid: a box (a slab) in front of a sphere, both of opacity 1/2, seen along -z. Through
+ * both, a pixel's ray crosses four surfaces, each a layer with the normal facing the ray, composited front to
+ * back: C = sum_k a (1 - a)^k c_k + (1 - a)^4 B, with c_k each layer's lit colour and B the background. */
+TEST_FP(effects_transparent_layers) {
+    iacsg_view view = sphere_ortho_view(96);
+    view.bounds[5] = 1.5;
+    iacsg_effects fx = {.transparency = 0.5};
+    view.effects = &fx;
+    iacsg_frame fr, plain;
+    const char *expr = "min(move(box(0.6, 0.6, 0.1), 0, 0, 1), sphere(0.5))";
+    render_expr(expr, &view, &fr);
+    view.effects = NULL;
+    render_expr(expr, &view, &plain);
+    double cam[PARAM_COUNT];
+    iacsg_error err = {0};
+    CHECK(iacsg_camera_params(&view.camera, view.width, view.height, cam, &err) == IACSG_OK, "%s", err.message);
+    const double *f = cam + PARAM_FORWARD, *r = cam + PARAM_RIGHT, *u = cam + PARAM_UP;
+    long checked = 0;
+    double worst = 0, a = 0.5;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 0; i < view.width; i++) {
+            double half = view.camera.ortho_height / 2;
+            double s = (2 * (i + 0.5) / view.width - 1) * half, v = (1 - 2 * (j + 0.5) / view.height) * half;
+            if (s * s + v * v > 0.45 * 0.45) /* through the slab and the sphere, away from its silhouette */
+                continue;
+            double zs = sqrt(0.25 - s * s - v * v), d[3] = {f[0], f[1], f[2]};
+            double normals[4][3] = {{0, 0, 1}, {0, 0, 1}, {s / 0.5, v / 0.5, zs / 0.5}, {-s / 0.5, -v / 0.5, zs / 0.5}};
+            double want[3] = {0, 0, 0}, through = 1, lin[3];
+            for (int layer = 0; layer < 4; layer++) {
+                default_lit(normals[layer], d, f, r, u, lin);
+                for (int c = 0; c < 3; c++)
+                    want[c] += through * a * lin[c];
+                through *= 1 - a;
+            }
+            size_t px = (size_t)j * view.width + i, bg = (size_t)j * view.width;
+            for (int c = 0; c < 3; c++)
+                worst = fmax(worst, fabs(fr.rgb[3 * px + c] - sqrt(want[c] + through * linear(plain.rgb[3 * bg + c]))));
+            checked++;
+        }
+    CHECK(isinf(plain.depth[0]), "column 0 should miss the solid");
+    iacsg_frame_free(&fr);
+    iacsg_frame_free(&plain);
+    CHECK(worst <= 2e-3, "a pixel is %g off the composite of its four layers", worst);
+    CHECK(checked > 500, "only %ld pixels checked", checked);
+    test_note("%ld pixels through four layers within %.1e of the compositing formula", checked, worst);
+}
