@@ -21,6 +21,7 @@ void iacsg_scene_destroy(iacsg_scene *s) {
     for (int k = 0; k < s->nitems; k++)
         free(s->items[k].name);
     free(s->materials);
+    free(s->lights);
     free(s->solids);
     free(s->items);
     free(s->nodes);
@@ -58,6 +59,13 @@ static char *copy_name(const char *name, int *ok) {
     else
         strcpy(c, name);
     return c;
+}
+
+int scene_add_light(iacsg_scene *s, const scene_light *light, iacsg_error *err) {
+    if (!grow((void **)&s->lights, s->nlights, &s->cap_lights, sizeof *s->lights, 1))
+        return out_of_memory(err);
+    s->lights[s->nlights] = *light;
+    return s->nlights++;
 }
 
 int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iacsg_error *err) {

@@ -133,7 +133,11 @@ int cli_effects_option(int argc, char **argv, int *k, iacsg_effects *e, int *giv
     }
 }
 
-int cli_effects_scene_wants(const iacsg_scene *s) {
+int cli_effects_from_scene(iacsg_effects *e, const iacsg_scene *s) {
+    if (e->nlights == 0)
+        e->nlights = iacsg_scene_lights(s, e->lights);
+    if (s->nlights > 0)
+        return 1;
     for (int m = 0; m < s->nmaterials; m++)
         if (s->materials[m].reflect > 0 || s->materials[m].opacity < 1)
             return 1;

@@ -12,7 +12,8 @@ void cli_effects_init(iacsg_effects *e);
  * 1, or prints the problem and returns -1 (exit status 2); returns 0 for any other option. */
 int cli_effects_option(int argc, char **argv, int *k, iacsg_effects *e, int *given);
 
-/* Whether a scene's materials need the effects (reflect or opacity set), given no effects option. */
-int cli_effects_scene_wants(const iacsg_scene *s);
+/* Takes a scene's lights (unless -light gave some); returns whether the scene needs the effects: it declares
+ * lights, or its materials reflect or let light through. */
+int cli_effects_from_scene(iacsg_effects *e, const iacsg_scene *s);
 
 #endif

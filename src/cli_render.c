@@ -452,7 +452,7 @@ int cli_render(int argc, char **argv) {
         if (cli_job_rank(job) == 0)
             printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
         place_camera(&o);
-        if (cli_effects_scene_wants(scene)) /* materials that reflect or let light through */
+        if (cli_effects_from_scene(&o.effects, scene)) /* its lights, materials that reflect or are transparent */
             o.view.effects = &o.effects;
         /* regions or surfaces: the segment path; else the expression by the first-root path */
         st = iacsg_renderer_create_scene(scene, &o.config, &r, &err);

@@ -153,6 +153,10 @@ typedef struct {
     double render_seconds; /* from the first kernel launch to the images in host memory */
 } iacsg_frame;
 
+/* The lights a scene file declares (`light` statements), as iacsg_effects takes them: copies them (at most
+ * IACSG_MAX_LIGHTS, which a scene never has more of) into `lights` and returns their count. */
+int iacsg_scene_lights(const iacsg_scene *s, iacsg_light lights[IACSG_MAX_LIGHTS]);
+
 /* Renders one frame into *frame (its images are allocated here; free them with iacsg_frame_free). */
 iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
 void iacsg_frame_free(iacsg_frame *frame);

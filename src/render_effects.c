@@ -563,6 +563,17 @@ iacsg_status render_effects_keep_scene(iacsg_renderer *r, const iacsg_scene *s, 
     return IACSG_OK;
 }
 
+_Static_assert(SCENE_MAX_LIGHTS == IACSG_MAX_LIGHTS, "a scene's lights fit iacsg_effects");
+
+int iacsg_scene_lights(const iacsg_scene *s, iacsg_light lights[IACSG_MAX_LIGHTS]) {
+    for (int l = 0; l < s->nlights; l++) {
+        lights[l].kind = s->lights[l].dir ? IACSG_LIGHT_DIR : IACSG_LIGHT_POINT;
+        memcpy(lights[l].xyz, s->lights[l].xyz, sizeof lights[l].xyz);
+        lights[l].intensity = s->lights[l].intensity;
+    }
+    return s->nlights;
+}
+
 void render_effects_free(render_fx *fx) {
     if (!fx)
         return;
