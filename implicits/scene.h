@@ -23,7 +23,8 @@ typedef struct {
     char *name;
     float rgb[3];              /* linear albedo in [0, 1] */
     float specular, shininess; /* optional keywords; defaults SCENE_DEFAULT_SPECULAR, _SHININESS */
-    float reflect, opacity;    /* the effects' (src/render_effects.c): reflected fraction (0), opacity (1) */
+    float reflect, opacity;    /* the reflected fraction (0: src/render_effects.c) and opacity (1; regions are
+                                * rendered opaque as yet) */
 } scene_material;
 
 /* The first-root path's highlight (kernels/light.h), so that a solid looks the same on either path. */

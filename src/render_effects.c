@@ -36,6 +36,8 @@ static const float fx_default_top[3] = {0.42f, 0.46f, 0.52f}, fx_default_bottom[
 /* -aa: a pixel is an edge where its centre ray's id differs from a neighbour's, or its colour by this much in a
  * channel (shadow and reflection edges), or its depth by this fraction. */
 #define FX_AA_CONTRAST (1.0 / 16)
+/* Paths are shaded this many pixels (or antialiasing rays) at a time: their buffers stay small and are reused. */
+#define FX_CHUNK ((size_t)1 << 15)
 #define FX_AA_DEPTH 0.02
 
 typedef struct {
@@ -67,7 +69,7 @@ typedef struct {
     fx_light lights[IACSG_MAX_LIGHTS];
     int nlights;
     double depth_lo, depth_hi; /* the centre hits' range, for -shade depth */
-    double *accum;             /* 3 per pixel, linear */
+    float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
 } fx_frame;
 
 /* Whether the effects do anything: else the frame is the plain render, untouched. */
@@ -158,8 +160,10 @@ static void material_of(const fx_frame *f, int item, fx_material *m) {
         m->rgb[c] = a[SCENE_MATERIAL_RGB + c];
     m->specular = a[SCENE_MATERIAL_SPECULAR];
     m->shininess = a[SCENE_MATERIAL_SHININESS];
-    m->reflect = fx && item < fx->nitems ? fx->item_fx[FX_ITEM_FLOATS * item] : 0;
-    m->opacity = fx && item < fx->nitems ? fx->item_fx[FX_ITEM_FLOATS * item + 1] : 1;
+    m->reflect = fx && item < fx->nitems ? fx->item_reflect[item] : 0;
+    /* A ray continued inside a region would be claimed by it again at once (the weave claims the first partition
+     * a region may be in), and finding where it leaves needs the weave to pass it over: regions are opaque. */
+    m->opacity = 1;
 }
 
 /* How far a secondary ray starts off its hit: past the hit leaf's distance from the surface (a few eps) and the
@@ -254,9 +258,9 @@ static int preview_color(const fx_frame *f, const fx_path *q, double lin[3]) {
     return 1;
 }
 
-static void add(double *accum, int pixel, double w, const double lin[3]) {
+static void add(float *accum, int pixel, double w, const double lin[3]) {
     for (int c = 0; c < 3; c++)
-        accum[3 * pixel + c] += w * lin[c];
+        accum[3 * (size_t)pixel + c] += (float)(w * lin[c]);
 }
 
 /* Adds the colours of paths[0 .. n) that their hits give now, lit with shadow rays (traced first); *out gets
@@ -381,20 +385,23 @@ static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, iacsg_err
     return st;
 }
 
-/* Shades paths (their hits known) and all their descendants into f->accum; frees paths. */
-static iacsg_status run_paths(fx_frame *f, fx_path *paths, size_t n, iacsg_error *err) {
+/* Shades paths (their hits known; the caller's) and all their descendants into f->accum. */
+static iacsg_status run_paths(fx_frame *f, fx_path *first, size_t n, iacsg_error *err) {
     iacsg_status st = IACSG_OK;
+    fx_path *paths = first;
     while (n > 0 && st == IACSG_OK) {
         fx_path *kids = NULL;
         size_t nk = 0;
         st = shade_generation(f, paths, n, &kids, &nk, err);
-        free(paths);
+        if (paths != first)
+            free(paths);
         paths = kids;
         n = nk;
         if (st == IACSG_OK)
             st = trace_paths(f, paths, n, err);
     }
-    free(paths);
+    if (paths != first)
+        free(paths);
     return st;
 }
 
@@ -404,14 +411,27 @@ static void traced_rows(const iacsg_view *v, int *row0, int *row1) {
     *row1 = v->row_count ? v->row_first + v->row_count : v->height;
 }
 
-/* One path per pixel of the traced rows, its hit the centre ray's (the frame's depth, normal and id), listed in
- * blocks of 4x4 pixels so that the secondary rays of a packet come from neighbouring pixels. */
-static fx_path *centre_paths(fx_frame *f, const iacsg_frame *fr, size_t *count) {
+/* Whether the host would light each centre hit exactly as the kernel did (kernels/light.h: the default rig, no
+ * shadow, no reflection, no transparency), so that the kernel's colours stand. */
+static int kernel_colors_hold(const fx_frame *f) {
+    const iacsg_effects *e = f->e;
+    int reflects = 0;
+    if (e->bounces > 0 && f->r->scene && f->r->fx)
+        for (int i = 0; i < f->r->fx->nitems; i++)
+            reflects |= f->r->fx->item_reflect[i] > 0;
+    if (e->bounces > 0 && !f->r->scene)
+        reflects = e->reflect > 0;
+    return e->shade == IACSG_SHADE_LIT && e->nlights == 0 && !e->shadows && !reflects && e->transparency == 0;
+}
+
+/* The pixels of the traced rows in blocks of 4x4, the order their paths are listed in, so that the secondary
+ * rays of a packet (kernels/effects.cl) come from neighbouring pixels. Sets the centre hits' depth range. */
+static int *block_order(fx_frame *f, const iacsg_frame *fr, size_t *count) {
     const iacsg_view *v = f->view;
     int row0, row1;
     traced_rows(v, &row0, &row1);
-    fx_path *paths = malloc(((size_t)(row1 - row0) * (size_t)v->width + 1) * sizeof *paths);
-    if (!paths)
+    int *order = malloc(((size_t)(row1 - row0) * (size_t)v->width + 1) * sizeof *order);
+    if (!order)
         return NULL;
     size_t n = 0;
     f->depth_lo = INFINITY;
@@ -421,28 +441,31 @@ static fx_path *centre_paths(fx_frame *f, const iacsg_frame *fr, size_t *count) 
             for (int j = bj; j < bj + PACKET_H && j < row1; j++)
                 for (int i = bi; i < bi + PACKET_W && i < v->width; i++) {
                     int pixel = j * v->width + i;
-                    fx_path *q = &paths[n++];
-                    memset(q, 0, sizeof *q);
-                    q->pixel = pixel;
-                    q->w = 1;
-                    camera_ray_at(f, i + 0.5, j + 0.5, &q->ray);
-                    q->hit.t = fr->depth[pixel];
-                    int hit = !isinf(q->hit.t);
-                    memcpy(q->hit.n, fr->normal + 3 * pixel, sizeof q->hit.n);
-                    q->hit.item = !hit ? -1 : fr->ids ? (int)fr->ids[pixel] : 0;
-                    if (hit) {
-                        f->depth_lo = fmin(f->depth_lo, q->hit.t);
-                        f->depth_hi = fmax(f->depth_hi, q->hit.t);
+                    order[n++] = pixel;
+                    if (!isinf(fr->depth[pixel])) {
+                        f->depth_lo = fmin(f->depth_lo, fr->depth[pixel]);
+                        f->depth_hi = fmax(f->depth_hi, fr->depth[pixel]);
                     }
                 }
     *count = n;
-    return paths;
+    return order;
 }
 
-/* The display colour of a pixel's summed linear light (kernels/light.h: gamma 2). */
-static void encode(const double *accum, int pixel, float *rgb) {
+/* The path of a pixel's centre ray, its hit the frame's (depth, normal, id). */
+static void centre_path(const fx_frame *f, const iacsg_frame *fr, int pixel, fx_path *q) {
+    memset(q, 0, sizeof *q);
+    q->pixel = pixel;
+    q->w = 1;
+    camera_ray_at(f, pixel % f->view->width + 0.5, pixel / f->view->width + 0.5, &q->ray);
+    q->hit.t = fr->depth[pixel];
+    memcpy(q->hit.n, fr->normal + 3 * (size_t)pixel, sizeof q->hit.n);
+    q->hit.item = isinf(q->hit.t) ? -1 : fr->ids ? (int)fr->ids[pixel] : 0;
+}
+
+/* A pixel's summed linear light to its display colour, in place (kernels/light.h: gamma 2). */
+static void encode(float *rgb, int pixel) {
     for (int c = 0; c < 3; c++)
-        rgb[3 * pixel + c] = (float)sqrt(fmin(fmax(accum[3 * pixel + c], 0), 1));
+        rgb[3 * (size_t)pixel + c] = sqrtf(fminf(fmaxf(rgb[3 * (size_t)pixel + c], 0), 1));
 }
 
 /* Whether pixels a and b (both traced) differ enough that the edge between them needs more rays. */
@@ -458,55 +481,50 @@ static int differ(const iacsg_frame *fr, int a, int b) {
 }
 
 /* -aa N: the pixels on an edge (differ) get N x N rays of their own, on a regular grid in the pixel, each
- * weighing 1 / N^2; their centre rays' colours are replaced. */
-static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, iacsg_error *err) {
+ * weighing 1 / N^2; their centre rays' colours are replaced. `order`: the traced pixels in block order. */
+static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, size_t count, fx_path *paths,
+                              iacsg_error *err) {
     const iacsg_view *v = f->view;
     int aa = f->e->aa, row0, row1, w = v->width;
     traced_rows(v, &row0, &row1);
-    size_t npix = (size_t)(row1 - row0) * (size_t)w;
-    unsigned char *edge = calloc(npix + 1, 1);
+    unsigned char *edge = calloc((size_t)v->width * (size_t)v->height + 1, 1);
     if (!edge)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
-    size_t nedge = 0;
     for (int j = row0; j < row1; j++)
         for (int i = 0; i < w; i++) {
             int p = j * w + i;
             if (i + 1 < w && differ(fr, p, p + 1))
-                edge[p - row0 * w] = edge[p + 1 - row0 * w] = 1;
+                edge[p] = edge[p + 1] = 1;
             if (j + 1 < row1 && differ(fr, p, p + w))
-                edge[p - row0 * w] = edge[p + w - row0 * w] = 1;
+                edge[p] = edge[p + w] = 1;
         }
-    for (size_t k = 0; k < npix; k++)
-        nedge += edge[k];
-    size_t n = nedge * (size_t)aa * (size_t)aa;
-    fx_path *paths = malloc((n + 1) * sizeof *paths);
-    iacsg_status st = paths ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
-    size_t q = 0;
-    for (size_t k = 0; st == IACSG_OK && k < npix; k++) {
-        if (!edge[k])
-            continue;
-        int pixel = (int)k + row0 * w, i = pixel % w, j = pixel / w;
-        for (int c = 0; c < 3; c++)
-            f->accum[3 * pixel + c] = 0;
-        for (int b = 0; b < aa; b++)
-            for (int a = 0; a < aa; a++) {
-                fx_path *s = &paths[q++];
-                memset(s, 0, sizeof *s);
-                s->pixel = pixel;
-                s->w = 1.0 / (aa * aa);
-                camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &s->ray);
-            }
-    }
-    if (st == IACSG_OK)
+    iacsg_status st = IACSG_OK;
+    size_t per_chunk = FX_CHUNK / ((size_t)aa * aa), k = 0;
+    while (st == IACSG_OK && k < count) { /* the edge pixels in block order, per_chunk at a time */
+        size_t n = 0, first = k;
+        for (size_t pixels = 0; k < count && pixels < per_chunk; k++) {
+            int pixel = order[k], i = pixel % w, j = pixel / w;
+            if (!edge[pixel])
+                continue;
+            pixels++;
+            for (int c = 0; c < 3; c++) /* the samples' light replaces the centre ray's colour */
+                fr->rgb[3 * (size_t)pixel + c] = 0;
+            for (int b = 0; b < aa; b++)
+                for (int a = 0; a < aa; a++) {
+                    fx_path *q = &paths[n++];
+                    memset(q, 0, sizeof *q);
+                    q->pixel = pixel;
+                    q->w = 1.0 / (aa * aa);
+                    camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
+                }
+        }
         st = trace_paths(f, paths, n, err);
-    if (st == IACSG_OK) {
-        st = run_paths(f, paths, n, err);
-        paths = NULL;
+        if (st == IACSG_OK)
+            st = run_paths(f, paths, n, err);
+        for (size_t e = first; st == IACSG_OK && e < k; e++)
+            if (edge[order[e]])
+                encode(fr->rgb, order[e]);
     }
-    for (size_t k = 0; st == IACSG_OK && k < npix; k++)
-        if (edge[k])
-            encode(f->accum, (int)k + row0 * w, fr->rgb);
-    free(paths);
     free(edge);
     return st;
 }
@@ -522,25 +540,39 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
     iacsg_status st = iacsg_camera_params(&view->camera, view->width, view->height, f.cam, err);
     if (st == IACSG_OK)
         st = fx_tracer_open(&f.tracer, r, view, err);
-    size_t n = 0;
-    fx_path *paths = NULL;
-    f.accum = calloc(3 * (size_t)view->width * (size_t)view->height, sizeof *f.accum);
-    if (st == IACSG_OK && (!f.accum || !(paths = centre_paths(&f, frame, &n))))
+    size_t count = 0;
+    int *order = NULL;
+    fx_path *paths = malloc(FX_CHUNK * sizeof *paths);
+    f.accum = frame->rgb;
+    if (st == IACSG_OK && (!paths || !(order = block_order(&f, frame, &count))))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     resolve_lights(&f);
-    if (st == IACSG_OK) {
-        /* the centre rays' colours first: -aa decides its edges on them */
-        int row0, row1;
-        traced_rows(view, &row0, &row1);
+    /* The centre rays' colours, FX_CHUNK hits at a time (a miss is its background, and a hit keeps the kernel's
+     * colour where the host's would be the same); then -aa decides its edges on them. */
+    int keep = kernel_colors_hold(&f);
+    for (size_t k = 0; st == IACSG_OK && k < count;) {
+        size_t n = 0, first = k;
+        for (; k < count && n < FX_CHUNK; k++) {
+            int pixel = order[k], miss = isinf(frame->depth[pixel]);
+            if (miss || !keep)
+                memset(frame->rgb + 3 * (size_t)pixel, 0, 3 * sizeof(float));
+            if (miss) {
+                double lin[3];
+                background_at(&f, pixel / view->width, lin);
+                add(f.accum, pixel, 1, lin);
+            } else if (!keep) {
+                centre_path(&f, frame, pixel, &paths[n++]);
+            }
+        }
         st = run_paths(&f, paths, n, err);
-        for (int p = row0 * view->width; st == IACSG_OK && p < row1 * view->width; p++)
-            encode(f.accum, p, frame->rgb);
-    } else {
-        free(paths);
+        for (size_t q = first; st == IACSG_OK && q < k; q++)
+            if (!keep || isinf(frame->depth[order[q]]))
+                encode(frame->rgb, order[q]);
     }
     if (st == IACSG_OK && f.e->aa > 1)
-        st = antialias(&f, frame, err);
-    free(f.accum);
+        st = antialias(&f, frame, order, count, paths, err);
+    free(order);
+    free(paths);
     fx_tracer_close(&f.tracer);
     frame->render_seconds += render_now_seconds() - t0;
     return st;
@@ -551,14 +583,13 @@ iacsg_status render_effects_keep_scene(iacsg_renderer *r, const iacsg_scene *s, 
     iacsg_status st = fx_of(r, &fx, err);
     if (st != IACSG_OK)
         return st;
-    fx->item_fx = malloc(FX_ITEM_FLOATS * sizeof(float) * (size_t)(s->nitems + 1));
-    if (!fx->item_fx)
+    fx->item_reflect = malloc(sizeof(float) * (size_t)(s->nitems + 1));
+    if (!fx->item_reflect)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     fx->nitems = s->nitems;
     for (int i = 0; i < s->nitems; i++) {
         int m = s->items[i].material;
-        fx->item_fx[FX_ITEM_FLOATS * i] = m >= 0 ? s->materials[m].reflect : 0;
-        fx->item_fx[FX_ITEM_FLOATS * i + 1] = m >= 0 ? s->materials[m].opacity : 1;
+        fx->item_reflect[i] = m >= 0 ? s->materials[m].reflect : 0;
     }
     return IACSG_OK;
 }
@@ -579,6 +610,6 @@ void render_effects_free(render_fx *fx) {
         return;
     if (fx->trace)
         clReleaseKernel(fx->trace);
-    free(fx->item_fx);
+    free(fx->item_reflect);
     free(fx);
 }

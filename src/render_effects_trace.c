@@ -95,6 +95,9 @@ fail:
 }
 
 void fx_tracer_close(fx_tracer *t) {
+    free(t->host);
+    t->host = NULL;
+    t->host_bytes = 0;
     if (t->params)
         clReleaseMemObject(t->params);
     if (t->all_groups)
@@ -168,6 +171,34 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
     return st;
 }
 
+/* Rounds up to whole pages: the parts of the host scratch start on pages, as devices prefer host arrays they
+ * use in place. */
+static size_t page_round(size_t bytes) { return (bytes + 4095) / 4096 * 4096; }
+
+/* Makes the host scratch hold `bytes` (it only grows, so that a frame's passes reuse its pages). */
+static iacsg_status reserve_scratch(fx_tracer *t, size_t bytes, iacsg_error *err) {
+    if (bytes <= t->host_bytes)
+        return IACSG_OK;
+    void *p = NULL;
+    if (posix_memalign(&p, 4096, bytes) != 0)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the secondary rays");
+    free(t->host);
+    t->host = p;
+    t->host_bytes = bytes;
+    return IACSG_OK;
+}
+
+/* Makes the host array current after the kernels wrote the buffer over it (a no-op on a CPU device). */
+static iacsg_status sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {
+    cl_int rc = CL_SUCCESS;
+    void *p = clEnqueueMapBuffer(q, m, CL_TRUE, CL_MAP_READ, 0, bytes, 0, NULL, NULL, &rc);
+    CLRT_CHECK(err, rc);
+    CLRT_CHECK(err, clEnqueueUnmapMemObject(q, m, p, 0, NULL, NULL));
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
 iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err) {
     if (n == 0)
         return IACSG_OK;
@@ -175,55 +206,46 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "too many secondary rays (%zu) in one pass", n);
     iacsg_renderer *r = t->r;
     size_t rb = real_bytes(r);
-    void *host = malloc(n * EFFECTS_RAY_REALS * rb + n * rb + 3 * n * sizeof(float) + n * sizeof(cl_int));
-    if (!host)
-        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for %zu secondary rays", n);
+    size_t bytes[4] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int)};
+    size_t at[4] = {0, page_round(bytes[0])};
+    at[2] = at[1] + page_round(bytes[1]);
+    at[3] = at[2] + page_round(bytes[2]);
+    iacsg_status st = reserve_scratch(t, at[3] + page_round(bytes[3]), err);
+    if (st != IACSG_OK)
+        return st;
+    char *host = t->host;
     for (size_t i = 0; i < n; i++) {
         const fx_ray *y = &rays[i];
         double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
         for (int k = 0; k < EFFECTS_RAY_REALS; k++)
             put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
     }
-    char *out_t = (char *)host + n * EFFECTS_RAY_REALS * rb;
-    float *out_n = (float *)(out_t + n * rb);
-    cl_int *out_item = (cl_int *)(out_n + 3 * n);
     trace_buffers b = {0};
+    cl_mem *dst[4] = {&b.rays, &b.t, &b.normal, &b.item};
     cl_int rc = CL_SUCCESS;
-    cl_context ctx = r->rt.context;
-    iacsg_status st = IACSG_OK;
-    b.rays = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * EFFECTS_RAY_REALS * rb, host, &rc);
-    CLRT_CHECK(err, rc);
-    b.t = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * rb, NULL, &rc);
-    CLRT_CHECK(err, rc);
-    b.normal = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float), NULL, &rc);
-    CLRT_CHECK(err, rc);
-    if (r->scene) {
-        b.item = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_int), NULL, &rc);
+    for (int k = 0; k < (r->scene ? 4 : 3); k++) {
+        cl_mem_flags flags = (k == 0 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR;
+        *dst[k] = clCreateBuffer(r->rt.context, flags, bytes[k], host + at[k], &rc);
         CLRT_CHECK(err, rc);
     }
     double eps_block[1];
     put_real(r, eps_block, 0, eps);
     st = r->scene ? launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err)
                   : launch_expr(t, r->fx->trace, &b, (cl_int)n, eps_block, err);
-    if (st != IACSG_OK)
-        goto done;
-    CLRT_CHECK(err, clEnqueueReadBuffer(r->rt.queue, b.t, CL_FALSE, 0, n * rb, out_t, 0, NULL, NULL));
-    CLRT_CHECK(err, clEnqueueReadBuffer(r->rt.queue, b.normal, CL_FALSE, 0, 3 * n * sizeof(float), out_n, 0, NULL,
-                                        NULL));
-    if (b.item)
-        CLRT_CHECK(err, clEnqueueReadBuffer(r->rt.queue, b.item, CL_FALSE, 0, n * sizeof(cl_int), out_item, 0, NULL,
-                                            NULL));
-    CLRT_CHECK(err, clFinish(r->rt.queue));
-    for (size_t i = 0; i < n; i++) {
-        hits[i].t = r->config.fp64 ? ((double *)(void *)out_t)[i] : ((float *)(void *)out_t)[i];
+    for (int k = 1; k < 4 && st == IACSG_OK; k++)
+        if (*dst[k])
+            st = sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
+    const float *out_n = (const float *)(void *)(host + at[2]);
+    const cl_int *out_item = (const cl_int *)(void *)(host + at[3]);
+    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
+        hits[i].t = r->config.fp64 ? ((const double *)(void *)(host + at[1]))[i]
+                                   : ((const float *)(void *)(host + at[1]))[i];
         memcpy(hits[i].n, out_n + 3 * i, sizeof hits[i].n);
         hits[i].item = isinf(hits[i].t) ? -1 : b.item ? out_item[i] : 0;
     }
-    goto done;
-fail:
-    st = IACSG_ERR_OPENCL;
-done:
     release_trace_buffers(&b);
-    free(host);
     return st;
+fail:
+    release_trace_buffers(&b);
+    return IACSG_ERR_OPENCL;
 }

@@ -19,10 +19,9 @@ typedef struct {
 /* What a renderer keeps for its effects (render_internal.h: r->fx), made at the first use. */
 struct render_fx {
     cl_kernel trace; /* iacsg_trace_rays or iacsg_scene_trace_rays */
-    float *item_fx;  /* a scene's items: reflect, opacity (FX_ITEM_FLOATS each) */
+    float *item_reflect; /* a scene's items: their materials' reflect */
     int nitems;
 };
-#define FX_ITEM_FLOATS 2
 
 /* Makes r->fx (without its kernel) when it is not there yet. */
 iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err);
@@ -35,6 +34,8 @@ typedef struct {
     cl_mem params, all_groups;
     double root_w;    /* the secondary rays' tree, [0, root_w]: past every ray's exit from the bounds */
     double footprint; /* a pixel's footprint at the far end of the bounds: where interval Newton starts */
+    void *host;       /* the rays and hits of a call, in the working precision; grows, reused by each call */
+    size_t host_bytes;
 } fx_tracer;
 
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err);
