@@ -6,14 +6,15 @@
  * A ray is EFFECTS_RAY_REALS reals: origin (3), direction (3), and the part [tn, tf] to search (then clipped to
  * the bounds). Its tree is [0, root_w], root_w past every ray's exit from the bounds. Out: the start of the hit
  * leaf (+inf on a miss), never after the ray's first root in [tn, tf] within the bounds (packet.h's guarantee),
- * and, where `normal` is not NULL, the unit normal there facing the ray (0 on a miss).
+ * and, where `normal` is not NULL, the unit normal there facing the ray (0 on a miss); where `evals` is not NULL,
+ * the ray's interval evaluations (counted in a kernel built with KERNEL_STATS).
  */
 
 /* The groups of a union that matter, per segment of a secondary ray's tree: all of them (`all_groups`, SEGMENTS
  * ones), since no tile pass bounded these rays. */
 __kernel void iacsg_trace_rays(__constant ia_real *params, __global const ia_real *rays, int nrays, ia_real root_w,
                                ia_real eps, ia_real footprint, __global const ulong *all_groups, __global ia_real *hit_t,
-                               __global float *normal) {
+                               __global float *normal, __global uint *evals) {
     int first = (int)get_global_id(0) * IA_VW;
     if (first >= nrays)
         return;
@@ -43,8 +44,9 @@ __kernel void iacsg_trace_rays(__constant ia_real *params, __global const ia_rea
     ia_maskv hit = packet_first_root(all_groups, o, d, 0, root_w, (packet_int)0, (packet_index)0, t_near, t_far,
                                      searching, eps, footprint, 0, iav_const(time, params[PARAM_TIME_HI]), &lo, &hi,
                                      &counts);
-    (void)counts;
     ia_real t_out[IA_VW], n_out[3][IA_VW];
+    bisect_index count[IA_VW];
+    IAV_STORE(counts, count);
     IAV_STORE(select(IAV_R(IA_INF), lo, hit), t_out);
     if (normal) {
         ia_realv g[3] = {IAV_R(0), IAV_R(0), IAV_R(0)}, n[3];
@@ -59,5 +61,7 @@ __kernel void iacsg_trace_rays(__constant ia_real *params, __global const ia_rea
         if (normal)
             for (int c = 0; c < 3; c++)
                 normal[3 * (first + k) + c] = (float)n_out[c][k];
+        if (evals) /* with KERNEL_STATS (-stats); else 0 */
+            evals[first + k] = (uint)count[k];
     }
 }

@@ -2,12 +2,13 @@
  * shadow, reflected and antialiasing rays from the host's ray buffer (kernels/effects.h), each traced as a camera
  * ray is (scene_trace.h), one ray per work-item. The per-ray buffers have room for every solid of the scene
  * (src/render_scene.c, render_scene_trace_args), so no ray overflows. Out per ray: the claimed partition's start
- * (+inf when nothing is hit in [tn, tf] within the bounds), the unit normal there facing the ray, and the item.
+ * (+inf when nothing is hit in [tn, tf] within the bounds), the unit normal there facing the ray, the item, and
+ * where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS).
  */
 
 __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const ia_real *rays, int nrays, int first_ray,
                                      ia_real eps, __global ia_real *hit_t, __global float *normal, __global int *hit_item,
-                                     __global const ia_real *bvh_box, __global const int *bvh_link, int nbvh,
+                                     __global uint *evals, __global const ia_real *bvh_box, __global const int *bvh_link, int nbvh,
                                      __global const uint *nodes, __global const int *items,
                                      __global const int *solid_items_start, __global const int *solid_items,
                                      __global const int *surfaces, int nsurfaces, __global int *cand_solid,
@@ -39,6 +40,8 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
     found = found && tn <= tf && scene_trace_ray(&view, &r, o, d, tn, tf, &hit) == 1;
     hit_t[ray] = found ? hit.t : IA_INF;
     hit_item[ray] = found ? hit.item : -1;
+    if (evals) /* counted with KERNEL_STATS (-stats) */
+        evals[ray] = r.evals;
     ia_real g[3] = {0, 0, 0};
     if (found)
         scene_solid_f_grad(hit.solid, o[0] + hit.t * d[0], o[1] + hit.t * d[1], o[2] + hit.t * d[2],

@@ -341,6 +341,9 @@ static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const ia
         printf("per-ray buffers: %lld bytes a ray (%lld rays traced again with more room)\n", fr->ray_buffer_bytes,
                fr->retraced_rays);
     }
+    if (fr->secondary_rays > 0)
+        printf("secondary rays: %lld, interval evaluations per ray: mean %.2f\n", fr->secondary_rays,
+               fr->secondary_evals_mean);
     printf("kernel build: %.3f s\n", iacsg_renderer_build_seconds(r));
     printf("render: %.3f s\n", fr->render_seconds);
 }

@@ -150,7 +150,11 @@ typedef struct {
     long long overlaps;
     int overlap_pairs[IACSG_OVERLAP_PAIRS][2], noverlap_pairs;
     long long ray_buffer_bytes, retraced_rays;
-    double render_seconds; /* from the first kernel launch to the images in host memory */
+    double render_seconds; /* from the first kernel launch to the images in host memory, effects included */
+    /* The effects' secondary rays (shadow, reflected, transparent, antialiasing) and, with config.stats, their
+     * mean interval evaluations. */
+    long long secondary_rays;
+    double secondary_evals_mean;
 } iacsg_frame;
 
 /* The lights a scene file declares (`light` statements), as iacsg_effects takes them: copies them (at most

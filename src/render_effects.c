@@ -36,6 +36,8 @@ static const float fx_default_top[3] = {0.42f, 0.46f, 0.52f}, fx_default_bottom[
 /* -aa: a pixel is an edge where its centre ray's id differs from a neighbour's, or its colour by this much in a
  * channel (shadow and reflection edges), or its depth by this fraction. */
 #define FX_AA_CONTRAST (1.0 / 16)
+/* -aa's rays have leaves no narrower than a sample's footprint (at the bounds' farthest corner) / this. */
+#define FX_AA_EPS_PER_SAMPLE 4
 /* Paths are shaded this many pixels (or antialiasing rays) at a time: their buffers stay small and are reused. */
 #define FX_CHUNK ((size_t)1 << 15)
 #define FX_AA_DEPTH 0.02
@@ -369,15 +371,15 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
     return IACSG_OK;
 }
 
-/* Traces the rays of paths[0 .. n) into their hits. */
-static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, iacsg_error *err) {
+/* Traces the rays of paths[0 .. n) into their hits, with leaves of width eps. */
+static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double eps, iacsg_error *err) {
     fx_ray *rays = calloc(n + 1, sizeof *rays);
     fx_hit *hits = malloc((n + 1) * sizeof *hits);
     iacsg_status st = rays && hits ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         rays[i] = paths[i].ray;
     if (st == IACSG_OK)
-        st = fx_trace(&f->tracer, rays, n, f->view->eps, hits, err);
+        st = fx_trace(&f->tracer, rays, n, eps, hits, err);
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         paths[i].hit = hits[i];
     free(rays);
@@ -398,7 +400,7 @@ static iacsg_status run_paths(fx_frame *f, fx_path *first, size_t n, iacsg_error
         paths = kids;
         n = nk;
         if (st == IACSG_OK)
-            st = trace_paths(f, paths, n, err);
+            st = trace_paths(f, paths, n, f->view->eps, err);
     }
     if (paths != first)
         free(paths);
@@ -500,6 +502,11 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
         }
     iacsg_status st = IACSG_OK;
     size_t per_chunk = FX_CHUNK / ((size_t)aa * aa), k = 0;
+    /* The samples' leaves: eps, or a quarter of a sample's footprint where that is wider. A ray that passes that
+     * close to a surface may be shown hitting it, so a silhouette grows by at most a quarter of a sample; the
+     * samples only colour the pixel (its depth is the centre ray's). Rays grazing silhouettes are the costly
+     * ones: on the reference view (eps 1e-5) 136 evaluations a sample at eps, 73 so (the camera rays: 2.4). */
+    double aa_eps = fmax(f->view->eps, f->tracer.footprint / (FX_AA_EPS_PER_SAMPLE * aa));
     while (st == IACSG_OK && k < count) { /* the edge pixels in block order, per_chunk at a time */
         size_t n = 0, first = k;
         for (size_t pixels = 0; k < count && pixels < per_chunk; k++) {
@@ -518,7 +525,7 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
                     camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
                 }
         }
-        st = trace_paths(f, paths, n, err);
+        st = trace_paths(f, paths, n, aa_eps, err);
         if (st == IACSG_OK)
             st = run_paths(f, paths, n, err);
         for (size_t e = first; st == IACSG_OK && e < k; e++)
@@ -573,6 +580,8 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
         st = antialias(&f, frame, order, count, paths, err);
     free(order);
     free(paths);
+    frame->secondary_rays = f.tracer.rays;
+    frame->secondary_evals_mean = f.tracer.rays ? f.tracer.evals / (double)f.tracer.rays : 0;
     fx_tracer_close(&f.tracer);
     frame->render_seconds += render_now_seconds() - t0;
     return st;

@@ -10,7 +10,7 @@
 
 /* The device buffers of one call. */
 typedef struct trace_buffers {
-    cl_mem rays, t, normal, item;
+    cl_mem rays, t, normal, item, evals;
 } trace_buffers;
 
 iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err) {
@@ -86,9 +86,13 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
     t->all_groups = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof ones, ones, &rc);
     CLRT_CHECK(err, rc);
     t->root_w = root_width(view);
-    double p[PARAM_COUNT];
+    double p[PARAM_COUNT], far2 = 0;
     st = iacsg_camera_params(&view->camera, view->width, view->height, p, err);
-    t->footprint = 2 * p[PARAM_SCALE_V] / view->height * (view->camera.ortho_height > 0 ? 1 : t->root_w);
+    for (int k = 0; k < 3; k++) {
+        double e = view->camera.eye[k], lo = view->bounds[k], hi = view->bounds[k + 3];
+        far2 += fmax((e - lo) * (e - lo), (e - hi) * (e - hi));
+    }
+    t->footprint = 2 * p[PARAM_SCALE_V] / view->height * (view->camera.ortho_height > 0 ? 1 : sqrt(far2));
     return st;
 fail:
     return IACSG_ERR_OPENCL;
@@ -108,8 +112,8 @@ void fx_tracer_close(fx_tracer *t) {
 
 
 static void release_trace_buffers(trace_buffers *b) {
-    cl_mem all[] = {b->rays, b->t, b->normal, b->item};
-    for (int k = 0; k < 4; k++)
+    cl_mem all[] = {b->rays, b->t, b->normal, b->item, b->evals};
+    for (int k = 0; k < 5; k++)
         if (all[k])
             clReleaseMemObject(all[k]);
 }
@@ -134,6 +138,7 @@ static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const trace_buffers *
     CLRT_CHECK(err, clSetKernelArg(k, 6, sizeof(cl_mem), &t->all_groups));
     CLRT_CHECK(err, clSetKernelArg(k, 7, sizeof(cl_mem), &b->t));
     CLRT_CHECK(err, clSetKernelArg(k, 8, sizeof(cl_mem), &b->normal));
+    CLRT_CHECK(err, clSetKernelArg(k, 9, sizeof(cl_mem), b->evals ? &b->evals : NULL));
     size_t global = n > 0 ? ((size_t)n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */
     CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL));
     return IACSG_OK;
@@ -148,11 +153,11 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
     iacsg_renderer *r = t->r;
     void *held = NULL;
     size_t slots = n > 0 ? (size_t)n : 1; /* n = 0: one launch that traces nothing (compile_trace_now) */
-    iacsg_status st = render_scene_trace_args(r, t->view, k, 8, &slots, &held, err);
-    cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item};
-    cl_uint at[] = {0, 1, 5, 6, 7};
-    for (int a = 0; a < 5 && st == IACSG_OK; a++)
-        if (clSetKernelArg(k, at[a], sizeof(cl_mem), &args[a]) != CL_SUCCESS)
+    iacsg_status st = render_scene_trace_args(r, t->view, k, 9, &slots, &held, err);
+    cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item, b->evals};
+    cl_uint at[] = {0, 1, 5, 6, 7, 8};
+    for (int a = 0; a < 6 && st == IACSG_OK; a++)
+        if (clSetKernelArg(k, at[a], sizeof(cl_mem), args[a] ? &args[a] : NULL) != CL_SUCCESS)
             st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
                            clSetKernelArg(k, 4, real_bytes(r), eps_real) != CL_SUCCESS))
@@ -206,11 +211,12 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "too many secondary rays (%zu) in one pass", n);
     iacsg_renderer *r = t->r;
     size_t rb = real_bytes(r);
-    size_t bytes[4] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int)};
-    size_t at[4] = {0, page_round(bytes[0])};
-    at[2] = at[1] + page_round(bytes[1]);
-    at[3] = at[2] + page_round(bytes[2]);
-    iacsg_status st = reserve_scratch(t, at[3] + page_round(bytes[3]), err);
+    size_t bytes[5] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
+                       n * sizeof(cl_uint)};
+    size_t at[5] = {0};
+    for (int k = 1; k < 5; k++)
+        at[k] = at[k - 1] + page_round(bytes[k - 1]);
+    iacsg_status st = reserve_scratch(t, at[4] + page_round(bytes[4]), err);
     if (st != IACSG_OK)
         return st;
     char *host = t->host;
@@ -221,9 +227,11 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
             put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
     }
     trace_buffers b = {0};
-    cl_mem *dst[4] = {&b.rays, &b.t, &b.normal, &b.item};
+    cl_mem *dst[5] = {&b.rays, &b.t, &b.normal, &b.item, &b.evals};
     cl_int rc = CL_SUCCESS;
-    for (int k = 0; k < (r->scene ? 4 : 3); k++) {
+    for (int k = 0; k < 5; k++) {
+        if ((k == 3 && !r->scene) || (k == 4 && !r->config.stats))
+            continue;
         cl_mem_flags flags = (k == 0 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR;
         *dst[k] = clCreateBuffer(r->rt.context, flags, bytes[k], host + at[k], &rc);
         CLRT_CHECK(err, rc);
@@ -232,7 +240,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
     put_real(r, eps_block, 0, eps);
     st = r->scene ? launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err)
                   : launch_expr(t, r->fx->trace, &b, (cl_int)n, eps_block, err);
-    for (int k = 1; k < 4 && st == IACSG_OK; k++)
+    for (int k = 1; k < 5 && st == IACSG_OK; k++)
         if (*dst[k])
             st = sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
     const float *out_n = (const float *)(void *)(host + at[2]);
@@ -242,7 +250,9 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
                                    : ((const float *)(void *)(host + at[1]))[i];
         memcpy(hits[i].n, out_n + 3 * i, sizeof hits[i].n);
         hits[i].item = isinf(hits[i].t) ? -1 : b.item ? out_item[i] : 0;
+        t->evals += b.evals ? ((const cl_uint *)(void *)(host + at[4]))[i] : 0;
     }
+    t->rays += (long long)n;
     release_trace_buffers(&b);
     return st;
 fail:

@@ -33,8 +33,10 @@ typedef struct {
     const iacsg_view *view;
     cl_mem params, all_groups;
     double root_w;    /* the secondary rays' tree, [0, root_w]: past every ray's exit from the bounds */
-    double footprint; /* a pixel's footprint at the far end of the bounds: where interval Newton starts */
+    double footprint; /* a pixel's footprint at the bounds' farthest corner: where interval Newton starts */
     void *host;       /* the rays and hits of a call, in the working precision; grows, reused by each call */
+    long long rays;   /* secondary rays traced, and their interval evaluations (with config.stats) */
+    double evals;
     size_t host_bytes;
 } fx_tracer;
 
