@@ -43,7 +43,7 @@ static double root_width(const iacsg_view *v) {
 }
 
 static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
-                                iacsg_error *err);
+                                double newton, iacsg_error *err);
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
                                  iacsg_error *err);
 
@@ -53,7 +53,7 @@ static iacsg_status compile_trace_now(fx_tracer *t, iacsg_error *err) {
     struct trace_buffers none = {0};
     double eps[1] = {0};
     return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, err)
-                       : launch_expr(t, t->r->fx->trace, &none, 0, eps, err);
+                       : launch_expr(t, t->r->fx->trace, &none, 0, eps, 0, err);
 }
 
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
@@ -120,14 +120,14 @@ static void release_trace_buffers(trace_buffers *b) {
 
 /* The first-root path: arguments of kernels/effects.cl, one launch of n / 16 work-items. */
 static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
-                                iacsg_error *err) {
+                                double newton, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     size_t rb = real_bytes(r);
     double reals[2];
     put_real(r, reals, 0, t->root_w);
     char w_real[8], fp_real[8];
     memcpy(w_real, reals, rb);
-    put_real(r, reals, 0, t->footprint);
+    put_real(r, reals, 0, newton);
     memcpy(fp_real, reals, rb);
     CLRT_CHECK(err, clSetKernelArg(k, 0, sizeof(cl_mem), &t->params));
     CLRT_CHECK(err, clSetKernelArg(k, 1, sizeof(cl_mem), &b->rays));
@@ -204,7 +204,8 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err) {
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, double newton, fx_hit *hits,
+                      iacsg_error *err) {
     if (n == 0)
         return IACSG_OK;
     if (n > 0x7fffffff / EFFECTS_RAY_REALS)
@@ -239,7 +240,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
     double eps_block[1];
     put_real(r, eps_block, 0, eps);
     st = r->scene ? launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err)
-                  : launch_expr(t, r->fx->trace, &b, (cl_int)n, eps_block, err);
+                  : launch_expr(t, r->fx->trace, &b, (cl_int)n, eps_block, newton, err);
     for (int k = 1; k < 5 && st == IACSG_OK; k++)
         if (*dst[k])
             st = sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
