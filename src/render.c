@@ -396,7 +396,7 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = render_image_alloc(3 * n);
-    int fx = render_effects_need_aovs(view);
+    int fx = render_effects_need_aovs(r, view);
     int need_depth = !view->no_depth || !view->no_ids || fx; /* the ids come from the depth */
     frame->depth = need_depth ? render_image_alloc(n) : NULL;
     frame->normal = view->no_normals && !fx ? NULL : render_image_alloc(3 * n);

@@ -39,11 +39,11 @@ static const float fx_default_top[3] = {0.42f, 0.46f, 0.52f}, fx_default_bottom[
 /* -aa: a pixel is an edge where its centre ray's id differs from a neighbour's, or its colour by this much in a
  * channel (shadow and reflection edges), or its depth by this fraction. */
 #define FX_AA_CONTRAST (1.0 / 16)
+#define FX_AA_DEPTH 0.02
 /* -aa's rays have leaves no narrower than a sample's footprint (at the bounds' farthest corner) / this. */
 #define FX_AA_EPS_PER_SAMPLE 4
 /* Paths are shaded this many pixels (or antialiasing rays) at a time: their buffers stay small and are reused. */
 #define FX_CHUNK ((size_t)1 << 15)
-#define FX_AA_DEPTH 0.02
 
 typedef struct {
     double v[3];      /* point: the position; dir: the unit direction towards the light */
@@ -77,13 +77,21 @@ typedef struct {
     float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
 } fx_frame;
 
-/* Whether the effects do anything: else the frame is the plain render, untouched. */
-static int effects_on(const iacsg_effects *e) {
-    return e && (e->shade != IACSG_SHADE_LIT || e->background || e->nlights > 0 || e->shadows ||
-                 e->bounces > 0 || e->reflect > 0 || e->transparency > 0 || e->aa > 1);
+/* Whether a material of the renderer's reflects light (an expression's: e->reflect). */
+static int reflects(const iacsg_renderer *r, const iacsg_effects *e) {
+    int any = !r->scene && e->reflect > 0;
+    for (int i = 0; r->scene && r->fx && i < r->fx->nitems; i++)
+        any |= r->fx->item_reflect[i] > 0;
+    return any;
 }
 
-int render_effects_need_aovs(const iacsg_view *view) { return effects_on(view->effects); }
+/* Whether the effects do anything: else the frame is the plain render, untouched. */
+static int effects_on(const iacsg_renderer *r, const iacsg_effects *e) {
+    return e && (e->shade != IACSG_SHADE_LIT || e->background || e->nlights > 0 || e->shadows ||
+                 (e->bounces > 0 && reflects(r, e)) || e->transparency > 0 || e->aa > 1);
+}
+
+int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view) { return effects_on(r, view->effects); }
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -422,13 +430,8 @@ static void traced_rows(const iacsg_view *v, int *row0, int *row1) {
  * shadow, no reflection, no transparency), so that the kernel's colours stand. */
 static int kernel_colors_hold(const fx_frame *f) {
     const iacsg_effects *e = f->e;
-    int reflects = 0;
-    if (e->bounces > 0 && f->r->scene && f->r->fx)
-        for (int i = 0; i < f->r->fx->nitems; i++)
-            reflects |= f->r->fx->item_reflect[i] > 0;
-    if (e->bounces > 0 && !f->r->scene)
-        reflects = e->reflect > 0;
-    return e->shade == IACSG_SHADE_LIT && e->nlights == 0 && !e->shadows && !reflects && e->transparency == 0;
+    return e->shade == IACSG_SHADE_LIT && e->nlights == 0 && !e->shadows && !(e->bounces > 0 && reflects(f->r, e)) &&
+           e->transparency == 0;
 }
 
 /* The pixels of the traced rows in blocks of 4x4, the order their paths are listed in, so that the secondary
@@ -542,7 +545,7 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
 }
 
 iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err) {
-    if (!effects_on(view->effects))
+    if (!effects_on(r, view->effects))
         return IACSG_OK;
     double t0 = render_now_seconds();
     fx_frame f = {0};

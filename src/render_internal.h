@@ -59,7 +59,7 @@ const float *render_scene_materials(const iacsg_renderer *r); /* SCENE_MATERIAL_
 /* The effects of a frame, after its camera rays (render_effects.c): a no-op without view->effects. */
 iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
 /* Whether the effects need the frame's depth and normals (which the frame then computes, and drops after). */
-int render_effects_need_aovs(const iacsg_view *view);
+int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view);
 /* Keeps what the effects need of a scene's materials (its items' reflect). */
 iacsg_status render_effects_keep_scene(iacsg_renderer *r, const struct iacsg_scene *s, iacsg_error *err);
 void render_effects_free(render_fx *fx);

@@ -424,7 +424,7 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = render_image_alloc(3 * n);
-    int fx = render_effects_need_aovs(view);
+    int fx = render_effects_need_aovs(r, view);
     frame->depth = view->no_depth && !fx ? NULL : render_image_alloc(n);
     frame->normal = view->no_normals && !fx ? NULL : render_image_alloc(3 * n);
     frame->ids = render_image_alloc(n); /* the overlaps' statistics need them */
