@@ -65,6 +65,24 @@ typedef struct {
     double specular, shininess, reflect, opacity;
 } fx_material;
 
+/* A buffer that only grows: a frame's passes reuse its pages (a malloc and free per pass of several MB went to
+ * mmap and back, and its pages faulted in each time). */
+typedef struct {
+    void *p;
+    size_t bytes;
+} fx_buf;
+
+static void *reserve(fx_buf *b, size_t bytes) {
+    if (bytes > b->bytes) {
+        free(b->p);
+        b->bytes = 0;
+        if (!(b->p = malloc(bytes)))
+            return NULL;
+        b->bytes = bytes;
+    }
+    return b->p;
+}
+
 typedef struct {
     iacsg_renderer *r;
     const iacsg_view *view;
@@ -75,6 +93,9 @@ typedef struct {
     int nlights;
     double depth_lo, depth_hi; /* the centre hits' range, for -shade depth */
     float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
+    /* scratch: shadow rays, their hits, which ray each (path, light) cast (-1: none); the generations of paths
+     * (two, in turn); the rays and hits of a generation */
+    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits;
 } fx_frame;
 
 /* Whether a material of the renderer's reflects light (an expression's: e->reflect). */
@@ -276,50 +297,32 @@ static void add(float *accum, int pixel, double w, const double lin[3]) {
         accum[3 * (size_t)pixel + c] += (float)(w * lin[c]);
 }
 
-/* Adds the colours of paths[0 .. n) that their hits give now, lit with shadow rays (traced first); *out gets
- * their children, reflected and transmitted rays not yet traced (*nout of them, malloc'ed). */
-static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n, fx_path **out, size_t *nout,
+/* Adds the colours of paths[0 .. n) that their hits give now, lit with shadow rays (traced first); kids gets
+ * their children, reflected and transmitted rays not yet traced (*nout of them, at most 2n). */
+static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n, fx_path *kids, size_t *nout,
                                      iacsg_error *err) {
     const iacsg_effects *e = f->e;
     int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
     size_t nl = (size_t)f->nlights, nshadow = 0;
     unsigned char *seen = NULL;
-    fx_ray *rays = NULL;
-    fx_hit *hits = NULL;
-    fx_path *kids = malloc((2 * n + 1) * sizeof *kids);
-    if (lit && e->shadows) {
-        seen = malloc(n * nl + 1);
-        rays = calloc(n * nl + 1, sizeof *rays);
-        hits = malloc((n * nl + 1) * sizeof *hits);
-    }
-    if (!kids || (lit && e->shadows && (!seen || !rays || !hits))) {
-        free(kids);
-        free(seen);
-        free(rays);
-        free(hits);
-        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-    }
-    if (seen) { /* one shadow ray per hit and light in front of it */
-        for (size_t i = 0; i < n; i++)
-            for (size_t l = 0; l < nl; l++)
-                if (paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[nshadow]))
-                    nshadow++;
-        iacsg_status st = fx_trace(&f->tracer, rays, nshadow, FX_SHADOW_EPS_FACTOR * f->view->eps, f->tracer.root_w,
-                                   hits, err);
-        if (st != IACSG_OK) {
-            free(kids);
-            free(seen);
-            free(rays);
-            free(hits);
-            return st;
-        }
-        size_t k = 0; /* the same order as the rays were listed */
+    if (lit && e->shadows) { /* one shadow ray per hit and light in front of it */
+        fx_ray *rays = reserve(&f->shadow_rays, (n * nl + 1) * sizeof *rays);
+        fx_hit *hits = reserve(&f->shadow_hits, (n * nl + 1) * sizeof *hits);
+        long *ray_of = reserve(&f->shadow_of, (n * nl + 1) * sizeof *ray_of);
+        if (!rays || !hits || !ray_of)
+            return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
         for (size_t i = 0; i < n; i++)
             for (size_t l = 0; l < nl; l++) {
-                fx_ray unused;
-                int cast = paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &unused);
-                seen[i * nl + l] = cast ? isinf(hits[k++].t) : 0;
+                int cast = paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[nshadow]);
+                ray_of[i * nl + l] = cast ? (long)nshadow++ : -1;
             }
+        iacsg_status st = fx_trace(&f->tracer, rays, nshadow, FX_SHADOW_EPS_FACTOR * f->view->eps, f->tracer.root_w,
+                                   hits, err);
+        if (st != IACSG_OK)
+            return st;
+        seen = (unsigned char *)ray_of; /* in place: entry k is read before byte k is written */
+        for (size_t k = 0; k < n * nl; k++)
+            seen[k] = ray_of[k] >= 0 && isinf(hits[ray_of[k]].t);
     }
     size_t nkids = 0;
     for (size_t i = 0; i < n; i++) {
@@ -375,10 +378,6 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             c->ray.tf = INFINITY;
         }
     }
-    free(seen);
-    free(rays);
-    free(hits);
-    *out = kids;
     *nout = nkids;
     return IACSG_OK;
 }
@@ -386,8 +385,8 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
 /* Traces the rays of paths[0 .. n) into their hits, with leaves of width eps, Newton's window `newton`
  * (fx_trace). */
 static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double eps, double newton, iacsg_error *err) {
-    fx_ray *rays = calloc(n + 1, sizeof *rays);
-    fx_hit *hits = malloc((n + 1) * sizeof *hits);
+    fx_ray *rays = reserve(&f->rays, (n + 1) * sizeof *rays);
+    fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
     iacsg_status st = rays && hits ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         rays[i] = paths[i].ray;
@@ -395,8 +394,6 @@ static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double ep
         st = fx_trace(&f->tracer, rays, n, eps, newton, hits, err);
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         paths[i].hit = hits[i];
-    free(rays);
-    free(hits);
     return st;
 }
 
@@ -404,19 +401,16 @@ static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double ep
 static iacsg_status run_paths(fx_frame *f, fx_path *first, size_t n, iacsg_error *err) {
     iacsg_status st = IACSG_OK;
     fx_path *paths = first;
-    while (n > 0 && st == IACSG_OK) {
-        fx_path *kids = NULL;
+    for (int g = 0; n > 0 && st == IACSG_OK; g = 1 - g) { /* a path has at most 2 children */
+        fx_path *kids = reserve(&f->kids[g], (2 * n + 1) * sizeof *kids);
         size_t nk = 0;
-        st = shade_generation(f, paths, n, &kids, &nk, err);
-        if (paths != first)
-            free(paths);
+        st = kids ? shade_generation(f, paths, n, kids, &nk, err)
+                  : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
         paths = kids;
         n = nk;
         if (st == IACSG_OK)
             st = trace_paths(f, paths, n, f->view->eps, f->tracer.root_w, err);
     }
-    if (paths != first)
-        free(paths);
     return st;
 }
 
@@ -588,6 +582,9 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
         st = antialias(&f, frame, order, count, paths, err);
     free(order);
     free(paths);
+    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1], &f.rays, &f.hits};
+    for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
+        free(bufs[k]->p);
     frame->secondary_rays = f.tracer.rays;
     frame->secondary_evals_mean = f.tracer.rays ? f.tracer.evals / (double)f.tracer.rays : 0;
     fx_tracer_close(&f.tracer);
