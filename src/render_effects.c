@@ -23,7 +23,7 @@
 
 /* A shadow ray's leaves, in eps: as wide as the camera rays' (the seed allows coarser). Coarser leaves need a
  * start as much farther off the surface (offset_of), which then hides occluders that close, and show a near
- * miss as a shadow. Measured on the reference view (1024x1024, eps 1e-5), interval evaluations per shadow ray:
+ * miss as a shadow. Measured on min(sphere, torus) (1024x1024, eps 1e-5), interval evaluations per shadow ray:
  * 9.1 at 1 eps, 7.6 at 4, 6.1 at 16, 4.6 at 64; the shadow pass is a small part of the effects' cost
  * (BENCHMARKS.md), so the rigour of the camera rays is kept. */
 #define FX_SHADOW_EPS_FACTOR 1.0
@@ -507,7 +507,7 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
     /* The samples' leaves: eps, or a quarter of a sample's footprint where that is wider. A ray that passes that
      * close to a surface may be shown hitting it, so a silhouette grows by at most a quarter of a sample; the
      * samples only colour the pixel (its depth is the centre ray's). Rays grazing silhouettes are the costly
-     * ones: on the reference view (eps 1e-5) 136 evaluations a sample at eps, 73 so (the camera rays: 2.4). */
+     * ones: on min(sphere, torus) (eps 1e-5) 136 evaluations a sample at eps, 73 so (the camera rays: 2.4). */
     double aa_eps = fmax(f->view->eps, f->tracer.footprint / (FX_AA_EPS_PER_SAMPLE * aa));
     while (st == IACSG_OK && k < count) { /* the edge pixels in block order, per_chunk at a time */
         size_t n = 0, first = k;
