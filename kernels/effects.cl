@@ -7,7 +7,8 @@
  * the bounds). Its tree is [0, root_w], root_w past every ray's exit from the bounds. Out: the start of the hit
  * leaf (+inf on a miss), never after the ray's first root in [tn, tf] within the bounds (packet.h's guarantee),
  * and, where `normal` is not NULL, the unit normal there facing the ray (0 on a miss); where `evals` is not NULL,
- * the ray's interval evaluations (counted in a kernel built with KERNEL_STATS).
+ * the ray's interval evaluations (counted in a kernel built with KERNEL_STATS). The normals are render.cl's
+ * packet_gradients (this file is appended to the first-root path's program after render.cl).
  */
 
 /* The groups of a union that matter, per segment of a secondary ray's tree: all of them (`all_groups`, SEGMENTS
