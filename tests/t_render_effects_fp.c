@@ -394,3 +394,30 @@ TEST_FP(effects_transparent_layers) {
     CHECK(checked > 500, "only %ld pixels checked", checked);
     test_note("%ld pixels through four layers within %.1e of the compositing formula", checked, worst);
 }
+
+/* The AOVs stay the centre ray's: with -aa 4, shadows and reflections the depth, normals and ids are those of
+ * the plain render, byte for byte, on both paths (only the colours change). */
+TEST_FP(effects_aovs_unchanged) {
+    const char *texts[2] = {"min(sphere, torus)",
+                            "material m = rgb(1, 0, 0) reflect 0.4\nregion a = sphere : m\nregion b = torus\n"};
+    iacsg_view view = sphere_ortho_view(64);
+    view.camera = (iacsg_camera){.eye = {3, -2.5, 2}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 40};
+    view.bounds[2] = -2, view.bounds[5] = 2;
+    iacsg_effects fx = {.aa = 4, .shadows = 1, .bounces = 2, .reflect = 0.3};
+    for (int s = 0; s < 2; s++) {
+        iacsg_frame plain, effects;
+        view.effects = NULL;
+        render_scene_text(texts[s], &view, &plain);
+        view.effects = &fx;
+        render_scene_text(texts[s], &view, &effects);
+        size_t n = (size_t)view.width * view.height;
+        int same = !memcmp(plain.depth, effects.depth, n * sizeof(float)) &&
+                   !memcmp(plain.normal, effects.normal, 3 * n * sizeof(float)) &&
+                   !memcmp(plain.ids, effects.ids, n * sizeof(float));
+        int recoloured = memcmp(plain.rgb, effects.rgb, 3 * n * sizeof(float)) != 0;
+        iacsg_frame_free(&plain);
+        iacsg_frame_free(&effects);
+        CHECK(same, "%s: the effects changed the depth, normals or ids", s ? "regions" : "expression");
+        CHECK(recoloured, "%s: the effects changed no colour", s ? "regions" : "expression");
+    }
+}
