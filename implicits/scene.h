@@ -23,8 +23,7 @@ typedef struct {
     char *name;
     float rgb[3];              /* linear albedo in [0, 1] */
     float specular, shininess; /* optional keywords; defaults SCENE_DEFAULT_SPECULAR, _SHININESS */
-    float reflect, opacity;    /* the reflected fraction (0: src/render_effects.c) and opacity (1; regions are
-                                * rendered opaque as yet) */
+    float reflect, opacity;    /* the reflected fraction (0) and opacity (1): src/render_effects.c */
 } scene_material;
 
 /* The first-root path's highlight (kernels/light.h), so that a solid looks the same on either path. */

@@ -3,12 +3,14 @@
  * ray is (scene_trace.h), one ray per work-item. The per-ray buffers have room for every solid of the scene
  * (src/render_scene.c, render_scene_trace_args), so no ray overflows. Out per ray: the claimed partition's start
  * (+inf when nothing is hit in [tn, tf] within the bounds), the unit normal there facing the ray, the item, and
- * where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS).
+ * where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS). A ray continued through a transparent
+ * region starts inside it and passes through it (passing[ray]: 1 + the region, weave.h).
  */
 
 __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const ia_real *rays, int nrays, int first_ray,
                                      ia_real eps, __global ia_real *hit_t, __global float *normal, __global int *hit_item,
-                                     __global uint *evals, __global const ia_real *bvh_box, __global const int *bvh_link, int nbvh,
+                                     __global uint *evals, __global const int *passing,
+                                     __global const ia_real *bvh_box, __global const int *bvh_link, int nbvh,
                                      __global const uint *nodes, __global const int *items,
                                      __global const int *solid_items_start, __global const int *solid_items,
                                      __global const int *surfaces, int nsurfaces, __global int *cand_solid,
@@ -30,7 +32,8 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
                    .walks = {cand_solid + c0, cand_range + 2 * c0, cand_pos + c0, cand_level + c0, cand_index + c0,
                              cand_newton + c0, cand_newton_t + 2 * c0},
                    .cand_cap = cand_cap,
-                   .state = state + slot * (size_t)nstates};
+                   .state = state + slot * (size_t)nstates,
+                   .passing = passing ? passing[ray] : 0};
     const __global ia_real *q = rays + EFFECTS_RAY_REALS * (size_t)ray;
     ia_real o[3] = {q[0], q[1], q[2]}, d[3] = {q[3], q[4], q[5]}, tn, tf;
     weave_hit hit = {0, -1, -1, -1};

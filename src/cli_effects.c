@@ -139,7 +139,7 @@ int cli_effects_from_scene(iacsg_effects *e, const iacsg_scene *s) {
     if (s->nlights > 0)
         return 1;
     for (int m = 0; m < s->nmaterials; m++)
-        if (s->materials[m].reflect > 0)
+        if (s->materials[m].reflect > 0 || s->materials[m].opacity < 1)
             return 1;
     return 0;
 }

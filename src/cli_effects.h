@@ -13,7 +13,7 @@ void cli_effects_init(iacsg_effects *e);
 int cli_effects_option(int argc, char **argv, int *k, iacsg_effects *e, int *given);
 
 /* Takes a scene's lights (unless -light gave some); returns whether the scene needs the effects: it declares
- * lights, or its materials reflect. */
+ * lights, or its materials reflect or let light through. */
 int cli_effects_from_scene(iacsg_effects *e, const iacsg_scene *s);
 
 #endif

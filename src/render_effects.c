@@ -102,14 +102,22 @@ typedef struct {
 static int reflects(const iacsg_renderer *r, const iacsg_effects *e) {
     int any = !r->scene && e->reflect > 0;
     for (int i = 0; r->scene && r->fx && i < r->fx->nitems; i++)
-        any |= r->fx->item_reflect[i] > 0;
+        any |= r->fx->items[i].reflect > 0;
+    return any;
+}
+
+/* Whether a material of the renderer's lets light through (an expression's: e->transparency). */
+static int transparent(const iacsg_renderer *r, const iacsg_effects *e) {
+    int any = !r->scene && e->transparency > 0;
+    for (int i = 0; r->scene && r->fx && i < r->fx->nitems; i++)
+        any |= r->fx->items[i].opacity < 1;
     return any;
 }
 
 /* Whether the effects do anything: else the frame is the plain render, untouched. */
 static int effects_on(const iacsg_renderer *r, const iacsg_effects *e) {
     return e && (e->shade != IACSG_SHADE_LIT || e->background || e->nlights > 0 || e->shadows ||
-                 (e->bounces > 0 && reflects(r, e)) || e->transparency > 0 || e->aa > 1);
+                 (e->bounces > 0 && reflects(r, e)) || transparent(r, e) || e->aa > 1);
 }
 
 int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view) { return effects_on(r, view->effects); }
@@ -136,6 +144,7 @@ static void camera_ray_at(const fx_frame *f, double x, double y, fx_ray *ray) {
     normalize3(ray->d);
     ray->tn = 0;
     ray->tf = INFINITY;
+    ray->passing = 0;
 }
 
 /* The lights: the view's, or the default rig, the plain render's key and fill lights fixed to the camera. */
@@ -194,10 +203,8 @@ static void material_of(const fx_frame *f, int item, fx_material *m) {
         m->rgb[c] = a[SCENE_MATERIAL_RGB + c];
     m->specular = a[SCENE_MATERIAL_SPECULAR];
     m->shininess = a[SCENE_MATERIAL_SHININESS];
-    m->reflect = fx && item < fx->nitems ? fx->item_reflect[item] : 0;
-    /* A ray continued inside a region would be claimed by it again at once (the weave claims the first partition
-     * a region may be in), and finding where it leaves needs the weave to pass it over: regions are opaque. */
-    m->opacity = 1;
+    m->reflect = fx && item < fx->nitems ? fx->items[item].reflect : 0;
+    m->opacity = fx && item < fx->nitems ? fx->items[item].opacity : 1;
 }
 
 /* How far a secondary ray starts off its hit: past the hit leaf's distance from the surface (a few eps) and the
@@ -240,6 +247,7 @@ static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx
         ray->o[k] = p[k] + off * n[k];
     ray->tf = towards(L, ray->o, ray->d);
     ray->tn = 0;
+    ray->passing = 0;
     return 1;
 }
 
@@ -362,6 +370,7 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             normalize3(c->ray.d);
             c->ray.tn = 0;
             c->ray.tf = INFINITY;
+            c->ray.passing = 0;
         }
         double through = q->w * (1 - a);
         if (through > 0 && (through < FX_MIN_WEIGHT || q->layers + 1 >= FX_MAX_LAYERS)) {
@@ -376,6 +385,9 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
                 c->ray.o[j] = p[j] - off * n3[j];
             c->ray.tn = 0;
             c->ray.tf = INFINITY;
+            /* a region is a volume: the ray, now inside it, passes through it to what lies behind (one layer
+             * where it enters); a surface is crossed like the expression's */
+            c->ray.passing = f->r->scene && f->r->fx->items[q->hit.item].region ? 1 + q->hit.item : 0;
         }
     }
     *nout = nkids;
@@ -425,7 +437,7 @@ static void traced_rows(const iacsg_view *v, int *row0, int *row1) {
 static int kernel_colors_hold(const fx_frame *f) {
     const iacsg_effects *e = f->e;
     return e->shade == IACSG_SHADE_LIT && e->nlights == 0 && !e->shadows && !(e->bounces > 0 && reflects(f->r, e)) &&
-           e->transparency == 0;
+           !transparent(f->r, e);
 }
 
 /* The pixels of the traced rows in blocks of 4x4, the order their paths are listed in, so that the secondary
@@ -597,13 +609,15 @@ iacsg_status render_effects_keep_scene(iacsg_renderer *r, const iacsg_scene *s, 
     iacsg_status st = fx_of(r, &fx, err);
     if (st != IACSG_OK)
         return st;
-    fx->item_reflect = malloc(sizeof(float) * (size_t)(s->nitems + 1));
-    if (!fx->item_reflect)
+    fx->items = malloc(sizeof *fx->items * (size_t)(s->nitems + 1));
+    if (!fx->items)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     fx->nitems = s->nitems;
     for (int i = 0; i < s->nitems; i++) {
         int m = s->items[i].material;
-        fx->item_reflect[i] = m >= 0 ? s->materials[m].reflect : 0;
+        fx->items[i].reflect = m >= 0 ? s->materials[m].reflect : 0;
+        fx->items[i].opacity = m >= 0 ? s->materials[m].opacity : 1;
+        fx->items[i].region = s->items[i].kind == SCENE_REGION;
     }
     return IACSG_OK;
 }
@@ -624,6 +638,6 @@ void render_effects_free(render_fx *fx) {
         return;
     if (fx->trace)
         clReleaseKernel(fx->trace);
-    free(fx->item_reflect);
+    free(fx->items);
     free(fx);
 }

@@ -10,7 +10,7 @@
 
 /* The device buffers of one call. */
 typedef struct trace_buffers {
-    cl_mem rays, t, normal, item, evals;
+    cl_mem rays, t, normal, item, evals, passing;
 } trace_buffers;
 
 iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err) {
@@ -112,8 +112,8 @@ void fx_tracer_close(fx_tracer *t) {
 
 
 static void release_trace_buffers(trace_buffers *b) {
-    cl_mem all[] = {b->rays, b->t, b->normal, b->item, b->evals};
-    for (int k = 0; k < 5; k++)
+    cl_mem all[] = {b->rays, b->t, b->normal, b->item, b->evals, b->passing};
+    for (int k = 0; k < 6; k++)
         if (all[k])
             clReleaseMemObject(all[k]);
 }
@@ -153,10 +153,10 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
     iacsg_renderer *r = t->r;
     void *held = NULL;
     size_t slots = n > 0 ? (size_t)n : 1; /* n = 0: one launch that traces nothing (compile_trace_now) */
-    iacsg_status st = render_scene_trace_args(r, t->view, k, 9, &slots, &held, err);
-    cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item, b->evals};
-    cl_uint at[] = {0, 1, 5, 6, 7, 8};
-    for (int a = 0; a < 6 && st == IACSG_OK; a++)
+    iacsg_status st = render_scene_trace_args(r, t->view, k, 10, &slots, &held, err);
+    cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item, b->evals, b->passing};
+    cl_uint at[] = {0, 1, 5, 6, 7, 8, 9};
+    for (int a = 0; a < 7 && st == IACSG_OK; a++)
         if (clSetKernelArg(k, at[a], sizeof(cl_mem), args[a] ? &args[a] : NULL) != CL_SUCCESS)
             st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
@@ -212,12 +212,12 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, do
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "too many secondary rays (%zu) in one pass", n);
     iacsg_renderer *r = t->r;
     size_t rb = real_bytes(r);
-    size_t bytes[5] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
-                       n * sizeof(cl_uint)};
-    size_t at[5] = {0};
-    for (int k = 1; k < 5; k++)
+    size_t bytes[6] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
+                       n * sizeof(cl_uint), n * sizeof(cl_int)};
+    size_t at[6] = {0};
+    for (int k = 1; k < 6; k++)
         at[k] = at[k - 1] + page_round(bytes[k - 1]);
-    iacsg_status st = reserve_scratch(t, at[4] + page_round(bytes[4]), err);
+    iacsg_status st = reserve_scratch(t, at[5] + page_round(bytes[5]), err);
     if (st != IACSG_OK)
         return st;
     char *host = t->host;
@@ -226,14 +226,15 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, do
         double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
         for (int k = 0; k < EFFECTS_RAY_REALS; k++)
             put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
+        ((cl_int *)(void *)(host + at[5]))[i] = y->passing;
     }
     trace_buffers b = {0};
-    cl_mem *dst[5] = {&b.rays, &b.t, &b.normal, &b.item, &b.evals};
+    cl_mem *dst[6] = {&b.rays, &b.t, &b.normal, &b.item, &b.evals, &b.passing};
     cl_int rc = CL_SUCCESS;
-    for (int k = 0; k < 5; k++) {
-        if ((k == 3 && !r->scene) || (k == 4 && !r->config.stats))
+    for (int k = 0; k < 6; k++) {
+        if (((k == 3 || k == 5) && !r->scene) || (k == 4 && !r->config.stats))
             continue;
-        cl_mem_flags flags = (k == 0 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR;
+        cl_mem_flags flags = (k == 0 || k == 5 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR;
         *dst[k] = clCreateBuffer(r->rt.context, flags, bytes[k], host + at[k], &rc);
         CLRT_CHECK(err, rc);
     }
@@ -241,7 +242,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, do
     put_real(r, eps_block, 0, eps);
     st = r->scene ? launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err)
                   : launch_expr(t, r->fx->trace, &b, (cl_int)n, eps_block, newton, err);
-    for (int k = 1; k < 5 && st == IACSG_OK; k++)
+    for (int k = 1; k < 5 && st == IACSG_OK; k++) /* the outputs */
         if (*dst[k])
             st = sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
     const float *out_n = (const float *)(void *)(host + at[2]);

@@ -8,6 +8,7 @@
 typedef struct {
     double o[3], d[3]; /* origin, direction (unit) */
     double tn, tf;     /* the part searched, then clipped to the bounds */
+    int passing;       /* the segment path: 1 + a region the ray starts in and passes through (weave.h), or 0 */
 } fx_ray;
 
 typedef struct {
@@ -16,10 +17,15 @@ typedef struct {
     int item;   /* the region or surface hit (an expression: 0), -1 on a miss */
 } fx_hit;
 
+typedef struct {
+    float reflect, opacity;
+    int region; /* a region (a volume: a ray passes through it) rather than a surface */
+} fx_item;
+
 /* What a renderer keeps for its effects (render_internal.h: r->fx), made at the first use. */
 struct render_fx {
     cl_kernel trace; /* iacsg_trace_rays or iacsg_scene_trace_rays */
-    float *item_reflect; /* a scene's items: their materials' reflect */
+    fx_item *items;  /* a scene's items' materials, as the effects need them */
     int nitems;
 };
 

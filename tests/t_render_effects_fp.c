@@ -421,3 +421,51 @@ TEST_FP(effects_aovs_unchanged) {
         CHECK(recoloured, "%s: the effects changed no colour", s ? "regions" : "expression");
     }
 }
+
+/* A half-transparent region: a slab of opacity 1/2 in front of an opaque sphere, as regions, seen along -z. A
+ * region is a volume, one layer where a ray enters it: through both, a pixel is half the slab's lit colour and
+ * half the sphere's, in linear light, each as the plain render of a scene holding it alone shows it. */
+TEST_FP(effects_transparent_region) {
+    iacsg_view view = sphere_ortho_view(96);
+    view.bounds[5] = 1.5;
+    const char *slab = "move(box(0.6, 0.6, 0.1), 0, 0, 1)", *ball = "sphere(0.5)";
+    char both[512], slab_only[256], ball_only[256];
+    snprintf(both, sizeof both,
+             "material glass = rgb(0.3, 0.6, 0.9) opacity 0.5\nmaterial clay = rgb(0.8, 0.52, 0.28)\n"
+             "region s = %s : glass\nregion b = %s : clay\n", slab, ball);
+    snprintf(slab_only, sizeof slab_only, "material glass = rgb(0.3, 0.6, 0.9)\nregion s = %s : glass\n", slab);
+    snprintf(ball_only, sizeof ball_only, "material clay = rgb(0.8, 0.52, 0.28)\nregion b = %s : clay\n", ball);
+    iacsg_frame fr, front, back;
+    iacsg_effects fx = {0}; /* none of the options: the material's opacity is the effect */
+    view.effects = &fx;
+    render_scene_text(both, &view, &fr);
+    view.effects = NULL;
+    render_scene_text(slab_only, &view, &front);
+    render_scene_text(ball_only, &view, &back);
+    long checked = 0;
+    double worst = 0;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 0; i < view.width; i++) {
+            double half = view.camera.ortho_height / 2;
+            double s = (2 * (i + 0.5) / view.width - 1) * half, v = (1 - 2 * (j + 0.5) / view.height) * half;
+            if (s * s + v * v > 0.45 * 0.45)
+                continue;
+            size_t px = (size_t)j * view.width + i;
+            int saturated = 0; /* the highlight, whose light past 1 a plain render clips and the blend takes whole */
+            for (int c = 0; c < 3; c++)
+                saturated |= front.rgb[3 * px + c] >= 1 || back.rgb[3 * px + c] >= 1;
+            if (saturated)
+                continue;
+            for (int c = 0; c < 3; c++) {
+                double want = sqrt(0.5 * linear(front.rgb[3 * px + c]) + 0.5 * linear(back.rgb[3 * px + c]));
+                worst = fmax(worst, fabs(fr.rgb[3 * px + c] - want));
+            }
+            checked++;
+        }
+    iacsg_frame_free(&fr);
+    iacsg_frame_free(&front);
+    iacsg_frame_free(&back);
+    CHECK(worst <= 1e-3, "a pixel is %g off half the slab and half the sphere", worst);
+    CHECK(checked > 500, "only %ld pixels checked", checked);
+    test_note("%ld pixels through the slab within %.1e of the composite of the two regions", checked, worst);
+}
