@@ -14,8 +14,8 @@
 /* The groups of a union that matter, per segment of a secondary ray's tree: all of them (`all_groups`, SEGMENTS
  * ones), since no tile pass bounded these rays. */
 __kernel void iacsg_trace_rays(__constant ia_real *params, __global const ia_real *rays, int nrays, ia_real root_w,
-                               ia_real eps, ia_real footprint, __global const ulong *all_groups, __global ia_real *hit_t,
-                               __global float *normal, __global uint *evals) {
+                               ia_real eps, ia_real footprint, __global const ulong *all_groups,
+                               __global ia_real *hit_t, __global float *normal, __global uint *evals) {
     int first = (int)get_global_id(0) * IA_VW;
     if (first >= nrays)
         return;

@@ -8,7 +8,8 @@
  */
 
 __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const ia_real *rays, int nrays, int first_ray,
-                                     ia_real eps, __global ia_real *hit_t, __global float *normal, __global int *hit_item,
+                                     ia_real eps, __global ia_real *hit_t, __global float *normal,
+                                     __global int *hit_item,
                                      __global uint *evals, __global const int *passing,
                                      __global const ia_real *bvh_box, __global const int *bvh_link, int nbvh,
                                      __global const uint *nodes, __global const int *items,
@@ -50,6 +51,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
         scene_solid_f_grad(hit.solid, o[0] + hit.t * d[0], o[1] + hit.t * d[1], o[2] + hit.t * d[2],
                            params[PARAM_TIME_LO], &g[0], &g[1], &g[2]);
     ia_real len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), facing = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
+    int ok = len > 0 && isfinite(len);
     for (int c = 0; c < 3; c++) /* facing the ray; -d where the gradient vanishes (as light.h's shade_normals) */
-        normal[3 * ray + c] = (float)(!found ? 0 : len > 0 && isfinite(len) ? (facing > 0 ? -g[c] : g[c]) / len : -d[c]);
+        normal[3 * ray + c] = (float)(!found ? 0 : ok ? (facing > 0 ? -g[c] : g[c]) / len : -d[c]);
 }

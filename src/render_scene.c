@@ -430,8 +430,8 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
     frame->ids = render_image_alloc(n); /* the overlaps' statistics need them */
     cl_int *overlap = malloc(n * sizeof(cl_int));
     cl_uint *counts = r->config.stats ? malloc(3 * n * sizeof(cl_uint)) : NULL;
-    if (!frame->rgb || (!frame->depth && (!view->no_depth || fx)) || (!frame->normal && (!view->no_normals || fx)) || !frame->ids ||
-        !overlap || (r->config.stats && !counts))
+    if (!frame->rgb || (!frame->depth && (!view->no_depth || fx)) || (!frame->normal && (!view->no_normals || fx)) ||
+        !frame->ids || !overlap || (r->config.stats && !counts))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
     scene_buffers b = {0};

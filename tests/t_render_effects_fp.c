@@ -298,7 +298,8 @@ TEST_FP(effects_mirror_silhouette) {
             if (fabs(hit[0]) > 1.99 || fabs(hit[1]) > 1.99)
                 continue;
             /* the reflected ray's closest approach to the centre, against the radius */
-            double oc[3] = {ball.c[0] - hit[0], ball.c[1] - hit[1], ball.c[2] - hit[2]}, s = fmax(dot(oc, r), 0), e2 = 0;
+            double oc[3] = {ball.c[0] - hit[0], ball.c[1] - hit[1], ball.c[2] - hit[2]};
+            double s = fmax(dot(oc, r), 0), e2 = 0;
             for (int k = 0; k < 3; k++)
                 e2 += (oc[k] - s * r[k]) * (oc[k] - s * r[k]);
             double dist = sqrt(e2);

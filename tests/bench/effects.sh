@@ -12,9 +12,11 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
 ref=(-eye 0,-4,2.5 -at 0,0,0 -up 0,0,1 -fov 40 -bounds -2,-2,-2,2,2,2 -size 1024x1024 -eps 1e-5)
-# Fig. 2's cube and sphere as regions, and the same with its grey material reflecting half the light
+# Fig. 2's cube and sphere as regions, and the same with its grey material reflecting half the light, or letting
+# half of it through
 cp "$here/examples/fig2_cube_sphere_regions.csg" fig2.csg
 sed 's/^material grey = rgb(0.6, 0.6, 0.62)$/& reflect 0.5/' fig2.csg >fig2_mirror.csg
+sed 's/^material grey = rgb(0.6, 0.6, 0.62)$/& opacity 0.5/' fig2.csg >fig2_glass.csg
 # the light for the shadows: one point light above and to the side
 light=(-light point,1.5,-2,4,0.9)
 
@@ -43,9 +45,9 @@ table() {
             "aa 4") set -- -aa 4 ;;
             esac
             in=$input
-            if [ "$name" = regions ]; then
-                [ "$v" = transparency ] && continue # regions render opaque as yet
+            if [ "$name" = regions ]; then # the materials' reflect and opacity
                 [ "$v" = "one bounce" ] && set -- -bounces 1 && in=fig2_mirror.csg
+                [ "$v" = transparency ] && set -- && in=fig2_glass.csg
             fi
             one "$in" "${view[@]}" "$@" >>"$v.times"
         done
