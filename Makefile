@@ -4,6 +4,7 @@
 #   make test       install missing Debian packages, build, run every test (ends "N passed, N failed")
 #   make demo       render the README's first example
 #   make gallery    render examples/*.csg into the contact sheet docs/gallery.png
+#   make gallery-effects  render Fig. 6 of the seed (examples/effects/) into docs/fig6a..d.png
 #   make deps       install the Debian packages the project needs (apt-get; sudo when not root)
 #   make bench-ia   nanoseconds per interval operation, host and device, rigorous and fast
 #   make bench      render the benchmark suite of issue 5 and write BENCHMARKS.md (BENCH_QUICK=1: a quick look;
@@ -37,11 +38,13 @@ DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd oc
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec.h
 KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h \
-                  kernels/packet.h kernels/tile_rays.h kernels/tile.h kernels/light.h kernels/shade.h kernels/render.cl
+                  kernels/packet.h kernels/tile_rays.h kernels/tile.h kernels/light.h kernels/shade.h kernels/render.cl \
+                  kernels/effects.h kernels/effects.cl
 # The segment path's program (src/render_scene.c): the same ia/ headers, the scene's solids, then these.
 SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h kernels/csg_node.h \
                        kernels/scene_data.h kernels/bvh.h kernels/segments.h kernels/classify.h kernels/weave.h \
-                       kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h kernels/light.h kernels/render_scene.cl
+                       kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h kernels/light.h kernels/render_scene.cl \
+                       kernels/effects.h kernels/scene_effects.cl
 # BRL-CAD's primitives, between the ia/ headers and the scene's solids (which call them).
 PRIM_KERNEL_SOURCES = kernels/prim.h
 TEST_CL_SOURCES = $(sort $(wildcard tests/*.cl))
@@ -59,7 +62,7 @@ CLI_OBJ = $(CLI_C:%.c=$(BUILD)/%.o)
 TEST_OBJ = $(TEST_C:%.c=$(BUILD)/%.o) $(TEST_FP_C:%.c=$(BUILD)/%.f32.o) $(TEST_FP_C:%.c=$(BUILD)/%.f64.o) \
            $(if $(TEST_CL_SOURCES),$(BUILD)/embedded_tests.o)
 
-.PHONY: all deps test check demo bench-ia fuzz clean bench
+.PHONY: all deps test check demo bench-ia fuzz clean bench gallery-effects
 all: $(BUILD)/iacsg
 
 deps:
@@ -167,6 +170,16 @@ $(BUILD)/examples/embed: examples/embed.c $(BUILD)/libiacsg.a $(BUILD)/include/i
 gallery: deps
 	@$(MAKE) --no-print-directory $(BUILD)/examples/embed
 	$(BUILD)/examples/embed docs/gallery.png 256 3 $(GALLERY_SCENES)
+
+# Fig. 6 of the Hijazi seed, the ray-tracing effects (examples/effects/, README "Effects"): docs/fig6a..d.png.
+FIG6 = examples/effects/fig6
+gallery-effects: deps
+	@$(MAKE) --no-print-directory $(BUILD)/iacsg
+	$(BUILD)/iacsg $(FIG6)a_multiple_unions.csg -opacity 0.55 -reflect 0.35 -bounces 2 -size 360x360 -o docs/fig6a.png
+	$(BUILD)/iacsg $(FIG6)b_decocube_sphere_blend.csg -shade gradient -size 360x360 -o docs/fig6b.png
+	$(BUILD)/iacsg $(FIG6)c_bretzel_torus_shadows.csg -shadows -bounds -2.7,-2.1,-0.85,2.7,2.1,1.65 -size 360x360 \
+	    -o docs/fig6c.png
+	$(BUILD)/iacsg $(FIG6)d_tangle_torus_reflections.csg -reflect 0.6 -bounces 6 -shadows -size 360x360 -o docs/fig6d.png
 
 bench-ia: deps
 	@$(MAKE) --no-print-directory $(BUILD)/iacsg-tests

@@ -16,6 +16,7 @@ typedef enum {
      * the declared name, the statement's keyword is the token before it. */
     AST_MATERIAL, /* args[first .. first + nargs): red, green, blue (AST_NUM, or AST_NEG of one), then the
                    * keyword arguments ("specular 0.5": the keyword's token and its number) */
+    AST_LIGHT,    /* op 'p' (point(X, Y, Z)) or 'd' (dir(X, Y, Z)); args: X, Y, Z, then keyword arguments */
     AST_SOLID,    /* a: the expression */
     AST_REGION,   /* a: the boolean expression (AST_BOOL over operands); first: the material's token, or -1 */
     AST_SURFACE,  /* a: the expression; b: the condition, or -1; first: the material's token, or -1 */

@@ -342,11 +342,12 @@ static int lower_bind(lowering *l, const ast_node *n) {
     return declare_name(l, n, NAME_BINDING, l->values[n->a], -1) < 0 ? -1 : l->values[n->a];
 }
 
-/* A material, solid, region or surface: its name is checked, the front end's hook builds it (in source order,
+/* A material, light, solid, region or surface: its name is checked, the front end's hook builds it (in source order,
  * after its expressions are lowered), then the name is entered with the index the hook gave. */
 static int lower_declaration(lowering *l, int i) {
-    static const name_kind kinds[] = {[AST_MATERIAL] = NAME_MATERIAL, [AST_SOLID] = NAME_SOLID,
-                                      [AST_REGION] = NAME_REGION, [AST_SURFACE] = NAME_SURFACE};
+    static const name_kind kinds[] = {[AST_MATERIAL] = NAME_MATERIAL, [AST_LIGHT] = NAME_LIGHT,
+                                      [AST_SOLID] = NAME_SOLID,       [AST_REGION] = NAME_REGION,
+                                      [AST_SURFACE] = NAME_SURFACE};
     const ast_node *n = &l->a->nodes[i];
     char name[LEX_MAX_NAME + 1];
     if (!l->hooks)
@@ -390,6 +391,7 @@ static int lower_ast(lower_env *env, const ast *a, const char *what, char (*para
             break;
         }
         case AST_MATERIAL:
+        case AST_LIGHT:
         case AST_SOLID:
         case AST_REGION:
         case AST_SURFACE: r = lower_declaration(&l, i); break;

@@ -54,6 +54,6 @@ void names_free(name_table *t) {
 }
 
 const char *name_kind_word(name_kind kind) {
-    static const char *const words[] = {"binding", "solid", "material", "region", "surface"};
+    static const char *const words[] = {"binding", "solid", "material", "region", "surface", "light"};
     return words[kind];
 }

@@ -5,7 +5,7 @@
 #define IACSG_NAMES_H
 #include "lex.h"
 
-typedef enum { NAME_BINDING, NAME_SOLID, NAME_MATERIAL, NAME_REGION, NAME_SURFACE } name_kind;
+typedef enum { NAME_BINDING, NAME_SOLID, NAME_MATERIAL, NAME_REGION, NAME_SURFACE, NAME_LIGHT } name_kind;
 
 typedef struct {
     char name[LEX_MAX_NAME + 1]; /* "" in an empty slot */
@@ -26,7 +26,7 @@ const name_entry *names_find(const name_table *t, const char *name);
 int names_add(name_table *t, const char *name, name_kind kind, int node, int index, int line);
 void names_free(name_table *t);
 
-/* "binding", "solid", "material", "region", "surface". */
+/* "binding", "solid", "material", "region", "surface", "light". */
 const char *name_kind_word(name_kind kind);
 
 #endif

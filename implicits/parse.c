@@ -4,6 +4,7 @@
  *                                                     scene with regions or surfaces, which has none
  *   statement  := NAME '=' expr | declaration | expr
  *   declaration:= 'material' NAME '=' 'rgb' '(' number ',' number ',' number ')' { NAME number }
+ *               | 'light' NAME '=' ('point' | 'dir') '(' number ',' number ',' number ')' { NAME number }
  *               | 'solid' NAME '=' expr
  *               | 'region' NAME '=' expr [':' NAME]        the expression's outer | & \ are set operations
  *               | 'surface' NAME '=' expr ['where' cond] [':' NAME]
@@ -285,36 +286,54 @@ static int parse_number(parser *p, const char *what) {
     return r >= 0 && sign >= 0 ? add_node(p, AST_NEG, sign, 0, r, -1) : r;
 }
 
-/* rgb(R, G, B) { KEYWORD number }, after "material NAME ="; the values become the node's arguments. */
-static int parse_material(parser *p, long name) {
-    int base = p->npending;
+/* WORD(A, B, C) { KEYWORD number }, after "material NAME =" (WORD: rgb) or "light NAME =" (point or dir); the
+ * values become the node's arguments, the word's first letter its op. */
+static int parse_valued(parser *p, long name, ast_kind kind) {
+    int base = p->npending, light = kind == AST_LIGHT;
+    const char *what = light ? "light" : "material", *takes = light ? "a light's position or direction takes 3 numbers"
+                                                                    : "rgb takes 3 numbers";
     skip_newlines(p);
-    if (!at_word(p, p->pos, "rgb") || p->a->toks[p->pos + 1].kind != TOK_PUNCT || p->a->toks[p->pos + 1].ch != '(')
-        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "expected rgb(R, G, B), the material's colour");
+    int word_ok = light ? at_word(p, p->pos, "point") || at_word(p, p->pos, "dir") : at_word(p, p->pos, "rgb");
+    int call = peek(p)->kind == TOK_NAME && p->a->toks[p->pos + 1].kind == TOK_PUNCT &&
+               p->a->toks[p->pos + 1].ch == '(';
+    if (light && call && !word_ok) {
+        char text[LEX_MAX_NAME + 1], message[LEX_MAX_NAME + 96];
+        snprintf(message, sizeof message, "unknown light kind '%s': expected point(X, Y, Z) or dir(X, Y, Z)",
+                 ast_token_text(p->a, p->pos, text, sizeof text));
+        return fail_here(p, peek(p), message);
+    }
+    if (!call || !word_ok)
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX,
+                       light ? "expected point(X, Y, Z) or dir(X, Y, Z), the light's kind and place"
+                             : "expected rgb(R, G, B), the material's colour");
+    char op = p->a->text[p->a->toks[p->pos].start];
     p->pos += 2;
     for (int k = 0; k < 3; k++) {
         if (k > 0 && !at_punct(p, ','))
-            return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "rgb takes 3 numbers");
+            return fail_at(p, peek(p), IACSG_ERR_SYNTAX, takes);
         p->pos += k > 0;
-        int v = parse_number(p, "rgb takes 3 numbers");
+        int v = parse_number(p, takes);
         if (v < 0 || !push_arg(p, v, -1))
             return -1;
     }
     if (!at_punct(p, ')'))
-        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, "rgb takes 3 numbers");
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, takes);
     p->pos++;
+    char expected[96];
+    snprintf(expected, sizeof expected, "expected a number after the %s's keyword", what);
     while (peek(p)->kind == TOK_NAME) {
         long keyword = p->pos++;
-        int v = parse_number(p, "expected a number after the material's keyword");
+        int v = parse_number(p, expected);
         if (v < 0 || !push_arg(p, v, keyword))
             return -1;
     }
+    snprintf(expected, sizeof expected, "expected a %s keyword and its number, or the end of the statement", what);
     if (!at_statement_end(p))
-        return fail_at(p, peek(p), IACSG_ERR_SYNTAX,
-                       "expected a material keyword and its number, or the end of the statement");
+        return fail_at(p, peek(p), IACSG_ERR_SYNTAX, expected);
     int first = commit_args(p, base);
-    int m = first < 0 ? -1 : add_node(p, AST_MATERIAL, name, 0, -1, -1);
+    int m = first < 0 ? -1 : add_node(p, kind, name, 0, -1, -1);
     if (m >= 0) {
+        p->a->nodes[m].op = op;
         p->a->nodes[m].first = first;
         p->a->nodes[m].nargs = p->a->nargs - first;
     }
@@ -478,13 +497,13 @@ static int parse_surface(parser *p, long name) {
 }
 
 /* The declarations: "KEYWORD NAME" starts one. */
-static const char *const declaration_words[] = {"material", "solid", "region", "surface"};
+static const char *const declaration_words[] = {"material", "solid", "region", "surface", "light"};
 
 /* The declaration at p->pos (its keyword's index in declaration_words), or -1 for another statement. */
 static int declaration_at(parser *p) {
     if (peek(p)->kind != TOK_NAME || p->a->toks[p->pos + 1].kind != TOK_NAME)
         return -1;
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < 5; k++)
         if (at_word(p, p->pos, declaration_words[k]))
             return k;
     return -1;
@@ -501,7 +520,8 @@ static int parse_declaration(parser *p, int which) {
     }
     p->pos++;
     switch (which) {
-    case 0: return parse_material(p, name);
+    case 0: return parse_valued(p, name, AST_MATERIAL);
+    case 4: return parse_valued(p, name, AST_LIGHT);
     case 1: {
         int v = parse_expr(p);
         return v < 0 ? -1 : add_node(p, AST_SOLID, name, 0, v, -1);
@@ -513,8 +533,8 @@ static int parse_declaration(parser *p, int which) {
 
 /* Whether a statement's node is an expression (rather than a binding or a declaration). */
 static int is_expression(const ast_node *n) {
-    return n->kind != AST_BIND && n->kind != AST_MATERIAL && n->kind != AST_SOLID && n->kind != AST_REGION &&
-           n->kind != AST_SURFACE;
+    return n->kind != AST_BIND && n->kind != AST_MATERIAL && n->kind != AST_LIGHT && n->kind != AST_SOLID &&
+           n->kind != AST_REGION && n->kind != AST_SURFACE;
 }
 
 static int parse_scene(parser *p) {
@@ -532,7 +552,7 @@ static int parse_scene(parser *p) {
         int which = declaration_at(p);
         if (which >= 0) {
             last = parse_declaration(p, which);
-            items += which >= 2;
+            items += which == 2 || which == 3; /* region, surface */
         } else if (peek(p)->kind == TOK_NAME && p->a->toks[p->pos + 1].kind == TOK_PUNCT &&
                    p->a->toks[p->pos + 1].ch == '=') {
             long name = p->pos;
@@ -618,7 +638,9 @@ char *ast_dump(const ast *a) {
         case AST_BIND: strbuf_printf(&b, "bind %s = n%d", ast_token_text(a, n->tok, name, sizeof name), n->a); break;
         case AST_CALL:
         case AST_MATERIAL:
-            strbuf_printf(&b, n->kind == AST_CALL ? "call %s(" : "material %s = rgb(",
+        case AST_LIGHT:
+            strbuf_printf(&b, n->kind == AST_CALL ? "call %s(" : n->kind == AST_MATERIAL ? "material %s = rgb("
+                              : n->op == 'p' ? "light %s = point(" : "light %s = dir(",
                           ast_token_text(a, n->tok, name, sizeof name));
             for (int k = 0; k < n->nargs; k++) {
                 const ast_arg *g = &a->args[n->first + k];

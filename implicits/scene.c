@@ -21,6 +21,7 @@ void iacsg_scene_destroy(iacsg_scene *s) {
     for (int k = 0; k < s->nitems; k++)
         free(s->items[k].name);
     free(s->materials);
+    free(s->lights);
     free(s->solids);
     free(s->items);
     free(s->nodes);
@@ -60,10 +61,17 @@ static char *copy_name(const char *name, int *ok) {
     return c;
 }
 
+int scene_add_light(iacsg_scene *s, const scene_light *light, iacsg_error *err) {
+    if (!grow((void **)&s->lights, s->nlights, &s->cap_lights, sizeof *s->lights, 1))
+        return out_of_memory(err);
+    s->lights[s->nlights] = *light;
+    return s->nlights++;
+}
+
 int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iacsg_error *err) {
     int ok = grow((void **)&s->materials, s->nmaterials, &s->cap_materials, sizeof *s->materials, 1);
     scene_material m = {copy_name(name, &ok), {rgb[0], rgb[1], rgb[2]}, SCENE_DEFAULT_SPECULAR,
-                        SCENE_DEFAULT_SHININESS};
+                        SCENE_DEFAULT_SHININESS, 0, 1};
     if (!ok) {
         free(m.name);
         return out_of_memory(err);

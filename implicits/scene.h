@@ -23,6 +23,7 @@ typedef struct {
     char *name;
     float rgb[3];              /* linear albedo in [0, 1] */
     float specular, shininess; /* optional keywords; defaults SCENE_DEFAULT_SPECULAR, _SHININESS */
+    float reflect, opacity;    /* the reflected fraction (0) and opacity (1): src/render_effects.c */
 } scene_material;
 
 /* The first-root path's highlight (kernels/light.h), so that a solid looks the same on either path. */
@@ -71,9 +72,20 @@ typedef struct {
     int line, column;
 } scene_item;
 
+#define SCENE_MAX_LIGHTS 8
+
+/* A light (`light NAME = point(X, Y, Z) intensity I`, or dir(X, Y, Z): the direction towards the light). */
+typedef struct {
+    int dir;
+    double xyz[3];
+    double intensity; /* >= 0, default 1 */
+} scene_light;
+
 struct iacsg_scene {
     scene_material *materials;
     int nmaterials, cap_materials;
+    scene_light *lights;
+    int nlights, cap_lights;
     scene_solid *solids;
     int nsolids, cap_solids;
     scene_item *items;
@@ -98,6 +110,7 @@ void iacsg_scene_destroy(iacsg_scene *s);
 iacsg_scene *scene_create(void);
 int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iacsg_error *err);
 int scene_add_solid(iacsg_scene *s, const char *name, iacsg_expr *e, iacsg_error *err);
+int scene_add_light(iacsg_scene *s, const scene_light *light, iacsg_error *err);
 /* A primitive (layout of params above, copied with mat); its name may be NULL. */
 int scene_add_primitive(iacsg_scene *s, const char *name, scene_prim_type type, const double *params, int nparams,
                         const double mat[16], iacsg_error *err);

@@ -30,6 +30,8 @@ static const struct {
 } material_keywords[] = {
     {"specular", offsetof(scene_material, specular), 0, 1},
     {"shininess", offsetof(scene_material, shininess), 0, 10000},
+    {"reflect", offsetof(scene_material, reflect), 0, 1},
+    {"opacity", offsetof(scene_material, opacity), 0, 1},
 };
 #define NKEYWORDS ((int)(sizeof material_keywords / sizeof material_keywords[0]))
 
@@ -264,6 +266,32 @@ static int declare_material(builder *b, const ast_node *n, const char *name) {
     return m;
 }
 
+/* A light: its position or direction (not 0 for a direction), and its keyword intensity (>= 0, default 1). */
+static int declare_light(builder *b, const ast_node *n, long keyword) {
+    scene_light light = {n->op == 'd', {0, 0, 0}, 1};
+    char text[LEX_MAX_NUMBER + 2], word[LEX_MAX_NAME + 1];
+    if (b->s->nlights == SCENE_MAX_LIGHTS)
+        return fail_at(b, keyword, IACSG_ERR_ARG, "a scene has at most %d lights", SCENE_MAX_LIGHTS);
+    for (int k = 0; k < 3; k++)
+        light.xyz[k] = number_value(b, b->a->args[n->first + k].value, text, sizeof text);
+    if (light.dir && light.xyz[0] == 0 && light.xyz[1] == 0 && light.xyz[2] == 0)
+        return fail_at(b, b->a->nodes[b->a->args[n->first].value].tok, IACSG_ERR_ARG,
+                       "a light's direction must not be 0, 0, 0");
+    for (int k = 3; k < n->nargs; k++) {
+        const ast_arg *g = &b->a->args[n->first + k];
+        ast_token_text(b->a, g->keyword, word, sizeof word);
+        if (strcmp(word, "intensity") != 0)
+            return fail_at(b, g->keyword, IACSG_ERR_NAME, "unknown light keyword '%s' (intensity)", word);
+        if (k > 3)
+            return fail_at(b, g->keyword, IACSG_ERR_ARG, "'intensity' is given twice");
+        light.intensity = number_value(b, g->value, text, sizeof text);
+        if (!(light.intensity >= 0 && light.intensity <= 1e6))
+            return fail_at(b, b->a->nodes[g->value].tok, IACSG_ERR_ARG, "light intensity %s is outside [0, 1e6]",
+                           text);
+    }
+    return scene_add_light(b->s, &light, b->err);
+}
+
 /* lower_hooks.declare: builds one declaration. */
 static int declare(void *ctx, const ast *a, int node, const int *values, const name_table *names,
                    iacsg_error *err) {
@@ -279,6 +307,7 @@ static int declare(void *ctx, const ast *a, int node, const int *values, const n
     int index;
     switch (n->kind) {
     case AST_MATERIAL: return declare_material(b, n, name);
+    case AST_LIGHT: return declare_light(b, n, keyword);
     case AST_SOLID: return add_solid(b, name, values[n->a], keyword);
     case AST_REGION: {
         int tree = build_tree(b, n->a), material = tree < 0 ? -1 : material_ref(b, n->first);

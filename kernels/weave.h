@@ -27,6 +27,8 @@ typedef struct {
     int cand_cap, ncand, nstarted; /* the walks started are the first nstarted */
     KERNEL_GLOBAL unsigned char *state; /* per solid of the scene, all OUT between rays */
     kernel_u32 evals, segments, partitions;
+    int passing; /* 1 + a region the ray starts in and passes through (src/render_effects.c, transparency): not
+                  * claimed until a partition where it is certainly out; 0: none */
 } scene_ray;
 
 typedef struct {
@@ -144,12 +146,14 @@ IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_interval ti
         ia_real at = c >= 0 ? r->walks.pos[c] : IA_INF;
         if (pending && at > pending_t) { /* no walk can change a state before `at` any more */
             pending = 0;
+            if (r->passing && !(weave_value(r, r->passing - 1) & CLASSIFY_MAY_IN))
+                r->passing = 0; /* out of the region it passed through: it may claim again */
             if (found) { /* confirming the claim for the overlap */
                 int other = -1, v = weave_overlap(r, hit->item, &other);
                 hit->overlap = v > 0 ? other : -1;
                 if (v != 0 || --confirming == 0)
                     return 1;
-            } else if (weave_first_region(r, 0, -1, &hit->item)) {
+            } else if (weave_first_region(r, 0, r->passing - 1, &hit->item)) {
                 r->partitions += 1;
                 found = 1;
                 hit->t = pending_t;

@@ -48,11 +48,24 @@ static const char usage[] =
     "  -resume            skip the frames whose files are all there (an image is only renamed into place once\n"
     "                     complete), so that a job stopped halfway is finished by the same command\n"
     "  -stats             print rays, interval evaluations per ray (mean, max), kernel build and render time;\n"
-    "                     for regions also segments and partitions per ray, overlaps, per-ray buffer bytes\n"
+    "                     for regions also segments and partitions per ray, overlaps, per-ray buffer bytes;\n"
+    "                     with effects, the secondary rays and their evaluations per ray\n"
     "\n";
 
 /* The rest of the help, apart: ISO C bounds a string literal's length. */
 static const char usage_more[] =
+    "Effects (shading on the host from each pixel's hits; secondary rays traced by the same bisection):\n"
+    "  -shade MODE        lit, gradient (the normal's direction as colour, lit), normals, depth, ids [lit]\n"
+    "  -background R,G,B[,R,G,B]  the background colour, or a gradient top to bottom, in [0, 1] [grey-blue]\n"
+    "  -light KIND,X,Y,Z,I  point,X,Y,Z,I (a point light) or dir,X,Y,Z,I (towards the light) of intensity I;\n"
+    "                     repeatable, up to 8 [the scene's light statements, else a key and a fill light]\n"
+    "  -shadows           a shadow ray from each lit hit to each light\n"
+    "  -bounces N         reflected rays a path may take (0 to 16) [2]\n"
+    "  -reflect K         the expression's material reflects K of the light (scenes: material reflect K) [0]\n"
+    "  -opacity A         the expression is transparent: each crossing of its surface a layer of opacity A [1]\n"
+    "  -aa N              N x N rays in the pixels whose centre rays differ from a neighbour's (-depth,\n"
+    "                     -normals, -ids stay the centre ray's) [1]\n"
+    "\n"
     "Camera: f = normalize(at - eye), r = normalize(f x up), u = r x f. Pixel (i, j), i left to right and j top\n"
     "to bottom, looks along normalize(f + s r + v u) with s = (2(i+1/2)/W - 1) tan(fov/2) W/H and\n"
     "v = (1 - 2(j+1/2)/H) tan(fov/2). With -ortho the ray starts at eye + s r + v u (tan(fov/2) replaced by\n"

@@ -3,6 +3,7 @@
 #include "cli.h"
 #include "cli_brlcad.h"
 #include "cli_job.h"
+#include "cli_effects.h"
 #include "cli_render.h"
 #include "cli_writer.h"
 #include "clrt.h"
@@ -70,6 +71,8 @@ int parse_options(int argc, char **argv, render_options *o) {
     o->view.camera.up[2] = 1;
     o->az = 35;
     o->el = 25;
+    cli_effects_init(&o->effects);
+    int effects = 0;
     for (int k = 1; k < argc; k++) {
         const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
         double num[6];
@@ -90,6 +93,11 @@ int parse_options(int argc, char **argv, render_options *o) {
             o->input = a;
             continue;
         }
+        int fx = cli_effects_option(argc, argv, &k, &o->effects, &effects);
+        if (fx < 0)
+            return 2;
+        if (fx > 0)
+            continue;
         if (strcmp(a, "-fp64") == 0) {
             o->config.fp64 = 1;
             continue;
@@ -173,6 +181,7 @@ int parse_options(int argc, char **argv, render_options *o) {
             return 2;
         }
     }
+    o->view.effects = effects ? &o->effects : NULL;
     if (!o->input) {
         fprintf(stderr, "iacsg: no expression or scene given (see iacsg --help)\n");
         return 2;
@@ -360,6 +369,9 @@ static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const ia
         printf("per-ray buffers: %lld bytes a ray (%lld rays traced again with more room)\n", fr->ray_buffer_bytes,
                fr->retraced_rays);
     }
+    if (fr->secondary_rays > 0)
+        printf("secondary rays: %lld, interval evaluations per ray: mean %.2f\n", fr->secondary_rays,
+               fr->secondary_evals_mean);
     printf("kernel build: %.3f s\n", iacsg_renderer_build_seconds(r));
     printf("render: %.3f s\n", fr->render_seconds);
 }
@@ -478,6 +490,8 @@ int cli_render(int argc, char **argv) {
         if (cli_job_rank(job) == 0)
             printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
         place_camera(&o);
+        if (cli_effects_from_scene(&o.effects, scene)) /* its lights, materials that reflect or are transparent */
+            o.view.effects = &o.effects;
         /* regions or surfaces: the segment path; else the expression by the first-root path */
         st = iacsg_renderer_create_scene(scene, &o.config, &r, &err);
     }

@@ -12,6 +12,7 @@ typedef struct {
     const char *input, *output, *depth_file, *normals_file, *ids_file, *time_text;
     iacsg_view view;
     iacsg_render_config config;
+    iacsg_effects effects; /* src/cli_effects.c; view.effects points here when an effects option is given */
     int have_bounds, have_eye, have_at, have_azel, have_time, have_device, frames, resume;
     double az, el;
     /* a BRL-CAD model (input *.asc): the objects named after it, and whether -fov asks for perspective */

@@ -97,6 +97,7 @@ void iacsg_renderer_destroy(iacsg_renderer *r) {
     if (r->program)
         clReleaseProgram(r->program);
     render_scene_free(r->scene);
+    render_effects_free(r->fx);
     clrt_close(&r->rt);
     free(r);
 }
@@ -395,15 +396,16 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = render_image_alloc(3 * n);
-    int need_depth = !view->no_depth || !view->no_ids; /* the ids come from the depth */
+    int fx = render_effects_need_aovs(r, view);
+    int need_depth = !view->no_depth || !view->no_ids || fx; /* the ids come from the depth */
     frame->depth = need_depth ? render_image_alloc(n) : NULL;
-    frame->normal = view->no_normals ? NULL : render_image_alloc(3 * n);
+    frame->normal = view->no_normals && !fx ? NULL : render_image_alloc(3 * n);
     frame->ids = view->no_ids ? NULL : render_image_alloc(n);
     if (r->config.stats) {
         evals = malloc(n * sizeof(cl_uint));
         tile_evals = malloc(tiles_n * sizeof(cl_uint));
     }
-    if (!frame->rgb || (!frame->depth && need_depth) || (!frame->normal && !view->no_normals) ||
+    if (!frame->rgb || (!frame->depth && need_depth) || (!frame->normal && (!view->no_normals || fx)) ||
         (!frame->ids && !view->no_ids) || (r->config.stats && (!evals || !tile_evals)))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
@@ -430,6 +432,11 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
                             frame);
         if (frame->ids)
             ids_from_depth(frame->depth, n, frame->ids);
+        st = render_effects_apply(r, view, frame, err);
+        if (view->no_normals && frame->normal) {
+            free(frame->normal);
+            frame->normal = NULL;
+        }
         if (view->no_depth) {
             free(frame->depth);
             frame->depth = NULL;

@@ -55,6 +55,48 @@ int iacsg_scene_bounds(const iacsg_scene *s, const double time[2], double box[6]
 double iacsg_renderer_build_seconds(const iacsg_renderer *r);
 const char *iacsg_renderer_device_name(const iacsg_renderer *r);
 
+/* Ray-tracing effects of a frame (src/render_effects.c), all off in a zeroed struct. With none of them the frame
+ * is the plain render, byte for byte; with any, the colours are computed again on the host from each pixel's
+ * hits (traced by the same interval bisection: kernels/effects.cl, kernels/scene_effects.cl), and the AOVs
+ * (depth, normals, ids) stay those of the pixel's centre ray. */
+typedef enum {
+    IACSG_SHADE_LIT = 0,  /* the lights (the plain render's, or `lights` with shadows and reflections) */
+    IACSG_SHADE_GRADIENT, /* the colour of the normal's direction (Hijazi Fig. 6b), lit by the key light */
+    IACSG_SHADE_NORMALS,  /* 0.5 + 0.5 n, unlit */
+    IACSG_SHADE_DEPTH,    /* white near to black far over the hits' depth range */
+    IACSG_SHADE_IDS       /* a palette colour per region or surface id */
+} iacsg_shade;
+
+typedef enum { IACSG_LIGHT_POINT = 0, IACSG_LIGHT_DIR } iacsg_light_kind;
+
+typedef struct {
+    iacsg_light_kind kind;
+    double xyz[3];    /* point: the light's position; dir: the direction towards the light (any length) */
+    double intensity; /* >= 0: the weight of its diffuse term (the highlight is scaled by it too) */
+} iacsg_light;
+
+#define IACSG_MAX_LIGHTS 8
+
+typedef struct {
+    iacsg_shade shade;
+    int background;          /* 1: the background is a vertical gradient top -> bottom (equal ends: a colour) */
+    float background_top[3], background_bottom[3]; /* display-encoded, in [0, 1] */
+    /* The lights; none: the default rig, the plain render's key light (upper left of the eye, intensity 0.85)
+     * and fill light (lower right, 0.30), directional and fixed to the camera. */
+    iacsg_light lights[IACSG_MAX_LIGHTS];
+    int nlights;
+    int shadows; /* a shadow ray from every lit hit to each light */
+    int bounces; /* reflection rays per path, for materials that reflect (0 to IACSG_MAX_BOUNCES) */
+    /* The single expression's material (a scene's regions take theirs from their materials): the fraction of
+     * light it reflects, and its transparency, 1 - opacity (0: opaque; above, each crossing of its surface is a
+     * layer of that opacity, composited front to back). */
+    double reflect, transparency;
+    int aa; /* 1: one ray a pixel; N > 1: N x N rays in the pixels where the centre rays differ (edges) */
+} iacsg_effects;
+
+#define IACSG_MAX_BOUNCES 16
+#define IACSG_MAX_AA 16
+
 typedef struct {
     int width, height;
     iacsg_camera camera;
@@ -79,6 +121,8 @@ typedef struct {
      * a frame shared among processes; the frame's other rows are then unspecified. row_first is a multiple of
      * IACSG_ROW_ALIGN, so that each pixel comes out exactly as in the whole frame. */
     int row_first, row_count;
+    /* The ray-tracing effects, or NULL for the plain render. */
+    const iacsg_effects *effects;
 } iacsg_view;
 
 /* The rows of a band start at multiples of this (a block of the kernel's tiles, src/render.c). */
@@ -106,8 +150,16 @@ typedef struct {
     long long overlaps;
     int overlap_pairs[IACSG_OVERLAP_PAIRS][2], noverlap_pairs;
     long long ray_buffer_bytes, retraced_rays;
-    double render_seconds; /* from the first kernel launch to the images in host memory */
+    double render_seconds; /* from the first kernel launch to the images in host memory, effects included */
+    /* The effects' secondary rays (shadow, reflected, transparent, antialiasing) and, with config.stats, their
+     * mean interval evaluations. */
+    long long secondary_rays;
+    double secondary_evals_mean;
 } iacsg_frame;
+
+/* The lights a scene file declares (`light` statements), as iacsg_effects takes them: copies them (at most
+ * IACSG_MAX_LIGHTS, which a scene never has more of) into `lights` and returns their count. */
+int iacsg_scene_lights(const iacsg_scene *s, iacsg_light lights[IACSG_MAX_LIGHTS]);
 
 /* Renders one frame into *frame (its images are allocated here; free them with iacsg_frame_free). */
 iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);

@@ -8,6 +8,7 @@
 extern const char iacsg_cl_ia[]; /* the flattened ia/ headers (Makefile: IA_CL_HEADERS) */
 
 typedef struct render_scene render_scene; /* the segment path's tables and buffers (render_scene.c) */
+typedef struct render_fx render_fx;       /* the ray-tracing effects (render_effects.c) */
 
 struct iacsg_renderer {
     clrt rt;
@@ -16,6 +17,7 @@ struct iacsg_renderer {
     iacsg_render_config config;
     double build_seconds;
     render_scene *scene; /* NULL on the first-root path */
+    render_fx *fx;       /* the effects' kernel and materials (src/render_effects.c), made at the first use */
 };
 
 double render_now_seconds(void);
@@ -47,5 +49,19 @@ float *render_image_alloc(size_t count);
 
 void render_scene_free(render_scene *s);
 iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
+
+/* The segment path's side of the effects (render_scene.c; see there). */
+iacsg_status render_scene_trace_args(iacsg_renderer *r, const iacsg_view *view, cl_kernel k, cl_uint first,
+                                     size_t *slots, void **held, iacsg_error *err);
+void render_scene_trace_release(void *held);
+const float *render_scene_materials(const iacsg_renderer *r); /* SCENE_MATERIAL_FLOATS per item */
+
+/* The effects of a frame, after its camera rays (render_effects.c): a no-op without view->effects. */
+iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
+/* Whether the effects need the frame's depth and normals (which the frame then computes, and drops after). */
+int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view);
+/* Keeps what the effects need of a scene's materials (its items' reflect). */
+iacsg_status render_effects_keep_scene(iacsg_renderer *r, const struct iacsg_scene *s, iacsg_error *err);
+void render_effects_free(render_fx *fx);
 
 #endif

@@ -225,6 +225,8 @@ iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_rende
     free(solids_cl);
     if (st == IACSG_OK)
         st = upload_tables(r, r->scene, err);
+    if (st == IACSG_OK)
+        st = render_effects_keep_scene(r, s, err);
     return render_finish(r, st, scene_compile_now, out, err);
 }
 
@@ -424,13 +426,14 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = render_image_alloc(3 * n);
-    frame->depth = view->no_depth ? NULL : render_image_alloc(n);
-    frame->normal = view->no_normals ? NULL : render_image_alloc(3 * n);
+    int fx = render_effects_need_aovs(r, view);
+    frame->depth = view->no_depth && !fx ? NULL : render_image_alloc(n);
+    frame->normal = view->no_normals && !fx ? NULL : render_image_alloc(3 * n);
     frame->ids = render_image_alloc(n); /* the overlaps' statistics need them */
     cl_int *overlap = malloc(n * sizeof(cl_int));
     cl_uint *counts = r->config.stats ? malloc(3 * n * sizeof(cl_uint)) : NULL;
-    if (!frame->rgb || (!frame->depth && !view->no_depth) || (!frame->normal && !view->no_normals) || !frame->ids ||
-        !overlap || (r->config.stats && !counts))
+    if (!frame->rgb || (!frame->depth && (!view->no_depth || fx)) || (!frame->normal && (!view->no_normals || fx)) ||
+        !frame->ids || !overlap || (r->config.stats && !counts))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
     scene_buffers b = {0};
@@ -455,6 +458,13 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
         frame->rays = (long long)traced;
         frame->ray_buffer_bytes = (long long)slot_bytes(r, b.cand_cap);
         summarize(overlap + at, counts ? counts + 3 * at : NULL, frame->ids + at, traced, frame);
+        st = render_effects_apply(r, view, frame, err);
+        float **unasked[] = {view->no_depth ? &frame->depth : NULL, view->no_normals ? &frame->normal : NULL};
+        for (int k = 0; k < 2; k++)
+            if (unasked[k]) {
+                free(*unasked[k]);
+                *unasked[k] = NULL;
+            }
         if (view->no_ids) {
             free(frame->ids);
             frame->ids = NULL;
@@ -467,3 +477,44 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
         iacsg_frame_free(frame);
     return st;
 }
+
+/* The effects' trace kernel (kernels/scene_effects.cl, src/render_effects.c) gets the scene from argument `first`
+ * on: the tables, the view's BVH boxes, and per-ray buffers for at most *slots work-items (fewer when they would
+ * pass the launch budget; *slots is set to the count) with room for every solid, so that no ray overflows. The
+ * frame's buffers go to *held, released by render_scene_trace_release. */
+iacsg_status render_scene_trace_args(iacsg_renderer *r, const iacsg_view *view, cl_kernel k, cl_uint first,
+                                     size_t *slots, void **held, iacsg_error *err) {
+    render_scene *s = r->scene;
+    scene_buffers *b = calloc(1, sizeof *b);
+    *held = b;
+    if (!b)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    cl_int cap = s->t.nsolids > 0 ? s->t.nsolids : 1, nbvh = s->t.nbvh, nsurfaces = s->t.nsurfaces;
+    cl_int nstates = s->t.nsolids + 1;
+    size_t fit = (size_t)fmax(1, SCENE_SCRATCH_BUDGET / (double)slot_bytes(r, cap));
+    iacsg_status st = box_buffer(r, view, b, err);
+    if (st == IACSG_OK)
+        st = scratch_buffers(r, b, *slots < fit ? *slots : fit, cap, err);
+    if (st != IACSG_OK)
+        return st;
+    *slots = b->slots;
+    const void *args[] = {&b->box,        &s->bvh_link,   &nbvh,        &s->nodes,       &s->items,
+                          &s->solid_items_start, &s->solid_items, &s->surfaces, &nsurfaces, &b->cand_solid,
+                          &b->cand_range, &b->cand_pos,   &b->cand_level, &b->cand_index, &b->cand_newton,
+                          &b->cand_newton_t, &cap,        &b->state,    &nstates};
+    for (cl_uint a = 0; a < sizeof args / sizeof args[0]; a++) {
+        int is_int = args[a] == &nbvh || args[a] == &nsurfaces || args[a] == &cap || args[a] == &nstates;
+        CLRT_CHECK(err, clSetKernelArg(k, first + a, is_int ? sizeof(cl_int) : sizeof(cl_mem), args[a]));
+    }
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+void render_scene_trace_release(void *held) {
+    if (held)
+        release_scene_buffers(held);
+    free(held);
+}
+
+const float *render_scene_materials(const iacsg_renderer *r) { return r->scene->t.albedo; }

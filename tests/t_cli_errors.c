@@ -40,6 +40,9 @@ static void make_fixture(const char *dir) {
     write_file(dir, "unknown-solid.csg", "solid ball = sphere\nregion r = ball | bal\n", 1, "");
     write_file(dir, "unknown-material.csg", "material red = rgb(1, 0, 0)\nsolid ball = sphere\nregion r = ball : rde\n", 1,
                "");
+    write_file(dir, "light-kind.csg", "light sun = spot(0, 0, 5)\nsphere\n", 1, "");
+    write_file(dir, "light-negative.csg", "light sun = point(0, 0, 5) intensity -1\nsphere\n", 1, "");
+    write_file(dir, "opacity-two.csg", "material glass = rgb(1, 1, 1) opacity 2\nregion r = sphere : glass\n", 1, "");
     write_file(dir, "material-twice.csg", "material red = rgb(1, 0, 0)\nmaterial red = rgb(0, 1, 0)\nsphere\n", 1, "");
     /* BRL-CAD models (.asc): one that renders, and one refusal of each kind */
     write_file(dir, "model.asc", "put {s} ell V {0 0 0} A {1 0 0} B {0 1 0} C {0 0 1}\nput {r} comb region yes tree {l s}\n",

@@ -324,7 +324,7 @@ TEST(scene_parse_errors) {
     expect_error("material m = 0.5", IACSG_ERR_SYNTAX, 1, 14,
                  "expected rgb(R, G, B), the material's colour, found '0.5'");
     expect_error("material m = rgb(1, 1, 1) shine 3\nx", IACSG_ERR_NAME, 1, 27,
-                 "unknown material keyword 'shine' (specular, shininess)");
+                 "unknown material keyword 'shine' (specular, shininess, reflect, opacity)");
     expect_error("material m = rgb(1, 1, 1) speculr 0.5\nx", IACSG_ERR_NAME, 1, 27,
                  "unknown material keyword 'speculr', did you mean 'specular'?");
     expect_error("material m = rgb(1, 1, 1) specular 0.5 specular 0.1\nx", IACSG_ERR_ARG, 1, 40,

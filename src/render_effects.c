@@ -1,0 +1,643 @@
+/* src/render_effects.c -- the ray-tracing effects of a frame (iacsg_effects, render.h), after its camera rays:
+ *
+ *   frame (each pixel's centre ray: depth, normal, id) --> one path per pixel: (pixel, weight, ray, hit)
+ *     --> shade each hit: its material under the lights, each light seen or not by a shadow ray (traced)
+ *     --> children: a reflected ray (weight reflect), a ray through a transparent hit (weight 1 - opacity),
+ *         traced, shaded in turn, until none is left (-bounces, FX_MAX_LAYERS) --> colours summed per pixel
+ *     --> -aa N: the pixels whose centre rays differ from a neighbour's (edges) get N x N paths of their own
+ *   --> rgb (linear light summed, then gamma 2 as kernels/light.h encodes).
+ *
+ * Every secondary ray is traced on the device by the path's own bisection (render_effects_trace.c), so an
+ * occluder or a reflected surface that the ray crosses inside the bounds is never missed. The shading is the
+ * kernels' (light.h) in double on the host: with the default rig and no effect but -aa or -background, a pixel
+ * gets the colour the plain render gives it.
+ */
+#include "render_effects_trace.h"
+#include "implicits/scene.h"
+#include "kernels/params.h"
+#include "kernels/scene_data.h"
+#include "scene_tables.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A shadow ray's leaves, in eps: as wide as the camera rays' (the seed allows coarser). Coarser leaves need a
+ * start as much farther off the surface (offset_of), which then hides occluders that close, and show a near
+ * miss as a shadow. Measured on min(sphere, torus) (1024x1024, eps 1e-5), interval evaluations per shadow ray:
+ * 9.1 at 1 eps, 7.6 at 4, 6.1 at 16, 4.6 at 64; the shadow pass is a small part of the effects' cost
+ * (BENCHMARKS.md), so the rigour of the camera rays is kept. */
+#define FX_SHADOW_EPS_FACTOR 1.0
+/* Layers of transparent hits a path passes at most, and the weight below which it stops (the rest of it is the
+ * background). */
+#define FX_MAX_LAYERS 16
+#define FX_MIN_WEIGHT (1.0 / 1024)
+/* The constant term of the lighting, and the first-root path's material (kernels/light.h, shade.h). */
+#define FX_AMBIENT 0.10
+static const float fx_expr_albedo[3] = {0.80f, 0.52f, 0.28f};
+/* The plain render's background, top to bottom (kernels/light.h). */
+static const float fx_default_top[3] = {0.42f, 0.46f, 0.52f}, fx_default_bottom[3] = {0.13f, 0.14f, 0.17f};
+/* -aa: a pixel is an edge where its centre ray's id differs from a neighbour's, or its colour by this much in a
+ * channel (shadow and reflection edges), or its depth by this fraction. */
+#define FX_AA_CONTRAST (1.0 / 16)
+#define FX_AA_DEPTH 0.02
+/* -aa's rays have leaves no narrower than a sample's footprint (at the bounds' farthest corner) / this. */
+#define FX_AA_EPS_PER_SAMPLE 4
+/* Paths are shaded this many pixels (or antialiasing rays) at a time: their buffers stay small and are reused. */
+#define FX_CHUNK ((size_t)1 << 15)
+
+typedef struct {
+    double v[3];      /* point: the position; dir: the unit direction towards the light */
+    int point;
+    double intensity; /* the diffuse term's weight */
+    double highlight; /* the highlight's weight (times the material's specular) */
+} fx_light;
+
+typedef struct {
+    int pixel;
+    double w; /* the weight of its colour in the pixel's */
+    int bounces, layers;
+    fx_ray ray;
+    fx_hit hit;
+} fx_path;
+
+typedef struct {
+    double rgb[3]; /* linear */
+    double specular, shininess, reflect, opacity;
+} fx_material;
+
+/* A buffer that only grows: a frame's passes reuse its pages (a malloc and free per pass of several MB went to
+ * mmap and back, and its pages faulted in each time). */
+typedef struct {
+    void *p;
+    size_t bytes;
+} fx_buf;
+
+static void *reserve(fx_buf *b, size_t bytes) {
+    if (bytes > b->bytes) {
+        free(b->p);
+        b->bytes = 0;
+        if (!(b->p = malloc(bytes)))
+            return NULL;
+        b->bytes = bytes;
+    }
+    return b->p;
+}
+
+typedef struct {
+    iacsg_renderer *r;
+    const iacsg_view *view;
+    const iacsg_effects *e;
+    fx_tracer tracer;
+    double cam[PARAM_COUNT]; /* the camera in double (iacsg_camera_params) */
+    fx_light lights[IACSG_MAX_LIGHTS];
+    int nlights;
+    double depth_lo, depth_hi; /* the centre hits' range, for -shade depth */
+    float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
+    /* scratch: shadow rays, their hits, which ray each (path, light) cast (-1: none); the generations of paths
+     * (two, in turn); the rays and hits of a generation */
+    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits;
+} fx_frame;
+
+/* Whether a material of the renderer's reflects light (an expression's: e->reflect). */
+static int reflects(const iacsg_renderer *r, const iacsg_effects *e) {
+    int any = !r->scene && e->reflect > 0;
+    for (int i = 0; r->scene && r->fx && i < r->fx->nitems; i++)
+        any |= r->fx->items[i].reflect > 0;
+    return any;
+}
+
+/* Whether a material of the renderer's lets light through (an expression's: e->transparency). */
+static int transparent(const iacsg_renderer *r, const iacsg_effects *e) {
+    int any = !r->scene && e->transparency > 0;
+    for (int i = 0; r->scene && r->fx && i < r->fx->nitems; i++)
+        any |= r->fx->items[i].opacity < 1;
+    return any;
+}
+
+/* Whether the effects do anything: else the frame is the plain render, untouched. */
+static int effects_on(const iacsg_renderer *r, const iacsg_effects *e) {
+    return e && (e->shade != IACSG_SHADE_LIT || e->background || e->nlights > 0 || e->shadows ||
+                 (e->bounces > 0 && reflects(r, e)) || transparent(r, e) || e->aa > 1);
+}
+
+int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view) { return effects_on(r, view->effects); }
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void normalize3(double v[3]) {
+    double len = sqrt(dot3(v, v));
+    for (int k = 0; k < 3; k++)
+        v[k] /= len;
+}
+
+/* The camera ray through the point (x, y) of the image, in pixels from its top left corner (pixel (i, j)'s
+ * centre is (i + 1/2, j + 1/2)): kernels/camera.h's convention, in double. */
+static void camera_ray_at(const fx_frame *f, double x, double y, fx_ray *ray) {
+    const double *p = f->cam;
+    int ortho = f->view->camera.ortho_height > 0;
+    double s = (2 * x / f->view->width - 1) * p[PARAM_SCALE_S], v = (1 - 2 * y / f->view->height) * p[PARAM_SCALE_V];
+    for (int k = 0; k < 3; k++) {
+        double offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
+        ray->o[k] = p[PARAM_EYE + k] + (ortho ? offset : 0);
+        ray->d[k] = p[PARAM_FORWARD + k] + (ortho ? 0 : offset);
+    }
+    normalize3(ray->d);
+    ray->tn = 0;
+    ray->tf = INFINITY;
+    ray->passing = 0;
+}
+
+/* The lights: the view's, or the default rig, the plain render's key and fill lights fixed to the camera. */
+static void resolve_lights(fx_frame *f) {
+    const iacsg_effects *e = f->e;
+    if (e->nlights == 0) {
+        static const double rig[2][4] = {{-0.6, 0.8, 0.85, 1.0}, {0.9, -0.2, 0.30, 0.10 / 0.45}};
+        for (int l = 0; l < 2; l++) {
+            fx_light *L = &f->lights[l];
+            for (int k = 0; k < 3; k++)
+                L->v[k] = -f->cam[PARAM_FORWARD + k] + rig[l][0] * f->cam[PARAM_RIGHT + k] +
+                          rig[l][1] * f->cam[PARAM_UP + k];
+            normalize3(L->v);
+            L->point = 0;
+            L->intensity = rig[l][2];
+            L->highlight = rig[l][3];
+        }
+        f->nlights = 2;
+        return;
+    }
+    for (int l = 0; l < e->nlights && l < IACSG_MAX_LIGHTS; l++) {
+        fx_light *L = &f->lights[l];
+        memcpy(L->v, e->lights[l].xyz, sizeof L->v);
+        L->point = e->lights[l].kind == IACSG_LIGHT_POINT;
+        if (!L->point)
+            normalize3(L->v);
+        L->intensity = L->highlight = e->lights[l].intensity;
+    }
+    f->nlights = e->nlights < IACSG_MAX_LIGHTS ? e->nlights : IACSG_MAX_LIGHTS;
+}
+
+/* The background of row y (display-encoded), as linear light. */
+static void background_at(const fx_frame *f, double y, double lin[3]) {
+    const float *top = f->e->background ? f->e->background_top : fx_default_top;
+    const float *bottom = f->e->background ? f->e->background_bottom : fx_default_bottom;
+    double v = fmin(fmax(y / (f->view->height > 1 ? f->view->height - 1 : 1), 0), 1);
+    for (int c = 0; c < 3; c++) {
+        double shown = top[c] + (bottom[c] - top[c]) * v;
+        lin[c] = shown * shown;
+    }
+}
+
+static void material_of(const fx_frame *f, int item, fx_material *m) {
+    const render_fx *fx = f->r->fx;
+    if (!f->r->scene) {
+        for (int c = 0; c < 3; c++)
+            m->rgb[c] = fx_expr_albedo[c];
+        m->specular = SCENE_DEFAULT_SPECULAR;
+        m->shininess = SCENE_DEFAULT_SHININESS;
+        m->reflect = f->e->reflect;
+        m->opacity = 1 - f->e->transparency;
+        return;
+    }
+    const float *a = render_scene_materials(f->r) + SCENE_MATERIAL_FLOATS * item;
+    for (int c = 0; c < 3; c++)
+        m->rgb[c] = a[SCENE_MATERIAL_RGB + c];
+    m->specular = a[SCENE_MATERIAL_SPECULAR];
+    m->shininess = a[SCENE_MATERIAL_SHININESS];
+    m->reflect = fx && item < fx->nitems ? fx->items[item].reflect : 0;
+    m->opacity = fx && item < fx->nitems ? fx->items[item].opacity : 1;
+}
+
+/* How far a secondary ray starts off its hit: past the hit leaf's distance from the surface (a few eps) and the
+ * rounding of the hit point (the depth is float32 and the host's ray differs from the device's by ulps). */
+static double offset_of(const fx_frame *f, const double p[3], double t) {
+    double scale = 1 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]) + fabs(t);
+    return 4 * f->view->eps + 4e-6 * scale;
+}
+
+static void hit_point(const fx_path *q, double p[3]) {
+    for (int k = 0; k < 3; k++)
+        p[k] = q->ray.o[k] + q->hit.t * q->ray.d[k];
+}
+
+/* The direction and distance from p to light L. */
+static double towards(const fx_light *L, const double p[3], double l[3]) {
+    if (!L->point) {
+        memcpy(l, L->v, 3 * sizeof(double));
+        return INFINITY;
+    }
+    for (int k = 0; k < 3; k++)
+        l[k] = L->v[k] - p[k];
+    double dist = sqrt(dot3(l, l));
+    for (int k = 0; k < 3; k++)
+        l[k] /= dist;
+    return dist;
+}
+
+/* The shadow ray from the hit of q to light L: from the hit moved off the surface along its normal (which faces
+ * the ray, on the light's side when the light is in front of the surface), to the light. Returns 0 when the
+ * light is behind the surface there (no ray: the diffuse term is 0 anyway). */
+static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx_ray *ray) {
+    double p[3], l[3], n[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
+    hit_point(q, p);
+    towards(L, p, l);
+    if (dot3(n, l) <= 0)
+        return 0;
+    double off = offset_of(f, p, q->hit.t);
+    for (int k = 0; k < 3; k++)
+        ray->o[k] = p[k] + off * n[k];
+    ray->tf = towards(L, ray->o, ray->d);
+    ray->tn = 0;
+    ray->passing = 0;
+    return 1;
+}
+
+/* The linear colour of q's hit under the lights, each seen where `seen` (NULL: all). */
+static void lit_color(const fx_frame *f, const fx_path *q, const fx_material *m, const double albedo[3],
+                      const unsigned char *seen, double lin[3]) {
+    double p[3], n[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]}, diffuse = FX_AMBIENT, highlight = 0;
+    hit_point(q, p);
+    for (int l = 0; l < f->nlights; l++) {
+        double L[3], h[3];
+        towards(&f->lights[l], p, L);
+        double nl = dot3(n, L);
+        if (nl <= 0 || (seen && !seen[l]))
+            continue;
+        for (int k = 0; k < 3; k++)
+            h[k] = L[k] - q->ray.d[k]; /* the half vector between the light and the eye */
+        double hh = sqrt(dot3(h, h)), nh = hh > 0 ? fmax(dot3(n, h) / hh, 0) : 0;
+        diffuse += f->lights[l].intensity * nl;
+        highlight += f->lights[l].highlight * (nh > 0 ? pow(nh, m->shininess) : 0);
+    }
+    for (int c = 0; c < 3; c++)
+        lin[c] = albedo[c] * diffuse + m->specular * highlight;
+}
+
+/* The unlit previews' colour (linear) of a hit, or 0 when the mode lights its hits. */
+static int preview_color(const fx_frame *f, const fx_path *q, double lin[3]) {
+    double shown[3];
+    switch (f->e->shade) {
+    case IACSG_SHADE_NORMALS:
+        for (int c = 0; c < 3; c++)
+            shown[c] = 0.5 + 0.5 * q->hit.n[c];
+        break;
+    case IACSG_SHADE_DEPTH: {
+        double span = f->depth_hi - f->depth_lo;
+        double v = span > 0 ? fmin(fmax((q->hit.t - f->depth_lo) / span, 0), 1) : 0;
+        shown[0] = shown[1] = shown[2] = 1 - 0.85 * v;
+        break;
+    }
+    case IACSG_SHADE_IDS: {
+        float rgb[3];
+        scene_palette(q->hit.item, rgb);
+        for (int c = 0; c < 3; c++)
+            shown[c] = sqrt(rgb[c]);
+        break;
+    }
+    default: return 0;
+    }
+    for (int c = 0; c < 3; c++)
+        lin[c] = shown[c] * shown[c];
+    return 1;
+}
+
+static void add(float *accum, int pixel, double w, const double lin[3]) {
+    for (int c = 0; c < 3; c++)
+        accum[3 * (size_t)pixel + c] += (float)(w * lin[c]);
+}
+
+/* Adds the colours of paths[0 .. n) that their hits give now, lit with shadow rays (traced first); kids gets
+ * their children, reflected and transmitted rays not yet traced (*nout of them, at most 2n). */
+static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n, fx_path *kids, size_t *nout,
+                                     iacsg_error *err) {
+    const iacsg_effects *e = f->e;
+    int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
+    size_t nl = (size_t)f->nlights, nshadow = 0;
+    unsigned char *seen = NULL;
+    if (lit && e->shadows) { /* one shadow ray per hit and light in front of it */
+        fx_ray *rays = reserve(&f->shadow_rays, (n * nl + 1) * sizeof *rays);
+        fx_hit *hits = reserve(&f->shadow_hits, (n * nl + 1) * sizeof *hits);
+        long *ray_of = reserve(&f->shadow_of, (n * nl + 1) * sizeof *ray_of);
+        if (!rays || !hits || !ray_of)
+            return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+        for (size_t i = 0; i < n; i++)
+            for (size_t l = 0; l < nl; l++) {
+                int cast = paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[nshadow]);
+                ray_of[i * nl + l] = cast ? (long)nshadow++ : -1;
+            }
+        iacsg_status st = fx_trace(&f->tracer, rays, nshadow, FX_SHADOW_EPS_FACTOR * f->view->eps, f->tracer.root_w,
+                                   hits, err);
+        if (st != IACSG_OK)
+            return st;
+        seen = (unsigned char *)ray_of; /* in place: entry k is read before byte k is written */
+        for (size_t k = 0; k < n * nl; k++)
+            seen[k] = ray_of[k] >= 0 && isinf(hits[ray_of[k]].t);
+    }
+    size_t nkids = 0;
+    for (size_t i = 0; i < n; i++) {
+        const fx_path *q = &paths[i];
+        double lin[3];
+        int row = q->pixel / f->view->width;
+        if (q->hit.item < 0) {
+            background_at(f, row, lin);
+            add(f->accum, q->pixel, q->w, lin);
+            continue;
+        }
+        if (preview_color(f, q, lin)) {
+            add(f->accum, q->pixel, q->w, lin);
+            continue;
+        }
+        fx_material m;
+        material_of(f, q->hit.item, &m);
+        double albedo[3];
+        for (int c = 0; c < 3; c++) /* gradient shading: the normal's direction as the colour */
+            albedo[c] = e->shade == IACSG_SHADE_GRADIENT ? pow(0.5 + 0.5 * q->hit.n[c], 2) : m.rgb[c];
+        lit_color(f, q, &m, albedo, seen ? seen + i * nl : NULL, lin);
+        double a = m.opacity, k = q->bounces < e->bounces ? m.reflect : 0;
+        add(f->accum, q->pixel, q->w * a * (1 - k), lin);
+        double p[3], n3[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
+        hit_point(q, p);
+        double off = offset_of(f, p, q->hit.t);
+        if (k > 0 && q->w * a * k >= FX_MIN_WEIGHT) { /* the mirror direction, from off the surface */
+            fx_path *c = &kids[nkids++];
+            *c = *q;
+            c->w = q->w * a * k;
+            c->bounces++;
+            double dn = dot3(q->ray.d, n3);
+            for (int j = 0; j < 3; j++) {
+                c->ray.o[j] = p[j] + off * n3[j];
+                c->ray.d[j] = q->ray.d[j] - 2 * dn * n3[j];
+            }
+            normalize3(c->ray.d);
+            c->ray.tn = 0;
+            c->ray.tf = INFINITY;
+            c->ray.passing = 0;
+        }
+        double through = q->w * (1 - a);
+        if (through > 0 && (through < FX_MIN_WEIGHT || q->layers + 1 >= FX_MAX_LAYERS)) {
+            background_at(f, row, lin); /* what is left of the path */
+            add(f->accum, q->pixel, through, lin);
+        } else if (through > 0) { /* on through the surface: from just past it, the same direction */
+            fx_path *c = &kids[nkids++];
+            *c = *q;
+            c->w = through;
+            c->layers++;
+            for (int j = 0; j < 3; j++)
+                c->ray.o[j] = p[j] - off * n3[j];
+            c->ray.tn = 0;
+            c->ray.tf = INFINITY;
+            /* a region is a volume: the ray, now inside it, passes through it to what lies behind (one layer
+             * where it enters); a surface is crossed like the expression's */
+            c->ray.passing = f->r->scene && f->r->fx->items[q->hit.item].region ? 1 + q->hit.item : 0;
+        }
+    }
+    *nout = nkids;
+    return IACSG_OK;
+}
+
+/* Traces the rays of paths[0 .. n) into their hits, with leaves of width eps, Newton's window `newton`
+ * (fx_trace). */
+static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double eps, double newton, iacsg_error *err) {
+    fx_ray *rays = reserve(&f->rays, (n + 1) * sizeof *rays);
+    fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
+    iacsg_status st = rays && hits ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    for (size_t i = 0; st == IACSG_OK && i < n; i++)
+        rays[i] = paths[i].ray;
+    if (st == IACSG_OK)
+        st = fx_trace(&f->tracer, rays, n, eps, newton, hits, err);
+    for (size_t i = 0; st == IACSG_OK && i < n; i++)
+        paths[i].hit = hits[i];
+    return st;
+}
+
+/* Shades paths (their hits known; the caller's) and all their descendants into f->accum. */
+static iacsg_status run_paths(fx_frame *f, fx_path *first, size_t n, iacsg_error *err) {
+    iacsg_status st = IACSG_OK;
+    fx_path *paths = first;
+    for (int g = 0; n > 0 && st == IACSG_OK; g = 1 - g) { /* a path has at most 2 children */
+        fx_path *kids = reserve(&f->kids[g], (2 * n + 1) * sizeof *kids);
+        size_t nk = 0;
+        st = kids ? shade_generation(f, paths, n, kids, &nk, err)
+                  : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+        paths = kids;
+        n = nk;
+        if (st == IACSG_OK)
+            st = trace_paths(f, paths, n, f->view->eps, f->tracer.root_w, err);
+    }
+    return st;
+}
+
+/* The rows the view traces. */
+static void traced_rows(const iacsg_view *v, int *row0, int *row1) {
+    *row0 = v->row_first;
+    *row1 = v->row_count ? v->row_first + v->row_count : v->height;
+}
+
+/* Whether the host would light each centre hit exactly as the kernel did (kernels/light.h: the default rig, no
+ * shadow, no reflection, no transparency), so that the kernel's colours stand. */
+static int kernel_colors_hold(const fx_frame *f) {
+    const iacsg_effects *e = f->e;
+    return e->shade == IACSG_SHADE_LIT && e->nlights == 0 && !e->shadows && !(e->bounces > 0 && reflects(f->r, e)) &&
+           !transparent(f->r, e);
+}
+
+/* The pixels of the traced rows in blocks of 4x4, the order their paths are listed in, so that the secondary
+ * rays of a packet (kernels/effects.cl) come from neighbouring pixels. Sets the centre hits' depth range. */
+static int *block_order(fx_frame *f, const iacsg_frame *fr, size_t *count) {
+    const iacsg_view *v = f->view;
+    int row0, row1;
+    traced_rows(v, &row0, &row1);
+    int *order = malloc(((size_t)(row1 - row0) * (size_t)v->width + 1) * sizeof *order);
+    if (!order)
+        return NULL;
+    size_t n = 0;
+    f->depth_lo = INFINITY;
+    f->depth_hi = -INFINITY;
+    for (int bj = row0; bj < row1; bj += PACKET_H)
+        for (int bi = 0; bi < v->width; bi += PACKET_W)
+            for (int j = bj; j < bj + PACKET_H && j < row1; j++)
+                for (int i = bi; i < bi + PACKET_W && i < v->width; i++) {
+                    int pixel = j * v->width + i;
+                    order[n++] = pixel;
+                    if (!isinf(fr->depth[pixel])) {
+                        f->depth_lo = fmin(f->depth_lo, fr->depth[pixel]);
+                        f->depth_hi = fmax(f->depth_hi, fr->depth[pixel]);
+                    }
+                }
+    *count = n;
+    return order;
+}
+
+/* The path of a pixel's centre ray, its hit the frame's (depth, normal, id). */
+static void centre_path(const fx_frame *f, const iacsg_frame *fr, int pixel, fx_path *q) {
+    memset(q, 0, sizeof *q);
+    q->pixel = pixel;
+    q->w = 1;
+    camera_ray_at(f, pixel % f->view->width + 0.5, pixel / f->view->width + 0.5, &q->ray);
+    q->hit.t = fr->depth[pixel];
+    memcpy(q->hit.n, fr->normal + 3 * (size_t)pixel, sizeof q->hit.n);
+    q->hit.item = isinf(q->hit.t) ? -1 : fr->ids ? (int)fr->ids[pixel] : 0;
+}
+
+/* A pixel's summed linear light to its display colour, in place (kernels/light.h: gamma 2). */
+static void encode(float *rgb, int pixel) {
+    for (int c = 0; c < 3; c++)
+        rgb[3 * (size_t)pixel + c] = sqrtf(fminf(fmaxf(rgb[3 * (size_t)pixel + c], 0), 1));
+}
+
+/* Whether pixels a and b (both traced) differ enough that the edge between them needs more rays. */
+static int differ(const iacsg_frame *fr, int a, int b) {
+    float ia = isinf(fr->depth[a]) ? -1 : fr->ids ? fr->ids[a] : 0;
+    float ib = isinf(fr->depth[b]) ? -1 : fr->ids ? fr->ids[b] : 0;
+    if (ia != ib)
+        return 1;
+    for (int c = 0; c < 3; c++)
+        if (fabsf(fr->rgb[3 * a + c] - fr->rgb[3 * b + c]) > FX_AA_CONTRAST)
+            return 1;
+    return ia >= 0 && fabsf(fr->depth[a] - fr->depth[b]) > FX_AA_DEPTH * fminf(fr->depth[a], fr->depth[b]);
+}
+
+/* -aa N: the pixels on an edge (differ) get N x N rays of their own, on a regular grid in the pixel, each
+ * weighing 1 / N^2; their centre rays' colours are replaced. `order`: the traced pixels in block order. */
+static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, size_t count, fx_path *paths,
+                              iacsg_error *err) {
+    const iacsg_view *v = f->view;
+    int aa = f->e->aa, row0, row1, w = v->width;
+    traced_rows(v, &row0, &row1);
+    unsigned char *edge = calloc((size_t)v->width * (size_t)v->height + 1, 1);
+    if (!edge)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    for (int j = row0; j < row1; j++)
+        for (int i = 0; i < w; i++) {
+            int p = j * w + i;
+            if (i + 1 < w && differ(fr, p, p + 1))
+                edge[p] = edge[p + 1] = 1;
+            if (j + 1 < row1 && differ(fr, p, p + w))
+                edge[p] = edge[p + w] = 1;
+        }
+    iacsg_status st = IACSG_OK;
+    size_t per_chunk = FX_CHUNK / ((size_t)aa * aa), k = 0;
+    /* The samples' leaves: eps, or a quarter of a sample's footprint where that is wider. A ray that passes that
+     * close to a surface may be shown hitting it, so a silhouette grows by at most a quarter of a sample; the
+     * samples only colour the pixel (its depth is the centre ray's). Rays grazing silhouettes are the costly
+     * ones: on min(sphere, torus) (eps 1e-5) 136 evaluations a sample at eps, 73 so (the camera rays: 2.4). */
+    double aa_eps = fmax(f->view->eps, f->tracer.footprint / (FX_AA_EPS_PER_SAMPLE * aa));
+    while (st == IACSG_OK && k < count) { /* the edge pixels in block order, per_chunk at a time */
+        size_t n = 0, first = k;
+        for (size_t pixels = 0; k < count && pixels < per_chunk; k++) {
+            int pixel = order[k], i = pixel % w, j = pixel / w;
+            if (!edge[pixel])
+                continue;
+            pixels++;
+            for (int c = 0; c < 3; c++) /* the samples' light replaces the centre ray's colour */
+                fr->rgb[3 * (size_t)pixel + c] = 0;
+            for (int b = 0; b < aa; b++)
+                for (int a = 0; a < aa; a++) {
+                    fx_path *q = &paths[n++];
+                    memset(q, 0, sizeof *q);
+                    q->pixel = pixel;
+                    q->w = 1.0 / (aa * aa);
+                    camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
+                }
+        }
+        st = trace_paths(f, paths, n, aa_eps, f->tracer.footprint, err);
+        if (st == IACSG_OK)
+            st = run_paths(f, paths, n, err);
+        for (size_t e = first; st == IACSG_OK && e < k; e++)
+            if (edge[order[e]])
+                encode(fr->rgb, order[e]);
+    }
+    free(edge);
+    return st;
+}
+
+iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err) {
+    if (!effects_on(r, view->effects))
+        return IACSG_OK;
+    double t0 = render_now_seconds();
+    fx_frame f = {0};
+    f.r = r;
+    f.view = view;
+    f.e = view->effects;
+    iacsg_status st = iacsg_camera_params(&view->camera, view->width, view->height, f.cam, err);
+    if (st == IACSG_OK)
+        st = fx_tracer_open(&f.tracer, r, view, err);
+    size_t count = 0;
+    int *order = NULL;
+    fx_path *paths = malloc(FX_CHUNK * sizeof *paths);
+    f.accum = frame->rgb;
+    if (st == IACSG_OK && (!paths || !(order = block_order(&f, frame, &count))))
+        st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    resolve_lights(&f);
+    /* The centre rays' colours, FX_CHUNK hits at a time (a miss is its background, and a hit keeps the kernel's
+     * colour where the host's would be the same); then -aa decides its edges on them. */
+    int keep = kernel_colors_hold(&f);
+    for (size_t k = 0; st == IACSG_OK && k < count;) {
+        size_t n = 0, first = k;
+        for (; k < count && n < FX_CHUNK; k++) {
+            int pixel = order[k], miss = isinf(frame->depth[pixel]);
+            if (miss || !keep)
+                memset(frame->rgb + 3 * (size_t)pixel, 0, 3 * sizeof(float));
+            if (miss) {
+                double lin[3];
+                background_at(&f, pixel / view->width, lin);
+                add(f.accum, pixel, 1, lin);
+            } else if (!keep) {
+                centre_path(&f, frame, pixel, &paths[n++]);
+            }
+        }
+        st = run_paths(&f, paths, n, err);
+        for (size_t q = first; st == IACSG_OK && q < k; q++)
+            if (!keep || isinf(frame->depth[order[q]]))
+                encode(frame->rgb, order[q]);
+    }
+    if (st == IACSG_OK && f.e->aa > 1)
+        st = antialias(&f, frame, order, count, paths, err);
+    free(order);
+    free(paths);
+    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1], &f.rays, &f.hits};
+    for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
+        free(bufs[k]->p);
+    frame->secondary_rays = f.tracer.rays;
+    frame->secondary_evals_mean = f.tracer.rays ? f.tracer.evals / (double)f.tracer.rays : 0;
+    fx_tracer_close(&f.tracer);
+    frame->render_seconds += render_now_seconds() - t0;
+    return st;
+}
+
+iacsg_status render_effects_keep_scene(iacsg_renderer *r, const iacsg_scene *s, iacsg_error *err) {
+    render_fx *fx = NULL;
+    iacsg_status st = fx_of(r, &fx, err);
+    if (st != IACSG_OK)
+        return st;
+    fx->items = malloc(sizeof *fx->items * (size_t)(s->nitems + 1));
+    if (!fx->items)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    fx->nitems = s->nitems;
+    for (int i = 0; i < s->nitems; i++) {
+        int m = s->items[i].material;
+        fx->items[i].reflect = m >= 0 ? s->materials[m].reflect : 0;
+        fx->items[i].opacity = m >= 0 ? s->materials[m].opacity : 1;
+        fx->items[i].region = s->items[i].kind == SCENE_REGION;
+    }
+    return IACSG_OK;
+}
+
+_Static_assert(SCENE_MAX_LIGHTS == IACSG_MAX_LIGHTS, "a scene's lights fit iacsg_effects");
+
+int iacsg_scene_lights(const iacsg_scene *s, iacsg_light lights[IACSG_MAX_LIGHTS]) {
+    for (int l = 0; l < s->nlights; l++) {
+        lights[l].kind = s->lights[l].dir ? IACSG_LIGHT_DIR : IACSG_LIGHT_POINT;
+        memcpy(lights[l].xyz, s->lights[l].xyz, sizeof lights[l].xyz);
+        lights[l].intensity = s->lights[l].intensity;
+    }
+    return s->nlights;
+}
+
+void render_effects_free(render_fx *fx) {
+    if (!fx)
+        return;
+    if (fx->trace)
+        clReleaseKernel(fx->trace);
+    free(fx->items);
+    free(fx);
+}

@@ -1,0 +1,263 @@
+/* src/render_effects_trace.c -- see render_effects_trace.h. The rays go to the device in one buffer per call,
+ * in the working precision (kernels/effects.h); the first-root path traces 16 of them per work-item in SIMD
+ * lanes, the segment path one per work-item with per-ray buffers that every ray fits (render_scene.c). */
+#include "render_effects_trace.h"
+#include "kernels/effects.h"
+#include "kernels/params.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The device buffers of one call. */
+typedef struct trace_buffers {
+    cl_mem rays, t, normal, item, evals, passing;
+} trace_buffers;
+
+iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err) {
+    if (!r->fx && !(r->fx = calloc(1, sizeof *r->fx)))
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    *out = r->fx;
+    return IACSG_OK;
+}
+
+static size_t real_bytes(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
+
+/* Stores v as the working precision's real at index k of `block`. */
+static void put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
+    if (r->config.fp64)
+        ((double *)block)[k] = v;
+    else
+        ((float *)block)[k] = (float)v;
+}
+
+/* The tree of the secondary rays covers [0, root_w]: a ray from inside the bounds leaves them within their
+ * diagonal, a camera ray (antialiasing) within the eye's farthest corner; doubled for the origins' offsets. */
+static double root_width(const iacsg_view *v) {
+    double diag2 = 0, far2 = 0;
+    for (int k = 0; k < 3; k++) {
+        double e = v->camera.eye[k], lo = v->bounds[k], hi = v->bounds[k + 3];
+        diag2 += (hi - lo) * (hi - lo);
+        far2 += fmax((e - lo) * (e - lo), (e - hi) * (e - hi));
+    }
+    return 2 * (sqrt(diag2) + sqrt(far2)) + 1;
+}
+
+static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
+                                double newton, iacsg_error *err);
+static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
+                                 iacsg_error *err);
+
+/* PoCL compiles a kernel at its first launch: one launch over no rays makes that happen when the kernel is made,
+ * counted as build time (render.c: compile_now), not inside the first frame with effects. */
+static iacsg_status compile_trace_now(fx_tracer *t, iacsg_error *err) {
+    struct trace_buffers none = {0};
+    double eps[1] = {0};
+    return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, err)
+                       : launch_expr(t, t->r->fx->trace, &none, 0, eps, 0, err);
+}
+
+iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
+    memset(t, 0, sizeof *t);
+    t->r = r;
+    t->view = view;
+    render_fx *fx = NULL;
+    double block[PARAM_COUNT];
+    iacsg_status st = fx_of(r, &fx, err);
+    if (st == IACSG_OK)
+        st = render_fill_params(view, r->config.fp64, block, err);
+    if (st != IACSG_OK)
+        return st;
+    cl_int rc = CL_SUCCESS;
+    t->params = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * real_bytes(r),
+                               block, &rc);
+    CLRT_CHECK(err, rc);
+    if (!fx->trace) {
+        double t0 = render_now_seconds();
+        fx->trace = clCreateKernel(r->program, r->scene ? "iacsg_scene_trace_rays" : "iacsg_trace_rays", &rc);
+        CLRT_CHECK(err, rc);
+        st = compile_trace_now(t, err);
+        r->build_seconds += render_now_seconds() - t0;
+        if (st != IACSG_OK)
+            return st;
+    }
+    cl_ulong ones[SEGMENTS];
+    for (int k = 0; k < SEGMENTS; k++)
+        ones[k] = ~(cl_ulong)0;
+    t->all_groups = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof ones, ones, &rc);
+    CLRT_CHECK(err, rc);
+    t->root_w = root_width(view);
+    double p[PARAM_COUNT], far2 = 0;
+    st = iacsg_camera_params(&view->camera, view->width, view->height, p, err);
+    for (int k = 0; k < 3; k++) {
+        double e = view->camera.eye[k], lo = view->bounds[k], hi = view->bounds[k + 3];
+        far2 += fmax((e - lo) * (e - lo), (e - hi) * (e - hi));
+    }
+    t->footprint = 2 * p[PARAM_SCALE_V] / view->height * (view->camera.ortho_height > 0 ? 1 : sqrt(far2));
+    return st;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+void fx_tracer_close(fx_tracer *t) {
+    free(t->host);
+    t->host = NULL;
+    t->host_bytes = 0;
+    if (t->params)
+        clReleaseMemObject(t->params);
+    if (t->all_groups)
+        clReleaseMemObject(t->all_groups);
+    t->params = t->all_groups = NULL;
+}
+
+
+
+static void release_trace_buffers(trace_buffers *b) {
+    cl_mem all[] = {b->rays, b->t, b->normal, b->item, b->evals, b->passing};
+    for (int k = 0; k < 6; k++)
+        if (all[k])
+            clReleaseMemObject(all[k]);
+}
+
+/* The first-root path: arguments of kernels/effects.cl, one launch of n / 16 work-items. */
+static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
+                                double newton, iacsg_error *err) {
+    iacsg_renderer *r = t->r;
+    size_t rb = real_bytes(r);
+    double reals[2];
+    put_real(r, reals, 0, t->root_w);
+    char w_real[8], fp_real[8];
+    memcpy(w_real, reals, rb);
+    put_real(r, reals, 0, newton);
+    memcpy(fp_real, reals, rb);
+    CLRT_CHECK(err, clSetKernelArg(k, 0, sizeof(cl_mem), &t->params));
+    CLRT_CHECK(err, clSetKernelArg(k, 1, sizeof(cl_mem), &b->rays));
+    CLRT_CHECK(err, clSetKernelArg(k, 2, sizeof n, &n));
+    CLRT_CHECK(err, clSetKernelArg(k, 3, rb, w_real));
+    CLRT_CHECK(err, clSetKernelArg(k, 4, rb, eps_real));
+    CLRT_CHECK(err, clSetKernelArg(k, 5, rb, fp_real));
+    CLRT_CHECK(err, clSetKernelArg(k, 6, sizeof(cl_mem), &t->all_groups));
+    CLRT_CHECK(err, clSetKernelArg(k, 7, sizeof(cl_mem), &b->t));
+    CLRT_CHECK(err, clSetKernelArg(k, 8, sizeof(cl_mem), &b->normal));
+    CLRT_CHECK(err, clSetKernelArg(k, 9, sizeof(cl_mem), b->evals ? &b->evals : NULL));
+    size_t global = n > 0 ? ((size_t)n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */
+    CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL));
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+/* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items as the per-ray
+ * buffers have room for (one after the other on the in-order queue, which they share). */
+static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
+                                 iacsg_error *err) {
+    iacsg_renderer *r = t->r;
+    void *held = NULL;
+    size_t slots = n > 0 ? (size_t)n : 1; /* n = 0: one launch that traces nothing (compile_trace_now) */
+    iacsg_status st = render_scene_trace_args(r, t->view, k, 10, &slots, &held, err);
+    cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item, b->evals, b->passing};
+    cl_uint at[] = {0, 1, 5, 6, 7, 8, 9};
+    for (int a = 0; a < 7 && st == IACSG_OK; a++)
+        if (clSetKernelArg(k, at[a], sizeof(cl_mem), args[a] ? &args[a] : NULL) != CL_SUCCESS)
+            st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
+    if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
+                           clSetKernelArg(k, 4, real_bytes(r), eps_real) != CL_SUCCESS))
+        st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
+    for (cl_int first = 0; st == IACSG_OK && (first < n || first == 0); first += (cl_int)slots) {
+        size_t global = (size_t)(n - first) < slots && n > 0 ? (size_t)(n - first) : slots, local = 1;
+        cl_int rc = clSetKernelArg(k, 3, sizeof first, &first);
+        if (rc == CL_SUCCESS)
+            rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_scene_trace_rays)", __func__, __LINE__);
+    }
+    if (st == IACSG_OK && clFinish(r->rt.queue) != CL_SUCCESS)
+        st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clFinish after the scene's trace failed");
+    render_scene_trace_release(held);
+    return st;
+}
+
+/* Rounds up to whole pages: the parts of the host scratch start on pages, as devices prefer host arrays they
+ * use in place. */
+static size_t page_round(size_t bytes) { return (bytes + 4095) / 4096 * 4096; }
+
+/* Makes the host scratch hold `bytes` (it only grows, so that a frame's passes reuse its pages). */
+static iacsg_status reserve_scratch(fx_tracer *t, size_t bytes, iacsg_error *err) {
+    if (bytes <= t->host_bytes)
+        return IACSG_OK;
+    void *p = NULL;
+    if (posix_memalign(&p, 4096, bytes) != 0)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the secondary rays");
+    free(t->host);
+    t->host = p;
+    t->host_bytes = bytes;
+    return IACSG_OK;
+}
+
+/* Makes the host array current after the kernels wrote the buffer over it (a no-op on a CPU device). */
+static iacsg_status sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {
+    cl_int rc = CL_SUCCESS;
+    void *p = clEnqueueMapBuffer(q, m, CL_TRUE, CL_MAP_READ, 0, bytes, 0, NULL, NULL, &rc);
+    CLRT_CHECK(err, rc);
+    CLRT_CHECK(err, clEnqueueUnmapMemObject(q, m, p, 0, NULL, NULL));
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, double newton, fx_hit *hits,
+                      iacsg_error *err) {
+    if (n == 0)
+        return IACSG_OK;
+    if (n > 0x7fffffff / EFFECTS_RAY_REALS)
+        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "too many secondary rays (%zu) in one pass", n);
+    iacsg_renderer *r = t->r;
+    size_t rb = real_bytes(r);
+    size_t bytes[6] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
+                       n * sizeof(cl_uint), n * sizeof(cl_int)};
+    size_t at[6] = {0};
+    for (int k = 1; k < 6; k++)
+        at[k] = at[k - 1] + page_round(bytes[k - 1]);
+    iacsg_status st = reserve_scratch(t, at[5] + page_round(bytes[5]), err);
+    if (st != IACSG_OK)
+        return st;
+    char *host = t->host;
+    for (size_t i = 0; i < n; i++) {
+        const fx_ray *y = &rays[i];
+        double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
+        for (int k = 0; k < EFFECTS_RAY_REALS; k++)
+            put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
+        ((cl_int *)(void *)(host + at[5]))[i] = y->passing;
+    }
+    trace_buffers b = {0};
+    cl_mem *dst[6] = {&b.rays, &b.t, &b.normal, &b.item, &b.evals, &b.passing};
+    cl_int rc = CL_SUCCESS;
+    for (int k = 0; k < 6; k++) {
+        if (((k == 3 || k == 5) && !r->scene) || (k == 4 && !r->config.stats))
+            continue;
+        cl_mem_flags flags = (k == 0 || k == 5 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR;
+        *dst[k] = clCreateBuffer(r->rt.context, flags, bytes[k], host + at[k], &rc);
+        CLRT_CHECK(err, rc);
+    }
+    double eps_block[1];
+    put_real(r, eps_block, 0, eps);
+    st = r->scene ? launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err)
+                  : launch_expr(t, r->fx->trace, &b, (cl_int)n, eps_block, newton, err);
+    for (int k = 1; k < 5 && st == IACSG_OK; k++) /* the outputs */
+        if (*dst[k])
+            st = sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
+    const float *out_n = (const float *)(void *)(host + at[2]);
+    const cl_int *out_item = (const cl_int *)(void *)(host + at[3]);
+    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
+        hits[i].t = r->config.fp64 ? ((const double *)(void *)(host + at[1]))[i]
+                                   : ((const float *)(void *)(host + at[1]))[i];
+        memcpy(hits[i].n, out_n + 3 * i, sizeof hits[i].n);
+        hits[i].item = isinf(hits[i].t) ? -1 : b.item ? out_item[i] : 0;
+        t->evals += b.evals ? ((const cl_uint *)(void *)(host + at[4]))[i] : 0;
+    }
+    t->rays += (long long)n;
+    release_trace_buffers(&b);
+    return st;
+fail:
+    release_trace_buffers(&b);
+    return IACSG_ERR_OPENCL;
+}

@@ -1,0 +1,69 @@
+#!/bin/bash
+# tests/bench/effects.sh BINARY -- what each ray-tracing effect costs against the plain render of the same view
+# (issue 12), by hand: the render time that -stats prints (camera rays, effects and secondary rays included;
+# not the kernel build, nor the process), the median of RUNS runs with the variants taken in turn, so that a
+# ratio compares runs under the same load; and the secondary rays' interval evaluations (exact, load-free).
+# Prints markdown rows; BENCHMARKS.md's section "Ray-tracing effects" holds a run of it.
+set -eu
+bin=$(realpath "${1:-build/iacsg}")
+runs=${RUNS:-5}
+here=$(cd "$(dirname "$0")/../.." && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+ref=(-eye 0,-4,2.5 -at 0,0,0 -up 0,0,1 -fov 40 -bounds -2,-2,-2,2,2,2 -size 1024x1024 -eps 1e-5)
+# Fig. 2's cube and sphere as regions, and the same with its grey material reflecting half the light, or letting
+# half of it through
+cp "$here/examples/fig2_cube_sphere_regions.csg" fig2.csg
+sed 's/^material grey = rgb(0.6, 0.6, 0.62)$/& reflect 0.5/' fig2.csg >fig2_mirror.csg
+sed 's/^material grey = rgb(0.6, 0.6, 0.62)$/& opacity 0.5/' fig2.csg >fig2_glass.csg
+# the light for the shadows: one point light above and to the side
+light=(-light point,1.5,-2,4,0.9)
+
+# "SECONDS EVALS" of one run: -stats' render time, the secondary rays' evaluations per ray (0 without)
+one() {
+    "$bin" "$@" -stats -o out.png >stats.txt 2>&1 || { cat stats.txt >&2; exit 1; }
+    printf '%s %s\n' "$(sed -n 's/^render: \([0-9.]*\) s$/\1/p' stats.txt)" \
+        "$(sed -n 's/^secondary rays: .*mean \([0-9.]*\)$/\1/p' stats.txt | grep . || echo 0)"
+}
+
+median() { sort -n | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
+
+# table NAME INPUT ARGS... : the variants of one view, in turn, RUNS times
+table() {
+    name=$1 input=$2
+    shift 2
+    variants=("plain" "shadows" "one bounce" "transparency" "aa 4")
+    rm -f ./*.times
+    for r in $(seq "$runs"); do
+        for v in "${variants[@]}"; do
+            case $v in
+            plain) set -- ;;
+            shadows) set -- "${light[@]}" -shadows ;;
+            "one bounce") set -- -bounces 1 -reflect 0.5 ;;
+            transparency) set -- -opacity 0.5 ;;
+            "aa 4") set -- -aa 4 ;;
+            esac
+            in=$input
+            if [ "$name" = regions ]; then # the materials' reflect and opacity
+                [ "$v" = "one bounce" ] && set -- -bounces 1 && in=fig2_mirror.csg
+                [ "$v" = transparency ] && set -- && in=fig2_glass.csg
+            fi
+            one "$in" "${view[@]}" "$@" >>"$v.times"
+        done
+    done
+    base=$(cut -d' ' -f1 plain.times | median)
+    for v in "${variants[@]}"; do
+        [ -f "$v.times" ] || continue
+        t=$(cut -d' ' -f1 "$v.times" | median)
+        e=$(cut -d' ' -f2 "$v.times" | median)
+        printf '| %s | %s | %s | %.2fx | %s |\n' "$name" "$v" "$t" "$(echo "$t / $base" | bc -l)" "$e"
+    done
+}
+
+echo "| view | effect | render s (median of $runs) | against plain | evaluations per secondary ray |"
+echo "|---|---|---|---|---|"
+view=("${ref[@]}")
+table "reference view" "min((x-0.5)^2+y^2+z^2-1, (1-sqrt(x^2+y^2))^2+z^2-0.125)"
+view=(-size 1024x1024 -eps 1e-5)
+table regions fig2.csg

@@ -1,0 +1,472 @@
+/* tests/t_render_effects_fp.c -- the ray-tracing effects (src/render_effects.c) against exact geometry, in float
+ * and double: every pixel's shadow state, a mirror's reflected silhouette, a transparent layer's composite, and
+ * -aa's edges and interiors. The scenes are spheres and planes, whose hits, shadows and reflections are solved
+ * exactly on the host for the device's own float rays (t_render_util.h). */
+#include "t_render_util.h"
+#include "iacsg.h"
+
+#ifdef IA_FP64
+#define FP64 1
+#else
+#define FP64 0
+#endif
+
+/* Compiles expr and renders the view; failures end the test. */
+static void render_expr(const char *expr, const iacsg_view *view, iacsg_frame *fr) {
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s: %s", expr, err.message);
+    iacsg_render_config config = {.fp64 = FP64};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
+    st = iacsg_render(r, view, fr, &err);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
+}
+
+/* The same for a scene file's text (regions: the segment path). */
+static void render_scene_text(const char *text, const iacsg_view *view, iacsg_frame *fr) {
+    iacsg_error err = {0};
+    iacsg_scene *s = NULL;
+    CHECK(iacsg_scene_parse(text, "<test>", &s, &err) == IACSG_OK, "%s", err.message);
+    iacsg_render_config config = {.fp64 = FP64};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_scene(s, &config, &r, &err);
+    iacsg_scene_destroy(s);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    st = iacsg_render(r, view, fr, &err);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK, "%s", err.message);
+}
+
+/* The view of the shadow and antialiasing scenes: the plane z = 0 and a sphere above it, seen from above. */
+static iacsg_view ground_view(int size) {
+    iacsg_view v = {.width = size, .height = size, .eps = 0x1p-14,
+                    .camera = {.eye = {3.2, -2.4, 2.6}, .at = {0, 0, 0.2}, .up = {0, 0, 1}, .fov = 40},
+                    .bounds = {-2, -2, -0.5, 2, 2, 1.5}};
+    return v;
+}
+
+static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* The distance from c to the segment from p to q. */
+static double segment_distance(const double c[3], const double p[3], const double q[3]) {
+    double pq[3], pc[3];
+    for (int k = 0; k < 3; k++) {
+        pq[k] = q[k] - p[k];
+        pc[k] = c[k] - p[k];
+    }
+    double s = fmin(fmax(dot(pc, pq) / dot(pq, pq), 0), 1), e2 = 0;
+    for (int k = 0; k < 3; k++)
+        e2 += (pc[k] - s * pq[k]) * (pc[k] - s * pq[k]);
+    return sqrt(e2);
+}
+
+/* A sphere of radius 1/2 at (0, 0, 0.6) above the plane z = 0, lit by one point light: each pixel of the plane is
+ * in shadow exactly where the segment from its point to the light passes through the sphere, and each pixel of
+ * the sphere where its normal faces away from the light. A shadowed pixel has the ambient term alone, red
+ * sqrt(0.8 * 0.1); a lit one more. Pixels within a margin of either boundary are left out: the hit point lies
+ * up to a few eps before the surface and a shadow ray starts 4 eps + 4e-6 off it (src/render_effects.c). */
+static const double shadow_light[3] = {0.8, 0.5, 2.5};
+
+static iacsg_effects shadow_effects(void) {
+    iacsg_effects fx = {.shadows = 1, .nlights = 1};
+    fx.lights[0] = (iacsg_light){IACSG_LIGHT_POINT, {shadow_light[0], shadow_light[1], shadow_light[2]}, 0.9};
+    return fx;
+}
+
+static void check_shadows(const iacsg_view view, iacsg_frame fr) {
+    const double *light = shadow_light;
+    sphere ball = {{0, 0, 0.6}, 0.5};
+    ia_real p[PARAM_COUNT];
+    view_params(&view, p);
+    const double shadowed_red = sqrt(0.8 * 0.1), margin = 2e-3;
+    long lit = 0, dark = 0, spared = 0, wrong = 0;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 0; i < view.width; i++) {
+            double o[3], d[3], t1, t2, hit[3];
+            pixel_ray(p, &view, i, j, o, d);
+            size_t px = (size_t)j * view.width + i;
+            int on_ball = sphere_span(ball, o, d, &t1, &t2) && t1 > 0, shadow;
+            double t = on_ball ? t1 : -o[2] / d[2], edge;
+            if (!on_ball && !(d[2] < 0)) {
+                CHECK(isinf(fr.depth[px]), "pixel (%d, %d) misses everything but has depth %g", i, j, fr.depth[px]);
+                continue;
+            }
+            for (int k = 0; k < 3; k++)
+                hit[k] = o[k] + t * d[k];
+            if (fabs(hit[0]) > 1.99 || fabs(hit[1]) > 1.99) /* near the bounds' sides */
+                continue;
+            if (on_ball) {
+                double n[3], l[3];
+                for (int k = 0; k < 3; k++) {
+                    n[k] = (hit[k] - ball.c[k]) / ball.r;
+                    l[k] = light[k] - hit[k];
+                }
+                double nl = dot(n, l) / sqrt(dot(l, l));
+                shadow = nl <= 0;
+                edge = fabs(nl) / 10;
+            } else {
+                double dist = segment_distance(ball.c, hit, light);
+                shadow = dist < ball.r;
+                edge = fabs(dist - ball.r);
+            }
+            if (edge < margin) {
+                spared++;
+                continue;
+            }
+            int shown_dark = fr.rgb[3 * px] <= shadowed_red + 1e-3;
+            if (shown_dark != shadow && wrong++ < 5)
+                test_note("pixel (%d, %d) on the %s: %s, shown %s (red %.4f)", i, j, on_ball ? "ball" : "plane",
+                          shadow ? "in shadow" : "lit", shown_dark ? "dark" : "lit", fr.rgb[3 * px]);
+            lit += !shadow;
+            dark += shadow;
+        }
+    iacsg_frame_free(&fr);
+    CHECK(wrong == 0, "%ld pixels lit or shadowed wrongly", wrong);
+    CHECK(lit > 10000 && dark > 1000, "too few pixels checked: %ld lit, %ld in shadow", lit, dark);
+    test_note("%ld lit, %ld in shadow, all as the exact boundary says; %ld within %g of it not checked", lit, dark,
+              spared, margin);
+}
+
+TEST_FP(effects_shadow_boundary) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = shadow_effects();
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_expr("min(move(sphere(0.5), 0, 0, 0.6), z)", &view, &fr);
+    check_shadows(view, fr);
+}
+
+/* The same scene as two regions of the expression's colour: the segment path's shadow rays. */
+TEST_FP(effects_shadow_boundary_regions) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = shadow_effects();
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_scene_text("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                      "region b = ball : m\nregion g = z : m\n",
+                      &view, &fr);
+    check_shadows(view, fr);
+}
+
+/* The unit sphere seen along -z, orthographic: the point (s, v) of the image plane is on it iff s^2 + v^2 < 1. */
+static iacsg_view sphere_ortho_view(int size) {
+    iacsg_view v = {.width = size, .height = size, .eps = 0x1p-14,
+                    .camera = {.eye = {0, 0, 4}, .at = {0, 0, 0}, .up = {0, 1, 0}, .fov = 40, .ortho_height = 2.6},
+                    .bounds = {-1.5, -1.5, -1.5, 1.5, 1.5, 1.5}};
+    return v;
+}
+
+/* The fraction of pixel (i, j) of sphere_ortho_view covered by the sphere, sampled on a 32 x 32 grid. */
+static double sphere_coverage(const iacsg_view *v, int i, int j) {
+    double half = v->camera.ortho_height / 2, in = 0;
+    for (int b = 0; b < 32; b++)
+        for (int a = 0; a < 32; a++) {
+            double s = (2 * (i + (a + 0.5) / 32) / v->width - 1) * half;
+            double t = (1 - 2 * (j + (b + 0.5) / 32) / v->height) * half;
+            in += s * s + t * t < 1;
+        }
+    return in / (32 * 32);
+}
+
+/* -aa 4 on a sphere: pixels well inside or outside it (their 3 x 3 neighbourhood all in or all out) keep the
+ * plain render's colour; a pixel a quarter to three quarters covered, next to one wholly covered (colour S) and
+ * one wholly outside (B), takes the blend sqrt(c S^2 + (1 - c) B^2) of its coverage c (linear light, gamma 2),
+ * within what 4 x 4 rays and the shading's change over a pixel allow. (Where the shading itself changes fast,
+ * in the highlight, neighbours differ by more than -aa's contrast threshold, so those pixels are sampled too.) */
+TEST_FP(effects_aa_edges) {
+    iacsg_view view = sphere_ortho_view(96);
+    iacsg_frame plain, aa;
+    render_expr("sphere", &view, &plain);
+    iacsg_effects fx = {.aa = 4};
+    view.effects = &fx;
+    render_expr("sphere", &view, &aa);
+    long inside = 0, same = 0, edges = 0, bad = 0;
+    double worst = 0, worst_edge = 0;
+    for (int j = 1; j + 1 < view.height; j++)
+        for (int i = 1; i + 1 < view.width; i++) {
+            size_t px = (size_t)j * view.width + i, full = 0, empty = 0;
+            double c = sphere_coverage(&view, i, j);
+            int uniform = 1;
+            for (int dj = -1; dj <= 1; dj++)
+                for (int di = -1; di <= 1; di++) {
+                    double cn = sphere_coverage(&view, i + di, j + dj);
+                    uniform &= (cn == 0 && c == 0) || (cn == 1 && c == 1);
+                    size_t n = px + (size_t)(dj * view.width + di);
+                    full = cn == 1 ? n : full;
+                    empty = cn == 0 ? n : empty;
+                }
+            if (uniform) {
+                double diff = 0;
+                for (int k = 0; k < 3; k++)
+                    diff = fmax(diff, fabs(aa.rgb[3 * px + k] - plain.rgb[3 * px + k]));
+                worst = fmax(worst, diff);
+                same += diff <= 1e-5;
+                inside++;
+                continue;
+            }
+            if (!(c >= 0.25 && c <= 0.75) || !full || !empty)
+                continue;
+            double off = 0;
+            for (int k = 0; k < 3; k++) {
+                double S = plain.rgb[3 * full + k], B = plain.rgb[3 * empty + k];
+                off = fmax(off, fabs(aa.rgb[3 * px + k] - sqrt(c * S * S + (1 - c) * B * B)));
+            }
+            worst_edge = fmax(worst_edge, off);
+            if (off > 0.06 && bad++ < 5)
+                test_note("edge pixel (%d, %d), %.2f covered: colour %.3f %.3f %.3f, %.3f off the blend", i, j, c,
+                          aa.rgb[3 * px], aa.rgb[3 * px + 1], aa.rgb[3 * px + 2], off);
+            edges++;
+        }
+    iacsg_frame_free(&plain);
+    iacsg_frame_free(&aa);
+    CHECK(bad == 0, "%ld of %ld edge pixels off the blend of their coverage", bad, edges);
+    CHECK(same >= inside - inside / 20, "only %ld of %ld interior pixels have the plain render's colour", same, inside);
+    CHECK(worst <= 1.0 / 128, "an interior pixel differs from the plain render by %g", worst);
+    CHECK(inside > 4000 && edges > 50, "too few pixels: %ld interior, %ld edges", inside, edges);
+    test_note("%ld of %ld interior pixels have the plain render's colour (the others, in the highlight, where "
+              "neighbours differ by 1/16, were sampled too: within %.1e); %ld edge pixels within %.3f of the blend "
+              "of their coverage", same, inside, worst, edges, worst_edge);
+}
+
+/* The colour's linear light (gamma 2, kernels/light.h). */
+static double linear(float shown) { return (double)shown * shown; }
+
+/* A sphere that reflects half the light, one bounce: its reflected rays leave it for good (it is convex), so each
+ * of its pixels is half its plain colour and half the background of its row, in linear light (but in the
+ * highlight, where the plain render clips the light at 1 and the blend takes it whole). */
+TEST_FP(effects_reflect_sphere) {
+    iacsg_view view = sphere_ortho_view(96);
+    iacsg_frame plain, mirror;
+    render_expr("sphere", &view, &plain);
+    iacsg_effects fx = {.bounces = 1, .reflect = 0.5};
+    view.effects = &fx;
+    render_expr("sphere", &view, &mirror);
+    long checked = 0;
+    double worst = 0;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 1; i < view.width; i++) {
+            size_t px = (size_t)j * view.width + i, bg = (size_t)j * view.width; /* column 0 misses */
+            double c = sphere_coverage(&view, i, j);
+            int saturated = plain.rgb[3 * px] >= 1; /* the highlight, whose light past 1 the plain render clips */
+            if (c < 1 || saturated)
+                continue;
+            for (int k = 0; k < 3; k++) {
+                double want = sqrt(0.5 * linear(plain.rgb[3 * px + k]) + 0.5 * linear(plain.rgb[3 * bg + k]));
+                worst = fmax(worst, fabs(mirror.rgb[3 * px + k] - want));
+            }
+            checked++;
+        }
+    CHECK(isinf(plain.depth[0]), "column 0 should miss the sphere");
+    iacsg_frame_free(&plain);
+    iacsg_frame_free(&mirror);
+    CHECK(worst <= 1e-4, "a pixel is %g off half its colour and half the background", worst);
+    CHECK(checked > 3000, "only %ld pixels checked", checked);
+    test_note("%ld pixels within %.1e of the blend", checked, worst);
+}
+
+/* A mirror plane (a region whose material reflects all light) under a blue sphere: a pixel of the plane shows
+ * blue exactly where the reflected ray from its point meets the sphere (pixels within a margin of that
+ * silhouette left out). The segment path. */
+TEST_FP(effects_mirror_silhouette) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = {.bounces = 1};
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_scene_text("material mirror = rgb(0.5, 0.5, 0.5) reflect 1\n"
+                      "material blue = rgb(0, 0, 1) specular 0\n"
+                      "region ball = move(sphere(0.5), 0, 0, 0.6) : blue\nregion ground = z : mirror\n",
+                      &view, &fr);
+    sphere ball = {{0, 0, 0.6}, 0.5};
+    ia_real p[PARAM_COUNT];
+    view_params(&view, p);
+    long blue = 0, grey = 0, spared = 0, wrong = 0;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 0; i < view.width; i++) {
+            double o[3], d[3], t1, t2, hit[3], r[3];
+            pixel_ray(p, &view, i, j, o, d);
+            if (sphere_span(ball, o, d, &t1, &t2) || !(d[2] < 0))
+                continue;
+            double t = -o[2] / d[2];
+            for (int k = 0; k < 3; k++) {
+                hit[k] = o[k] + t * d[k];
+                r[k] = k == 2 ? -d[k] : d[k];
+            }
+            if (fabs(hit[0]) > 1.99 || fabs(hit[1]) > 1.99)
+                continue;
+            /* the reflected ray's closest approach to the centre, against the radius */
+            double oc[3] = {ball.c[0] - hit[0], ball.c[1] - hit[1], ball.c[2] - hit[2]};
+            double s = fmax(dot(oc, r), 0), e2 = 0;
+            for (int k = 0; k < 3; k++)
+                e2 += (oc[k] - s * r[k]) * (oc[k] - s * r[k]);
+            double dist = sqrt(e2);
+            if (fabs(dist - ball.r) < 2e-3) {
+                spared++;
+                continue;
+            }
+            int want_blue = dist < ball.r;
+            size_t px = (size_t)j * view.width + i;
+            int shown_blue = fr.rgb[3 * px + 2] - fr.rgb[3 * px] > 0.2;
+            if (shown_blue != want_blue && wrong++ < 5)
+                test_note("pixel (%d, %d): the reflection %s the sphere, shown %.3f %.3f %.3f", i, j,
+                          want_blue ? "meets" : "misses", fr.rgb[3 * px], fr.rgb[3 * px + 1], fr.rgb[3 * px + 2]);
+            blue += want_blue;
+            grey += !want_blue;
+        }
+    iacsg_frame_free(&fr);
+    CHECK(wrong == 0, "%ld pixels of the mirror wrong", wrong);
+    CHECK(blue > 500 && grey > 10000, "too few pixels: %ld reflecting the sphere, %ld not", blue, grey);
+    test_note("%ld mirror pixels show the sphere, %ld the background, as the exact reflection says; %ld within "
+              "2e-3 of its silhouette not checked", blue, grey, spared);
+}
+
+/* The default rig's colour (linear) of a point with unit normal n seen along d (kernels/light.h's lighting, the
+ * first-root path's material): what a layer of a transparent solid contributes, times its opacity. */
+static void default_lit(const double n[3], const double d[3], const double f[3], const double r[3], const double u[3],
+                        double lin[3]) {
+    static const double rig[2][4] = {{-0.6, 0.8, 0.85, 0.45}, {0.9, -0.2, 0.30, 0.10}};
+    static const double albedo[3] = {0.80f, 0.52f, 0.28f};
+    double diffuse = 0.10, highlight = 0;
+    for (int l = 0; l < 2; l++) {
+        double L[3], h[3];
+        for (int k = 0; k < 3; k++)
+            L[k] = -f[k] + rig[l][0] * r[k] + rig[l][1] * u[k];
+        double len = sqrt(dot(L, L));
+        for (int k = 0; k < 3; k++) {
+            L[k] /= len;
+            h[k] = L[k] - d[k];
+        }
+        double nl = dot(n, L), nh = fmax(dot(n, h) / sqrt(dot(h, h)), 0);
+        if (nl > 0) {
+            diffuse += rig[l][2] * nl;
+            highlight += rig[l][3] * pow(nh, 48);
+        }
+    }
+    for (int c = 0; c < 3; c++)
+        lin[c] = albedo[c] * diffuse + highlight;
+}
+
+/* A half-transparent solid: a box (a slab) in front of a sphere, both of opacity 1/2, seen along -z. Through
+ * both, a pixel's ray crosses four surfaces, each a layer with the normal facing the ray, composited front to
+ * back: C = sum_k a (1 - a)^k c_k + (1 - a)^4 B, with c_k each layer's lit colour and B the background. */
+TEST_FP(effects_transparent_layers) {
+    iacsg_view view = sphere_ortho_view(96);
+    view.bounds[5] = 1.5;
+    iacsg_effects fx = {.transparency = 0.5};
+    view.effects = &fx;
+    iacsg_frame fr, plain;
+    const char *expr = "min(move(box(0.6, 0.6, 0.1), 0, 0, 1), sphere(0.5))";
+    render_expr(expr, &view, &fr);
+    view.effects = NULL;
+    render_expr(expr, &view, &plain);
+    double cam[PARAM_COUNT];
+    iacsg_error err = {0};
+    CHECK(iacsg_camera_params(&view.camera, view.width, view.height, cam, &err) == IACSG_OK, "%s", err.message);
+    const double *f = cam + PARAM_FORWARD, *r = cam + PARAM_RIGHT, *u = cam + PARAM_UP;
+    long checked = 0;
+    double worst = 0, a = 0.5;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 0; i < view.width; i++) {
+            double half = view.camera.ortho_height / 2;
+            double s = (2 * (i + 0.5) / view.width - 1) * half, v = (1 - 2 * (j + 0.5) / view.height) * half;
+            if (s * s + v * v > 0.45 * 0.45) /* through the slab and the sphere, away from its silhouette */
+                continue;
+            double zs = sqrt(0.25 - s * s - v * v), d[3] = {f[0], f[1], f[2]};
+            double normals[4][3] = {{0, 0, 1}, {0, 0, 1}, {s / 0.5, v / 0.5, zs / 0.5}, {-s / 0.5, -v / 0.5, zs / 0.5}};
+            double want[3] = {0, 0, 0}, through = 1, lin[3];
+            for (int layer = 0; layer < 4; layer++) {
+                default_lit(normals[layer], d, f, r, u, lin);
+                for (int c = 0; c < 3; c++)
+                    want[c] += through * a * lin[c];
+                through *= 1 - a;
+            }
+            size_t px = (size_t)j * view.width + i, bg = (size_t)j * view.width;
+            for (int c = 0; c < 3; c++)
+                worst = fmax(worst, fabs(fr.rgb[3 * px + c] - sqrt(want[c] + through * linear(plain.rgb[3 * bg + c]))));
+            checked++;
+        }
+    CHECK(isinf(plain.depth[0]), "column 0 should miss the solid");
+    iacsg_frame_free(&fr);
+    iacsg_frame_free(&plain);
+    CHECK(worst <= 2e-3, "a pixel is %g off the composite of its four layers", worst);
+    CHECK(checked > 500, "only %ld pixels checked", checked);
+    test_note("%ld pixels through four layers within %.1e of the compositing formula", checked, worst);
+}
+
+/* The AOVs stay the centre ray's: with -aa 4, shadows and reflections the depth, normals and ids are those of
+ * the plain render, byte for byte, on both paths (only the colours change). */
+TEST_FP(effects_aovs_unchanged) {
+    const char *texts[2] = {"min(sphere, torus)",
+                            "material m = rgb(1, 0, 0) reflect 0.4\nregion a = sphere : m\nregion b = torus\n"};
+    iacsg_view view = sphere_ortho_view(64);
+    view.camera = (iacsg_camera){.eye = {3, -2.5, 2}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 40};
+    view.bounds[2] = -2, view.bounds[5] = 2;
+    iacsg_effects fx = {.aa = 4, .shadows = 1, .bounces = 2, .reflect = 0.3};
+    for (int s = 0; s < 2; s++) {
+        iacsg_frame plain, effects;
+        view.effects = NULL;
+        render_scene_text(texts[s], &view, &plain);
+        view.effects = &fx;
+        render_scene_text(texts[s], &view, &effects);
+        size_t n = (size_t)view.width * view.height;
+        int same = !memcmp(plain.depth, effects.depth, n * sizeof(float)) &&
+                   !memcmp(plain.normal, effects.normal, 3 * n * sizeof(float)) &&
+                   !memcmp(plain.ids, effects.ids, n * sizeof(float));
+        int recoloured = memcmp(plain.rgb, effects.rgb, 3 * n * sizeof(float)) != 0;
+        iacsg_frame_free(&plain);
+        iacsg_frame_free(&effects);
+        CHECK(same, "%s: the effects changed the depth, normals or ids", s ? "regions" : "expression");
+        CHECK(recoloured, "%s: the effects changed no colour", s ? "regions" : "expression");
+    }
+}
+
+/* A half-transparent region: a slab of opacity 1/2 in front of an opaque sphere, as regions, seen along -z. A
+ * region is a volume, one layer where a ray enters it: through both, a pixel is half the slab's lit colour and
+ * half the sphere's, in linear light, each as the plain render of a scene holding it alone shows it. */
+TEST_FP(effects_transparent_region) {
+    iacsg_view view = sphere_ortho_view(96);
+    view.bounds[5] = 1.5;
+    const char *slab = "move(box(0.6, 0.6, 0.1), 0, 0, 1)", *ball = "sphere(0.5)";
+    char both[512], slab_only[256], ball_only[256];
+    snprintf(both, sizeof both,
+             "material glass = rgb(0.3, 0.6, 0.9) opacity 0.5\nmaterial clay = rgb(0.8, 0.52, 0.28)\n"
+             "region s = %s : glass\nregion b = %s : clay\n", slab, ball);
+    snprintf(slab_only, sizeof slab_only, "material glass = rgb(0.3, 0.6, 0.9)\nregion s = %s : glass\n", slab);
+    snprintf(ball_only, sizeof ball_only, "material clay = rgb(0.8, 0.52, 0.28)\nregion b = %s : clay\n", ball);
+    iacsg_frame fr, front, back;
+    iacsg_effects fx = {0}; /* none of the options: the material's opacity is the effect */
+    view.effects = &fx;
+    render_scene_text(both, &view, &fr);
+    view.effects = NULL;
+    render_scene_text(slab_only, &view, &front);
+    render_scene_text(ball_only, &view, &back);
+    long checked = 0;
+    double worst = 0;
+    for (int j = 0; j < view.height; j++)
+        for (int i = 0; i < view.width; i++) {
+            double half = view.camera.ortho_height / 2;
+            double s = (2 * (i + 0.5) / view.width - 1) * half, v = (1 - 2 * (j + 0.5) / view.height) * half;
+            if (s * s + v * v > 0.45 * 0.45)
+                continue;
+            size_t px = (size_t)j * view.width + i;
+            int saturated = 0; /* the highlight, whose light past 1 a plain render clips and the blend takes whole */
+            for (int c = 0; c < 3; c++)
+                saturated |= front.rgb[3 * px + c] >= 1 || back.rgb[3 * px + c] >= 1;
+            if (saturated)
+                continue;
+            for (int c = 0; c < 3; c++) {
+                double want = sqrt(0.5 * linear(front.rgb[3 * px + c]) + 0.5 * linear(back.rgb[3 * px + c]));
+                worst = fmax(worst, fabs(fr.rgb[3 * px + c] - want));
+            }
+            checked++;
+        }
+    iacsg_frame_free(&fr);
+    iacsg_frame_free(&front);
+    iacsg_frame_free(&back);
+    CHECK(worst <= 1e-3, "a pixel is %g off half the slab and half the sphere", worst);
+    CHECK(checked > 500, "only %ld pixels checked", checked);
+    test_note("%ld pixels through the slab within %.1e of the composite of the two regions", checked, worst);
+}
