@@ -167,7 +167,7 @@ static int sphere_inside(const double c[3], double r, const long double o[3], co
 
 /* Random rays through 24 random spheres, each its own region: the trace's hit is never after the first sphere
  * entry (nor a miss), and its id is that sphere's unless another sphere's boundary is within 4 eps. With
- * `blocks`, the rays are those of random 4x4 blocks of random 64x64 views, and start where their block's pass
+ * `blocks`, the rays are those of random 4x4 blocks of random 256x256 views, and start where their block's pass
  * (scene_block_start) puts them, their walks that deep. */
 static void trace_spheres(int blocks) {
     enum { N = 24 };
@@ -196,14 +196,14 @@ static void trace_spheres(int blocks) {
     for (int k = 0; k < 6 * t.nbvh; k++)
         box[k] = (ia_real)t.bvh_box[k]; /* the spheres' boxes are dyadic with few bits: exact */
     scene_view v = {box, t.bvh_link, t.nbvh, t.surfaces, 0, (ia_real)0x1p-12, {0, 0}, 0, 0};
-    long rays = test_iters(3000), hits = 0, near = 0, empty = 0;
+    long rays = test_iters(blocks ? 12000 : 3000), hits = 0, near = 0, empty = 0;
     ia_real p[PARAM_COUNT], start_node = 0;
     int ortho = 0, i0 = 0, j0 = 0;
     for (long it = 0; it < rays; it++) {
         ia_real o[3], d[3], len = 0;
         if (blocks && it % 16 == 0) { /* a new block */
             ortho = test_rand_u64(rng) % 4 == 0;
-            iacsg_view view = {.width = 64, .height = 64};
+            iacsg_view view = {.width = 256, .height = 256};
             view.camera = (iacsg_camera){.eye = {test_uniform(rng, -4, 4), test_uniform(rng, -4, 4),
                                                  test_uniform(rng, 2, 4)},
                                          .up = {0, 0, 1}, .fov = 40, .ortho_height = ortho ? 3 : 0};
@@ -211,14 +211,14 @@ static void trace_spheres(int blocks) {
             p[PARAM_TMIN] = 0;
             p[PARAM_TMAX] = 8;
             p[PARAM_EPS] = v.eps;
-            i0 = 4 * (int)(test_rand_u64(rng) % 16);
-            j0 = 4 * (int)(test_rand_u64(rng) % 16);
+            i0 = 4 * (int)(test_rand_u64(rng) % 64);
+            j0 = 4 * (int)(test_rand_u64(rng) % 64);
             kernel_u32 evals = 0;
-            v.from = scene_block_start(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, &v, &start_node, &evals);
+            v.from = scene_block_start(p, ortho, i0, i0 + 3, j0, j0 + 3, 256, 256, &v, &start_node, &evals);
             empty += v.from == IA_INF;
         }
         if (blocks) {
-            camera_ray(p, ortho, i0 + (int)(it % 4), j0 + (int)(it % 16 / 4), 64, 64, o, d);
+            camera_ray(p, ortho, i0 + (int)(it % 4), j0 + (int)(it % 16 / 4), 256, 256, o, d);
         } else {
             for (int a = 0; a < 3; a++) {
                 o[a] = (ia_real)(test_rand_unit(rng) * 6 - 3);
