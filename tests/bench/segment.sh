@@ -16,7 +16,12 @@ seg_cpu() { awk -F'\t' -v l="$1" '$1 == "seg" && $2 == l {v = $15} END {print (v
 
 bench_segment() {
     : >"$WORK/seg_targets"
+    # the dense 1000 and, for the growth with the number of solids, 10 and 100 filling the same share of the cube
+    # (radius 0.08 (1000 / N)^(1/3)); the dense 1000 also as one expression; the sparse 1000
     "$HERE/spheres.sh" 1000 0.9 0.08 0.08 1 >"$WORK/spheres_dense.csg" &&
+        "$HERE/spheres.sh" 1000 0.9 0.08 0.08 1 union >"$WORK/spheres_dense_union.csg" &&
+        "$HERE/spheres.sh" 100 0.9 0.1724 0.1724 1 >"$WORK/spheres_100.csg" &&
+        "$HERE/spheres.sh" 10 0.9 0.3713 0.3713 1 >"$WORK/spheres_10.csg" &&
         "$HERE/spheres.sh" 1000 1.8 0.04 0.12 1 >"$WORK/spheres_sparse.csg" || return 1
     table seg "Segment path (regions and level-set surfaces): 1024x1024, eps 1e-5, default camera" scene \
         "per-ray buffer bytes | source"
@@ -31,11 +36,17 @@ bench_segment() {
     g "Fig. 2 as regions" examples/fig2_cube_sphere_regions.csg
     g "Fig. 2 as one expression" examples/fig2_cube_sphere_union.csg
     g "1000 spheres, dense" "$WORK/spheres_dense.csg"
-    [ "$QUICK" = 1 ] || g "1000 spheres, sparse" "$WORK/spheres_sparse.csg"
+    if [ "$QUICK" != 1 ]; then
+        g "1000 spheres, dense, as one expression" "$WORK/spheres_dense_union.csg"
+        g "100 spheres" "$WORK/spheres_100.csg"
+        g "10 spheres" "$WORK/spheres_10.csg"
+        g "1000 spheres, sparse" "$WORK/spheres_sparse.csg"
+    fi
     say ""
-    say "Dense: \`tests/bench/spheres.sh 1000 0.9 0.08 0.08 1\` (radius 0.08 in [-0.9, 0.9]^3); sparse:"
-    say "\`tests/bench/spheres.sh 1000 1.8 0.04 0.12 1\` (radii 0.04-0.12 in [-1.8, 1.8]^3). Per-ray buffer: \`-stats\`, the"
-    say "bytes one ray's candidates and states take (kernels/scene_data.h)."
+    say "Dense: \`tests/bench/spheres.sh 1000 0.9 0.08 0.08 1\` (radius 0.08 in [-0.9, 0.9]^3; \`... union\`: the same"
+    say "as one expression, min of the 1000); 100 and 10 spheres: radius 0.1724 and 0.3713, the same share of the cube;"
+    say "sparse: \`tests/bench/spheres.sh 1000 1.8 0.04 0.12 1\` (radii 0.04-0.12 in [-1.8, 1.8]^3). Per-ray buffer:"
+    say "\`-stats\`, the bytes one ray's candidates and states take while it is traced (kernels/scene_data.h)."
     for l in icos sesc; do
         r=$(seg_render "$l")
         seg_target "\`$l.csg\` in 1 s or less (render)" "$(ms_of_s "$r") ms" "$(le "$r" 1)"
