@@ -35,13 +35,8 @@ typedef struct {
 
 #define SEGMENTS_CLOSING (-1)
 
-/* Starts candidate c's walk at the first node of its range no wider than `node` (+inf: the root). The nodes
- * after it in ray order (node_next) still tile the rest of the range. */
-IA_FN void segments_start(const segments_walks *w, int c, ia_real node) {
-    int level = 0;
-    while (level < BISECT_MAX_LEVEL && w->range[2 * c + 1] * node_scale(level) > node)
-        level += 1;
-    w->level[c] = level;
+IA_FN void segments_start(const segments_walks *w, int c) {
+    w->level[c] = 0;
     w->index[c] = 0;
     w->pos[c] = w->range[2 * c];
     w->newton[c] = -1;

@@ -27,7 +27,6 @@ typedef struct {
     int cand_cap, ncand, nstarted; /* the walks started are the first nstarted */
     KERNEL_GLOBAL unsigned char *state; /* per solid of the scene, all OUT between rays */
     kernel_u32 evals, segments, partitions;
-    ia_real start_node; /* walks whose range starts at the ray's start begin at nodes this wide (0: at the root) */
 } scene_ray;
 
 typedef struct {
@@ -116,8 +115,7 @@ IA_FN int weave_next_walk(scene_ray *r, const bvh_walk *b) {
         }
     if (r->nstarted < r->ncand && r->walks.range[2 * r->nstarted] <= least) {
         best = r->nstarted++;
-        int deep = r->start_node > 0 && r->walks.range[2 * best] <= b->tn;
-        segments_start(&r->walks, best, deep ? r->start_node : IA_INF);
+        segments_start(&r->walks, best);
         if (!weave_next_entry(r, b))
             return -2;
     }

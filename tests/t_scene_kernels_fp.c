@@ -6,8 +6,7 @@
  *   where no undecided solid occurs twice;
  * - the relinearised trees' stack need, for chains of 1000 differences and unions either way round;
  * - scene_trace_ray (BVH, walks, weave) on random rays through random spheres, against their exact entry points
- *   in long double: never after the first point of a region, never a miss; and so on the rays of blocks of pixels
- *   that start past their block's pass (scene_block_start), their walks deeper.
+ *   in long double: never after the first point of a region, never a miss.
  */
 #include "implicits/scene.h"
 #include "scene_tables.h"
@@ -36,7 +35,6 @@ static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interva
 }
 
 #include "kernels/scene_trace.h"
-#include "t_render_util.h"
 
 /* A random tree over nsolids solids with `leaves` leaves, relative indices (scene_add_tree), into nodes. */
 static int random_tree(test_rng_t *rng, int leaves, int nsolids, uint32_t *nodes, int n) {
@@ -166,10 +164,8 @@ static int sphere_inside(const double c[3], double r, const long double o[3], co
 }
 
 /* Random rays through 24 random spheres, each its own region: the trace's hit is never after the first sphere
- * entry (nor a miss), and its id is that sphere's unless another sphere's boundary is within 4 eps. With
- * `blocks`, the rays are those of random 4x4 blocks of random 256x256 views, and start where their block's pass
- * (scene_block_start) puts them, their walks that deep. */
-static void trace_spheres(int blocks) {
+ * entry (nor a miss), and its id is that sphere's unless another sphere's boundary is within 4 eps. */
+TEST_FP(scene_trace_spheres) {
     enum { N = 24 };
     test_rng_t *rng = test_rng();
     iacsg_error err = {0};
@@ -195,47 +191,25 @@ static void trace_spheres(int blocks) {
     unsigned char state[N] = {0};
     for (int k = 0; k < 6 * t.nbvh; k++)
         box[k] = (ia_real)t.bvh_box[k]; /* the spheres' boxes are dyadic with few bits: exact */
-    scene_view v = {box, t.bvh_link, t.nbvh, t.surfaces, 0, (ia_real)0x1p-12, {0, 0}, 0, 0};
-    long rays = test_iters(blocks ? 12000 : 3000), hits = 0, near = 0, empty = 0;
-    ia_real p[PARAM_COUNT], start_node = 0;
-    int ortho = 0, i0 = 0, j0 = 0;
+    scene_view v = {box, t.bvh_link, t.nbvh, t.surfaces, 0, (ia_real)0x1p-12, {0, 0}, 0};
+    long rays = test_iters(3000), hits = 0, near = 0;
     for (long it = 0; it < rays; it++) {
         ia_real o[3], d[3], len = 0;
-        if (blocks && it % 16 == 0) { /* a new block */
-            ortho = test_rand_u64(rng) % 4 == 0;
-            iacsg_view view = {.width = 256, .height = 256};
-            view.camera = (iacsg_camera){.eye = {test_uniform(rng, -4, 4), test_uniform(rng, -4, 4),
-                                                 test_uniform(rng, 2, 4)},
-                                         .up = {0, 0, 1}, .fov = 40, .ortho_height = ortho ? 3 : 0};
-            view_params(&view, p);
-            p[PARAM_TMIN] = 0;
-            p[PARAM_TMAX] = 8;
-            p[PARAM_EPS] = v.eps;
-            i0 = 4 * (int)(test_rand_u64(rng) % 64);
-            j0 = 4 * (int)(test_rand_u64(rng) % 64);
-            kernel_u32 evals = 0;
-            v.from = scene_block_start(p, ortho, i0, i0 + 3, j0, j0 + 3, 256, 256, &v, &start_node, &evals);
-            empty += v.from == IA_INF;
+        for (int a = 0; a < 3; a++) {
+            o[a] = (ia_real)(test_rand_unit(rng) * 6 - 3);
+            d[a] = (ia_real)(test_rand_unit(rng) * 0.6 - 0.3) - o[a] / 3;
+            len += d[a] * d[a];
         }
-        if (blocks) {
-            camera_ray(p, ortho, i0 + (int)(it % 4), j0 + (int)(it % 16 / 4), 256, 256, o, d);
-        } else {
-            for (int a = 0; a < 3; a++) {
-                o[a] = (ia_real)(test_rand_unit(rng) * 6 - 3);
-                d[a] = (ia_real)(test_rand_unit(rng) * 0.6 - 0.3) - o[a] / 3;
-                len += d[a] * d[a];
-            }
-            for (int a = 0; a < 3; a++)
-                d[a] /= sqrt(len);
-        }
+        for (int a = 0; a < 3; a++)
+            d[a] /= sqrt(len);
         scene_ray ray = {t.nodes, t.items, t.solid_items_start, t.solid_items, {solid, range, pos, level, index, newton, newton_t},
-                         N, 0, 0, state, 0, 0, 0, blocks ? start_node : 0};
+                         N, 0, 0, state, 0, 0, 0};
         weave_hit hit = {0, -1, -1, -1};
         int found = scene_trace_ray(&v, &ray, o, d, 0, 8, &hit);
         long double lo[3] = {o[0], o[1], o[2]}, ld[3] = {d[0], d[1], d[2]}, first = INFINITY, a, b;
         int id = -1;
         for (int k = 0; k < N; k++)
-            if (sphere_inside(c[k], r[k], lo, ld, &a, &b) && a < first && a > 0 && a < 8) {
+            if (sphere_inside(c[k], r[k], lo, ld, &a, &b) && a < first && a > 0) {
                 first = a;
                 id = k;
             }
@@ -244,18 +218,11 @@ static void trace_spheres(int blocks) {
         if (id < 0)
             continue;
         hits++;
-        CHECK(found == 1 && hit.t <= first, "ray %ld: %s at %.12Lg, the first sphere %d at %.12Lg (from %g)", it,
-              found ? "hit" : "missed", (long double)hit.t, id, first, (double)v.from);
+        CHECK(found == 1 && hit.t <= first, "ray %ld: %s at %.12Lg, the first sphere %d at %.12Lg", it,
+              found ? "hit" : "missed", (long double)hit.t, id, first);
         near += hit.item != id;
     }
-    test_note("%ld rays, %ld through spheres, %ld claimed by another sphere near its boundary%s", rays, hits, near,
-              blocks ? "" : " (rays not in blocks)");
-    if (blocks)
-        test_note("%ld of %ld blocks proven to meet no sphere", empty, rays / 16);
+    test_note("%ld rays, %ld through spheres, %ld claimed by another sphere near its boundary", rays, hits, near);
     scene_tables_free(&t);
     iacsg_scene_destroy(s);
 }
-
-TEST_FP(scene_trace_spheres) { trace_spheres(0); }
-
-TEST_FP(scene_trace_spheres_blocks) { trace_spheres(1); }
