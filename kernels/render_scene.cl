@@ -71,8 +71,8 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                      0,
                      0};
     surface_start starts[SURFACE_BLOCK_MAX];
-    kernel_u32 block_evals = pixels ? 0 : scene_block(params, flags, i0, j0, width, height, items, nodes, time, starts,
-                                                      &view);
+    kernel_u32 block_evals =
+        pixels ? 0 : scene_block(params, flags, i0, j0, width, height, items, nodes, time, starts, &view);
     int pixel[PACKET_LANES];
     ia_real dk[3][PACKET_LANES], gk[3][PACKET_LANES], on[PACKET_LANES];
     float rows[PACKET_LANES], color[3][PACKET_LANES];

@@ -366,7 +366,8 @@ TEST_FP(render_surface_block_start) {
         p[PARAM_EPS] = SURFACE_EPS;
         int i0 = 4 * (int)(test_rand_u64(rng) % 16), j0 = 4 * (int)(test_rand_u64(rng) % 16);
         surface_start start;
-        surface_block(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, 0, condition, scene->nodes, ia_point(0), &start, &evals);
+        surface_block(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, 0, condition, scene->nodes, ia_point(0), &start,
+                      &evals);
         empty += start.level < 0;
         for (int k = 0; k < 16; k++) {
             ia_real o[3], d[3], t_near = uniform(rng, 0, 1), t_far = uniform(rng, 6, 9), lo = 0, hi = 0;
