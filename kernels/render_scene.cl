@@ -3,6 +3,8 @@
  * not NULL, the listed pixels 16 (block_row0 + g) + 0..15 (rays traced again with larger buffers). Rows from
  * row_end on (past the view's band of rows, iacsg_view.row_count) are neither traced nor written.
  *
+ * Per packet: the surfaces' block passes (scene_block), which prove where no ray of the packet can meet a
+ * surface; a listed pixel gets its own packet's, so it is traced again exactly as in the first pass.
  * Per pixel: the camera ray (camera.h) clipped to the bounds, traced one at a time (scene_trace.h) with the
  * work-item's slice of the per-ray buffers; a ray that overflows them is appended to `overflow` and writes
  * nothing. Then, in SIMD lanes, the normals (the hit solid's gradient, facing the eye) and the colours (light.h,
@@ -17,6 +19,24 @@
 static void scene_gradient(int solid, const ia_real o[3], const ia_real d[3], ia_real t, ia_real time,
                            ia_real g[3]) {
     scene_solid_f_grad(solid, o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2], time, &g[0], &g[1], &g[2]);
+}
+
+/* The block passes over the rays of the packet of pixels from (i0, j0), one per surface (surface.h): sets where
+ * the rays start (starts) and returns the passes' evaluations, shared out over the packet's rays for the
+ * statistics. (The same for the regions' solids, a pass proving where none can be other than OUT so that the
+ * weaves start there, saved evaluations but no time: Fig. 2 as regions, 1000 spheres; BENCHMARKS.md.) */
+static kernel_u32 scene_block(__constant ia_real *params, int flags, int i0, int j0, int width, int height,
+                              __global const int *items, __global const uint *nodes, ia_interval time,
+                              surface_start starts[SURFACE_BLOCK_MAX], scene_view *view) {
+    int i1 = min(i0 + PACKET_W, width) - 1, j1 = min(j0 + PACKET_H, height) - 1;
+    kernel_u32 evals = 0;
+    for (int s = 0; s < min(view->nsurfaces, SURFACE_BLOCK_MAX); s++) {
+        __global const int *it = items + SCENE_ITEM_INTS * view->surfaces[s];
+        surface_block(params, flags & RENDER_ORTHO, i0, i1, j0, j1, width, height, it[SCENE_ITEM_SOLID],
+                      it[SCENE_ITEM_ROOT], nodes, time, &starts[s], &evals);
+    }
+    view->starts = starts;
+    return (evals + PACKET_LANES - 1) / PACKET_LANES;
 }
 
 __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int width, int height, int block_row0,
@@ -35,13 +55,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     if (!pixels && (i0 >= width || j0 >= height))
         return;
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
-    /* a block pass per surface over the packet's rays (surface.h), not for a list of pixels to trace again */
-    surface_start starts[SURFACE_BLOCK_MAX];
-    for (int s = 0; !pixels && s < min(nsurfaces, SURFACE_BLOCK_MAX); s++)
-        surface_block(params, flags & RENDER_ORTHO, i0, min(i0 + PACKET_W, width) - 1, j0, min(j0 + PACKET_H, height) - 1,
-                      width, height, items[SCENE_ITEM_INTS * surfaces[s] + SCENE_ITEM_SOLID],
-                      items[SCENE_ITEM_INTS * surfaces[s] + SCENE_ITEM_ROOT], nodes, time, &starts[s]);
-    scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, pixels ? 0 : starts};
+    scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, 0};
     size_t first = slot * (size_t)cand_cap;
     scene_ray ray = {nodes,
                      items,
@@ -56,6 +70,9 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                      0,
                      0,
                      0};
+    surface_start starts[SURFACE_BLOCK_MAX];
+    kernel_u32 block_evals =
+        pixels ? 0 : scene_block(params, flags, i0, j0, width, height, items, nodes, time, starts, &view);
     int pixel[PACKET_LANES];
     ia_real dk[3][PACKET_LANES], gk[3][PACKET_LANES], on[PACKET_LANES];
     float rows[PACKET_LANES], color[3][PACKET_LANES];
@@ -68,6 +85,9 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
             j = n < npixels ? pixels[n] / width : height;
         }
         pixel[k] = i < width && j < row_end ? j * width + i : -1; /* the band's rows only */
+        if (pixels && pixel[k] >= 0) /* traced as in the first pass: from its packet's block passes */
+            block_evals = scene_block(params, flags, i - i % PACKET_W, j - j % PACKET_H, width, height, items, nodes,
+                                      time, starts, &view);
         rows[k] = (float)min(j, height - 1);
         ia_real o[3], d[3], tn, tf;
         camera_ray(params, flags & RENDER_ORTHO, min(i, width - 1), min(j, height - 1), width, height, o, d);
@@ -98,7 +118,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
         ids[pixel[k]] = found ? (float)hit.item : -1.0f;
         overlap[pixel[k]] = found ? hit.overlap : -1;
 #ifdef KERNEL_STATS
-        counts[3 * pixel[k]] = ray.evals;
+        counts[3 * pixel[k]] = ray.evals + block_evals;
         counts[3 * pixel[k] + 1] = ray.segments;
         counts[3 * pixel[k] + 2] = ray.partitions;
 #else

@@ -27,7 +27,7 @@ typedef struct {
 #define SCENE_TRACE_OVERFLOW (-1)
 
 /* The surfaces' first kept points in [tn, hit->t] (or tf without a hit): the nearest replaces the hit. */
-IA_FN int scene_trace_surfaces(const scene_view *v, const scene_ray *r, const ia_real o[3], const ia_real d[3],
+IA_FN int scene_trace_surfaces(const scene_view *v, scene_ray *r, const ia_real o[3], const ia_real d[3],
                                ia_real tn, ia_real tf, int found, weave_hit *hit) {
     for (int s = 0; s < v->nsurfaces; s++) {
         int item = v->surfaces[s];
@@ -36,8 +36,8 @@ IA_FN int scene_trace_surfaces(const scene_view *v, const scene_ray *r, const ia
         int solid = it[SCENE_ITEM_SOLID], cond = it[SCENE_ITEM_ROOT];
         if ((v->starts && s < SURFACE_BLOCK_MAX
                  ? surface_first_root_from(&v->starts[s], o, d, tn, end, v->eps, solid, cond, r->nodes, v->time, &lo,
-                                           &hi)
-                 : surface_first_root(o, d, tn, end, v->eps, solid, cond, r->nodes, v->time, &lo, &hi)) &&
+                                           &hi, &r->evals)
+                 : surface_first_root(o, d, tn, end, v->eps, solid, cond, r->nodes, v->time, &lo, &hi, &r->evals)) &&
             (!found || lo < hit->t)) {
             found = 1;
             hit->t = lo;

@@ -496,6 +496,53 @@ TEST_FP(render_scene_overflow) {
     iacsg_frame_free(&b);
 }
 
+/* The same with a level-set surface in front of the regions (a sphere's zero set where the box is not): a
+ * re-traced ray walks the surface from its packet's block pass as in the first pass, so the frames are again
+ * identical (walked from the top instead, its leaves and so its depth came from another tree). */
+TEST_FP(render_scene_overflow_surface) {
+    t_scene t = {{{T_SPHERE, {-0.25, 0, 0}, {0.75}}, {T_SPHERE, {0.375, 0.125, 0}, {0.625}},
+                  {T_BOX, {0, 0, -0.5}, {1, 1, 0.25}}},
+                 3,
+                 {"D 0 1", "I 0 1", "D 2 U 0 1"},
+                 3};
+    iacsg_view v = test_view(96, 0x1p-12);
+    iacsg_render_config tiny = plain_config;
+    tiny.ray_candidates = 1;
+    iacsg_frame f[2];
+    for (int k = 0; k < 2; k++) {
+        iacsg_scene *s = build_scene(&t);
+        iacsg_error err = {0};
+        iacsg_expr *e = NULL;
+        CHECK(iacsg_expr_parse("x^2 + y^2 + (z - 0.125)^2 - 1.125", "<surface>", &e, &err) == IACSG_OK, "%s",
+              err.message);
+        int solid = scene_add_solid(s, NULL, e, &err);
+        uint32_t outside_box = CSG_NODE(CSG_OUTSIDE, 2);
+        int condition = scene_add_tree(s, &outside_box, 1, &err);
+        CHECK(solid >= 0 && condition >= 0 && scene_add_surface(s, NULL, solid, condition, -1, &err) >= 0, "%s",
+              err.message);
+        iacsg_renderer *r = NULL;
+        CHECK(iacsg_renderer_create_scene(s, k ? &tiny : &plain_config, &r, &err) == IACSG_OK, "%s", err.message);
+        CHECK(iacsg_render(r, &v, &f[k], &err) == IACSG_OK, "%s", err.message);
+        iacsg_renderer_destroy(r);
+        iacsg_scene_destroy(s);
+    }
+    size_t n = (size_t)v.width * (size_t)v.height;
+    long surface = 0;
+    for (size_t k = 0; k < n; k++)
+        surface += f[0].ids[k] == 3;
+    CHECK(f[0].retraced_rays == 0 && f[1].retraced_rays > 0 && surface > 100,
+          "retraced: %lld with the default room, %lld with 1; %ld pixels of the surface", f[0].retraced_rays,
+          f[1].retraced_rays, surface);
+    CHECK(memcmp(f[0].rgb, f[1].rgb, 3 * n * sizeof(float)) == 0 &&
+              memcmp(f[0].depth, f[1].depth, n * sizeof(float)) == 0 &&
+              memcmp(f[0].ids, f[1].ids, n * sizeof(float)) == 0,
+          "the images differ after re-tracing");
+    test_note("%lld of %zu rays re-traced, %ld pixels of the surface, images identical", f[1].retraced_rays, n,
+              surface);
+    iacsg_frame_free(&f[0]);
+    iacsg_frame_free(&f[1]);
+}
+
 /* A scene without items renders its expression by the first-root path; its ids are 0 where hit, -1 where not. */
 TEST_FP(render_scene_plain) {
     iacsg_scene *s = scene_create();

@@ -194,6 +194,7 @@ static void ranges_on_segment(int nsolids, const ref_ray *ray, long double a, lo
 TEST_FP(render_surface_condition_encloses_points) {
     test_rng_t *rng = test_rng();
     long holds = 0, fails = 0, undecided = 0, n = test_iters(20000);
+    kernel_u32 evals = 0;
     for (long it = 0; it < n; it++) {
         iacsg_scene *scene;
         int nsolids = 2 + (int)(test_rand_u64(rng) % 3), root = random_scene(rng, nsolids, &scene);
@@ -202,7 +203,7 @@ TEST_FP(render_surface_condition_encloses_points) {
             ia_real a = uniform(rng, -2, 2), w = uniform(rng, 0, test_rand_unit(rng) < 0.5 ? 0.05 : 1);
             box[c] = ia_make(a, a + w);
         }
-        int v = surface_condition(scene->nodes, root, csg_tree_last(scene->nodes, root), box, ia_point(0));
+        int v = surface_condition(scene->nodes, root, csg_tree_last(scene->nodes, root), box, ia_point(0), &evals);
         holds += v == SURFACE_MAY_HOLD, fails += v == SURFACE_MAY_FAIL, undecided += v == 3;
         for (int s = 0; s < 8; s++) {
             long double p[3];
@@ -277,8 +278,9 @@ static void check_surface_hit(const iacsg_scene *scene, int nsolids, int conditi
 static void check_surface_ray(const iacsg_scene *scene, int nsolids, int condition, const ia_real o[3],
                               const ia_real d[3], ia_real t_near, ia_real t_far, surface_tally *tally) {
     ia_real lo = 0, hi = 0;
+    kernel_u32 evals = 0;
     int hit = surface_first_root(o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes, ia_point(0), &lo,
-                                 &hi);
+                                 &hi, &evals);
     check_surface_hit(scene, nsolids, condition, o, d, t_near, t_far, hit, lo, hi, tally);
 }
 
@@ -349,6 +351,7 @@ TEST_FP(render_surface_block_start) {
     test_rng_t *rng = test_rng();
     surface_tally tally = {0};
     long blocks = test_iters(400), skipped = 0, empty = 0;
+    kernel_u32 evals = 0;
     for (long it = 0; it < blocks; it++) {
         iacsg_scene *scene;
         int nsolids = 2 + (int)(test_rand_u64(rng) % 3), root = random_scene(rng, nsolids, &scene);
@@ -363,13 +366,14 @@ TEST_FP(render_surface_block_start) {
         p[PARAM_EPS] = SURFACE_EPS;
         int i0 = 4 * (int)(test_rand_u64(rng) % 16), j0 = 4 * (int)(test_rand_u64(rng) % 16);
         surface_start start;
-        surface_block(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, 0, condition, scene->nodes, ia_point(0), &start);
+        surface_block(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, 0, condition, scene->nodes, ia_point(0), &start,
+                      &evals);
         empty += start.level < 0;
         for (int k = 0; k < 16; k++) {
             ia_real o[3], d[3], t_near = uniform(rng, 0, 1), t_far = uniform(rng, 6, 9), lo = 0, hi = 0;
             camera_ray(p, ortho, i0 + k % 4, j0 + k / 4, 64, 64, o, d);
             int hit = surface_first_root_from(&start, o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes,
-                                              ia_point(0), &lo, &hi);
+                                              ia_point(0), &lo, &hi, &evals);
             skipped += start.level > 0 ? start.level : 0;
             check_surface_hit(scene, nsolids, condition, o, d, t_near, t_far, hit, lo, hi, &tally);
         }
@@ -401,6 +405,7 @@ TEST_FP(render_surface_condition_stack_bound) {
     iacsg_scene *scene = scene_create();
     CHECK(scene, "out of memory");
     int ops[2] = {CSG_INTERSECT, CSG_UNION};
+    kernel_u32 evals = 0;
     for (int o = 0; o < 2; o++) {
         int fits = chain(scene, CSG_STACK_MAX, ops[o]), over = chain(scene, CSG_STACK_MAX + 1, ops[o]);
         CHECK(fits >= 0 && over >= 0, "scene_add_tree failed");
@@ -420,7 +425,8 @@ TEST_FP(render_surface_condition_stack_bound) {
                                   ia_point(0)};
             signed char sign[2] = {(signed char)sx, (signed char)sy};
             int want = scene_tree_eval(scene, fits, sign) ? SURFACE_MAY_HOLD : SURFACE_MAY_FAIL;
-            int got = surface_condition(scene->nodes, fits, csg_tree_last(scene->nodes, fits), box, ia_point(0));
+            int got =
+                surface_condition(scene->nodes, fits, csg_tree_last(scene->nodes, fits), box, ia_point(0), &evals);
             CHECK(got == want, "quadrant %d: the chain gives %d, the reference %d", q, got, want);
         }
     }

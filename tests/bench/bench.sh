@@ -6,7 +6,7 @@
 # Environment: BENCH_QUICK=1 (fewer runs and rows, writes $BENCH_BUILD/BENCHMARKS.quick.md, for iterating),
 # BENCH_RUNS (cached runs per row, default 5), BENCH_GROWTH_RUNS (for the growth tables, default 3),
 # BENCH_OUT (the report, default BENCHMARKS.md), BENCH_ONLY (space-separated table names: seed libfive ref
-# res eps size modes brlcad), BRLCAD (a BRL-CAD build's bin directory: rt beside iacsg, tests/bench/suite_brlcad.sh), BENCH_BUILD (directory for the raw results, default build/bench).
+# res eps size modes brlcad seg), BRLCAD (a BRL-CAD build's bin directory: rt beside iacsg, tests/bench/suite_brlcad.sh), BENCH_BUILD (directory for the raw results, default build/bench).
 #
 # Every row is measured by running the whole `iacsg` command, never by a library call, so that its wall time is
 # what a user waits for. Per row:
@@ -34,7 +34,7 @@ else
     OUT=${BENCH_OUT:-BENCHMARKS.md}
     GEN=$BUILD_DIR/generated.md
 fi
-ONLY=${BENCH_ONLY:-seed libfive ref res eps size modes brlcad}
+ONLY=${BENCH_ONLY:-seed libfive ref res eps size modes brlcad seg}
 TIMEOUT=${BENCH_TIMEOUT:-300}
 HERE=$(dirname "$0")
 
@@ -227,6 +227,7 @@ TOP="-eye 0,0,4 -at 0,0,0 -up 0,1,0 -ortho 4 -bounds -2,-2,-2,2,2,2"
 
 . "$HERE/suite.sh"
 . "$HERE/suite_brlcad.sh"
+. "$HERE/segment.sh"
 
 # The fixed cost of a command, median wall of 5 runs: STARTUP_MS of `iacsg devices` (the process, its shared
 # libraries, the OpenCL platform and device) and PROCESS_MS of `iacsg --version` (the process and libraries).
@@ -261,6 +262,7 @@ startup_costs
 DEVICE=$("$IACSG" devices 2>/dev/null | head -n 1 | sed 's/^0: //')
 
 bench_suite   # suite.sh: the tables
+if wants seg; then bench_segment; fi   # segment.sh: the segment path's table
 
 LOAD1=$(loadavg)
 ELAPSED=$(( $(date +%s) - T_START ))
