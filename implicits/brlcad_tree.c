@@ -131,26 +131,26 @@ static void apply_colour(walk_state *s, const brl_object *o) {
 static const int op_of[] = {[BRL_UNION] = X_UNION, [BRL_INTERSECT] = X_INTERSECT, [BRL_SUBTRACT] = X_SUBTRACT,
                             [BRL_XOR] = X_XOR};
 
-/* Step 1 at walk state s: the tree of region leaves of its object, or -1. */
-static int to_regions(builder *b, int s);
-
-static int tree_to_regions(builder *b, int node, int s) {
+/* A combination's tree at walk state s with each member replaced by leaf(member's state): step 1 (leaf =
+ * to_regions) and step 3 (leaf = to_solids) walk it alike. */
+static int tree_map(builder *b, int node, int s, int (*leaf)(builder *, int)) {
     if (!enter(b))
         return -1;
     const brl_node *n = &b->db->nodes[node];
     int r;
     if (n->op == BRL_LEAF) {
         int t = member_state(b, s, node);
-        r = t < 0 ? -1 : to_regions(b, t);
+        r = t < 0 ? -1 : leaf(b, t);
     } else {
-        int l = tree_to_regions(b, n->left, s);
-        int rr = l < 0 ? -1 : tree_to_regions(b, n->right, s);
+        int l = tree_map(b, n->left, s, leaf);
+        int rr = l < 0 ? -1 : tree_map(b, n->right, s, leaf);
         r = rr < 0 ? -1 : new_x(b, op_of[n->op], l, rr, -1);
     }
     b->depth--;
     return r;
 }
 
+/* Step 1 at walk state s: the tree of region leaves of its object, or -1. */
 static int to_regions(builder *b, int s) {
     const brl_object *o = &b->db->objects[b->states[s].object];
     if (!o->is_comb)
@@ -158,7 +158,7 @@ static int to_regions(builder *b, int s) {
     apply_colour(&b->states[s], o);
     if (o->region)
         return o->aircode != 0 ? (b->model->nair++, 0) : new_x(b, X_REGION, -1, -1, s); /* air: left out, as rt does */
-    return o->tree < 0 ? 0 : tree_to_regions(b, o->tree, s);
+    return o->tree < 0 ? 0 : tree_map(b, o->tree, s, to_regions);
 }
 
 /* Step 2: the tree with nothing (X_NOP, node 0) removed; 0 when nothing is left. */
@@ -275,29 +275,10 @@ static int instance(builder *b, int object, const double *m) {
 }
 
 /* Step 3 below a region leaf: the object of state s down to its solids. */
-static int to_solids(builder *b, int s);
-
-static int tree_to_solids(builder *b, int node, int s) {
-    if (!enter(b))
-        return -1;
-    const brl_node *n = &b->db->nodes[node];
-    int r;
-    if (n->op == BRL_LEAF) {
-        int t = member_state(b, s, node);
-        r = t < 0 ? -1 : to_solids(b, t);
-    } else {
-        int l = tree_to_solids(b, n->left, s);
-        int rr = l < 0 ? -1 : tree_to_solids(b, n->right, s);
-        r = rr < 0 ? -1 : new_x(b, op_of[n->op], l, rr, -1);
-    }
-    b->depth--;
-    return r;
-}
-
 static int to_solids(builder *b, int s) {
     const brl_object *o = &b->db->objects[b->states[s].object];
     if (o->is_comb)
-        return o->tree < 0 ? 0 : tree_to_solids(b, o->tree, s);
+        return o->tree < 0 ? 0 : tree_map(b, o->tree, s, to_solids);
     int k = instance(b, b->states[s].object, b->states[s].m);
     return k < 0 ? -1 : new_x(b, X_SOLID, -1, -1, k);
 }
