@@ -179,18 +179,9 @@ static csg_report check_scene(const char *name, const char *expr, first_entry en
                               const void *scene, const iacsg_view *view) {
     csg_report rep = {0};
     double margin = ghost_margin(view->eps);
-    iacsg_error err = {0};
-    iacsg_expr *e = NULL;
-    CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s: %s", expr, err.message);
     iacsg_render_config config = {.fp64 = FP64};
-    iacsg_renderer *r = NULL;
-    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
-    iacsg_expr_destroy(e);
-    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
     iacsg_frame fr;
-    st = iacsg_render(r, view, &fr, &err);
-    iacsg_renderer_destroy(r);
-    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
+    render_expr_text(expr, &config, view, &fr);
     ia_real p[PARAM_COUNT];
     view_params(view, p);
     for (int j = 0; j < view->height; j++)

@@ -13,17 +13,8 @@
 
 /* Compiles expr and renders the view; failures end the test. */
 static void render_expr(const char *expr, const iacsg_view *view, iacsg_frame *fr) {
-    iacsg_error err = {0};
-    iacsg_expr *e = NULL;
-    CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s: %s", expr, err.message);
     iacsg_render_config config = {.fp64 = FP64};
-    iacsg_renderer *r = NULL;
-    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
-    iacsg_expr_destroy(e);
-    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
-    st = iacsg_render(r, view, fr, &err);
-    iacsg_renderer_destroy(r);
-    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
+    render_expr_text(expr, &config, view, fr);
 }
 
 /* The same for a scene file's text (regions: the segment path). */

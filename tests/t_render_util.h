@@ -195,4 +195,19 @@ static inline void render_cl(const char *cl, const iacsg_render_config *config, 
     CHECK(st == IACSG_OK, "render: %s", err.message);
 }
 
+/* Compiles the expression `expr` of the language and renders it; failures end the test. */
+static inline void render_expr_text(const char *expr, const iacsg_render_config *config, const iacsg_view *view,
+                                    iacsg_frame *frame) {
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s: %s", expr, err.message);
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_expr(e, config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
+    st = iacsg_render(r, view, frame, &err);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK, "%s: %s", expr, err.message);
+}
+
 #endif
