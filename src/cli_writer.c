@@ -249,8 +249,10 @@ void cli_writer_stop(cli_writer *w) {
     if (!w)
         return;
     if (w->child > 0) {
-        kill(w->child, SIGKILL); /* every write was answered: what it may be doing is loading or checking */
-        waitpid(w->child, NULL, 0);
+        /* Not waited for: its exit unmaps OpenImageIO's ~120 MB, which took ~14 ms of every command's end. With
+         * SIGCHLD ignored the kernel reaps it. Every write was answered: it can only be loading or checking. */
+        signal(SIGCHLD, SIG_IGN);
+        kill(w->child, SIGKILL);
     }
     if (w->sock >= 0)
         close(w->sock);
