@@ -1,6 +1,7 @@
 /* kernels/packet.h -- the first roots of IA_VW rays at once, by interval bisection (Knoll et al., Hijazi et al.)
- * without a stack (traverse.h) and interval Newton below a few pixel footprints, one SIMD lane per ray (OpenCL C
- * only; ia/vec.h's intervals and the emitted iacsg_Fv, iacsg_Fdv).
+ * without a stack (traverse.h) and interval Newton below a few pixel footprints (where Newton stalls, a mean
+ * value form instead), one SIMD lane per ray (OpenCL C only; ia/vec.h's intervals and the emitted iacsg_Fv,
+ * iacsg_Fdv).
  *
  * Why lanes: PoCL runs a work-group's work-items in a loop that it vectorises only when every work-item takes
  * the same path; the bisection's trip count differs per ray, so a kernel with a ray per work-item ran one ray at
@@ -17,7 +18,8 @@
  * Guarantee, lane by lane: every node before the returned leaf was proven root-free on [t_near, t_far] (0 not in
  * F over its box, and the box contains the float ray's points), and the clipped nodes tile [t_near, t_far]
  * without gaps (node ends are traverse.h's formula over the same operations, bit-identical wherever computed);
- * a node that Newton narrows keeps all its roots in the narrowed part. So if the float ray meets the surface
+ * a node that Newton narrows keeps all its roots in the narrowed part, and one whose mean value form misses 0 has
+ * none (packet_mean_value). So if the float ray meets the surface
  * there, a leaf is returned, and its start is never after the first root.
  */
 #ifndef KERNELS_PACKET_H
