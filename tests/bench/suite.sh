@@ -63,13 +63,13 @@ find_libfive() {
     return 1
 }
 
-# libfive_run RES REPS: the harness's lines "<shape> <res> <threads> <reps> <median> <min> <max>" for each form of
-# x^n (square: x^2 -> square(x), mul: x*x*...), as "<form> <line>", to $WORK/libfive.
+# libfive_run SHAPE RES REPS: the harness's line "<shape> <res> <threads> <reps> <median> <min> <max>" for each form
+# of x^n (square: x^2 -> square(x), mul: x*x*...), as "<form> <line>", added to $WORK/libfive. Run per shape just
+# before iacsg's rows of it, so that both sides meet the same load when other work shares the CPUs.
 libfive_run() {
-    : >"$WORK/libfive"
     for form in square mul; do
-        "$LIBFIVE" --res "$1" --threads 2 --reps "$2" --no-images --powers "$form" 2>>"$WORK/libfive.err" |
-            sed "s/^/$form /" >>"$WORK/libfive"
+        "$LIBFIVE" --shapes "$1" --res "$2" --threads 2 --reps "$3" --no-images --powers "$form" \
+            2>>"$WORK/libfive.err" | sed "s/^/$form /" >>"$WORK/libfive"
     done
 }
 # libfive_best NAME: "median min max form" of the faster form (by median) for the harness's shape NAME, or "-".
@@ -106,19 +106,19 @@ bench_suite() {
         spheres 64 0.15 "$WORK/spheres64.csg"
         spheres 1024 0 "$WORK/spheres1024.csg"
         LIBFIVE=$(find_libfive) || LIBFIVE=
+        : >"$WORK/libfive"
         if [ -n "$LIBFIVE" ]; then
             log "libfive: $LIBFIVE, ${N}x$N, $RUNS renders per shape and form"
-            libfive_run "$N" "$RUNS"
             lf_note="libfive: \`$LIBFIVE --res $N --threads 2 --reps $RUNS --powers square|mul\`, the faster form per shape"
         else
-            : >"$WORK/libfive"
             lf_note="libfive: no harness found (LIBFIVE_BENCH, ../peers/libfive/bench; build it with ../shared/peers/build-libfive.sh): its columns are empty"
         fi
         say ""
         say "### Side by side with libfive (issue 16): ${N}x$N, -ortho 4 from +z (\`$TOP\`), eps 4/$N, one run"
         say ""
         say "iacsg: the \`-stats\` render, median [min-max] of $RUNS cached runs; $lf_note, median [min-max] of"
-        say "$RUNS renders (\`Heightmap::render\`, its evaluators built inside the timed call). Ratio: libfive / iacsg medians."
+        say "$RUNS renders (\`Heightmap::render\`, its evaluators built inside the timed call), run just before iacsg's rows of"
+        say "the shape. Ratio: libfive / iacsg medians."
         say ""
         say "| shape | iacsg render ms | libfive ms | libfive's form | libfive / iacsg | iacsg evals/ray | iacsg wall ms (cached) |"
         say "|---|---|---|---|---|---|---|"
@@ -127,6 +127,7 @@ bench_suite() {
             arg=$3
             case $arg in @*) arg=$WORK/${arg#@}.csg ;; esac
             TABLE=libfive
+            [ -n "$LIBFIVE" ] && [ "$2" != - ] && libfive_run "$2" "$N" "$RUNS"
             # shellcheck disable=SC2086
             row_measure "$1" "$RUNS" "$arg" -size "${N}x$N" -eps "$eps" $TOP
             lf=-
