@@ -1,14 +1,12 @@
 /* src/render.c -- see render.h. One program per expression: the ia/ headers, the expression's emitted source
  * and the kernels, concatenated (all three embedded or generated, so nothing is read from disk). A frame is
  * traced in bands of rows, so that progress can be reported and no single launch runs for long. */
-#define _DEFAULT_SOURCE /* madvise, MADV_HUGEPAGE */
 #include "render_internal.h"
 #include "kernels/params.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 #include <time.h>
 
 extern const char iacsg_cl_kernels[]; /* the flattened kernels/ (Makefile: KERNEL_SOURCES) */
@@ -367,20 +365,10 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* A frame's image of `count` floats, page-aligned as devices prefer host arrays they use in place. A large one is
- * aligned to 2 MiB and asked for transparent huge pages: the kernel writing a fresh 1024x1024 rgb image into
- * 4 KiB pages took one page fault each, 3072 (a whole command's 22.6k faults became 19.6k). */
+/* A frame's image of `count` floats, page-aligned as devices prefer host arrays they use in place. */
 float *render_image_alloc(size_t count) {
-    enum { HUGE_PAGE = 2 << 20 };
-    size_t size = count * sizeof(float);
     void *p = NULL;
-    if (posix_memalign(&p, size >= HUGE_PAGE ? HUGE_PAGE : 4096, size) != 0)
-        return NULL;
-#ifdef MADV_HUGEPAGE
-    if (size >= HUGE_PAGE)
-        madvise(p, size, MADV_HUGEPAGE); /* a hint: where refused, 4 KiB pages as before */
-#endif
-    return p;
+    return posix_memalign(&p, 4096, count * sizeof(float)) == 0 ? p : NULL;
 }
 
 /* An expression's ids from its depth: 0 where the ray hits, -1 where it misses. */
