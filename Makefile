@@ -80,8 +80,8 @@ $(BUILD)/libiacsg.a: $(LIB_OBJ)
 # The command is not linked with OpenImageIO: it loads libiacsg_image.so, beside it (installed: ../lib/iacsg/),
 # in a child process (src/cli_writer.c), so that the ~180 ms of linking OpenImageIO's libraries overlap OpenCL's
 # start.
-$(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so $(BUILD)/libiacsg_mpi.so
-	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/libiacsg.a $(CLI_LIBS)
+$(BUILD)/iacsg: $(CLI_OBJ) $(BUILD)/image_deps.o $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so $(BUILD)/libiacsg_mpi.so
+	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJ) $(BUILD)/image_deps.o $(BUILD)/libiacsg.a $(CLI_LIBS)
 
 # `iacsg view` (src/cli_view*.c) loads SDL2 with dlopen (src/cli_view_sdl.h): only its headers are used here.
 SDL_CFLAGS = $(shell pkg-config --cflags sdl2 2>/dev/null || echo -I/usr/include/SDL2)
@@ -89,6 +89,11 @@ $(BUILD)/src/cli_view.o $(BUILD)/src/cli_view_%.o: CFLAGS += $(SDL_CFLAGS)
 
 $(BUILD)/libiacsg_image.so: $(BUILD)/pic/src/image_oiio.o $(BUILD)/pic/src/error.o
 	$(CXX) $(LDFLAGS_ALL) -shared -o $@ $^ $(IMAGE_LIBS)
+# Its shared libraries by soname, deepest first (ldd's order reversed), which the writer process loads one at a
+# time before it (src/cli_writer.c: preload_dependencies). Empty where ldd is missing: then it loads them at once.
+$(BUILD)/image_deps.c: $(BUILD)/libiacsg_image.so
+	{ echo 'const char *const cli_image_deps[] = {'; ldd $< 2>/dev/null | awk '/=> \// {print "    \"" $$1 "\","}' | tac; \
+	  echo '    0};'; } >$@
 
 # The command's MPI layer, which it loads only under mpirun (src/cli_mpi.h): a plain render does not link MPI.
 MPI_CFLAGS = $(shell mpicc --showme:compile 2>/dev/null)

@@ -47,9 +47,9 @@ static const char usage[] =
     "                     node, modulo the count of devices]\n"
     "  -resume            skip the frames whose files are all there (an image is only renamed into place once\n"
     "                     complete), so that a job stopped halfway is finished by the same command\n"
-    "  -stats             print rays, interval evaluations per ray (mean, max), kernel build and render time;\n"
-    "                     for regions also segments and partitions per ray, overlaps, per-ray buffer bytes;\n"
-    "                     with effects, the secondary rays and their evaluations per ray\n"
+    "  -stats             print rays, interval evaluations per ray (mean, max), kernel build, render and write\n"
+    "                     time; for regions also segments and partitions per ray, overlaps, per-ray buffer\n"
+    "                     bytes; with effects, the secondary rays and their evaluations per ray\n"
     "\n";
 
 /* The rest of the help, apart: ISO C bounds a string literal's length. */

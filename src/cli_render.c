@@ -352,7 +352,8 @@ static iacsg_status write_frame(cli_writer *writer, const render_options *o, con
     return IACSG_OK;
 }
 
-static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const iacsg_scene *s) {
+/* write_seconds: the frame's images from host memory to their files (conversion, encoding, rename). */
+static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const iacsg_scene *s, double write_seconds) {
     printf("device: %s\n", iacsg_renderer_device_name(r));
     printf("rays: %lld\n", fr->rays);
     printf("interval evaluations per ray: mean %.2f, max %u\n", fr->evals_mean, fr->evals_max);
@@ -374,6 +375,7 @@ static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const ia
                fr->secondary_evals_mean);
     printf("kernel build: %.3f s\n", iacsg_renderer_build_seconds(r));
     printf("render: %.3f s\n", fr->render_seconds);
+    printf("write: %.3f s\n", write_seconds);
 }
 
 /* The directory an output goes to must take new files (the image is written beside it, then renamed): checked
@@ -521,10 +523,11 @@ int cli_render(int argc, char **argv) {
             fprintf(stderr, "\r%50s\r", "");
             bar.shown = 0;
         }
+        double written = now_seconds();
         if (st == IACSG_OK && cli_job_writes_frames(job))
             st = write_frame(writer, &o, &fr, item.frame, &err);
         if (st == IACSG_OK && o.config.stats)
-            print_stats(r, &fr, scene);
+            print_stats(r, &fr, scene, now_seconds() - written);
     }
     iacsg_frame_free(&fr);
     const iacsg_frame *whole = st == IACSG_OK ? cli_job_gathered(job) : NULL;

@@ -34,9 +34,14 @@ typedef struct {
     size_t path_len;
 } writer_request;
 
+/* The library's shared libraries by soname, deepest first, NULL-terminated (build/image_deps.c, from ldd). */
+extern const char *const cli_image_deps[];
+
 /* The library's entry points the command uses (src/image.h). */
 typedef struct {
     void *handle;
+    void **deps; /* the handles of preload_dependencies, ndeps of them */
+    size_t ndeps;
     iacsg_status (*check_format)(const char *, iacsg_error *);
     iacsg_status (*write)(const char *, int, int, int, const float *, int, iacsg_error *);
     iacsg_status (*write_bytes)(const char *, int, int, int, const unsigned char *, iacsg_error *);
@@ -52,9 +57,27 @@ struct cli_writer {
     image_library lib; /* in this process */
 };
 
-/* Loads the library (cli_library_open). RTLD_LAZY: the command calls three functions of it, so binding the rest
+/* Loads the library's dependencies one at a time, deepest first. Loaded by the library's own dlopen, each of
+ * OpenImageIO's ~260 libraries binds its symbols by searching them all in one breadth-first list, where its own
+ * dependencies come late; loaded on its own, it searches its own dependencies first. The writer's load of the
+ * library went from 175 to 118 ms of CPU (perf stat, 10 runs; most of the rest is their constructors). A name that
+ * does not load (a library changed since the build) is skipped: the library's own dlopen loads what it needs. */
+static void preload_dependencies(image_library *lib) {
+    size_t n = 0;
+    while (cli_image_deps[n])
+        n++;
+    lib->deps = malloc((n + 1) * sizeof *lib->deps);
+    for (size_t k = 0; lib->deps && k < n; k++) {
+        void *h = dlopen(cli_image_deps[k], RTLD_LAZY | RTLD_LOCAL);
+        if (h)
+            lib->deps[lib->ndeps++] = h;
+    }
+}
+
+/* Loads the library (cli_library_open), after its dependencies. RTLD_LAZY: the command calls three functions of it, so binding the rest
  * would be wasted. */
 static iacsg_status library_load(image_library *lib, iacsg_error *err) {
+    preload_dependencies(lib);
     lib->handle = cli_library_open(WRITER_LIBRARY, "the image library", RTLD_LAZY | RTLD_LOCAL, err);
     if (!lib->handle)
         return err->status;
@@ -226,8 +249,10 @@ void cli_writer_stop(cli_writer *w) {
     if (!w)
         return;
     if (w->child > 0) {
-        kill(w->child, SIGKILL); /* every write was answered: what it may be doing is loading or checking */
-        waitpid(w->child, NULL, 0);
+        /* Not waited for: its exit unmaps OpenImageIO's ~120 MB, which took ~14 ms of every command's end. With
+         * SIGCHLD ignored the kernel reaps it. Every write was answered: it can only be loading or checking. */
+        signal(SIGCHLD, SIG_IGN);
+        kill(w->child, SIGKILL);
     }
     if (w->sock >= 0)
         close(w->sock);
@@ -235,5 +260,8 @@ void cli_writer_stop(cli_writer *w) {
         munmap(w->shared, w->max_floats * sizeof(float));
     if (w->lib.handle)
         dlclose(w->lib.handle);
+    for (size_t k = w->lib.ndeps; k > 0; k--)
+        dlclose(w->lib.deps[k - 1]);
+    free(w->lib.deps);
     free(w);
 }

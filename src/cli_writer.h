@@ -23,7 +23,8 @@ iacsg_status cli_writer_checked(cli_writer *w, iacsg_error *err);
 iacsg_status cli_writer_write(cli_writer *w, const char *path, int width, int height, int channels,
                               const float *pixels, int as_float, iacsg_error *err);
 
-/* Ends the child (at once: every write has been answered) and frees the writer. NULL is allowed. */
+/* Ends the child (at once: every write has been answered) and frees the writer. NULL is allowed. For the end of a
+ * command: the child is not waited for, and this process ignores SIGCHLD from then on (so it leaves no zombie). */
 void cli_writer_stop(cli_writer *w);
 
 #endif

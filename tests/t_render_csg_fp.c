@@ -7,7 +7,8 @@
  * midpoints between consecutive roots. Checked: no ray that passes through the solid (by more than 1e-6) is
  * missed, no depth is after the first root, and no depth is a ghost (its point farther than ghost_margin, in
  * t_render_util.h, from every primitive's surface: each primitive also gives its exact distance function). Also
- * a union of 32 spheres, which is emitted in groups. */
+ * a union of 32 spheres, which is emitted in groups, and the tangle, whose silhouettes the kernels decide by a mean
+ * value form. */
 #include "t_render_util.h"
 #include "implicits/expr.h"
 #include <string.h>
@@ -348,6 +349,40 @@ static void check_grid_normals(const char *expr, const iacsg_view *view) {
     test_note("normals by differences: %ld pixels, largest error %.2g", checked, worst);
     CHECK(checked > 1000, "only %ld pixels checked", checked);
     CHECK(worst < 2e-3, "a normal %.3g from the exact one", worst);
+}
+
+/* The tangle x^4 - 5x^2 + y^4 - 5y^2 + z^4 - 5z^2 + 11.8, a quartic along a ray. Its silhouettes are where the
+ * kernels bound F by its mean value form after Newton gives up on a ray (kernels/packet.h: packet_mean_value). */
+static ray_poly tangle_poly(const double o[3], const double d[3]) {
+    ray_poly p = {{11.8}, 4};
+    for (int k = 0; k < 3; k++) { /* (o + d t)^2 = s0 + s1 t + s2 t^2; its square minus 5 times it */
+        double s0 = o[k] * o[k], s1 = 2 * o[k] * d[k], s2 = d[k] * d[k];
+        p.c[0] += s0 * s0 - 5 * s0;
+        p.c[1] += 2 * s0 * s1 - 5 * s1;
+        p.c[2] += s1 * s1 + 2 * s0 * s2 - 5 * s2;
+        p.c[3] += 2 * s1 * s2;
+        p.c[4] += s2 * s2;
+    }
+    return p;
+}
+/* A lower bound of the distance to the tangle's surface: |F(p)| over a bound of |grad F| in [-3, 3]^3 (each
+ * component |4x^3 - 10x| <= 138), so that a depth found farther than the margin is a ghost for certain. */
+static double tangle_distance(const double p[3]) {
+    double f = 11.8;
+    for (int k = 0; k < 3; k++)
+        f += p[k] * p[k] * p[k] * p[k] - 5 * p[k] * p[k];
+    return fabs(f) / (138 * sqrt(3));
+}
+static const primitive tangle = {tangle_poly, tangle_distance};
+
+TEST_FP(render_tangle_silhouettes) {
+    iacsg_view v = view_of(128, 128, 1e-5);
+    for (int k = 0; k < 3; k++) {
+        v.bounds[k] = -3;
+        v.bounds[k + 3] = 3;
+    }
+    v.camera.eye[1] = -6; /* outside the bounds */
+    check_expr("x^4-5*x^2+y^4-5*y^2+z^4-5*z^2+11.8", tangle, tangle, CSG_ONLY_A, &v);
 }
 
 TEST_FP(render_union_of_many_spheres) {

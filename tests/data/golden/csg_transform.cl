@@ -7,6 +7,17 @@ typedef double4 iacsg_grad;
 #define IACSG_K(f, d) (f)
 typedef float4 iacsg_grad;
 #endif
+IA_FN ia_real iacsg_pown(ia_real a, int n) {
+    if (n > 8 || n < -8)
+        return pown(a, n);
+    ia_real r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
 #endif
 #if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {

@@ -7,6 +7,17 @@ typedef double4 iacsg_grad;
 #define IACSG_K(f, d) (f)
 typedef float4 iacsg_grad;
 #endif
+IA_FN ia_real iacsg_pown(ia_real a, int n) {
+    if (n > 8 || n < -8)
+        return pown(a, n);
+    ia_real r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
 #endif
 #if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
@@ -92,16 +103,16 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
 #endif
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
-    ia_real v2 = pown(x, 3);
-    iacsg_grad v2_d = (ia_real)3 * pown(x, 3 - 1) * (iacsg_grad)(1, 0, 0, 0);
+    ia_real v2 = iacsg_pown(x, 3);
+    iacsg_grad v2_d = (ia_real)3 * iacsg_pown(x, 3 - 1) * (iacsg_grad)(1, 0, 0, 0);
     ia_real v5 = sqrt(y);
     v5 = y < 0 ? (ia_real)NAN : v5;
     iacsg_grad v5_d = (iacsg_grad)(0, 1, 0, 0) / ((ia_real)2 * v5);
     ia_real v6 = v2 + v5;
     iacsg_grad v6_d = v2_d + v5_d;
-    ia_real v10 = pown(z, -2);
+    ia_real v10 = iacsg_pown(z, -2);
     v10 = -2 < 0 && z <= 0 && z >= 0 ? (ia_real)NAN : v10;
-    iacsg_grad v10_d = (ia_real)-2 * pown(z, -2 - 1) * (iacsg_grad)(0, 0, 1, 0);
+    iacsg_grad v10_d = (ia_real)-2 * iacsg_pown(z, -2 - 1) * (iacsg_grad)(0, 0, 1, 0);
     ia_real v11 = v6 + v10;
     iacsg_grad v11_d = v6_d + v10_d;
     ia_real v12 = x * x;
