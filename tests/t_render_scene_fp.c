@@ -471,14 +471,28 @@ TEST_FP(render_scene_many) {
     note("216 spheres, each a region", check_scene(&t, &v, &plain_config, NULL));
 }
 
-/* Per-ray buffers for one candidate: most rays overflow, are traced again with more room, and the images are
- * the same bit for bit. */
-TEST_FP(render_scene_overflow) {
+/* The overflow tests' scene: two spheres and a box, a difference, an intersection, a nested difference. */
+static t_scene overflow_scene(void) {
     t_scene t = {{{T_SPHERE, {-0.25, 0, 0}, {0.75}}, {T_SPHERE, {0.375, 0.125, 0}, {0.625}},
                   {T_BOX, {0, 0, -0.5}, {1, 1, 0.25}}},
                  3,
                  {"D 0 1", "I 0 1", "D 2 U 0 1"},
                  3};
+    return t;
+}
+
+/* Fails unless the frames a (default room) and b (re-traced) are the same bit for bit. */
+static void check_same_after_retrace(const iacsg_frame *a, const iacsg_frame *b, size_t n) {
+    CHECK(memcmp(a->rgb, b->rgb, 3 * n * sizeof(float)) == 0 && memcmp(a->depth, b->depth, n * sizeof(float)) == 0 &&
+              memcmp(a->ids, b->ids, n * sizeof(float)) == 0 &&
+              memcmp(a->normal, b->normal, 3 * n * sizeof(float)) == 0,
+          "the images differ after re-tracing");
+}
+
+/* Per-ray buffers for one candidate: most rays overflow, are traced again with more room, and the images are
+ * the same bit for bit. */
+TEST_FP(render_scene_overflow) {
+    t_scene t = overflow_scene();
     iacsg_view v = test_view(96, 0x1p-12);
     iacsg_render_config tiny = plain_config;
     tiny.ray_candidates = 1;
@@ -488,9 +502,7 @@ TEST_FP(render_scene_overflow) {
     size_t n = (size_t)v.width * (size_t)v.height;
     CHECK(a.retraced_rays == 0 && b.retraced_rays > 0, "retraced: %lld with the default room, %lld with 1",
           a.retraced_rays, b.retraced_rays);
-    CHECK(memcmp(a.rgb, b.rgb, 3 * n * sizeof(float)) == 0 && memcmp(a.depth, b.depth, n * sizeof(float)) == 0 &&
-              memcmp(a.ids, b.ids, n * sizeof(float)) == 0 && memcmp(a.normal, b.normal, 3 * n * sizeof(float)) == 0,
-          "the images differ after re-tracing");
+    check_same_after_retrace(&a, &b, n);
     test_note("%lld of %zu rays re-traced, images identical", b.retraced_rays, n);
     iacsg_frame_free(&a);
     iacsg_frame_free(&b);
@@ -500,11 +512,7 @@ TEST_FP(render_scene_overflow) {
  * re-traced ray walks the surface from its packet's block pass as in the first pass, so the frames are again
  * identical (walked from the top instead, its leaves and so its depth came from another tree). */
 TEST_FP(render_scene_overflow_surface) {
-    t_scene t = {{{T_SPHERE, {-0.25, 0, 0}, {0.75}}, {T_SPHERE, {0.375, 0.125, 0}, {0.625}},
-                  {T_BOX, {0, 0, -0.5}, {1, 1, 0.25}}},
-                 3,
-                 {"D 0 1", "I 0 1", "D 2 U 0 1"},
-                 3};
+    t_scene t = overflow_scene();
     iacsg_view v = test_view(96, 0x1p-12);
     iacsg_render_config tiny = plain_config;
     tiny.ray_candidates = 1;
@@ -533,10 +541,7 @@ TEST_FP(render_scene_overflow_surface) {
     CHECK(f[0].retraced_rays == 0 && f[1].retraced_rays > 0 && surface > 100,
           "retraced: %lld with the default room, %lld with 1; %ld pixels of the surface", f[0].retraced_rays,
           f[1].retraced_rays, surface);
-    CHECK(memcmp(f[0].rgb, f[1].rgb, 3 * n * sizeof(float)) == 0 &&
-              memcmp(f[0].depth, f[1].depth, n * sizeof(float)) == 0 &&
-              memcmp(f[0].ids, f[1].ids, n * sizeof(float)) == 0,
-          "the images differ after re-tracing");
+    check_same_after_retrace(&f[0], &f[1], n);
     test_note("%lld of %zu rays re-traced, %ld pixels of the surface, images identical", f[1].retraced_rays, n,
               surface);
     iacsg_frame_free(&f[0]);
