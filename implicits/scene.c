@@ -82,7 +82,7 @@ int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iac
 
 int scene_add_solid(iacsg_scene *s, const char *name, iacsg_expr *e, iacsg_error *err) {
     int ok = grow((void **)&s->solids, s->nsolids, &s->cap_solids, sizeof *s->solids, 1);
-    scene_solid solid = {copy_name(name, &ok), e, NULL, 0, 0};
+    scene_solid solid = {.name = copy_name(name, &ok), .expr = e};
     if (!ok) {
         free(solid.name);
         iacsg_expr_destroy(e);
@@ -109,7 +109,7 @@ int scene_add_primitive(iacsg_scene *s, const char *name, scene_prim_type type, 
     p->nparams = nparams;
     p->params = copy;
     memcpy(p->mat, mat, sizeof p->mat);
-    s->solids[s->nsolids] = (scene_solid){copied, NULL, p, 0, 0};
+    s->solids[s->nsolids] = (scene_solid){.name = copied, .prim = p};
     return s->nsolids++;
 }
 

@@ -39,7 +39,7 @@ static void refine_box(const iacsg_expr *e, double b[6]) {
 /* The solid's box for the kernels, for times in `time`: its proven box when its inside lies within it (f > 0 at
  * a point outside it, and so all over the connected outside, where f has no zero), else an infinite box. 1 if
  * bounded; *in_cube is set when the box holds only inside the cube of IACSG_BOUNDS_CUBE. */
-static int solid_box(const scene_solid *solid, const double time[2], double box[6], int *in_cube) {
+static int solid_box_proven(const scene_solid *solid, const double time[2], double box[6], int *in_cube) {
     if (solid->prim) /* placed in the world (its parameters' intervals), not depending on t */
         return prim_world_box(solid->prim, box);
     const iacsg_expr *e = solid->expr;
@@ -65,6 +65,19 @@ static int solid_box(const scene_solid *solid, const double time[2], double box[
         box[k + 3] = bounded ? b[k + 3] : INFINITY;
     }
     return bounded;
+}
+
+/* solid_box_proven, kept in the solid where its expression does not depend on t (then time does not matter). */
+static int solid_box(scene_solid *solid, const double time[2], double box[6], int *in_cube) {
+    if (solid->prim || iacsg_expr_uses_time(solid->expr))
+        return solid_box_proven(solid, time, box, in_cube);
+    if (!solid->box_known) {
+        solid->box_bounded = solid_box_proven(solid, time, solid->box, &solid->box_in_cube);
+        solid->box_known = 1;
+    }
+    memcpy(box, solid->box, sizeof solid->box);
+    *in_cube |= solid->box_in_cube;
+    return solid->box_bounded;
 }
 
 /* ---- the BVH */
