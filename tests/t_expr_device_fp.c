@@ -53,16 +53,11 @@ static int is_smooth(const char *text) {
 }
 
 TEST_FP(expr_device_contains) {
-    static char texts[MAX_EXPRS][8192];
-    const char *names[64];
+    static char texts[MAX_EXPRS][EXPR_TEXT_SIZE];
     iacsg_expr *exprs[MAX_EXPRS];
-    int n = 0, nprim = expr_primitive_names(names, 64);
-    for (int i = 0; i < nprim; i++)
-        snprintf(texts[n++], sizeof texts[0], "%s", names[i]);
-    for (int i = 0; i < expr_every_op_count; i++)
-        snprintf(texts[n++], sizeof texts[0], "%s", expr_every_op_texts[i]);
-    while (n < MAX_EXPRS)
-        expr_random_text(test_rng(), 4, texts[n++], sizeof texts[0]);
+    int n = expr_test_texts(test_rng(), texts, MAX_EXPRS);
+    const char *names[64];
+    int nprim = expr_primitive_names(names, 64); /* the first texts: their gradients are checked too */
     for (int i = 0; i < n; i++)
         CHECK(iacsg_expr_parse(texts[i], "<test>", &exprs[i], NULL) == IACSG_OK, "'%s' does not compile", texts[i]);
 

@@ -129,16 +129,9 @@ static char *emit(const iacsg_expr *e, const char *prefix) {
 #define SLOPE_ITEMS 6 /* work-items per expression: 6 x 16 boxes */
 
 TEST_FP(expr_lanes_slope) {
-    static char texts[MAX_EXPRS][8192];
-    const char *names[64];
+    static char texts[MAX_EXPRS][EXPR_TEXT_SIZE];
     iacsg_expr *exprs[MAX_EXPRS];
-    int n = 0, nprim = expr_primitive_names(names, 64);
-    for (int i = 0; i < nprim; i++)
-        snprintf(texts[n++], sizeof texts[0], "%s", names[i]);
-    for (int i = 0; i < expr_every_op_count; i++)
-        snprintf(texts[n++], sizeof texts[0], "%s", expr_every_op_texts[i]);
-    while (n < MAX_EXPRS)
-        expr_random_text(test_rng(), 4, texts[n++], sizeof texts[0]);
+    int n = expr_test_texts(test_rng(), texts, MAX_EXPRS);
     const char *sources[MAX_EXPRS + 2] = {iacsg_cl_ia};
     static char cases[MAX_EXPRS * 200];
     size_t used = 0;

@@ -228,3 +228,15 @@ int expr_primitive_names(const char **names, int max) {
             names[n++] = lib_entries[i].name;
     return n;
 }
+
+int expr_test_texts(test_rng_t *r, char (*texts)[EXPR_TEXT_SIZE], int max) {
+    const char *names[64];
+    int n = 0, nprim = expr_primitive_names(names, 64);
+    for (int i = 0; i < nprim && n < max; i++)
+        snprintf(texts[n++], EXPR_TEXT_SIZE, "%s", names[i]);
+    for (int i = 0; i < expr_every_op_count && n < max; i++)
+        snprintf(texts[n++], EXPR_TEXT_SIZE, "%s", expr_every_op_texts[i]);
+    while (n < max)
+        expr_random_text(r, 4, texts[n++], EXPR_TEXT_SIZE);
+    return n;
+}
