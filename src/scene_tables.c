@@ -69,14 +69,20 @@ static int solid_box_proven(const scene_solid *solid, const double time[2], doub
     return bounded;
 }
 
-/* solid_box_proven, kept in the solid where its expression does not depend on t (then time does not matter). */
+/* Proves an expression solid's box once and keeps it in the solid; only for expressions without t, whose box
+ * does not depend on the time asked. */
+static void keep_box(scene_solid *solid) {
+    static const double any_time[2] = {0, 0};
+    solid->box_bounded = solid_box_proven(solid, any_time, solid->box, &solid->box_in_cube);
+    solid->box_known = 1;
+}
+
+/* solid_box_proven, kept in the solid where its expression does not depend on t. */
 static int solid_box(scene_solid *solid, const double time[2], double box[6], int *in_cube) {
     if (solid->prim || iacsg_expr_uses_time(solid->expr))
         return solid_box_proven(solid, time, box, in_cube);
-    if (!solid->box_known) {
-        solid->box_bounded = solid_box_proven(solid, time, solid->box, &solid->box_in_cube);
-        solid->box_known = 1;
-    }
+    if (!solid->box_known)
+        keep_box(solid);
     memcpy(box, solid->box, sizeof solid->box);
     *in_cube |= solid->box_in_cube;
     return solid->box_bounded;
@@ -96,12 +102,8 @@ typedef struct {
 
 static void *prove_share(void *arg) {
     const box_share *b = arg;
-    for (int i = b->first; i < b->ntodo; i += b->stride) {
-        scene_solid *solid = &b->solids[b->todo[i]];
-        static const double any_time[2] = {0, 0}; /* these solids do not depend on t */
-        solid->box_bounded = solid_box_proven(solid, any_time, solid->box, &solid->box_in_cube);
-        solid->box_known = 1;
-    }
+    for (int i = b->first; i < b->ntodo; i += b->stride)
+        keep_box(&b->solids[b->todo[i]]);
     return NULL;
 }
 
@@ -135,7 +137,6 @@ static void prove_boxes(const iacsg_scene *s, const unsigned char *used) {
     }
     free(todo);
 }
-
 
 /* ---- the BVH */
 
