@@ -1,10 +1,8 @@
 /* src/cli_effects.c -- see cli_effects.h. */
 #include "cli_effects.h"
+#include "cli_render.h"
 #include "implicits/scene.h"
-#include <errno.h>
-#include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 /* The reflection rays a path may take unless -bounces says otherwise (a material's reflect needs some). */
@@ -16,34 +14,9 @@ void cli_effects_init(iacsg_effects *e) {
     e->aa = 1;
 }
 
-/* `count` comma-separated finite numbers, the whole text. */
-static int numbers(const char *text, double *out, int count) {
-    const char *p = text;
-    for (int k = 0; k < count; k++) {
-        char *end;
-        errno = 0;
-        out[k] = strtod(p, &end);
-        if (end == p || errno == ERANGE || !isfinite(out[k]) || (k + 1 < count && *end != ','))
-            return 0;
-        p = end + (k + 1 < count);
-    }
-    return *p == '\0';
-}
-
 static int bad(const char *option, const char *value, const char *expected) {
-    fprintf(stderr, "iacsg: %s %s: expected %s\n", option, value, expected);
+    cli_print_bad_value(option, value, expected);
     return -1;
-}
-
-/* An integer from lo to hi, the whole text. */
-static int integer(const char *text, int lo, int hi, int *out) {
-    char *end;
-    errno = 0;
-    long n = strtol(text, &end, 10);
-    if (end == text || *end || errno == ERANGE || n < lo || n > hi)
-        return 0;
-    *out = (int)n;
-    return 1;
 }
 
 static int read_light(const char *a, const char *v, iacsg_effects *e) {
@@ -63,7 +36,7 @@ static int read_light(const char *a, const char *v, iacsg_effects *e) {
         return -1;
     }
     double num[4];
-    if (!comma || !numbers(comma + 1, num, 4))
+    if (!comma || !cli_parse_numbers(comma + 1, num, 4))
         return bad(a, v, "point,X,Y,Z,I or dir,X,Y,Z,I (I the intensity)");
     if (!(num[3] >= 0))
         return bad(a, v, "an intensity I >= 0 (the last number)");
@@ -77,7 +50,7 @@ static int read_light(const char *a, const char *v, iacsg_effects *e) {
 
 static int read_background(const char *a, const char *v, iacsg_effects *e) {
     double c[6];
-    int n = numbers(v, c, 3) ? 3 : numbers(v, c, 6) ? 6 : 0;
+    int n = cli_parse_numbers(v, c, 3) ? 3 : cli_parse_numbers(v, c, 6) ? 6 : 0;
     for (int k = 0; k < n; k++)
         if (!(c[k] >= 0 && c[k] <= 1))
             n = 0;
@@ -119,17 +92,18 @@ int cli_effects_option(int argc, char **argv, int *k, iacsg_effects *e, int *giv
     }
     case 1: return read_background(a, v, e);
     case 2: return read_light(a, v, e);
-    case 3: return integer(v, 0, IACSG_MAX_BOUNCES, &e->bounces) ? 1 : bad(a, v, "a count of bounces from 0 to 16");
+    case 3:
+        return cli_parse_int(v, 0, IACSG_MAX_BOUNCES, &e->bounces) ? 1 : bad(a, v, "a count of bounces from 0 to 16");
     case 4:
     case 5:
-        if (!numbers(v, &x, 1) || !(x >= 0 && x <= 1))
+        if (!cli_parse_numbers(v, &x, 1) || !(x >= 0 && x <= 1))
             return bad(a, v, "a number in [0, 1]");
         if (which == 4)
             e->reflect = x;
         else
             e->transparency = 1 - x;
         return 1;
-    default: return integer(v, 1, IACSG_MAX_AA, &e->aa) ? 1 : bad(a, v, "N from 1 to 16 (N x N rays a pixel)");
+    default: return cli_parse_int(v, 1, IACSG_MAX_AA, &e->aa) ? 1 : bad(a, v, "N from 1 to 16 (N x N rays a pixel)");
     }
 }
 

@@ -26,8 +26,7 @@ static double now_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Parses `count` comma-separated finite numbers; returns 0 unless the whole text is exactly that. */
-static int parse_numbers(const char *text, double *out, int count) {
+int cli_parse_numbers(const char *text, double *out, int count) {
     const char *p = text;
     for (int k = 0; k < count; k++) {
         char *end;
@@ -56,8 +55,22 @@ static int parse_size(const char *text, int *width, int *height) {
     return 1;
 }
 
-static int bad_value(const char *option, const char *value, const char *expected) {
+int cli_parse_int(const char *text, long lo, long hi, int *out) {
+    char *end;
+    errno = 0;
+    long n = strtol(text, &end, 10);
+    if (end == text || *end || errno == ERANGE || n < lo || n > hi)
+        return 0;
+    *out = (int)n;
+    return 1;
+}
+
+void cli_print_bad_value(const char *option, const char *value, const char *expected) {
     fprintf(stderr, "iacsg: %s %s: expected %s\n", option, value, expected);
+}
+
+static int bad_value(const char *option, const char *value, const char *expected) {
+    cli_print_bad_value(option, value, expected);
     return 2;
 }
 
@@ -131,30 +144,30 @@ int parse_options(int argc, char **argv, render_options *o) {
             if (!parse_size(v, &o->view.width, &o->view.height))
                 return bad_value(a, v, "WxH with W and H from 1 to 32768, e.g. 1024x768");
         } else if (strcmp(a, "-eps") == 0) {
-            if (!parse_numbers(v, &o->view.eps, 1) || !(o->view.eps > 0))
+            if (!cli_parse_numbers(v, &o->view.eps, 1) || !(o->view.eps > 0))
                 return bad_value(a, v, "a positive number");
         } else if (strcmp(a, "-bounds") == 0) {
-            if (!parse_numbers(v, o->view.bounds, 6) || !(o->view.bounds[0] < o->view.bounds[3]) ||
+            if (!cli_parse_numbers(v, o->view.bounds, 6) || !(o->view.bounds[0] < o->view.bounds[3]) ||
                 !(o->view.bounds[1] < o->view.bounds[4]) || !(o->view.bounds[2] < o->view.bounds[5]))
                 return bad_value(a, v, "X0,Y0,Z0,X1,Y1,Z1 with X0 < X1, Y0 < Y1, Z0 < Z1");
             o->have_bounds = 1;
         } else if (strcmp(a, "-eye") == 0 || strcmp(a, "-at") == 0 || strcmp(a, "-up") == 0) {
-            if (!parse_numbers(v, num, 3))
+            if (!cli_parse_numbers(v, num, 3))
                 return bad_value(a, v, "X,Y,Z");
             double *dst = a[1] == 'e' ? o->view.camera.eye : a[1] == 'a' ? o->view.camera.at : o->view.camera.up;
             memcpy(dst, num, 3 * sizeof(double));
             o->have_eye |= a[1] == 'e';
             o->have_at |= a[1] == 'a';
         } else if (strcmp(a, "-fov") == 0) {
-            if (!parse_numbers(v, &o->view.camera.fov, 1) || !(o->view.camera.fov > 0 && o->view.camera.fov < 180))
+            if (!cli_parse_numbers(v, &o->view.camera.fov, 1) || !(o->view.camera.fov > 0 && o->view.camera.fov < 180))
                 return bad_value(a, v, "degrees in (0, 180)");
             o->have_fov = 1;
         } else if (strcmp(a, "-az") == 0 || strcmp(a, "-el") == 0) {
-            if (!parse_numbers(v, a[1] == 'a' ? &o->az : &o->el, 1))
+            if (!cli_parse_numbers(v, a[1] == 'a' ? &o->az : &o->el, 1))
                 return bad_value(a, v, "degrees");
             o->have_azel = 1;
         } else if (strcmp(a, "-ortho") == 0) {
-            if (!parse_numbers(v, &o->view.camera.ortho_height, 1) || !(o->view.camera.ortho_height > 0))
+            if (!cli_parse_numbers(v, &o->view.camera.ortho_height, 1) || !(o->view.camera.ortho_height > 0))
                 return bad_value(a, v, "a positive height");
         } else if (strcmp(a, "-time") == 0) {
             /* the real the text denotes, enclosed: -time 0.7 is 7/10, not the double nearest to it */
@@ -164,17 +177,11 @@ int parse_options(int argc, char **argv, render_options *o) {
             o->have_time = 1;
             o->time_text = v;
         } else if (strcmp(a, "-frames") == 0) {
-            char *end;
-            long n = strtol(v, &end, 10);
-            if (end == v || *end || n < 1 || n > 100000)
+            if (!cli_parse_int(v, 1, 100000, &o->frames))
                 return bad_value(a, v, "a frame count from 1 to 100000");
-            o->frames = (int)n;
         } else if (strcmp(a, "-device") == 0) {
-            char *end;
-            long n = strtol(v, &end, 10);
-            if (end == v || *end || n < 0 || n > 1000)
+            if (!cli_parse_int(v, 0, 1000, &o->config.device))
                 return bad_value(a, v, "a device number (see iacsg devices)");
-            o->config.device = (int)n;
             o->have_device = 1;
         } else {
             fprintf(stderr, "iacsg: unknown option %s (see iacsg --help)\n", a);

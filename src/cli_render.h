@@ -20,6 +20,13 @@ typedef struct {
     int nobjects, have_fov;
 } render_options;
 
+/* Option values, for every option parser (src/cli_render.c, src/cli_effects.c): `count` comma-separated finite
+ * numbers, the whole text (0 otherwise); an integer in [lo, hi], the whole text (0 otherwise); and the one line
+ * that says an option's value is not what it expects. */
+int cli_parse_numbers(const char *text, double *out, int count);
+int cli_parse_int(const char *text, long lo, long hi, int *out);
+void cli_print_bad_value(const char *option, const char *value, const char *expected);
+
 /* Fills *o from the command line (argv[0] is the command's name); returns 0, or the exit status after
  * printing the problem. */
 int parse_options(int argc, char **argv, render_options *o);
