@@ -137,6 +137,21 @@ static int const_reals(builder *b, const dag_node *n) {
 
 /* One part's instructions, its nodes in index order. Returns the number of instructions, or -1 when it needs
  * more than TAPE_SLOTS slots. */
+/* Which operand of node n is a (nonempty) constant that its instruction reads from the reals itself
+ * (TAPE_A_REAL or TAPE_B_REAL), sparing a load instruction; 0 for none. One at most: the instruction has one
+ * real index, which the *_R operations use for KB. */
+static unsigned inline_constant(const dag *d, const dag_node *n) {
+    if (n->op < OP_NEG)
+        return 0;
+    int b_interval = n->b >= 0 && reads_b_interval(n->op);
+    const dag_node *a = &d->nodes[n->a], *b = n->b >= 0 ? &d->nodes[n->b] : NULL;
+    if (b_interval && b->op == OP_CONST && b->lo <= b->hi)
+        return TAPE_B_REAL;
+    if (a->op == OP_CONST && a->lo <= a->hi && (!b || b_interval))
+        return TAPE_A_REAL;
+    return 0;
+}
+
 static int lower_part(builder *b, const int *order, int count, int *result_slot) {
     const dag *d = b->d;
     for (int k = 0; k < count; k++) { /* the last instruction that reads each node */
@@ -148,9 +163,11 @@ static int lower_part(builder *b, const int *order, int count, int *result_slot)
         b->last_use[n->a] = k;
         if (n->b >= 0)
             b->last_use[n->b] = k;
-        if (n->b >= 0 && reads_b_interval(n->op))
+        unsigned inlined = inline_constant(d, n);
+        if (n->b >= 0 && reads_b_interval(n->op) && inlined != TAPE_B_REAL)
             b->used_as_interval[n->b] = 1;
-        b->used_as_interval[n->a] = 1;
+        if (inlined != TAPE_A_REAL)
+            b->used_as_interval[n->a] = 1;
     }
     b->used_as_interval[order[count - 1]] = 1; /* the part's value: a constant part needs its instruction */
     _Static_assert(TAPE_SLOTS > 4 && TAPE_SLOTS <= 32, "the free slots are the bits of an unsigned");
@@ -178,17 +195,23 @@ static int lower_part(builder *b, const int *order, int count, int *result_slot)
         free_mask &= ~(1u << dst);
         used = dst + 1 > used ? dst + 1 : used;
         b->slot[i] = dst;
+        unsigned inlined = inline_constant(d, n);
         unsigned flags = (b->undefined[i] ? TAPE_UNDEFINED : 0) | (own_undefined(n) ? TAPE_OWN : 0) |
                          (n->op == OP_MIN && (b->undefined[n->a] || b->undefined[n->b]) ? TAPE_UNION : 0);
         b->flagged |= flags != 0;
+        flags |= inlined;
         int real = 0;
         if (n->op == OP_CONST)
             real = const_reals(b, n);
+        else if (inlined)
+            real = const_reals(b, &d->nodes[inlined == TAPE_A_REAL ? n->a : n->b]);
         else if (n->b >= 0 && d->nodes[n->b].op == OP_CONST && !reads_b_interval(n->op))
             real = const_reals(b, &d->nodes[n->b]) + 2; /* KB: the nearest real */
         words_put(&b->code, (unsigned)n->op | flags << 8 | (unsigned)dst << 16);
-        int sb = n->op != OP_CONST && n->b >= 0 && b->slot[n->b] >= 0 ? b->slot[n->b] : 0; /* none, or KB only */
-        words_put(&b->code, n->op == OP_CONST ? 0 : (unsigned)b->slot[n->a] | (unsigned)sb << 16);
+        /* an operand without a slot (a constant read from the reals, or as KB only) reads slot 0 and ignores it */
+        int sa = n->op != OP_CONST && b->slot[n->a] >= 0 ? b->slot[n->a] : 0;
+        int sb = n->op != OP_CONST && n->b >= 0 && b->slot[n->b] >= 0 ? b->slot[n->b] : 0;
+        words_put(&b->code, (unsigned)sa | (unsigned)sb << 16);
         words_put(&b->code, (unsigned)n->n);
         words_put(&b->code, (unsigned)real);
         instructions++;

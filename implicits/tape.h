@@ -34,8 +34,9 @@ enum { TAPE_PART_WORDS = 4, TAPE_INSTR_WORDS = 4 };
 /* The op of an instruction that loads a constant (two reals: lo, hi) into its slot; the others are dag_op. */
 #define TAPE_OP_CONST OP_CONST
 /* Instruction flags: its value may be undefined (it computes the two flags of ia/vec.h), its own operation's
- * `undefined` column applies (ops.def; not for pown's positive powers), it is a union with a flagged operand. */
-enum { TAPE_UNDEFINED = 1, TAPE_OWN = 2, TAPE_UNION = 4 };
+ * `undefined` column applies (ops.def; not for pown's positive powers), it is a union with a flagged operand,
+ * its operand A or B is a constant read from its reals (lo, hi) rather than a slot. */
+enum { TAPE_UNDEFINED = 1, TAPE_OWN = 2, TAPE_UNION = 4, TAPE_A_REAL = 8, TAPE_B_REAL = 16 };
 
 typedef struct {
     unsigned *words;

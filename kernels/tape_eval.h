@@ -41,10 +41,11 @@ IA_FN iav tape_part(tape_ptr tape, uint p, iav x, iav y, iav z, iav t) {
     for (uint c = 0; c < part[1]; c++, code += TAPE_INSTR_WORDS) {
         uint op = code[0] & 0xff, flags = code[0] >> 8 & 0xff, dst = code[0] >> 16;
         uint a = code[1] & 0xffff, b = code[1] >> 16;
-        iav A = v[a], B = v[b], R;
+        iav K = iav_const(reals[code[3]], reals[code[3] + 1]); /* a constant operand, read in place */
+        iav A = (flags & TAPE_A_REAL) ? K : v[a], B = (flags & TAPE_B_REAL) ? K : v[b], R;
         ia_maskv ru = (ia_maskv)0, re = (ia_maskv)0;
         if (op == TAPE_OP_CONST) {
-            R = iav_const(reals[code[3]], reals[code[3] + 1]);
+            R = K;
             ru = re = (flags & TAPE_UNDEFINED) ? (ia_maskv)-1 : (ia_maskv)0; /* an empty constant */
         } else {
             R = (flags & TAPE_UNION) ? iav_union(A, u[a], e[a], B, u[b], e[b])
