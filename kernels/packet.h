@@ -86,7 +86,9 @@ IA_FN ia_realv packet_node_bound(ia_real t0, ia_real w, packet_int level, packet
 /* Group g of a union: the compiled iacsg_Fv_group, or the tape's, skipping the parts no lane's box meets. */
 IAV_INLINE iav packet_group(PACKET_TAPE_PARAM int g, iav x, iav y, iav z, iav t) {
 #ifdef IACSG_TAPE
-    return tape_group(tape, g, 1, (ia_maskv)-1, x, y, z, t);
+    ia_real hull[6];
+    tape_hull((ia_maskv)-1, x, y, z, hull);
+    return tape_group(tape, g, hull, (ia_maskv)-1, x, y, z, t);
 #else
     return iacsg_Fv_group(g, x, y, z, t);
 #endif
@@ -101,9 +103,11 @@ IAV_INLINE iav packet_group(PACKET_TAPE_PARAM int g, iav x, iav y, iav z, iav t)
  * IACSG_GROUPS) is iacsg_Fv. */
 IAV_INLINE iav packet_F_live(PACKET_TAPE_PARAM ulong groups, ia_maskv live, iav x, iav y, iav z, iav t) {
 #ifdef IACSG_TAPE
+    ia_real hull[6];
+    tape_hull(live, x, y, z, hull);
     iav r = iav_point(IA_INF);
     for (; groups; groups &= groups - 1) /* the set bits, lowest first: g = the trailing zeros */
-        r = iav_min(r, tape_group(tape, (int)popcount((groups & (0 - groups)) - 1), 1, live, x, y, z, t));
+        r = iav_min(r, tape_group(tape, (int)popcount((groups & (0 - groups)) - 1), hull, live, x, y, z, t));
     return r;
 #elif defined(IACSG_GROUPS)
     (void)live;
@@ -130,7 +134,7 @@ IAV_INLINE iav packet_F_points(PACKET_TAPE_PARAM ulong groups, iav x, iav y, iav
     iav r = iav_point(IA_INF);
     for (int g = 0; g < IACSG_GROUPS; g++)
         if (groups >> g & 1)
-            r = iav_min(r, tape_group(tape, g, 0, (ia_maskv)-1, x, y, z, t));
+            r = iav_min(r, tape_group(tape, g, 0, (ia_maskv)-1, x, y, z, t)); /* hull NULL: skip none */
     return r;
 #else
     return packet_F(groups, x, y, z, t);

@@ -72,25 +72,47 @@ IA_FN iav tape_part(tape_ptr tape, uint p, iav x, iav y, iav z, iav t) {
     return (part[2] >> 16 & 1) ? iav_or_outside(v[result], u[result], e[result]) : v[result];
 }
 
-/* Whether the box of a lane of `live` meets the closed box b (x0, y0, z0, x1, y1, z1). */
-IA_FN int tape_box_meets(const __global ia_real *b, ia_maskv live, iav x, iav y, iav z) {
+/* The hull of the boxes of the lanes of `live`: x0, y0, z0, x1, y1, z1 (NaN where none, which meets nothing). */
+IA_FN void tape_hull(ia_maskv live, iav x, iav y, iav z, ia_real hull[6]) {
+    ia_real k[6][IA_VW];
+    ia_realv none = IAV_R(NAN); /* fmin and fmax drop it */
+    IAV_STORE(select(none, x.lo, live), k[0]);
+    IAV_STORE(select(none, y.lo, live), k[1]);
+    IAV_STORE(select(none, z.lo, live), k[2]);
+    IAV_STORE(select(none, x.hi, live), k[3]);
+    IAV_STORE(select(none, y.hi, live), k[4]);
+    IAV_STORE(select(none, z.hi, live), k[5]);
+    for (int c = 0; c < 6; c++) {
+        hull[c] = k[c][0];
+        for (int l = 1; l < IA_VW; l++)
+            hull[c] = c < 3 ? fmin(hull[c], k[c][l]) : fmax(hull[c], k[c][l]);
+    }
+}
+
+/* Whether the closed box b (x0, y0, z0, x1, y1, z1) meets the box of a lane of `live`: first against the hull
+ * of those boxes (a few scalar comparisons, which reject most parts), then lane by lane (the lanes of a packet
+ * may lie on nodes far apart, so the hull alone keeps many parts that no lane needs). */
+IA_FN int tape_box_meets(const __global ia_real *b, const ia_real *hull, ia_maskv live, iav x, iav y, iav z) {
+    if (!(hull[0] <= b[3] && hull[3] >= b[0] && hull[1] <= b[4] && hull[4] >= b[1] && hull[2] <= b[5] &&
+          hull[5] >= b[2]))
+        return 0;
     return iav_any(live & (x.lo <= b[3]) & (x.hi >= b[0]) & (y.lo <= b[4]) & (y.hi >= b[1]) & (z.lo <= b[5]) &
                    (z.hi >= b[2]));
 }
 
 /* The union of group g's parts (+inf past the tape's groups), skipping those whose box meets none of the boxes
- * of the lanes of `live` (see the top); when cull is 0, none. */
-IA_FN iav tape_group(tape_ptr tape, int g, int cull, ia_maskv live, iav x, iav y, iav z, iav t) {
+ * of the lanes of `live` (see the top), whose hull is `hull`; none skipped when hull is NULL. */
+IA_FN iav tape_group(tape_ptr tape, int g, const ia_real *hull, ia_maskv live, iav x, iav y, iav z, iav t) {
     iav r = iav_point(IA_INF); /* the identity of min */
     uint ngroups = tape[TAPE_W_GROUPS];
     if (g >= (int)ngroups)
         return r;
     const __global ia_real *reals = tape_reals(tape);
     const __global uint *parts = tape + tape[TAPE_W_PART_TABLE];
-    if (cull && !tape_box_meets(reals + tape[TAPE_W_GROUP_TABLE + ngroups + 1 + g], live, x, y, z))
+    if (hull && !tape_box_meets(reals + tape[TAPE_W_GROUP_TABLE + ngroups + 1 + g], hull, live, x, y, z))
         return r; /* the hull of its parts' boxes */
     for (uint p = tape[TAPE_W_GROUP_TABLE + g]; p < tape[TAPE_W_GROUP_TABLE + g + 1]; p++)
-        if (!cull || tape_box_meets(reals + parts[TAPE_PART_WORDS * p + 3], live, x, y, z))
+        if (!hull || tape_box_meets(reals + parts[TAPE_PART_WORDS * p + 3], hull, live, x, y, z))
             r = iav_min(r, tape_part(tape, p, x, y, z, t));
     return r;
 }

@@ -42,9 +42,11 @@ static const char kernel_head[] =
     "        b[c] = iav_make(IAV_LOAD(v[2 * c]), IAV_LOAD(v[2 * c + 1]));\n"
     "    iav r = iav_point(NAN), s = iav_point(IA_INF), u = iav_point(IA_INF);\n"
     "    tape_ptr tape = tapes + at[which[g]];\n"
+    "    ia_real hull[6];\n"
+    "    tape_hull((ia_maskv)-1, b[0], b[1], b[2], hull);\n"
     "    for (int grp = 0; grp < IACSG_GROUPS; grp++) {\n"
     "        s = iav_min(s, tape_group(tape, grp, 0, (ia_maskv)-1, b[0], b[1], b[2], b[3]));\n"
-    "        u = iav_min(u, tape_group(tape, grp, 1, (ia_maskv)-1, b[0], b[1], b[2], b[3]));\n"
+    "        u = iav_min(u, tape_group(tape, grp, hull, (ia_maskv)-1, b[0], b[1], b[2], b[3]));\n"
     "    }\n"
     "    switch (which[g]) {\n";
 static const char kernel_tail[] = "    }\n"
