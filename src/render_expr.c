@@ -18,7 +18,9 @@ extern const char iacsg_cl_tape_kernels[]; /* the first-root kernels for a tape 
 static iacsg_status create_interpreted(const iacsg_expr *e, const iacsg_render_config *config,
                                        iacsg_renderer **out, iacsg_error *err) {
     iacsg_tape tape;
+    double t0 = render_now_seconds();
     iacsg_status st = tape_build(&e->simple, e->root, config->fp64, &tape, err);
+    double tape_seconds = render_now_seconds() - t0;
     if (st != IACSG_OK)
         return st;
     char *interpreter = tape_cl();
@@ -26,6 +28,7 @@ static iacsg_status create_interpreted(const iacsg_expr *e, const iacsg_render_c
                      : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory generating code");
     if (st == IACSG_OK) {
         iacsg_renderer *r = *out;
+        r->build_seconds += tape_seconds; /* counted in the build (the compiled path does not count its emit) */
         cl_int rc = CL_SUCCESS;
         r->tape = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                                  tape.count * sizeof(unsigned), tape.words, &rc);
