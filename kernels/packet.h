@@ -82,25 +82,13 @@ IA_FN ia_realv packet_node_bound(ia_real t0, ia_real w, packet_int level, packet
 #define PACKET_TAPE_ARG
 #endif
 
-#ifdef IACSG_GROUPS
-/* Group g of a union: the compiled iacsg_Fv_group, or the tape's, skipping the parts no lane's box meets. */
-IAV_INLINE iav packet_group(PACKET_TAPE_PARAM int g, iav x, iav y, iav z, iav t) {
-#ifdef IACSG_TAPE
-    ia_real hull[6];
-    tape_hull((ia_maskv)-1, x, y, z, hull);
-    return tape_group(tape, g, hull, (ia_maskv)-1, x, y, z, t);
-#else
-    return iacsg_Fv_group(g, x, y, z, t);
-#endif
-}
-#endif
-
 /* F over the groups of a union set in `groups` (bit g for group g), for the lanes of `live` (the others get
- * an interval, of no use): the min of their enclosures, exact (min
- * rounds nothing). The tile pass leaves out of a tile's segment only groups certainly positive (> 0) on every
- * box its rays evaluate there (tile.h), so there the union is < 0, = 0 or > 0 exactly where the min of the groups
- * kept is: the roots, and the walk's decisions, are the same. An expression emitted without groups (no
- * IACSG_GROUPS) is iacsg_Fv. */
+ * an interval, of no use): the min of their enclosures, exact (min rounds nothing). The tile pass leaves out of
+ * a tile's segment only groups certainly positive (> 0) on every box its rays evaluate there (tile.h), so there
+ * the union is < 0, = 0 or > 0 exactly where the min of the groups kept is: the roots, and the walk's
+ * decisions, are the same. A group is the compiled iacsg_Fv_group, or the tape's (kernels/tape_eval.h), which
+ * also leaves out the parts whose boxes no live lane's box meets, for the same reason. An expression emitted
+ * without groups (no IACSG_GROUPS) is iacsg_Fv. */
 IAV_INLINE iav packet_F_live(PACKET_TAPE_PARAM ulong groups, ia_maskv live, iav x, iav y, iav z, iav t) {
 #ifdef IACSG_TAPE
     ia_real hull[6];
@@ -114,7 +102,7 @@ IAV_INLINE iav packet_F_live(PACKET_TAPE_PARAM ulong groups, ia_maskv live, iav 
     iav r = iav_point(IA_INF); /* the identity of min */
     for (int g = 0; g < IACSG_GROUPS; g++)
         if (groups >> g & 1)
-            r = iav_min(r, packet_group(PACKET_TAPE_ARG g, x, y, z, t));
+            r = iav_min(r, iacsg_Fv_group(g, x, y, z, t));
     return r;
 #else
     (void)groups, (void)live;

@@ -1,13 +1,13 @@
 /* kernels/tape_eval.h -- the interpreter of a tape (implicits/tape.h: what a tape is and its layout), for the
  * program of an expression too large to compile quickly (src/render_expr.c). It stands in for the compiled
- * iacsg_Fv_group (packet.h: packet_group): the union of a group's parts over IA_VW lanes, each part's
- * instructions run on register slots with tape_apply and tape_own_flags (implicits/tape_cl.c writes them from
+ * iacsg_Fv_group (packet.h: packet_F, tile.h: tile_groups): the union of a group's parts over IA_VW lanes, each
+ * part's instructions run on register slots with tape_apply and tape_own_flags (implicits/tape_cl.c writes them from
  * ops.def: the calls the compiled code makes), its flags for undefined operands as emit.c computes them. So for
  * the same boxes an interpreted group and a compiled one return the same intervals, bit for bit
  * (tests/t_tape_fp.c), unless parts are skipped:
  *
- * Skipping (tape_group with cull): a part whose proven box (tape.h: outside it the part is > 0 or undefined)
- * meets none of the lanes' boxes is left out of the union. The min of the parts kept is then < 0, = 0 or > 0
+ * Skipping (tape_group given the lanes' hull): a part whose proven box (tape.h: outside it the part is > 0 or
+ * undefined) meets none of the lanes' boxes is left out of the union. The min of the parts kept is then < 0, = 0 or > 0
  * on the box wherever the union is (a part left out is > 0 there), which is all the walk decides from (as
  * with the groups, packet_F). The shading's point evaluations do not skip: their differences need the values.
  *

@@ -58,11 +58,19 @@ IA_FN void tile_groups(PACKET_TAPE_PARAM const iav base[3], const iav dir[3], ia
         box[k] = iav_add(base[k], iav_mul(t, dir[k]));
     for (int k = 0; k < IA_VW; k++)
         groups[k] = 0;
+#ifdef IACSG_TAPE
+    ia_real hull[6]; /* for the tape's skipping of parts, once for all the groups */
+    tape_hull((ia_maskv)-1, box[0], box[1], box[2], hull);
+#endif
     for (int g = 0; g < IACSG_GROUPS; g++) {
         if (!(among >> g & 1))
             continue;
         ia_real lo[IA_VW];
-        IAV_STORE(packet_group(PACKET_TAPE_ARG g, box[0], box[1], box[2], time).lo, lo);
+#ifdef IACSG_TAPE
+        IAV_STORE(tape_group(tape, g, hull, (ia_maskv)-1, box[0], box[1], box[2], time).lo, lo);
+#else
+        IAV_STORE(iacsg_Fv_group(g, box[0], box[1], box[2], time).lo, lo);
+#endif
         for (int k = 0; k < IA_VW; k++)
             groups[k] |= (ulong)!(lo[k] > 0) << g;
     }
