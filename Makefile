@@ -40,6 +40,9 @@ IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec
 KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h \
                   kernels/packet.h kernels/tile_rays.h kernels/tile.h kernels/light.h kernels/shade.h kernels/render.cl \
                   kernels/effects.h kernels/effects.cl
+# The first-root program of an interpreted expression (src/render_expr.c): the tape interpreter, and the kernels
+# without the effects, which need a compiled expression.
+TAPE_KERNEL_SOURCES = kernels/tape_eval.h $(filter-out kernels/effects.h kernels/effects.cl,$(KERNEL_SOURCES))
 # The segment path's program (src/render_scene.c): the same ia/ headers, the scene's solids, then these.
 SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h kernels/csg_node.h \
                        kernels/scene_data.h kernels/bvh.h kernels/segments.h kernels/classify.h kernels/weave.h \
@@ -56,7 +59,8 @@ TEST_C = $(filter-out %_fp.c,$(wildcard tests/*.c))
 TEST_FP_C = $(wildcard tests/*_fp.c)
 
 LIB_OBJ = $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o) $(BUILD)/embedded_ia.o \
-          $(if $(KERNEL_SOURCES),$(BUILD)/embedded_kernels.o) $(BUILD)/embedded_scene_kernels.o \
+          $(if $(KERNEL_SOURCES),$(BUILD)/embedded_kernels.o $(BUILD)/embedded_tape_kernels.o) \
+          $(BUILD)/embedded_scene_kernels.o \
           $(BUILD)/embedded_prim.o
 CLI_OBJ = $(CLI_C:%.c=$(BUILD)/%.o)
 TEST_OBJ = $(TEST_C:%.c=$(BUILD)/%.o) $(TEST_FP_C:%.c=$(BUILD)/%.f32.o) $(TEST_FP_C:%.c=$(BUILD)/%.f64.o) \
@@ -143,6 +147,8 @@ $(BUILD)/embedded_ia.c: $(IA_CL_HEADERS) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_ia $(IA_CL_HEADERS) > $@
 $(BUILD)/embedded_kernels.c: $(KERNEL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_kernels $(KERNEL_SOURCES) > $@
+$(BUILD)/embedded_tape_kernels.c: $(TAPE_KERNEL_SOURCES) $(BUILD)/embed
+	$(BUILD)/embed iacsg_cl_tape_kernels $(TAPE_KERNEL_SOURCES) > $@
 $(BUILD)/embedded_scene_kernels.c: $(SCENE_KERNEL_SOURCES) $(BUILD)/embed
 	$(BUILD)/embed iacsg_cl_scene_kernels $(SCENE_KERNEL_SOURCES) > $@
 $(BUILD)/embedded_prim.c: $(PRIM_KERNEL_SOURCES) $(BUILD)/embed

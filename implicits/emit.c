@@ -331,7 +331,7 @@ static void emit_tderiv_function(strbuf *b, const emitter *em, const int *order,
 /* The operands of the root's union: min(min(a, b), c) -> a, b, c, left to right (the DAG folds n-ary min to
  * binary). Returns their number in a malloc'ed array, 0 when the root is not a min or the parts are too many
  * (a shared min can be reached many times), -1 out of memory. */
-static int union_parts(const dag *d, int root, int **out) {
+int emit_union_parts(const dag *d, int root, int **out) {
     *out = NULL;
     if (d->nodes[root].op != OP_MIN)
         return 0;
@@ -563,7 +563,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
      * statements. A program that traces rays one by one but shades in lanes (the segment path) defines
      * IACSG_SCALAR_CODE to get the scalar ones, and IACSG_SCALAR_FD for the scalar derivative along a ray, P_Fd. */
     int *parts;
-    int nparts = union_parts(d, root, &parts);
+    int nparts = emit_union_parts(d, root, &parts);
     strbuf_printf(&b, "#if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)\n");
     int ok = nparts >= 0;
     if (nparts >= EMIT_GROUP_MIN_PARTS) {

@@ -7,4 +7,8 @@
  * free()s *source. */
 iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, iacsg_error *err);
 
+/* The operands of the root's union (min(min(a, b), c) -> a, b, c, left to right): their number, in a malloc'ed
+ * *out; 0 (and *out NULL) when the root is not a min or the parts are too many, -1 out of memory. */
+int emit_union_parts(const dag *d, int root, int **out);
+
 #endif

@@ -71,21 +71,61 @@ IA_FN ia_realv packet_node_bound(ia_real t0, ia_real w, packet_int level, packet
     return t0 + w * (packet_to_real(i) * scale);
 }
 
-/* F over the groups of a union set in `groups` (bit g for group g): the min of their enclosures, exact (min
- * rounds nothing). The tile pass leaves out of a tile's segment only groups certainly positive (> 0) on every
- * box its rays evaluate there (tile.h), so there the union is < 0, = 0 or > 0 exactly where the min of the groups
- * kept is: the roots, and the walk's decisions, are the same. An expression emitted without groups (no
- * IACSG_GROUPS) is iacsg_Fv. */
-IAV_INLINE iav packet_F(ulong groups, iav x, iav y, iav z, iav t) {
-#ifdef IACSG_GROUPS
+/* An interpreted expression's tape (kernels/tape_eval.h, a program with IACSG_TAPE) travels as the first argument
+ * of the functions that evaluate F, PACKET_TAPE_PARAM; for a compiled one these expand to nothing, so the
+ * functions keep the signatures that kernels/effects.cl calls (a tape program leaves effects.cl out). */
+#ifdef IACSG_TAPE
+#define PACKET_TAPE_PARAM tape_ptr tape,
+#define PACKET_TAPE_ARG tape,
+#else
+#define PACKET_TAPE_PARAM
+#define PACKET_TAPE_ARG
+#endif
+
+/* F over the groups of a union set in `groups` (bit g for group g), for the lanes of `live` (the others get
+ * an interval, of no use): the min of their enclosures, exact (min rounds nothing). The tile pass leaves out of
+ * a tile's segment only groups certainly positive (> 0) on every box its rays evaluate there (tile.h), so there
+ * the union is < 0, = 0 or > 0 exactly where the min of the groups kept is: the roots, and the walk's
+ * decisions, are the same. A group is the compiled iacsg_Fv_group, or the tape's (kernels/tape_eval.h), which
+ * also leaves out the parts whose boxes no live lane's box meets, for the same reason. An expression emitted
+ * without groups (no IACSG_GROUPS) is iacsg_Fv. */
+IAV_INLINE iav packet_F_live(PACKET_TAPE_PARAM ulong groups, ia_maskv live, iav x, iav y, iav z, iav t) {
+#ifdef IACSG_TAPE
+    ia_real hull[6];
+    tape_hull(live, x, y, z, hull);
+    iav r = iav_point(IA_INF);
+    for (; groups; groups &= groups - 1) /* the set bits, lowest first: g = the trailing zeros */
+        r = iav_min(r, tape_group(tape, (int)popcount((groups & (0 - groups)) - 1), hull, live, x, y, z, t));
+    return r;
+#elif defined(IACSG_GROUPS)
+    (void)live;
     iav r = iav_point(IA_INF); /* the identity of min */
     for (int g = 0; g < IACSG_GROUPS; g++)
         if (groups >> g & 1)
             r = iav_min(r, iacsg_Fv_group(g, x, y, z, t));
     return r;
 #else
-    (void)groups;
+    (void)groups, (void)live;
     return iacsg_Fv(x, y, z, t);
+#endif
+}
+
+/* packet_F_live for every lane. */
+IAV_INLINE iav packet_F(PACKET_TAPE_PARAM ulong groups, iav x, iav y, iav z, iav t) {
+    return packet_F_live(PACKET_TAPE_ARG groups, (ia_maskv)-1, x, y, z, t);
+}
+
+/* packet_F at points (boxes of one point a lane), for the shading's differences: an interpreted expression
+ * skips no part there (kernels/tape_eval.h), the compiled one is packet_F. */
+IAV_INLINE iav packet_F_points(PACKET_TAPE_PARAM ulong groups, iav x, iav y, iav z, iav t) {
+#ifdef IACSG_TAPE
+    iav r = iav_point(IA_INF);
+    for (int g = 0; g < IACSG_GROUPS; g++)
+        if (groups >> g & 1)
+            r = iav_min(r, tape_group(tape, g, 0, (ia_maskv)-1, x, y, z, t)); /* hull NULL: skip none */
+    return r;
+#else
+    return packet_F(groups, x, y, z, t);
 #endif
 }
 
@@ -251,7 +291,7 @@ IA_FN void packet_advance_some(ia_maskv *searching, ia_maskv moving, ia_maskv do
  * unrounded (not rigorous, as everything in that mode), so that the fast mode differs from the rigorous one only
  * in the rounding. Measured choices: 8, 32, 128 footprints gave 43, 39, 40 ms; below 64 leaves bisection is as
  * cheap. */
-#ifdef IACSG_FDV
+#if defined(IACSG_FDV) && !defined(IACSG_TAPE) /* a tape has no derivative code */
 #define PACKET_NEWTON 1
 #endif
 #define NEWTON_PIXELS 32
@@ -266,15 +306,16 @@ IA_FN void packet_advance_some(ia_maskv *searching, ia_maskv moving, ia_maskv do
  * coordinate's extent on its own); bisection then went down to eps along the whole stretch where the ray grazes
  * the surface (up to ~2200 evaluations a ray at eps 1e-5). An empty intersection is a proof of no root. Counts
  * the point evaluation; the caller counts the box's. */
-IA_FN iav packet_mean_value(const __global ulong *segment_groups, const ia_realv o[3], const ia_realv d[3], iav t,
-                            packet_int level, packet_index i, ia_maskv tangent, iav time, packet_index *evals) {
+IA_FN iav packet_mean_value(PACKET_TAPE_PARAM const __global ulong *segment_groups, const ia_realv o[3],
+                            const ia_realv d[3], iav t, packet_int level, packet_index i, ia_maskv tangent, iav time,
+                            packet_index *evals) {
     iav slope;
     iav f = iacsg_Fdv(packet_extent(o[0], d[0], t), packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t), time,
                       iav_make(d[0], d[0]), iav_make(d[1], d[1]), iav_make(d[2], d[2]), &slope);
     ia_maskv use = tangent & isfinite(slope.lo) & isfinite(slope.hi); /* NaN is not finite: garbage lanes too */
     ia_realv m = t.lo * (ia_real)0.5 + t.hi * (ia_real)0.5;
     iav at_m = iav_make(m, m);
-    iav fm = packet_F(packet_groups(segment_groups, use, level, i), packet_extent(o[0], d[0], at_m),
+    iav fm = packet_F(PACKET_TAPE_ARG packet_groups(segment_groups, use, level, i), packet_extent(o[0], d[0], at_m),
                       packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
     PACKET_COUNT(*evals, use);
     /* lanes not using it multiply by 0: an infinite slope there would send every lane down iav_mul's slow path */
@@ -287,8 +328,9 @@ IA_FN iav packet_mean_value(const __global ulong *segment_groups, const ia_realv
  * (no node before it may hold a root): the first clipped node whose enclosure holds 0 and that is no wider than
  * eps, or at the deepest level, or its part Newton narrowed to eps. A pixel's footprint at t is
  * footprint0 + t * footprint_t. Returns the lanes that hit, with their leaves in [*hit_lo, *hit_hi]. */
-IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_realv o[3], const ia_realv d[3],
-                                 ia_real t0, ia_real w, packet_int level, packet_index i, ia_realv t_near,
+IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment_groups, const ia_realv o[3],
+                                 const ia_realv d[3], ia_real t0, ia_real w, packet_int level, packet_index i,
+                                 ia_realv t_near,
                                  ia_realv t_far, ia_maskv searching, ia_real eps, ia_real footprint0,
                                  ia_real footprint_t, iav time, ia_realv *hit_lo, ia_realv *hit_hi,
                                  packet_index *evals) {
@@ -317,10 +359,11 @@ IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_
             ia_realv coarse = (ia_real)NEWTON_PIXELS * (footprint0 + a * footprint_t);
             ia_maskv tangent = live & bisect_only & (b - a <= coarse);
             if (iav_any(tangent))
-                f = packet_mean_value(segment_groups, o, d, t, level, i, tangent, time, evals);
+                f = packet_mean_value(PACKET_TAPE_ARG segment_groups, o, d, t, level, i, tangent, time, evals);
             else
 #endif
-                f = packet_F(packet_groups(segment_groups, live, level, i), packet_extent(o[0], d[0], t),
+                f = packet_F_live(PACKET_TAPE_ARG packet_groups(segment_groups, live, level, i), live,
+                                  packet_extent(o[0], d[0], t),
                              packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t), time);
             PACKET_COUNT(*evals, live);
             ia_maskv zero = live & iav_contains_zero(f);
@@ -356,7 +399,8 @@ IA_FN ia_maskv packet_first_root(const __global ulong *segment_groups, const ia_
             if (iav_any(step)) {
                 ia_realv m = na * (ia_real)0.5 + nb * (ia_real)0.5;
                 iav at_m = iav_make(m, m);
-                iav fm = packet_F(packet_groups(segment_groups, step, level, i), packet_extent(o[0], d[0], at_m),
+                iav fm = packet_F_live(PACKET_TAPE_ARG packet_groups(segment_groups, step, level, i), step,
+                                       packet_extent(o[0], d[0], at_m),
                                   packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
                 PACKET_COUNT(*evals, step);
                 /* lanes not stepping divide by 1: a pole there would send every lane down iav_div's slow path */

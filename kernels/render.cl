@@ -28,8 +28,8 @@ static inline ulong in_image(const ulong groups[IA_VW], const ia_real valid[IA_V
  * reals (exact: the index has fewer bits than the mantissa, see traverse.h); level -1 when no ray of the tile
  * can meet the surface. tile_groups_of[SEGMENTS k + s]: for a union in groups, those that can matter in tile k
  * on segment s of the frame's tree. */
-static void block_tiles(__constant ia_real *params, int flags, int width, int height, int tx0, int ty0,
-                        __global ia_real *tiles, __global uint *evals, __global ulong *tile_groups_of) {
+static void block_tiles(PACKET_TAPE_PARAM __constant ia_real *params, int flags, int width, int height, int tx0,
+                        int ty0, __global ia_real *tiles, __global uint *evals, __global ulong *tile_groups_of) {
     int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
     int ortho = flags & RENDER_ORTHO;
     ia_real base[2][3][IA_VW], dir[2][3][IA_VW], spread[IA_VW], valid[IA_VW];
@@ -65,19 +65,20 @@ static void block_tiles(__constant ia_real *params, int flags, int width, int he
     ulong groups[IA_VW];
     iav root = iav_make(packet_node_bound(t0, w, (packet_int)0, (packet_index)0),
                         packet_node_bound(t0, w, (packet_int)0, (packet_index)1));
-    tile_groups(base_v, dir_v, root, time, ~(ulong)0, groups);
+    tile_groups(PACKET_TAPE_ARG base_v, dir_v, root, time, ~(ulong)0, groups);
     ulong any_tile = in_image(groups, valid);
     packet_int level = (packet_int)0;
     packet_index leaf = (packet_index)0, counts = (packet_index)0;
-    ia_maskv found = tile_first_leaves(any_tile, base_v, dir_v, IAV_LOAD(spread), ortho, t0, w, params[PARAM_EPS],
-                                       searching, time, &level, &leaf, &counts);
-    tile_groups(base_v, dir_v, iav_make(select(root.lo, packet_node_bound(t0, w, level, leaf), found), root.hi),
-                time, any_tile, groups);
+    ia_maskv found = tile_first_leaves(PACKET_TAPE_ARG any_tile, base_v, dir_v, IAV_LOAD(spread), ortho, t0, w,
+                                       params[PARAM_EPS], searching, time, &level, &leaf, &counts);
+    tile_groups(PACKET_TAPE_ARG base_v, dir_v,
+                iav_make(select(root.lo, packet_node_bound(t0, w, level, leaf), found), root.hi), time, any_tile,
+                groups);
     /* then per segment of the tree (params.h), among the tile's own */
     ulong in_tiles = in_image(groups, valid);
     for (int s = 0; s < SEGMENTS; s++) {
         ulong segment[IA_VW];
-        tile_groups(base_v, dir_v,
+        tile_groups(PACKET_TAPE_ARG base_v, dir_v,
                     iav_make(packet_node_bound(t0, w, (packet_int)SEGMENT_LEVEL, (packet_index)s),
                              packet_node_bound(t0, w, (packet_int)SEGMENT_LEVEL, (packet_index)(s + 1))),
                     time, in_tiles, segment);
@@ -109,8 +110,9 @@ static void block_tiles(__constant ia_real *params, int flags, int width, int he
 /* The gradients at the points o + t d of the lanes of `hit` (anything in the others). For a union in groups, by
  * differences over the groups of the segments of the frame's tree the points are on; else lane by lane, with the
  * emitted (scalar) point code. */
-static void packet_gradients(const __global ulong *segment_groups, ia_real t0, ia_real w, ia_maskv hit,
-                             const ia_realv o[3], const ia_realv d[3], ia_realv t, ia_real time, ia_realv g[3]) {
+static void packet_gradients(PACKET_TAPE_PARAM const __global ulong *segment_groups, ia_real t0, ia_real w,
+                             ia_maskv hit, const ia_realv o[3], const ia_realv d[3], ia_realv t, ia_real time,
+                             ia_realv g[3]) {
     ia_real on[IA_VW], tk[IA_VW];
     IAV_STORE(select(IAV_R(0), IAV_R(1), hit), on);
     IAV_STORE(t, tk);
@@ -121,7 +123,7 @@ static void packet_gradients(const __global ulong *segment_groups, ia_real t0, i
     ulong groups = 0;
     for (int k = 0; k < IA_VW; k++)
         groups |= on[k] != 0 ? segment_groups[node_at(t0, w, SEGMENT_LEVEL, tk[k])] : 0;
-    shade_gradients_by_differences(groups, p, iav_point(time), g);
+    shade_gradients_by_differences(PACKET_TAPE_ARG groups, p, iav_point(time), g);
 #else
     (void)segment_groups, (void)t0, (void)w;
     ia_real pk[3][IA_VW], gk[3][IA_VW] = {{0}};
@@ -172,7 +174,7 @@ static void put_pixels(packet_int col, packet_int row, int width, int height, ia
 
 /* The packet of PACKET_W x PACKET_H pixels from (i0, j0) (params.h), its rays traced together in SIMD lanes
  * (packet.h) after the tile pass of its tile, and shaded in lanes (shade.h). */
-static void trace_packet(__constant ia_real *params, int flags, int width, int height, int i0, int j0,
+static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags, int width, int height, int i0, int j0,
                          __global const ia_real *tiles, __global float *rgb, __global float *depth,
                          __global float *normal, __global uint *evals, __global const ulong *tile_groups_of) {
     if (i0 >= width || j0 >= height)
@@ -198,13 +200,13 @@ static void trace_packet(__constant ia_real *params, int flags, int width, int h
         /* a pixel's footprint at distance t: 2 tan(fov/2) t / height, or 2 (HEIGHT/2) / height orthographic */
         ia_real pixel = (ia_real)2 * params[PARAM_SCALE_V] / (ia_real)height;
         int ortho = flags & RENDER_ORTHO;
-        hit = packet_first_root(segment_groups, o, d, t0, w, (packet_int)level, start, t_near, t_far, searching,
-                                params[PARAM_EPS], ortho ? pixel : 0, ortho ? 0 : pixel,
+        hit = packet_first_root(PACKET_TAPE_ARG segment_groups, o, d, t0, w, (packet_int)level, start, t_near, t_far,
+                                searching, params[PARAM_EPS], ortho ? pixel : 0, ortho ? 0 : pixel,
                                 iav_const(time, params[PARAM_TIME_HI]), &hit_lo, &hit_hi, &counts);
         if (iav_any(hit)) {
             ia_realv g[3];
-            packet_gradients(segment_groups, t0, w, hit, o, d, hit_lo * (ia_real)0.5 + hit_hi * (ia_real)0.5, time,
-                             g);
+            packet_gradients(PACKET_TAPE_ARG segment_groups, t0, w, hit, o, d,
+                             hit_lo * (ia_real)0.5 + hit_hi * (ia_real)0.5, time, g);
             shade_normals(g, d, n);
         }
     }
@@ -226,19 +228,24 @@ static void trace_packet(__constant ia_real *params, int flags, int width, int h
 /* One work-item per block of PACKET_W x PACKET_H tiles (32x32 pixels), run for bands of block rows: the tile pass
  * over its tiles, then their packets. One kernel rather than a tile kernel and a ray kernel: PoCL compiles each
  * kernel of a program separately at its first launch, so the expression was compiled twice (half of the first
- * run's time, ~8 s for 1024 spheres). */
+ * run's time, ~8 s for 1024 spheres). `tape`: an interpreted expression's (kernels/tape_eval.h, a program with
+ * IACSG_TAPE); a compiled one ignores it (NULL). */
 __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int height, int block_row0,
                            __global ia_real *tiles, __global float *rgb, __global float *depth, __global float *normal,
-                           __global uint *evals, __global uint *tile_evals, __global ulong *tile_groups_of) {
+                           __global uint *evals, __global uint *tile_evals, __global ulong *tile_groups_of,
+                           __global const uint *tape) {
     int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
     int tx0 = (int)get_global_id(0) * PACKET_W, ty0 = (block_row0 + (int)get_global_id(1)) * PACKET_H;
+#ifndef IACSG_TAPE
+    (void)tape;
+#endif
     if (tx0 >= tiles_x || ty0 >= tiles_y)
         return;
-    block_tiles(params, flags, width, height, tx0, ty0, tiles, tile_evals, tile_groups_of);
+    block_tiles(PACKET_TAPE_ARG params, flags, width, height, tx0, ty0, tiles, tile_evals, tile_groups_of);
     for (int ty = ty0; ty < min(ty0 + PACKET_H, tiles_y); ty++)
         for (int tx = tx0; tx < min(tx0 + PACKET_W, tiles_x); tx++)
             for (int j = 0; j < TILE_SIZE; j += PACKET_H)
                 for (int i = 0; i < TILE_SIZE; i += PACKET_W)
-                    trace_packet(params, flags, width, height, tx * TILE_SIZE + i, ty * TILE_SIZE + j, tiles, rgb,
-                                 depth, normal, evals, tile_groups_of);
+                    trace_packet(PACKET_TAPE_ARG params, flags, width, height, tx * TILE_SIZE + i, ty * TILE_SIZE + j,
+                                 tiles, rgb, depth, normal, evals, tile_groups_of);
 }

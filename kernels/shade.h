@@ -24,15 +24,17 @@ IA_FN void shade_gradient(ia_real x, ia_real y, ia_real z, ia_real time, ia_real
  * the curvature of the parts far below what shading shows; only within a step of the edge between two parts
  * does the normal blend theirs. */
 #define SHADE_DIFFERENCE_STEP ((ia_real)0x1p-10)
-IA_FN void shade_gradients_by_differences(ulong groups, const ia_realv p[3], iav time, ia_realv g[3]) {
+IA_FN void shade_gradients_by_differences(PACKET_TAPE_PARAM ulong groups, const ia_realv p[3], iav time,
+                                          ia_realv g[3]) {
     for (int c = 0; c < 3; c++) {
         ia_realv h = SHADE_DIFFERENCE_STEP * (1 + fabs(p[c]));
         ia_realv up[3] = {p[0], p[1], p[2]}, down[3] = {p[0], p[1], p[2]};
         up[c] = p[c] + h;
         down[c] = p[c] - h;
-        iav fu = packet_F(groups, iav_make(up[0], up[0]), iav_make(up[1], up[1]), iav_make(up[2], up[2]), time);
-        iav fd = packet_F(groups, iav_make(down[0], down[0]), iav_make(down[1], down[1]),
-                          iav_make(down[2], down[2]), time);
+        iav fu = packet_F_points(PACKET_TAPE_ARG groups, iav_make(up[0], up[0]), iav_make(up[1], up[1]),
+                                 iav_make(up[2], up[2]), time);
+        iav fd = packet_F_points(PACKET_TAPE_ARG groups, iav_make(down[0], down[0]), iav_make(down[1], down[1]),
+                                 iav_make(down[2], down[2]), time);
         g[c] = ((fu.lo + fu.hi) - (fd.lo + fd.hi)) * (ia_real)0.5 / (up[c] - down[c]);
     }
 }

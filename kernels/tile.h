@@ -20,8 +20,9 @@
  * (splitting t further would not shrink the box much), or eps. Returns the lanes of `searching` whose tile may
  * hold surface, with their leaves' levels and indices; *evals counts each lane's evaluations (KERNEL_STATS).
  * base, dir: the lanes' tile_rays; spread: their angular (perspective) or linear (orthographic) sizes. */
-IA_FN ia_maskv tile_first_leaves(ulong groups, const iav base[3], const iav dir[3], ia_realv spread, int ortho,
-                                 ia_real t0, ia_real w, ia_real eps, ia_maskv searching, iav time,
+IA_FN ia_maskv tile_first_leaves(PACKET_TAPE_PARAM ulong groups, const iav base[3], const iav dir[3],
+                                 ia_realv spread, int ortho, ia_real t0, ia_real w, ia_real eps, ia_maskv searching,
+                                 iav time,
                                  packet_int *leaf_level, packet_index *leaf_i, packet_index *evals) {
     ia_maskv found = (ia_maskv)0;
     packet_int level = (packet_int)0;
@@ -31,7 +32,7 @@ IA_FN ia_maskv tile_first_leaves(ulong groups, const iav base[3], const iav dir[
         iav t = iav_make(lo, hi), box[3];
         for (int k = 0; k < 3; k++) /* tile_box */
             box[k] = iav_add(base[k], iav_mul(t, dir[k]));
-        iav f = packet_F(groups, box[0], box[1], box[2], time);
+        iav f = packet_F_live(PACKET_TAPE_ARG groups, searching, box[0], box[1], box[2], time);
         PACKET_COUNT(*evals, searching);
         ia_maskv zero = searching & iav_contains_zero(f);
         ia_realv footprint = ortho ? spread : spread * hi;
@@ -49,18 +50,27 @@ IA_FN ia_maskv tile_first_leaves(ulong groups, const iav base[3], const iav dir[
  * [t.lo, t.hi] (bit g of groups[lane] for group g): the others cannot change where the union is zero in the
  * boxes that the tile's rays evaluate on that part of the tree (packet_F). All ones for an expression without
  * groups. */
-IA_FN void tile_groups(const iav base[3], const iav dir[3], iav t, iav time, ulong among, ulong groups[IA_VW]) {
+IA_FN void tile_groups(PACKET_TAPE_PARAM const iav base[3], const iav dir[3], iav t, iav time, ulong among,
+                       ulong groups[IA_VW]) {
 #ifdef IACSG_GROUPS
     iav box[3];
     for (int k = 0; k < 3; k++) /* tile_box */
         box[k] = iav_add(base[k], iav_mul(t, dir[k]));
     for (int k = 0; k < IA_VW; k++)
         groups[k] = 0;
+#ifdef IACSG_TAPE
+    ia_real hull[6]; /* for the tape's skipping of parts, once for all the groups */
+    tape_hull((ia_maskv)-1, box[0], box[1], box[2], hull);
+#endif
     for (int g = 0; g < IACSG_GROUPS; g++) {
         if (!(among >> g & 1))
             continue;
         ia_real lo[IA_VW];
+#ifdef IACSG_TAPE
+        IAV_STORE(tape_group(tape, g, hull, (ia_maskv)-1, box[0], box[1], box[2], time).lo, lo);
+#else
         IAV_STORE(iacsg_Fv_group(g, box[0], box[1], box[2], time).lo, lo);
+#endif
         for (int k = 0; k < IA_VW; k++)
             groups[k] |= (ulong)!(lo[k] > 0) << g;
     }

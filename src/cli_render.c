@@ -179,6 +179,14 @@ int parse_options(int argc, char **argv, render_options *o) {
         } else if (strcmp(a, "-frames") == 0) {
             if (!cli_parse_int(v, 1, 100000, &o->frames))
                 return bad_value(a, v, "a frame count from 1 to 100000");
+        } else if (strcmp(a, "-tape") == 0) {
+            const char *modes[] = {"auto", "off", "on"}; /* IACSG_TAPE_AUTO, _NEVER, _ALWAYS */
+            int m = 0;
+            while (m < 3 && strcmp(v, modes[m]) != 0)
+                m++;
+            if (m == 3)
+                return bad_value(a, v, "auto, on or off");
+            o->config.tape = m;
         } else if (strcmp(a, "-device") == 0) {
             if (!cli_parse_int(v, 0, 1000, &o->config.device))
                 return bad_value(a, v, "a device number (see iacsg devices)");
@@ -380,6 +388,8 @@ static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const ia
     if (fr->secondary_rays > 0)
         printf("secondary rays: %lld, interval evaluations per ray: mean %.2f\n", fr->secondary_rays,
                fr->secondary_evals_mean);
+    if (s->nitems == 0) /* the first-root path */
+        printf("program: %s\n", iacsg_renderer_program(r));
     printf("kernel build: %.3f s\n", iacsg_renderer_build_seconds(r));
     printf("render: %.3f s\n", fr->render_seconds);
     printf("write: %.3f s\n", write_seconds);
@@ -501,6 +511,8 @@ int cli_render(int argc, char **argv) {
         place_camera(&o);
         if (cli_effects_from_scene(&o.effects, scene)) /* its lights, materials that reflect or are transparent */
             o.view.effects = &o.effects;
+        if (o.view.effects && o.config.tape == IACSG_TAPE_AUTO) /* the effects' kernels call compiled code */
+            o.config.tape = IACSG_TAPE_NEVER;
         /* regions or surfaces: the segment path; else the expression by the first-root path */
         st = iacsg_renderer_create_scene(scene, &o.config, &r, &err);
     }

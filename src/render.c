@@ -62,15 +62,20 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,
-                                   iacsg_error *err) {
+iacsg_status render_create_first_root(const char *expr_cl, const char *kernels, const iacsg_render_config *config,
+                                      iacsg_renderer **out, iacsg_error *err) {
     iacsg_renderer *r;
     iacsg_status st = render_open(config, &r, err);
     if (st != IACSG_OK)
         return st;
-    const char *sources[] = {iacsg_cl_ia, expr_cl, iacsg_cl_kernels};
+    const char *sources[] = {iacsg_cl_ia, expr_cl, kernels};
     st = render_build(r, sources, 3, "iacsg_render", err);
     return render_finish(r, st, compile_now, out, err);
+}
+
+iacsg_status iacsg_renderer_create(const char *expr_cl, const iacsg_render_config *config, iacsg_renderer **out,
+                                   iacsg_error *err) {
+    return render_create_first_root(expr_cl, iacsg_cl_kernels, config, out, err);
 }
 
 iacsg_status render_finish(iacsg_renderer *r, iacsg_status st,
@@ -98,12 +103,17 @@ void iacsg_renderer_destroy(iacsg_renderer *r) {
         clReleaseProgram(r->program);
     render_scene_free(r->scene);
     render_effects_free(r->fx);
+    if (r->tape)
+        clReleaseMemObject(r->tape);
     clrt_close(&r->rt);
     free(r);
 }
 
 double iacsg_renderer_build_seconds(const iacsg_renderer *r) { return r->build_seconds; }
 const char *iacsg_renderer_device_name(const iacsg_renderer *r) { return r->rt.device_name; }
+const char *iacsg_renderer_program(const iacsg_renderer *r) {
+    return r->program_note[0] ? r->program_note : "compiled";
+}
 
 /* [TMIN, TMAX]: a t range holding every ray's part inside the box, from the parameters as the device sees them
  * (p, already rounded to the working precision). Perspective: distances from the eye to the box (|d| = 1 up to
@@ -280,6 +290,7 @@ static iacsg_status set_args(iacsg_renderer *r, const iacsg_view *view, frame_bu
     CLRT_CHECK(err, clSetKernelArg(k, 9, sizeof(cl_mem), b->evals ? &b->evals : NULL));
     CLRT_CHECK(err, clSetKernelArg(k, 10, sizeof(cl_mem), b->tile_evals ? &b->tile_evals : NULL));
     CLRT_CHECK(err, clSetKernelArg(k, 11, sizeof(cl_mem), &b->groups));
+    CLRT_CHECK(err, clSetKernelArg(k, 12, sizeof(cl_mem), r->tape ? &r->tape : NULL));
     return IACSG_OK;
 fail:
     return IACSG_ERR_OPENCL;
@@ -384,6 +395,10 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     memset(frame, 0, sizeof *frame);
     double params[PARAM_COUNT]; /* room for either precision */
     iacsg_status st = render_check_view(view, err);
+    if (st == IACSG_OK && r->tape && render_effects_need_aovs(r, view)) /* effects.cl is compiled code's */
+        st = iacsg_error_set(err, IACSG_ERR_ARG, 0, 0,
+                             "the ray-tracing effects need a compiled expression (-tape off; "
+                             "render config tape = IACSG_TAPE_NEVER)");
     if (st == IACSG_OK)
         st = render_fill_params(view, r->config.fp64, params, err);
     if (st != IACSG_OK)

@@ -26,7 +26,16 @@ typedef struct {
      * scene_data.h; 0: SCENE_RAY_CANDIDATES). Rays that need more are traced again with four times the room;
      * tests set it tiny to check that. */
     int ray_candidates;
+    /* The first-root path's program for an expression (src/render_expr.c): compiled (its own OpenCL C), or
+     * interpreted (a fixed program that runs the expression's tape, built once for all expressions: for large
+     * ones the compile is seconds). IACSG_TAPE_AUTO interprets expressions of at least IACSG_TAPE_MIN_NODES
+     * operations, compiling those the interpreter cannot hold (a part needing more registers than it has). */
+    int tape;
+    int tape_min_nodes; /* IACSG_TAPE_AUTO's threshold; 0: IACSG_TAPE_MIN_NODES (tests set it low) */
 } iacsg_render_config;
+
+enum { IACSG_TAPE_AUTO = 0, IACSG_TAPE_NEVER, IACSG_TAPE_ALWAYS };
+#define IACSG_TAPE_MIN_NODES 1024
 
 /* Builds the render program for `expr_cl`, the OpenCL C source of iacsg_Fv, iacsg_f_grad and so on (as
  * iacsg_expr_emit_cl writes it with the prefix "iacsg"). The source is copied. Destroy with
@@ -53,6 +62,9 @@ int iacsg_scene_bounds(const iacsg_scene *s, const double time[2], double box[6]
 /* Seconds the build took (clBuildProgram and the device compiling the kernel, see render.c: compile_now), and
  * the device's name (owned by the renderer). */
 double iacsg_renderer_build_seconds(const iacsg_renderer *r);
+/* How the first-root path evaluates the expression: "compiled", "interpreted (...)" with the tape's size, or
+ * "compiled (...)" with the reason the interpreter could not take it. Owned by the renderer. */
+const char *iacsg_renderer_program(const iacsg_renderer *r);
 const char *iacsg_renderer_device_name(const iacsg_renderer *r);
 
 /* Ray-tracing effects of a frame (src/render_effects.c), all off in a zeroed struct. With none of them the frame

@@ -18,6 +18,8 @@ struct iacsg_renderer {
     double build_seconds;
     render_scene *scene; /* NULL on the first-root path */
     render_fx *fx;       /* the effects' kernel and materials (src/render_effects.c), made at the first use */
+    cl_mem tape;         /* an interpreted expression's tape (src/render_expr.c), else NULL */
+    char program_note[160]; /* iacsg_renderer_program */
 };
 
 double render_now_seconds(void);
@@ -28,6 +30,11 @@ iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out
 /* Builds the program from the sources with the ia/ options of the config and creates its kernel. */
 iacsg_status render_build(iacsg_renderer *r, const char *const *sources, size_t count, const char *kernel,
                           iacsg_error *err);
+
+/* A first-root renderer: the program of the ia/ headers, expr_cl (an expression's code, or the tape
+ * interpreter's) and the kernels (iacsg_cl_kernels, or for a tape iacsg_cl_tape_kernels). */
+iacsg_status render_create_first_root(const char *expr_cl, const char *kernels, const iacsg_render_config *config,
+                                      iacsg_renderer **out, iacsg_error *err);
 
 /* The end of a renderer's creation: when st is IACSG_OK, compile_now (one empty launch, so that the device compiles
  * the kernel now and the time counts as build time); then *out = r, or r destroyed and the failure returned. */

@@ -177,10 +177,10 @@ typedef struct {
 
 /* Compiles `expr`, renders it, and checks each pixel against the exact first entry; reports under `name`. */
 static csg_report check_scene(const char *name, const char *expr, first_entry entry, scene_distance distance,
-                              const void *scene, const iacsg_view *view) {
+                              const void *scene, const iacsg_view *view, int tape) {
     csg_report rep = {0};
     double margin = ghost_margin(view->eps);
-    iacsg_render_config config = {.fp64 = FP64};
+    iacsg_render_config config = {.fp64 = FP64, .tape = tape};
     iacsg_frame fr;
     render_expr_text(expr, &config, view, &fr);
     ia_real p[PARAM_COUNT];
@@ -220,7 +220,7 @@ static csg_report check_scene(const char *name, const char *expr, first_entry en
 
 static csg_report check_expr(const char *expr, primitive a, primitive b, csg_op op, const iacsg_view *view) {
     csg_pair pair = {a, b, op};
-    return check_scene(expr, expr, pair_entry, pair_distance, &pair, view);
+    return check_scene(expr, expr, pair_entry, pair_distance, &pair, view, IACSG_TAPE_NEVER);
 }
 
 static iacsg_view view_of(int w, int h, double eps) {
@@ -303,11 +303,11 @@ static double grid_distance(const void *scene, const double p[3]) {
 
 /* The normals of the union in groups, which the kernels compute by differences (kernels/shade.h), against the
  * exact ones at the entry points (the spheres are disjoint: no edges to blend across). */
-static void check_grid_normals(const char *expr, const iacsg_view *view) {
+static void check_grid_normals(const char *expr, const iacsg_view *view, int tape) {
     iacsg_error err = {0};
     iacsg_expr *e = NULL;
     CHECK(iacsg_expr_parse(expr, "<test>", &e, &err) == IACSG_OK, "%s", err.message);
-    iacsg_render_config config = {.fp64 = FP64};
+    iacsg_render_config config = {.fp64 = FP64, .tape = tape};
     iacsg_renderer *r = NULL;
     iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
     iacsg_expr_destroy(e);
@@ -385,7 +385,9 @@ TEST_FP(render_tangle_silhouettes) {
     check_expr("x^4-5*x^2+y^4-5*y^2+z^4-5*z^2+11.8", tangle, tangle, CSG_ONLY_A, &v);
 }
 
-TEST_FP(render_union_of_many_spheres) {
+/* The union of the grid, compiled (tape off) or interpreted (on, kernels/tape_eval.h: each sphere skipped
+ * wherever its box meets no ray's): the same pixels must hold. */
+static void check_grid(int tape) {
     char expr[4096] = "min(", *end = expr + strlen(expr);
     for (int n = 0; n < GRID_X * GRID_Y * GRID_Z; n++) {
         double c[3];
@@ -395,6 +397,10 @@ TEST_FP(render_union_of_many_spheres) {
     }
     snprintf(end, sizeof expr - (size_t)(end - expr), ")");
     iacsg_view v = view_of(160, 160, 1e-5);
-    check_scene("a union of 32 spheres", expr, grid_entry, grid_distance, NULL, &v);
-    check_grid_normals(expr, &v);
+    check_scene(tape == IACSG_TAPE_ALWAYS ? "a union of 32 spheres, interpreted" : "a union of 32 spheres", expr,
+                grid_entry, grid_distance, NULL, &v, tape);
+    check_grid_normals(expr, &v, tape);
 }
+
+TEST_FP(render_union_of_many_spheres) { check_grid(IACSG_TAPE_NEVER); }
+TEST_FP(render_union_of_many_spheres_tape) { check_grid(IACSG_TAPE_ALWAYS); }

@@ -1,0 +1,289 @@
+/* tests/t_tape_fp.c -- the tape interpreter (implicits/tape.c, kernels/tape_eval.h) on the device, float and
+ * double, over SIMD lanes as the kernels run it:
+ *   tape_matches_compiled: for the device tests' expressions (every primitive, every op, random texts), the
+ *     interpreter's union of all groups, skipping nothing, is bit for bit the compiled iacsg_Fv over random
+ *     boxes (so it has every property the compiled code is tested for); and for those and for unions of 24 to
+ *     40 parts (spheres, caps undefined off their disc, random texts), the interpreter's value encloses the MPFR
+ *     value at points of the boxes, and with the parts skipped by their boxes it still holds every value <= 0
+ *     of the expression and is > 0 somewhere wherever the expression is > 0 (what the walk decides from).
+ *   tape_fallback: a part that needs more registers than the interpreter has is refused with a message, and the
+ *     renderer compiles it instead, saying so. */
+#include "clrt.h"
+#include "implicits/tape.h"
+#include "kernels/params.h"
+#include "t_expr_oracle.h"
+#include "render.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef IA_FP64
+#define FP64 1
+#else
+#define FP64 0
+#endif
+
+extern const char iacsg_cl_ia[], iacsg_cl_tape_kernels[];
+
+#define TAPE_IN 8  /* a query: the box x0, x1, ..., t1 */
+#define TAPE_OUT 6 /* compiled [lo, hi] (NaN without), interpreted, interpreted skipping parts */
+
+static const char kernel_head[] =
+    "__kernel void tape_check(__global const int *which, __global const uint *tapes, __global const uint *at,\n"
+    "                         __global const ia_real *in, __global ia_real *out) {\n"
+    "    size_t g = get_global_id(0);\n"
+    "    ia_real v[8][IA_VW];\n"
+    "    for (int l = 0; l < IA_VW; l++)\n"
+    "        for (int k = 0; k < 8; k++)\n"
+    "            v[k][l] = in[8 * (g * IA_VW + l) + k];\n"
+    "    iav b[4];\n"
+    "    for (int c = 0; c < 4; c++)\n"
+    "        b[c] = iav_make(IAV_LOAD(v[2 * c]), IAV_LOAD(v[2 * c + 1]));\n"
+    "    iav r = iav_point(NAN), s = iav_point(IA_INF), u = iav_point(IA_INF);\n"
+    "    tape_ptr tape = tapes + at[which[g]];\n"
+    "    ia_real hull[6];\n"
+    "    tape_hull((ia_maskv)-1, b[0], b[1], b[2], hull);\n"
+    "    for (int grp = 0; grp < IACSG_GROUPS; grp++) {\n"
+    "        s = iav_min(s, tape_group(tape, grp, 0, (ia_maskv)-1, b[0], b[1], b[2], b[3]));\n"
+    "        u = iav_min(u, tape_group(tape, grp, hull, (ia_maskv)-1, b[0], b[1], b[2], b[3]));\n"
+    "    }\n"
+    "    switch (which[g]) {\n";
+static const char kernel_tail[] = "    }\n"
+                                  "    ia_real o[6][IA_VW];\n"
+                                  "    IAV_STORE(r.lo, o[0]);\n"
+                                  "    IAV_STORE(r.hi, o[1]);\n"
+                                  "    IAV_STORE(s.lo, o[2]);\n"
+                                  "    IAV_STORE(s.hi, o[3]);\n"
+                                  "    IAV_STORE(u.lo, o[4]);\n"
+                                  "    IAV_STORE(u.hi, o[5]);\n"
+                                  "    for (int l = 0; l < IA_VW; l++)\n"
+                                  "        for (int k = 0; k < 6; k++)\n"
+                                  "            out[6 * (g * IA_VW + l) + k] = o[k][l];\n"
+                                  "}\n";
+
+/* Builds ia/, the interpreter, sources[1 .. n-1] and the check kernel with `cases`; runs it over `items`
+ * work-items of which[] expressions, whose tapes are at words at[] of tapes; fills out (TAPE_OUT per query) from
+ * in (TAPE_IN exact doubles per query, rounded outward to floats without fp64). */
+static void run_check(const char **sources, int n, const char *cases, size_t items, const int *which,
+                      const unsigned *tapes, size_t tape_words, const unsigned *at, int nexprs, const double *in,
+                      double *out) {
+    clrt rt;
+    iacsg_error err = {0};
+    CHECK(clrt_open(&rt, 0, &err) == IACSG_OK, "%s", err.message);
+    char options[512];
+    CHECK(clrt_ia_options(&rt, FP64, 0, options, sizeof options - 32, &err) == IACSG_OK, "%s", err.message);
+    snprintf(options + strlen(options), 32, " -D IA_VW=%d", PACKET_LANES);
+    size_t len = strlen(kernel_head) + strlen(cases) + strlen(kernel_tail) + 1;
+    char *kernel = malloc(len);
+    CHECK(kernel != NULL, "out of memory");
+    snprintf(kernel, len, "%s%s%s", kernel_head, cases, kernel_tail);
+    sources[n] = iacsg_cl_tape_kernels;
+    sources[n + 1] = kernel;
+    cl_program program;
+    iacsg_status st = clrt_build(&rt, sources, (size_t)n + 2, options, &program, &err);
+    free(kernel);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    size_t q = items * PACKET_LANES, real = FP64 ? sizeof(double) : sizeof(float);
+    void *host_in = malloc(TAPE_IN * q * real), *host_out = malloc(TAPE_OUT * q * real);
+    CHECK(host_in && host_out, "out of memory");
+    for (size_t i = 0; i < TAPE_IN * q; i++) {
+        float f = (float)in[i]; /* lower bounds down, upper bounds up */
+        if (i % 2 == 0 ? (double)f > in[i] : (double)f < in[i])
+            f = nextafterf(f, i % 2 == 0 ? -INFINITY : INFINITY);
+        if (FP64)
+            ((double *)host_in)[i] = in[i];
+        else
+            ((float *)host_in)[i] = f;
+    }
+    cl_int rc = CL_SUCCESS;
+    cl_kernel k = clCreateKernel(program, "tape_check", &rc);
+    CHECK(rc == CL_SUCCESS, "kernel: %s", clrt_error_name(rc));
+    cl_mem bw = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, items * sizeof(int), (void *)which,
+                               &rc);
+    cl_mem bt = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, tape_words * sizeof(unsigned),
+                               (void *)tapes, &rc);
+    cl_mem ba = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)nexprs * sizeof(unsigned),
+                               (void *)at, &rc);
+    cl_mem bi = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, TAPE_IN * q * real, host_in, &rc);
+    cl_mem bo = clCreateBuffer(rt.context, CL_MEM_WRITE_ONLY, TAPE_OUT * q * real, NULL, &rc);
+    CHECK(rc == CL_SUCCESS, "buffers: %s", clrt_error_name(rc));
+    cl_mem args[] = {bw, bt, ba, bi, bo};
+    for (cl_uint a = 0; a < 5; a++)
+        clSetKernelArg(k, a, sizeof(cl_mem), &args[a]);
+    size_t one = 1; /* as the renderer: PoCL keeps a work-group's private arrays on one thread's stack */
+    rc = clEnqueueNDRangeKernel(rt.queue, k, 1, NULL, &items, &one, 0, NULL, NULL);
+    if (rc == CL_SUCCESS)
+        rc = clEnqueueReadBuffer(rt.queue, bo, CL_TRUE, 0, TAPE_OUT * q * real, host_out, 0, NULL, NULL);
+    for (size_t i = 0; i < TAPE_OUT * q; i++)
+        out[i] = FP64 ? ((double *)host_out)[i] : ((float *)host_out)[i];
+    for (int a = 0; a < 5; a++)
+        clReleaseMemObject(args[a]);
+    clReleaseKernel(k);
+    clReleaseProgram(program);
+    clrt_close(&rt);
+    free(host_in);
+    free(host_out);
+    CHECK(rc == CL_SUCCESS, "run: %s", clrt_error_name(rc));
+}
+
+/* A union of `parts` parts into buf: spheres, caps (sqrt(r^2 - (x-a)^2 - (y-b)^2) - (z-c), undefined off the
+ * disc: there the union takes the others) and random texts of depth 2, at random places in [-1.5, 1.5]^3. */
+static void random_union(test_rng_t *r, int parts, char *buf, size_t size) {
+    size_t used = (size_t)snprintf(buf, size, "min(");
+    for (int j = 0; j < parts; j++) {
+        double a = 3 * test_rand_unit(r) - 1.5, b = 3 * test_rand_unit(r) - 1.5, c = 3 * test_rand_unit(r) - 1.5;
+        double radius = 0.05 + 0.4 * test_rand_unit(r);
+        const char *sep = j ? ", " : "";
+        if (j % 3 == 0) {
+            used += (size_t)snprintf(buf + used, size - used, "%s(x-%.4f)^2+(y-%.4f)^2+(z-%.4f)^2-%.4f", sep, a, b, c,
+                                     radius * radius);
+        } else if (j % 3 == 1) {
+            used += (size_t)snprintf(buf + used, size - used, "%ssqrt(%.4f-(x-%.4f)^2-(y-%.4f)^2)-(z-%.4f)", sep,
+                                     radius * radius, a, b, c);
+        } else {
+            char part[4096];
+            expr_random_text(r, 2, part, sizeof part);
+            used += (size_t)snprintf(buf + used, size - used, "%s%s", sep, part);
+        }
+        CHECK(used < size - 1, "union text too long");
+    }
+    snprintf(buf + used, size - used, ")");
+}
+
+#define MAX_EXPRS 72
+#define UNIONS 6
+#define ITEMS 6 /* work-items per expression: 6 x 16 boxes */
+
+TEST_FP(tape_matches_compiled) {
+    static char texts[MAX_EXPRS + UNIONS][EXPR_TEXT_SIZE];
+    iacsg_expr *exprs[MAX_EXPRS + UNIONS];
+    int n = expr_test_texts(test_rng(), texts, MAX_EXPRS);
+    for (int u = 0; u < UNIONS; u++)
+        random_union(test_rng(), 24 + 3 * u, texts[n + u], EXPR_TEXT_SIZE);
+    int total = n + UNIONS;
+    const char *sources[MAX_EXPRS + 4] = {iacsg_cl_ia};
+    char *interpreter = tape_cl();
+    CHECK(interpreter != NULL, "out of memory");
+    sources[1] = interpreter;
+    static char cases[MAX_EXPRS * 100];
+    size_t used = 0, words = 0;
+    unsigned at[MAX_EXPRS + UNIONS], *tapes = NULL;
+    long skipping = 0;
+    for (int i = 0; i < total; i++) {
+        iacsg_error err = {0};
+        CHECK(iacsg_expr_parse(texts[i], "<test>", &exprs[i], &err) == IACSG_OK, "'%s': %s", texts[i], err.message);
+        iacsg_tape tape;
+        CHECK(tape_build(&exprs[i]->simple, exprs[i]->root, FP64, &tape, &err) == IACSG_OK, "'%s': %s", texts[i],
+              err.message);
+        skipping += tape.bounded_parts;
+        at[i] = (unsigned)words;
+        tapes = realloc(tapes, (words + tape.count + 1) * sizeof *tapes);
+        CHECK(tapes != NULL, "out of memory");
+        memcpy(tapes + words, tape.words, tape.count * sizeof *tapes);
+        words += tape.count + tape.count % 2; /* the next tape's doubles start on an even word */
+        tape_free(&tape);
+        if (i >= n)
+            continue; /* a union in groups: its compiled code would define IACSG_GROUPS */
+        char prefix[16];
+        snprintf(prefix, sizeof prefix, "e%d", i);
+        char *src = NULL;
+        CHECK(iacsg_expr_emit_cl(exprs[i], prefix, &src, &err) == IACSG_OK, "%s", err.message);
+        CHECK(!strstr(src, "IACSG_GROUPS"), "'%s': a union in groups; the test calls e<k>_Fv", texts[i]);
+        sources[2 + i] = src;
+        used += (size_t)snprintf(cases + used, sizeof cases - used,
+                                 "    case %d: r = e%d_Fv(b[0], b[1], b[2], b[3]); break;\n", i, i);
+    }
+    size_t items = (size_t)total * ITEMS, q = items * PACKET_LANES;
+    int *which = malloc(items * sizeof *which);
+    double *in = malloc(TAPE_IN * q * sizeof *in), *out = malloc(TAPE_OUT * q * sizeof *out);
+    CHECK(which && in && out, "out of memory");
+    for (size_t g = 0; g < items; g++)
+        which[g] = (int)(g / ITEMS);
+    for (size_t k = 0; k < q; k++)
+        expr_random_box(test_rng(), in + TAPE_IN * k);
+    run_check(sources, 2 + n, cases, items, which, tapes, words, at, total, in, out);
+    for (int i = 0; i < n; i++)
+        free((char *)sources[2 + i]);
+    free(interpreter);
+    free(tapes);
+
+    mpfr_t y;
+    mpfr_init2(y, EXPR_ORACLE_PREC);
+    long same = 0, values = 0, skipped = 0;
+    for (size_t k = 0; k < q; k++) {
+        int x = which[k / PACKET_LANES];
+        const double *v = in + TAPE_IN * k, *o = out + TAPE_OUT * k;
+        if (x < n) { /* bit for bit the compiled code (NaN: the same NaN-ness) */
+            for (int c = 0; c < 2; c++)
+                CHECK(o[c] == o[2 + c] || (o[c] != o[c] && o[2 + c] != o[2 + c]),
+                      "'%s' over x [%a, %a] y [%a, %a] z [%a, %a] t [%a, %a]: compiled [%a, %a], interpreted [%a, %a]",
+                      texts[x], v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], o[0], o[1], o[2], o[3]);
+            same++;
+        }
+        skipped += o[4] != o[2] || o[5] != o[3];
+        for (int s = 0; s < 6; s++) {
+            double p[4];
+            expr_random_point(test_rng(), v, p);
+            if (!expr_oracle(exprs[x], p, y))
+                continue;
+            values++;
+            int ok = mpfr_cmp_d(y, o[2]) >= 0 && mpfr_cmp_d(y, o[3]) <= 0;
+            /* skipping: every value <= 0 kept; a value > 0 leaves the enclosure > 0 somewhere */
+            int ok_skipping = mpfr_sgn(y) <= 0 ? mpfr_cmp_d(y, o[4]) >= 0 && mpfr_cmp_d(y, o[5]) <= 0 : o[5] > 0;
+            CHECK(ok && ok_skipping,
+                  "'%s' over x [%a, %a] y [%a, %a] z [%a, %a] t [%a, %a]: interpreted [%a, %a], skipping [%a, %a], "
+                  "but at (%a, %a, %a, %a) the value is %.20g",
+                  texts[x], v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], o[2], o[3], o[4], o[5], p[0], p[1], p[2],
+                  p[3], mpfr_get_d(y, MPFR_RNDN));
+        }
+    }
+    mpfr_clear(y);
+    for (int i = 0; i < total; i++)
+        iacsg_expr_destroy(exprs[i]);
+    free(which);
+    free(in);
+    free(out);
+    test_note("%d expressions and %d unions, %zu boxes: %ld bit for bit the compiled code, %ld values checked, "
+              "%ld boxes where parts were skipped (%ld parts boxed)",
+              n, UNIONS, q, same, values, skipped, skipping);
+    CHECK(same > 5000 && values > 20000 && skipped > 100, "too little checked to mean anything");
+}
+
+TEST_FP(tape_fallback) {
+    /* (s1 + ... + s40) * (s1 * ... * s40): every s_k is live from its sum to its product, 40 values at once
+     * where the interpreter has TAPE_SLOTS registers */
+    static char text[16384];
+    size_t used = 0;
+    for (int half = 0; half < 2; half++) {
+        used += (size_t)snprintf(text + used, sizeof text - used, "%s(", half ? "*" : "");
+        for (int k = 0; k < 40; k++)
+            used += (size_t)snprintf(text + used, sizeof text - used, "%s(x+%d)*(y-%d)", k ? (half ? "*" : "+") : "",
+                                     k + 1, k + 2);
+        used += (size_t)snprintf(text + used, sizeof text - used, ")");
+    }
+    CHECK(used < sizeof text, "text too long");
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse(text, "<test>", &e, &err) == IACSG_OK, "%s", err.message);
+    iacsg_tape tape;
+    iacsg_status st = tape_build(&e->simple, e->root, FP64, &tape, &err);
+    if (st == IACSG_OK)
+        tape_free(&tape);
+    CHECK(st == IACSG_ERR_LIMIT && strstr(err.message, "registers"), "tape_build: %s",
+          st == IACSG_OK ? "the tape fit" : err.message);
+    iacsg_render_config config = {.fp64 = FP64, .tape = IACSG_TAPE_ALWAYS};
+    iacsg_renderer *r = NULL;
+    st = iacsg_renderer_create_expr(e, &config, &r, &err);
+    CHECK(st == IACSG_ERR_LIMIT && r == NULL, "with the tape required: %s", st == IACSG_OK ? "built" : err.message);
+    config.tape = IACSG_TAPE_AUTO;
+    config.tape_min_nodes = e->count; /* this one is over the threshold */
+    st = iacsg_renderer_create_expr(e, &config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    char note[200];
+    snprintf(note, sizeof note, "%s", iacsg_renderer_program(r));
+    iacsg_renderer_destroy(r);
+    test_note("%s", note);
+    CHECK(strncmp(note, "compiled (", 10) == 0 && strstr(note, "registers"), "the renderer says: %s", note);
+}
