@@ -1,68 +1,246 @@
-/* kernels/effects.cl -- iacsg_trace_rays, the first-root path's secondary rays (src/render_effects.c): shadow
- * rays, reflected rays, rays continuing through transparent hits and the extra rays of antialiasing, listed by
- * the host in a buffer, traced by the same bisection as the camera rays (packet.h), 16 rays per work-item in SIMD
- * lanes. The host lists them in blocks of neighbouring pixels, so that a packet's rays walk similar nodes.
+/* kernels/effects.cl -- iacsg_effects, the first-root path's ray-tracing effects (src/render_effects.c), one
+ * launch per bounce, 16 paths per work-item in SIMD lanes:
  *
- * A ray is EFFECTS_RAY_REALS reals: origin (3), direction (3), and the part [tn, tf] to search (then clipped to
- * the bounds). Its tree is [0, root_w], root_w past every ray's exit from the bounds. Out: the start of the hit
- * leaf (+inf on a miss), never after the ray's first root in [tn, tf] within the bounds (packet.h's guarantee),
- * and, where `normal` is not NULL, the unit normal there facing the ray (0 on a miss); where `evals` is not NULL,
- * the ray's interval evaluations (counted in a kernel built with KERNEL_STATS). The normals are render.cl's
- * packet_gradients (this file is appended to the first-root path's program after render.cl).
+ *   the paths' rays: the frame's centre rays (their hits its depth and normals: nothing traced), -aa's n x n rays
+ *   of listed pixels, or the reflected rays the previous launch listed --> their first hits (packet.h)
+ *   --> per hit: the lights (light.h), each seen or not by a shadow ray traced in the lanes --> the colour times
+ *       the path's weight --> a reflected ray listed for the next launch (weight reflect)
+ *   --> through a transparent hit: the ray goes on from past it, traced again in the same launch, until every
+ *       lane is opaque, out of weight or layers, or has met the background
+ *   --> per path: its summed linear light, and the reflected rays it listed (kid_slots at most)
+ *
+ * Every ray is traced by the camera rays' bisection (packet.h) over the tree [0, root_w], past every ray's exit
+ * from the bounds, with all groups of a union (no tile pass bounded these rays), so an occluder or a surface a
+ * ray crosses inside the bounds is never missed. The rays of a packet come from neighbouring pixels (the host
+ * lists them in blocks of 4 x 4), so that they walk similar nodes. The normals are render.cl's packet_gradients
+ * (this file is appended to the first-root path's program after render.cl).
  */
 
-/* The groups of a union that matter, per segment of a secondary ray's tree: all of them (`all_groups`, SEGMENTS
- * ones), since no tile pass bounded these rays. */
-__kernel void iacsg_trace_rays(__constant ia_real *params, __global const ia_real *rays, int nrays, ia_real root_w,
-                               ia_real eps, ia_real footprint, __global const ulong *all_groups,
-                               __global ia_real *hit_t, __global float *normal, __global uint *evals) {
-    int first = (int)get_global_id(0) * IA_VW;
-    if (first >= nrays)
-        return;
-    ia_real o_k[3][IA_VW], d_k[3][IA_VW], tn_k[IA_VW], tf_k[IA_VW], valid_k[IA_VW];
-    for (int k = 0; k < IA_VW; k++) {
-        int ray = min(first + k, nrays - 1);
-        for (int c = 0; c < 3; c++) {
-            o_k[c][k] = rays[EFFECTS_RAY_REALS * ray + c];
-            d_k[c][k] = rays[EFFECTS_RAY_REALS * ray + 3 + c];
-        }
-        tn_k[k] = rays[EFFECTS_RAY_REALS * ray + 6];
-        tf_k[k] = rays[EFFECTS_RAY_REALS * ray + 7];
-        valid_k[k] = first + k < nrays;
-    }
-    ia_realv o[3], d[3], t_near, t_far;
-    for (int c = 0; c < 3; c++) {
-        o[c] = IAV_LOAD(o_k[c]);
-        d[c] = IAV_LOAD(d_k[c]);
-    }
-    ia_maskv searching = (IAV_LOAD(valid_k) != 0) & packet_clip(params, o, d, &t_near, &t_far);
-    t_near = fmax(t_near, IAV_LOAD(tn_k));
-    t_far = fmin(t_far, IAV_LOAD(tf_k));
+/* The first hits of the rays o + t d of the lanes of `on` in [tn, tf] within the bounds, with leaves of width eps
+ * and interval Newton from nodes no wider than 32 `newton` (packet.h): the start of the hit leaf in *t (+inf on a
+ * miss) and, where `normals`, the unit normal there facing the ray in n. Counts the rays and their evaluations
+ * (KERNEL_STATS). */
+static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *all_groups, const ia_realv o[3],
+                              const ia_realv d[3], ia_realv tn, ia_realv tf, ia_maskv on, ia_real root_w, ia_real eps,
+                              ia_real newton, ia_realv *t, int normals, ia_realv n[3], packet_index *rays,
+                              packet_index *evals) {
+    ia_realv t_near, t_far;
+    ia_maskv searching = on & packet_clip(params, o, d, &t_near, &t_far);
+    t_near = fmax(t_near, tn);
+    t_far = fmin(t_far, tf);
     searching &= t_near <= t_far;
+    PACKET_COUNT(*rays, on);
     ia_realv lo = IAV_R(0), hi = IAV_R(0);
-    packet_index counts = (packet_index)0;
     ia_real time = params[PARAM_TIME_LO];
     ia_maskv hit = packet_first_root(all_groups, o, d, 0, root_w, (packet_int)0, (packet_index)0, t_near, t_far,
-                                     searching, eps, footprint, 0, iav_const(time, params[PARAM_TIME_HI]), &lo, &hi,
-                                     &counts);
-    ia_real t_out[IA_VW], n_out[3][IA_VW];
-    bisect_index count[IA_VW];
-    IAV_STORE(counts, count);
-    IAV_STORE(select(IAV_R(IA_INF), lo, hit), t_out);
-    if (normal) {
-        ia_realv g[3] = {IAV_R(0), IAV_R(0), IAV_R(0)}, n[3];
+                                     searching, eps, newton, 0, iav_const(time, params[PARAM_TIME_HI]), &lo, &hi,
+                                     evals);
+    *t = select(IAV_R(IA_INF), lo, hit);
+    if (normals) {
+        ia_realv g[3] = {IAV_R(0), IAV_R(0), IAV_R(0)};
         if (iav_any(hit))
             packet_gradients(all_groups, 0, root_w, hit, o, d, lo * (ia_real)0.5 + hi * (ia_real)0.5, time, g);
         shade_normals(g, d, n);
-        for (int c = 0; c < 3; c++)
-            IAV_STORE(select(IAV_R(0), n[c], hit), n_out[c]);
     }
-    for (int k = 0; k < IA_VW && first + k < nrays; k++) {
-        hit_t[first + k] = t_out[k];
-        if (normal)
+    return hit;
+}
+
+/* How far a secondary ray starts off its hit p (at t along its ray): past the hit leaf's distance from the surface
+ * (a few eps) and the rounding of the hit point (the frame's depth is float32). Without it the shadow test sees
+ * acne (tests/t_render_effects_fp.c). */
+static ia_realv effects_offset(ia_real eps, const ia_realv p[3], ia_realv t) {
+    return 4 * eps + (ia_real)4e-6 * (1 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]) + fabs(t));
+}
+
+/* The colours of the previews (-shade normals, depth, ids), linear, at hits with normals n and depths t. */
+static void effects_preview(__constant ia_real *fx, int shade, const ia_realv n[3], ia_realv t, shade_colorv lin[3]) {
+    ia_real span = fx[EFFECTS_DEPTH_HI] - fx[EFFECTS_DEPTH_LO];
+    ia_realv v = span > 0 ? fmin(fmax((t - fx[EFFECTS_DEPTH_LO]) / span, IAV_R(0)), IAV_R(1)) : IAV_R(0);
+    for (int c = 0; c < 3; c++) {
+        shade_colorv shown = shade_to_color(shade == EFFECTS_SHADE_NORMALS ? (ia_real)0.5 + (ia_real)0.5 * n[c]
+                                                                             : (ia_real)1 - (ia_real)0.85 * v);
+        lin[c] = shade == EFFECTS_SHADE_IDS ? (shade_colorv)(float)fx[EFFECTS_ID_RGB + c] : shown * shown;
+    }
+}
+
+/* acc += w c in the lanes of `on`. */
+static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shade_colorv c[3]) {
+    IAV_CAT(int, IA_VW) lanes = IAV_CAT(convert_int, IA_VW)(on) != 0;
+    shade_colorv wc = shade_to_color(w);
+    for (int k = 0; k < 3; k++)
+        acc[k] += select((shade_colorv)0, wc * c[k], lanes);
+}
+
+/* Paths first .. first + 15 of the launch. mode (kernels/effects.h): EFFECTS_MODE_CENTRE, path k the centre ray
+ * of pixel pixels[k], its hit the frame's (depth, normal); EFFECTS_MODE_AA, path k the ray (k mod aa^2) of an
+ * aa x aa grid in pixel pixels[k / aa^2], weight 1 / aa^2, traced with leaves aa_eps and Newton's window
+ * `footprint` (as camera rays); EFFECTS_MODE_PATHS, path k the ray paths[k] (EFFECTS_PATH_REALS) of pixel
+ * pixels[k]. `bounce`: the reflections the paths have taken. Out per path: color (3 floats, linear light times
+ * the weight), the reflected rays it lists (nkids, in kids from kid_slots k on), and with `stats` (KERNEL_STATS)
+ * the rays it traced and their interval evaluations. */
+__kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, int mode, int flags, int width,
+                            int height, __global const int *pixels, __global const ia_real *paths, int npaths,
+                            int bounce, int aa, __global const float *depth, __global const float *normal,
+                            ia_real root_w, ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
+                            __global float *color, __global ia_real *kids, __global int *nkids, int kid_slots,
+                            __global uint *stats) {
+    int first = (int)get_global_id(0) * IA_VW;
+    if (first >= npaths)
+        return;
+    int samples = mode == EFFECTS_MODE_AA ? aa * aa : 1, pix[IA_VW];
+    ia_real valid_k[IA_VW], w_k[IA_VW], layers_k[IA_VW], row_k[IA_VW], x2_k[IA_VW], y2_k[IA_VW], t_k[IA_VW];
+    ia_real o_k[3][IA_VW], d_k[3][IA_VW], n_k[3][IA_VW];
+    for (int k = 0; k < IA_VW; k++) {
+        int path = min(first + k, npaths - 1);
+        valid_k[k] = first + k < npaths;
+        pix[k] = pixels[path / samples];
+        int i = pix[k] % width, j = pix[k] / width, s = path % samples;
+        row_k[k] = (ia_real)j;
+        w_k[k] = mode == EFFECTS_MODE_AA ? (ia_real)1 / (ia_real)samples : 1;
+        layers_k[k] = 0;
+        x2_k[k] = (ia_real)(2 * i + 1); /* the centre ray's, exactly as the camera kernel's (packet_rays) */
+        y2_k[k] = (ia_real)(2 * j + 1);
+        if (mode == EFFECTS_MODE_AA) {
+            x2_k[k] = (ia_real)(2 * i) + (ia_real)(2 * (s % aa) + 1) / (ia_real)aa;
+            y2_k[k] = (ia_real)(2 * j) + (ia_real)(2 * (s / aa) + 1) / (ia_real)aa;
+        }
+        t_k[k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)depth[pix[k]] : 0;
+        for (int c = 0; c < 3; c++)
+            n_k[c][k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)normal[3 * pix[k] + c] : 0;
+        if (mode == EFFECTS_MODE_PATHS) {
+            __global const ia_real *q = paths + EFFECTS_PATH_REALS * (size_t)path;
+            for (int c = 0; c < 3; c++) {
+                o_k[c][k] = q[EFFECTS_PATH_O + c];
+                d_k[c][k] = q[EFFECTS_PATH_D + c];
+            }
+            w_k[k] = q[EFFECTS_PATH_WEIGHT];
+            layers_k[k] = q[EFFECTS_PATH_LAYERS];
+        }
+    }
+    ia_realv o[3], d[3], n[3], t = IAV_LOAD(t_k), through = IAV_LOAD(w_k), layers = IAV_LOAD(layers_k);
+    ia_maskv live = IAV_LOAD(valid_k) != 0, hit;
+    packet_index rays = (packet_index)0, evals = (packet_index)0;
+    if (mode == EFFECTS_MODE_PATHS)
+        for (int c = 0; c < 3; c++) {
+            o[c] = IAV_LOAD(o_k[c]);
+            d[c] = IAV_LOAD(d_k[c]);
+        }
+    else
+        packet_rays_at(params, flags & RENDER_ORTHO, IAV_LOAD(x2_k), IAV_LOAD(y2_k), width, height, o, d);
+    ia_real eps = params[PARAM_EPS];
+    if (mode == EFFECTS_MODE_CENTRE) {
+        hit = live & isfinite(t);
+        for (int c = 0; c < 3; c++)
+            n[c] = IAV_LOAD(n_k[c]);
+    } else {
+        int camera = mode == EFFECTS_MODE_AA;
+        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, root_w, camera ? aa_eps : eps,
+                            camera ? footprint : root_w, &t, 1, n, &rays, &evals);
+    }
+    /* the background of the pixels' rows, linear */
+    shade_colorv bg[3], acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
+    float top[3], bottom[3];
+    for (int c = 0; c < 3; c++) {
+        top[c] = (float)fx[EFFECTS_BG_TOP + c];
+        bottom[c] = (float)fx[EFFECTS_BG_BOTTOM + c];
+    }
+    shade_background(IAV_CAT(convert_float, IA_VW)(IAV_LOAD(row_k)), height, top, bottom, bg);
+    for (int c = 0; c < 3; c++)
+        bg[c] *= bg[c];
+    int shade = (int)fx[EFFECTS_SHADE], nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
+    ia_real a = fx[EFFECTS_OPACITY], k = bounce < (int)fx[EFFECTS_BOUNCES] ? fx[EFFECTS_REFLECT] : 0;
+    int nk[IA_VW];
+    for (int q = 0; q < IA_VW; q++)
+        nk[q] = 0;
+    while (1) { /* one transparent layer a turn */
+        effects_add(acc, live & ~hit, through, bg);
+        live &= hit;
+        if (!iav_any(live))
+            break;
+        ia_realv p[3];
+        for (int c = 0; c < 3; c++)
+            p[c] = o[c] + t * d[c];
+        shade_colorv lin[3];
+        if (shade >= EFFECTS_SHADE_NORMALS) { /* unlit, opaque */
+            effects_preview(fx, shade, n, t, lin);
+            effects_add(acc, live, through, lin);
+            break;
+        }
+        ia_realv off = effects_offset(eps, p, t), diffuse = IAV_R(EFFECTS_AMBIENT), highlight = IAV_R(0);
+        for (int l = 0; l < nlights; l++) {
+            __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
+            ia_realv towards[3];
+            shade_towards(params, L, p, towards);
+            ia_maskv seen = live & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
+            if (shadows && iav_any(seen)) { /* from off the surface, on the light's side, to the light */
+                ia_realv so[3], sd[3], st, unused[3];
+                for (int c = 0; c < 3; c++)
+                    so[c] = p[c] + off * n[c];
+                ia_realv dist = shade_towards(params, L, so, sd);
+                seen &= ~effects_trace(params, all_groups, so, sd, IAV_R(0), dist, seen, root_w, eps, root_w, &st, 0,
+                                       unused, &rays, &evals);
+            }
+            shade_add_light(L, n, d, towards, seen, fx[EFFECTS_SHININESS], &diffuse, &highlight);
+        }
+        shade_colorv albedo[3];
+        for (int c = 0; c < 3; c++) { /* -shade gradient: the normal's direction as the colour */
+            shade_colorv g = shade_to_color((ia_real)0.5 + (ia_real)0.5 * n[c]);
+            albedo[c] = shade == EFFECTS_SHADE_GRADIENT ? g * g : (shade_colorv)(float)fx[EFFECTS_ALBEDO + c];
+        }
+        shade_lit_linear(albedo, IAV_R(fx[EFFECTS_SPECULAR]), diffuse, highlight, lin);
+        effects_add(acc, live, through * (a * (1 - k)), lin);
+        ia_maskv mirror = live & (through * (a * k) >= (ia_real)EFFECTS_MIN_WEIGHT);
+        if (k > 0 && iav_any(mirror)) { /* the mirror direction, from off the surface */
+            ia_realv dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2], r[3], rec[EFFECTS_PATH_REALS];
             for (int c = 0; c < 3; c++)
-                normal[3 * (first + k) + c] = (float)n_out[c][k];
-        if (evals) /* with KERNEL_STATS (-stats); else 0 */
-            evals[first + k] = (uint)count[k];
+                r[c] = d[c] - 2 * dn * n[c];
+            ia_realv len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+            for (int c = 0; c < 3; c++) {
+                rec[EFFECTS_PATH_O + c] = p[c] + off * n[c];
+                rec[EFFECTS_PATH_D + c] = r[c] / len;
+            }
+            rec[EFFECTS_PATH_WEIGHT] = through * (a * k);
+            rec[EFFECTS_PATH_LAYERS] = layers;
+            ia_real on[IA_VW], fields[EFFECTS_PATH_REALS][IA_VW];
+            IAV_STORE(select(IAV_R(0), IAV_R(1), mirror), on);
+            for (int f = 0; f < EFFECTS_PATH_REALS; f++)
+                IAV_STORE(rec[f], fields[f]);
+            for (int q = 0; q < IA_VW; q++) {
+                if (on[q] == 0 || nk[q] >= kid_slots)
+                    continue;
+                __global ia_real *out = kids + EFFECTS_PATH_REALS * ((size_t)(first + q) * kid_slots + nk[q]++);
+                for (int f = 0; f < EFFECTS_PATH_REALS; f++)
+                    out[f] = fields[f][q];
+            }
+        }
+        through *= 1 - a;
+        live &= through > 0;
+        ia_maskv spent = live & ((through < (ia_real)EFFECTS_MIN_WEIGHT) | (layers + 1 >= EFFECTS_MAX_LAYERS));
+        effects_add(acc, spent, through, bg); /* what is left of the path */
+        live &= ~spent;
+        if (!iav_any(live))
+            break;
+        /* on through the surface: from just past it, the same direction */
+        for (int c = 0; c < 3; c++)
+            o[c] = select(o[c], p[c] - off * n[c], live);
+        layers = select(layers, layers + 1, live);
+        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, root_w, eps, root_w, &t, 1, n,
+                            &rays, &evals);
+    }
+    float out[3][IA_VW];
+    bisect_index ray_count[IA_VW], eval_count[IA_VW];
+    for (int c = 0; c < 3; c++)
+        IAV_CAT(vstore, IA_VW)(acc[c], 0, out[c]);
+    IAV_STORE(rays, ray_count);
+    IAV_STORE(evals, eval_count);
+    for (int q = 0; q < IA_VW && first + q < npaths; q++) {
+        for (int c = 0; c < 3; c++)
+            color[3 * (first + q) + c] = out[c][q];
+        if (kids)
+            nkids[first + q] = nk[q];
+        if (stats) { /* with KERNEL_STATS (-stats); else 0 */
+            stats[2 * (first + q)] = (uint)ray_count[q];
+            stats[2 * (first + q) + 1] = (uint)eval_count[q];
+        }
     }
 }

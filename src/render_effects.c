@@ -3,7 +3,7 @@
  *   frame (each pixel's centre ray: depth, normal, id) --> one path per pixel: (pixel, weight, ray, hit)
  *     --> shade each hit: its material under the lights, each light seen or not by a shadow ray (traced)
  *     --> children: a reflected ray (weight reflect), a ray through a transparent hit (weight 1 - opacity),
- *         traced, shaded in turn, until none is left (-bounces, FX_MAX_LAYERS) --> colours summed per pixel
+ *         traced, shaded in turn, until none is left (-bounces, EFFECTS_MAX_LAYERS) --> colours summed per pixel
  *     --> -aa N: the pixels whose centre rays differ from a neighbour's (edges) get N x N paths of their own
  *   --> rgb (linear light summed, then gamma 2 as kernels/light.h encodes).
  *
@@ -14,6 +14,7 @@
  */
 #include "render_effects_trace.h"
 #include "implicits/scene.h"
+#include "kernels/effects.h"
 #include "kernels/params.h"
 #include "kernels/scene_data.h"
 #include "scene_tables.h"
@@ -27,15 +28,14 @@
  * 9.1 at 1 eps, 7.6 at 4, 6.1 at 16, 4.6 at 64; the shadow pass is a small part of the effects' cost
  * (BENCHMARKS.md), so the rigour of the camera rays is kept. */
 #define FX_SHADOW_EPS_FACTOR 1.0
-/* Layers of transparent hits a path passes at most, and the weight below which it stops (the rest of it is the
- * background). */
-#define FX_MAX_LAYERS 16
-#define FX_MIN_WEIGHT (1.0 / 1024)
-/* The constant term of the lighting, and the first-root path's material (kernels/light.h, shade.h). */
-#define FX_AMBIENT 0.10
+/* The first-root path's material (kernels/shade.h). */
 static const float fx_expr_albedo[3] = {0.80f, 0.52f, 0.28f};
 /* The plain render's background, top to bottom (kernels/light.h). */
 static const float fx_default_top[3] = {0.42f, 0.46f, 0.52f}, fx_default_bottom[3] = {0.13f, 0.14f, 0.17f};
+/* The default rig, the plain render's key and fill lights (kernels/light.h): right and up coefficients of the
+ * direction towards each (fixed to the camera), the weight of its diffuse term and of its highlight (times the
+ * material's specular). */
+static const double fx_rig[2][4] = {{-0.6, 0.8, 0.85, 1.0}, {0.9, -0.2, 0.30, 0.10 / 0.45}};
 /* -aa: a pixel is an edge where its centre ray's id differs from a neighbour's, or its colour by this much in a
  * channel (shadow and reflection edges), or its depth by this fraction. */
 #define FX_AA_CONTRAST (1.0 / 16)
@@ -151,16 +151,15 @@ static void camera_ray_at(const fx_frame *f, double x, double y, fx_ray *ray) {
 static void resolve_lights(fx_frame *f) {
     const iacsg_effects *e = f->e;
     if (e->nlights == 0) {
-        static const double rig[2][4] = {{-0.6, 0.8, 0.85, 1.0}, {0.9, -0.2, 0.30, 0.10 / 0.45}};
         for (int l = 0; l < 2; l++) {
             fx_light *L = &f->lights[l];
             for (int k = 0; k < 3; k++)
-                L->v[k] = -f->cam[PARAM_FORWARD + k] + rig[l][0] * f->cam[PARAM_RIGHT + k] +
-                          rig[l][1] * f->cam[PARAM_UP + k];
+                L->v[k] = -f->cam[PARAM_FORWARD + k] + fx_rig[l][0] * f->cam[PARAM_RIGHT + k] +
+                          fx_rig[l][1] * f->cam[PARAM_UP + k];
             normalize3(L->v);
             L->point = 0;
-            L->intensity = rig[l][2];
-            L->highlight = rig[l][3];
+            L->intensity = fx_rig[l][2];
+            L->highlight = fx_rig[l][3];
         }
         f->nlights = 2;
         return;
@@ -189,15 +188,6 @@ static void background_at(const fx_frame *f, double y, double lin[3]) {
 
 static void material_of(const fx_frame *f, int item, fx_material *m) {
     const render_fx *fx = f->r->fx;
-    if (!f->r->scene) {
-        for (int c = 0; c < 3; c++)
-            m->rgb[c] = fx_expr_albedo[c];
-        m->specular = SCENE_DEFAULT_SPECULAR;
-        m->shininess = SCENE_DEFAULT_SHININESS;
-        m->reflect = f->e->reflect;
-        m->opacity = 1 - f->e->transparency;
-        return;
-    }
     const float *a = render_scene_materials(f->r) + SCENE_MATERIAL_FLOATS * item;
     for (int c = 0; c < 3; c++)
         m->rgb[c] = a[SCENE_MATERIAL_RGB + c];
@@ -254,7 +244,7 @@ static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx
 /* The linear colour of q's hit under the lights, each seen where `seen` (NULL: all). */
 static void lit_color(const fx_frame *f, const fx_path *q, const fx_material *m, const double albedo[3],
                       const unsigned char *seen, double lin[3]) {
-    double p[3], n[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]}, diffuse = FX_AMBIENT, highlight = 0;
+    double p[3], n[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]}, diffuse = EFFECTS_AMBIENT, highlight = 0;
     hit_point(q, p);
     for (int l = 0; l < f->nlights; l++) {
         double L[3], h[3];
@@ -324,8 +314,7 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
                 int cast = paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[nshadow]);
                 ray_of[i * nl + l] = cast ? (long)nshadow++ : -1;
             }
-        iacsg_status st = fx_trace(&f->tracer, rays, nshadow, FX_SHADOW_EPS_FACTOR * f->view->eps, f->tracer.root_w,
-                                   hits, err);
+        iacsg_status st = fx_trace(&f->tracer, rays, nshadow, FX_SHADOW_EPS_FACTOR * f->view->eps, hits, err);
         if (st != IACSG_OK)
             return st;
         seen = (unsigned char *)ray_of; /* in place: entry k is read before byte k is written */
@@ -357,7 +346,7 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
         double p[3], n3[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
         hit_point(q, p);
         double off = offset_of(f, p, q->hit.t);
-        if (k > 0 && q->w * a * k >= FX_MIN_WEIGHT) { /* the mirror direction, from off the surface */
+        if (k > 0 && q->w * a * k >= EFFECTS_MIN_WEIGHT) { /* the mirror direction, from off the surface */
             fx_path *c = &kids[nkids++];
             *c = *q;
             c->w = q->w * a * k;
@@ -373,7 +362,7 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             c->ray.passing = 0;
         }
         double through = q->w * (1 - a);
-        if (through > 0 && (through < FX_MIN_WEIGHT || q->layers + 1 >= FX_MAX_LAYERS)) {
+        if (through > 0 && (through < EFFECTS_MIN_WEIGHT || q->layers + 1 >= EFFECTS_MAX_LAYERS)) {
             background_at(f, row, lin); /* what is left of the path */
             add(f->accum, q->pixel, through, lin);
         } else if (through > 0) { /* on through the surface: from just past it, the same direction */
@@ -394,16 +383,15 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
     return IACSG_OK;
 }
 
-/* Traces the rays of paths[0 .. n) into their hits, with leaves of width eps, Newton's window `newton`
- * (fx_trace). */
-static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double eps, double newton, iacsg_error *err) {
+/* Traces the rays of paths[0 .. n) into their hits, with leaves of width eps (fx_trace). */
+static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double eps, iacsg_error *err) {
     fx_ray *rays = reserve(&f->rays, (n + 1) * sizeof *rays);
     fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
     iacsg_status st = rays && hits ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         rays[i] = paths[i].ray;
     if (st == IACSG_OK)
-        st = fx_trace(&f->tracer, rays, n, eps, newton, hits, err);
+        st = fx_trace(&f->tracer, rays, n, eps, hits, err);
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         paths[i].hit = hits[i];
     return st;
@@ -421,7 +409,7 @@ static iacsg_status run_paths(fx_frame *f, fx_path *first, size_t n, iacsg_error
         paths = kids;
         n = nk;
         if (st == IACSG_OK)
-            st = trace_paths(f, paths, n, f->view->eps, f->tracer.root_w, err);
+            st = trace_paths(f, paths, n, f->view->eps, err);
     }
     return st;
 }
@@ -496,38 +484,48 @@ static int differ(const iacsg_frame *fr, int a, int b) {
     return ia >= 0 && fabsf(fr->depth[a] - fr->depth[b]) > FX_AA_DEPTH * fminf(fr->depth[a], fr->depth[b]);
 }
 
-/* -aa N: the pixels on an edge (differ) get N x N rays of their own, on a regular grid in the pixel, each
- * weighing 1 / N^2; their centre rays' colours are replaced. `order`: the traced pixels in block order. */
+/* The traced pixels on an edge (differ), in block order (`order`, count of them), into edges; returns how many. */
+static size_t edge_pixels(const fx_frame *f, const iacsg_frame *fr, const int *order, size_t count, int *edges) {
+    const iacsg_view *v = f->view;
+    int row0, row1, w = v->width;
+    traced_rows(v, &row0, &row1);
+    size_t n = 0;
+    for (size_t k = 0; k < count; k++) {
+        int p = order[k], i = p % w, j = p / w, edge = 0;
+        for (int di = -1; di <= 1; di += 2)
+            edge |= i + di >= 0 && i + di < w && differ(fr, p, p + di);
+        for (int dj = -1; dj <= 1; dj += 2)
+            edge |= j + dj >= row0 && j + dj < row1 && differ(fr, p, p + dj * w);
+        if (edge)
+            edges[n++] = p;
+    }
+    return n;
+}
+
+/* -aa's rays' leaves: eps, or a quarter of a sample's footprint where that is wider. A ray that passes that close
+ * to a surface may be shown hitting it, so a silhouette grows by at most a quarter of a sample; the samples only
+ * colour the pixel (its depth is the centre ray's). Rays grazing silhouettes are the costly ones: on
+ * min(sphere, torus) (eps 1e-5) 136 evaluations a sample at eps, 73 so (the camera rays: 2.4). */
+static double aa_eps(const fx_frame *f) {
+    return fmax(f->view->eps, f->tracer.footprint / (FX_AA_EPS_PER_SAMPLE * f->e->aa));
+}
+
+/* -aa N on the segment path: the pixels on an edge get N x N rays of their own, on a regular grid in the pixel,
+ * each weighing 1 / N^2; their centre rays' colours are replaced. `order`: the traced pixels in block order. */
 static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, size_t count, fx_path *paths,
                               iacsg_error *err) {
     const iacsg_view *v = f->view;
-    int aa = f->e->aa, row0, row1, w = v->width;
-    traced_rows(v, &row0, &row1);
-    unsigned char *edge = calloc((size_t)v->width * (size_t)v->height + 1, 1);
-    if (!edge)
+    int aa = f->e->aa, w = v->width;
+    int *edges = malloc((count + 1) * sizeof *edges);
+    if (!edges)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
-    for (int j = row0; j < row1; j++)
-        for (int i = 0; i < w; i++) {
-            int p = j * w + i;
-            if (i + 1 < w && differ(fr, p, p + 1))
-                edge[p] = edge[p + 1] = 1;
-            if (j + 1 < row1 && differ(fr, p, p + w))
-                edge[p] = edge[p + w] = 1;
-        }
+    size_t nedges = edge_pixels(f, fr, order, count, edges);
     iacsg_status st = IACSG_OK;
     size_t per_chunk = FX_CHUNK / ((size_t)aa * aa), k = 0;
-    /* The samples' leaves: eps, or a quarter of a sample's footprint where that is wider. A ray that passes that
-     * close to a surface may be shown hitting it, so a silhouette grows by at most a quarter of a sample; the
-     * samples only colour the pixel (its depth is the centre ray's). Rays grazing silhouettes are the costly
-     * ones: on min(sphere, torus) (eps 1e-5) 136 evaluations a sample at eps, 73 so (the camera rays: 2.4). */
-    double aa_eps = fmax(f->view->eps, f->tracer.footprint / (FX_AA_EPS_PER_SAMPLE * aa));
-    while (st == IACSG_OK && k < count) { /* the edge pixels in block order, per_chunk at a time */
+    while (st == IACSG_OK && k < nedges) { /* the edge pixels in block order, per_chunk at a time */
         size_t n = 0, first = k;
-        for (size_t pixels = 0; k < count && pixels < per_chunk; k++) {
-            int pixel = order[k], i = pixel % w, j = pixel / w;
-            if (!edge[pixel])
-                continue;
-            pixels++;
+        for (; k < nedges && k - first < per_chunk; k++) {
+            int pixel = edges[k], i = pixel % w, j = pixel / w;
             for (int c = 0; c < 3; c++) /* the samples' light replaces the centre ray's colour */
                 fr->rgb[3 * (size_t)pixel + c] = 0;
             for (int b = 0; b < aa; b++)
@@ -539,14 +537,117 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
                     camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
                 }
         }
-        st = trace_paths(f, paths, n, aa_eps, f->tracer.footprint, err);
+        st = trace_paths(f, paths, n, aa_eps(f), err);
         if (st == IACSG_OK)
             st = run_paths(f, paths, n, err);
-        for (size_t e = first; st == IACSG_OK && e < k; e++)
-            if (edge[order[e]])
-                encode(fr->rgb, order[e]);
+        for (size_t q = first; st == IACSG_OK && q < k; q++)
+            encode(fr->rgb, edges[q]);
     }
-    free(edge);
+    free(edges);
+    return st;
+}
+
+/* The first-root path's effects' block (kernels/effects.h): the view's lights or the default rig (its lights
+ * computed on the device as the plain kernel computes them), the expression's material. */
+static void expr_block(const fx_frame *f, double b[EFFECTS_COUNT]) {
+    const iacsg_effects *e = f->e;
+    memset(b, 0, EFFECTS_COUNT * sizeof *b);
+    b[EFFECTS_SHADE] = e->shade;
+    b[EFFECTS_SHADOWS] = e->shadows;
+    b[EFFECTS_BOUNCES] = e->bounces;
+    for (int c = 0; c < 3; c++) {
+        float rgb[3];
+        scene_palette(0, rgb);
+        b[EFFECTS_ALBEDO + c] = fx_expr_albedo[c];
+        b[EFFECTS_BG_TOP + c] = e->background ? e->background_top[c] : fx_default_top[c];
+        b[EFFECTS_BG_BOTTOM + c] = e->background ? e->background_bottom[c] : fx_default_bottom[c];
+        b[EFFECTS_ID_RGB + c] = rgb[c];
+    }
+    b[EFFECTS_SPECULAR] = SCENE_DEFAULT_SPECULAR;
+    b[EFFECTS_SHININESS] = SCENE_DEFAULT_SHININESS;
+    b[EFFECTS_REFLECT] = e->reflect;
+    b[EFFECTS_OPACITY] = 1 - e->transparency;
+    b[EFFECTS_DEPTH_LO] = f->depth_lo;
+    b[EFFECTS_DEPTH_HI] = f->depth_hi;
+    b[EFFECTS_NLIGHTS] = f->nlights;
+    for (int l = 0; l < f->nlights; l++) {
+        double *L = b + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
+        L[EFFECTS_LIGHT_KIND] = e->nlights == 0 ? EFFECTS_LIGHT_CAMERA
+                                : f->lights[l].point ? EFFECTS_LIGHT_POINT
+                                                     : EFFECTS_LIGHT_DIR;
+        for (int k = 0; k < 3; k++)
+            L[EFFECTS_LIGHT_XYZ + k] = e->nlights == 0 ? (k < 2 ? fx_rig[l][k] : 0) : f->lights[l].v[k];
+        L[EFFECTS_LIGHT_INTENSITY] = f->lights[l].intensity;
+        L[EFFECTS_LIGHT_HIGHLIGHT] = f->lights[l].highlight;
+    }
+}
+
+/* The first-root path: the centre rays' colours (all of them, or where the kernel's stand only the misses, for
+ * the background), then -aa's edges, all shaded on the device (render_effects_device.c). */
+static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, const int *order, size_t count, iacsg_error *err) {
+    const iacsg_effects *e = f->e;
+    double block[EFFECTS_COUNT];
+    expr_block(f, block);
+    int kid_slots = e->bounces > 0 && e->reflect > 0 ? (e->transparency > 0 ? EFFECTS_MAX_LAYERS : 1) : 0;
+    int keep = kernel_colors_hold(f);
+    int *listed = malloc((count + 1) * sizeof *listed);
+    if (!listed)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    size_t n = 0;
+    for (size_t k = 0; k < count; k++)
+        if (!keep || isinf(frame->depth[order[k]]))
+            listed[n++] = order[k];
+    for (size_t k = 0; k < n; k++)
+        memset(frame->rgb + 3 * (size_t)listed[k], 0, 3 * sizeof(float));
+    double none[2] = {0, 0};
+    iacsg_status st = fx_device_run(&f->tracer, block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, none, frame,
+                                    frame->rgb, err);
+    for (size_t k = 0; st == IACSG_OK && k < n; k++)
+        encode(frame->rgb, listed[k]);
+    if (st == IACSG_OK && e->aa > 1) {
+        n = edge_pixels(f, frame, order, count, listed);
+        for (size_t k = 0; k < n; k++)
+            memset(frame->rgb + 3 * (size_t)listed[k], 0, 3 * sizeof(float));
+        double aa[2] = {aa_eps(f), f->tracer.footprint};
+        st = fx_device_run(&f->tracer, block, kid_slots, EFFECTS_MODE_AA, listed, n, e->aa, aa, frame, frame->rgb,
+                           err);
+        for (size_t k = 0; st == IACSG_OK && k < n; k++)
+            encode(frame->rgb, listed[k]);
+    }
+    free(listed);
+    return st;
+}
+
+/* The segment path: the centre rays' colours FX_CHUNK hits at a time (a miss is its background, and a hit keeps
+ * the kernel's colour where the host's would be the same); then -aa decides its edges on them. */
+static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, const int *order, size_t count, iacsg_error *err) {
+    iacsg_status st = IACSG_OK;
+    fx_path *paths = malloc(FX_CHUNK * sizeof *paths);
+    if (!paths)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    int keep = kernel_colors_hold(f);
+    for (size_t k = 0; st == IACSG_OK && k < count;) {
+        size_t n = 0, first = k;
+        for (; k < count && n < FX_CHUNK; k++) {
+            int pixel = order[k], miss = isinf(frame->depth[pixel]);
+            if (miss || !keep)
+                memset(frame->rgb + 3 * (size_t)pixel, 0, 3 * sizeof(float));
+            if (miss) {
+                double lin[3];
+                background_at(f, pixel / f->view->width, lin);
+                add(f->accum, pixel, 1, lin);
+            } else if (!keep) {
+                centre_path(f, frame, pixel, &paths[n++]);
+            }
+        }
+        st = run_paths(f, paths, n, err);
+        for (size_t q = first; st == IACSG_OK && q < k; q++)
+            if (!keep || isinf(frame->depth[order[q]]))
+                encode(frame->rgb, order[q]);
+    }
+    if (st == IACSG_OK && f->e->aa > 1)
+        st = antialias(f, frame, order, count, paths, err);
+    free(paths);
     return st;
 }
 
@@ -563,37 +664,13 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
         st = fx_tracer_open(&f.tracer, r, view, err);
     size_t count = 0;
     int *order = NULL;
-    fx_path *paths = malloc(FX_CHUNK * sizeof *paths);
     f.accum = frame->rgb;
-    if (st == IACSG_OK && (!paths || !(order = block_order(&f, frame, &count))))
+    if (st == IACSG_OK && !(order = block_order(&f, frame, &count)))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     resolve_lights(&f);
-    /* The centre rays' colours, FX_CHUNK hits at a time (a miss is its background, and a hit keeps the kernel's
-     * colour where the host's would be the same); then -aa decides its edges on them. */
-    int keep = kernel_colors_hold(&f);
-    for (size_t k = 0; st == IACSG_OK && k < count;) {
-        size_t n = 0, first = k;
-        for (; k < count && n < FX_CHUNK; k++) {
-            int pixel = order[k], miss = isinf(frame->depth[pixel]);
-            if (miss || !keep)
-                memset(frame->rgb + 3 * (size_t)pixel, 0, 3 * sizeof(float));
-            if (miss) {
-                double lin[3];
-                background_at(&f, pixel / view->width, lin);
-                add(f.accum, pixel, 1, lin);
-            } else if (!keep) {
-                centre_path(&f, frame, pixel, &paths[n++]);
-            }
-        }
-        st = run_paths(&f, paths, n, err);
-        for (size_t q = first; st == IACSG_OK && q < k; q++)
-            if (!keep || isinf(frame->depth[order[q]]))
-                encode(frame->rgb, order[q]);
-    }
-    if (st == IACSG_OK && f.e->aa > 1)
-        st = antialias(&f, frame, order, count, paths, err);
+    if (st == IACSG_OK)
+        st = r->scene ? apply_scene(&f, frame, order, count, err) : apply_expr(&f, frame, order, count, err);
     free(order);
-    free(paths);
     fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1], &f.rays, &f.hits};
     for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
         free(bufs[k]->p);

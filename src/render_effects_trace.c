@@ -1,6 +1,7 @@
-/* src/render_effects_trace.c -- see render_effects_trace.h. The rays go to the device in one buffer per call,
- * in the working precision (kernels/effects.h); the first-root path traces 16 of them per work-item in SIMD
- * lanes, the segment path one per work-item with per-ray buffers that every ray fits (render_scene.c). */
+/* src/render_effects_trace.c -- see render_effects_trace.h. The device side of a frame's effects (parameters,
+ * the kernel made at the renderer's first use), and the segment path's secondary rays: they go to the device in
+ * one buffer per call, in the working precision (kernels/effects.h), traced one per work-item with per-ray buffers
+ * that every ray fits (render_scene.c). */
 #include "render_effects_trace.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"
@@ -42,8 +43,6 @@ static double root_width(const iacsg_view *v) {
     return 2 * (sqrt(diag2) + sqrt(far2)) + 1;
 }
 
-static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
-                                double newton, iacsg_error *err);
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
                                  iacsg_error *err);
 
@@ -52,8 +51,7 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_b
 static iacsg_status compile_trace_now(fx_tracer *t, iacsg_error *err) {
     struct trace_buffers none = {0};
     double eps[1] = {0};
-    return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, err)
-                       : launch_expr(t, t->r->fx->trace, &none, 0, eps, 0, err);
+    return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, err) : fx_device_compile(t, err);
 }
 
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
@@ -73,7 +71,7 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
     CLRT_CHECK(err, rc);
     if (!fx->trace) {
         double t0 = render_now_seconds();
-        fx->trace = clCreateKernel(r->program, r->scene ? "iacsg_scene_trace_rays" : "iacsg_trace_rays", &rc);
+        fx->trace = clCreateKernel(r->program, r->scene ? "iacsg_scene_trace_rays" : "iacsg_effects", &rc);
         CLRT_CHECK(err, rc);
         st = compile_trace_now(t, err);
         r->build_seconds += render_now_seconds() - t0;
@@ -116,34 +114,6 @@ static void release_trace_buffers(trace_buffers *b) {
     for (int k = 0; k < 6; k++)
         if (all[k])
             clReleaseMemObject(all[k]);
-}
-
-/* The first-root path: arguments of kernels/effects.cl, one launch of n / 16 work-items. */
-static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
-                                double newton, iacsg_error *err) {
-    iacsg_renderer *r = t->r;
-    size_t rb = real_bytes(r);
-    double reals[2];
-    put_real(r, reals, 0, t->root_w);
-    char w_real[8], fp_real[8];
-    memcpy(w_real, reals, rb);
-    put_real(r, reals, 0, newton);
-    memcpy(fp_real, reals, rb);
-    CLRT_CHECK(err, clSetKernelArg(k, 0, sizeof(cl_mem), &t->params));
-    CLRT_CHECK(err, clSetKernelArg(k, 1, sizeof(cl_mem), &b->rays));
-    CLRT_CHECK(err, clSetKernelArg(k, 2, sizeof n, &n));
-    CLRT_CHECK(err, clSetKernelArg(k, 3, rb, w_real));
-    CLRT_CHECK(err, clSetKernelArg(k, 4, rb, eps_real));
-    CLRT_CHECK(err, clSetKernelArg(k, 5, rb, fp_real));
-    CLRT_CHECK(err, clSetKernelArg(k, 6, sizeof(cl_mem), &t->all_groups));
-    CLRT_CHECK(err, clSetKernelArg(k, 7, sizeof(cl_mem), &b->t));
-    CLRT_CHECK(err, clSetKernelArg(k, 8, sizeof(cl_mem), &b->normal));
-    CLRT_CHECK(err, clSetKernelArg(k, 9, sizeof(cl_mem), b->evals ? &b->evals : NULL));
-    size_t global = n > 0 ? ((size_t)n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */
-    CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL));
-    return IACSG_OK;
-fail:
-    return IACSG_ERR_OPENCL;
 }
 
 /* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items as the per-ray
@@ -204,8 +174,7 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, double newton, fx_hit *hits,
-                      iacsg_error *err) {
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err) {
     if (n == 0)
         return IACSG_OK;
     if (n > 0x7fffffff / EFFECTS_RAY_REALS)
@@ -232,7 +201,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, do
     cl_mem *dst[6] = {&b.rays, &b.t, &b.normal, &b.item, &b.evals, &b.passing};
     cl_int rc = CL_SUCCESS;
     for (int k = 0; k < 6; k++) {
-        if (((k == 3 || k == 5) && !r->scene) || (k == 4 && !r->config.stats))
+        if (k == 4 && !r->config.stats)
             continue;
         cl_mem_flags flags = (k == 0 || k == 5 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR;
         *dst[k] = clCreateBuffer(r->rt.context, flags, bytes[k], host + at[k], &rc);
@@ -240,8 +209,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, do
     }
     double eps_block[1];
     put_real(r, eps_block, 0, eps);
-    st = r->scene ? launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err)
-                  : launch_expr(t, r->fx->trace, &b, (cl_int)n, eps_block, newton, err);
+    st = launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err);
     for (int k = 1; k < 5 && st == IACSG_OK; k++) /* the outputs */
         if (*dst[k])
             st = sync_to_host(r->rt.queue, *dst[k], bytes[k], err);

@@ -24,7 +24,7 @@ typedef struct {
 
 /* What a renderer keeps for its effects (render_internal.h: r->fx), made at the first use. */
 struct render_fx {
-    cl_kernel trace; /* iacsg_trace_rays or iacsg_scene_trace_rays */
+    cl_kernel trace; /* iacsg_effects (kernels/effects.cl) or iacsg_scene_trace_rays */
     fx_item *items;  /* a scene's items' materials, as the effects need them */
     int nitems;
 };
@@ -49,12 +49,18 @@ typedef struct {
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err);
 void fx_tracer_close(fx_tracer *t);
 
-/* Traces rays[0 .. n) with leaves of width eps into hits[0 .. n). Interval Newton (the first-root path) starts
- * on nodes no wider than 32 `newton` (packet.h's window, NEWTON_PIXELS footprints): t->footprint for camera rays
- * (-aa), as the camera rays have it; t->root_w, all of the tree, for rays from a hit, whose first nodes hold the
- * surface they leave (measured on min(sphere, torus): 9.1 evaluations a shadow ray against 10.7, 12.7 a reflected
- * ray against 13.2; -aa's rays 73 against 99). */
-iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, double newton, fx_hit *hits,
-                      iacsg_error *err);
+/* The first-root path's effects on the device (src/render_effects_device.c, kernels/effects.cl): the paths of
+ * `mode` (kernels/effects.h: the centre rays of pixels[0 .. npixels), or -aa's aa x aa rays in each of them, with
+ * leaves aa_eps_footprint[0] wide and Newton's window aa_eps_footprint[1]) and the reflected rays they lead to,
+ * bounce after bounce, each path listing at most kid_slots of them; their colours (linear light, weighted) are
+ * added to accum (3 floats per pixel). `block`: the effects' parameters (EFFECTS_COUNT, kernels/effects.h). */
+iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int mode, const int *pixels,
+                           size_t npixels, int aa, const double aa_eps_footprint[2], const iacsg_frame *frame,
+                           float *accum, iacsg_error *err);
+/* One launch over no paths: PoCL compiles the kernel then (render_effects_trace.c: compile_trace_now). */
+iacsg_status fx_device_compile(fx_tracer *t, iacsg_error *err);
+
+/* The segment path's secondary rays: traces rays[0 .. n) with leaves of width eps into hits[0 .. n). */
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err);
 
 #endif
