@@ -16,14 +16,57 @@
  * (this file is appended to the first-root path's program after render.cl).
  */
 
+#ifdef PACKET_NEWTON
+/* A secondary ray leaves a surface (or starts next to one): bisection must halve its first nodes down to its
+ * distance from that surface before one excludes it, some 2 log2(length / distance) evaluations. Instead, from
+ * t_near: [a, a + w] is proven root-free by the mean value form anchored at its start, F(a) + F'([a, a + w]) [0, w]
+ * (F' = iacsg_Fdv's derivative along the ray over the segment's box, bounded: packet.h's theorem), which excludes
+ * 0 wherever F(a) does and F does not turn back towards 0 within the segment, however wide it is next to how far
+ * the surface is; then a moves to a + w and w grows fourfold, until a step fails (the lane's walk then starts at
+ * a) or the ray is done. Returns each lane's a. */
+#define EFFECTS_LEAVE_STEPS 12
+#ifndef EFFECTS_LEAVE_FIRST
+#define EFFECTS_LEAVE_FIRST 4096
+#define EFFECTS_LEAVE_GROW 4
+#define EFFECTS_LEAVE_SHRINK 0.125f
+#endif
+static ia_realv effects_leave(const ia_realv o[3], const ia_realv d[3], ia_realv t_near, ia_realv t_far, ia_maskv on,
+                              ia_realv leaving, iav time, packet_index *evals) {
+    ia_realv a = t_near, w = EFFECTS_LEAVE_FIRST * leaving;
+    ia_maskv going = on & (a < t_far);
+    for (int step = 0; step < EFFECTS_LEAVE_STEPS && iav_any(going); step++) {
+        ia_realv b = fmin(a + w, t_far);
+        iav seg = iav_make(a, b), at_a = iav_make(a, a), slope;
+        iav f = iacsg_Fdv(packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
+                          packet_extent(o[2], d[2], seg), time, iav_make(d[0], d[0]), iav_make(d[1], d[1]),
+                          iav_make(d[2], d[2]), &slope);
+        iav fa = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_a), packet_extent(o[1], d[1], at_a),
+                          packet_extent(o[2], d[2], at_a), time);
+        PACKET_COUNT(*evals, going);
+        PACKET_COUNT(*evals, going);
+        ia_maskv use = going & isfinite(slope.lo) & isfinite(slope.hi); /* NaN is not finite */
+        /* lanes not using it multiply by 0: an infinite slope there would send every lane down iav_mul's slow path */
+        iav form = iav_add(fa, iav_mul(iav__pick(iav_point(0), slope, use), iav_make(IAV_R(0), b - a)));
+        ia_realv lo = select(f.lo, fmax(f.lo, form.lo), use), hi = select(f.hi, fmin(f.hi, form.hi), use);
+        ia_maskv empty = going & ((lo > 0) | (hi < 0));
+        a = select(a, b, empty);
+        w = select(w * EFFECTS_LEAVE_SHRINK, w * EFFECTS_LEAVE_GROW, empty);
+        going &= (a < t_far) & (empty | (w >= leaving));
+    }
+    return a;
+}
+#endif
+
 /* The first hits of the rays o + t d of the lanes of `on` in [tn, tf] within the bounds, with leaves of width eps
  * and interval Newton from nodes no wider than 32 `newton` (packet.h): the start of the hit leaf in *t (+inf on a
- * miss) and, where `normals`, the unit normal there facing the ray in n. Counts the rays and their evaluations
- * (KERNEL_STATS). */
+ * miss) and, where `normals`, the unit normal there facing the ray in n. A ray that starts next to a surface
+ * (`leaving`, its distance from it) first leaves it by effects_leave. The tree is [0, w], w the farthest end of
+ * the packet's rays (so no level of it is spent on a node that holds a whole ray). Counts the rays and their
+ * evaluations (KERNEL_STATS). */
 static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *all_groups, const ia_realv o[3],
-                              const ia_realv d[3], ia_realv tn, ia_realv tf, ia_maskv on, ia_real root_w, ia_real eps,
-                              ia_real newton, ia_realv *t, int normals, ia_realv n[3], packet_index *rays,
-                              packet_index *evals) {
+                              const ia_realv d[3], ia_realv tn, ia_realv tf, ia_maskv on, ia_realv leaving,
+                              ia_real eps, ia_real newton, ia_realv *t, int normals, ia_realv n[3],
+                              packet_index *rays, packet_index *evals) {
     ia_realv t_near, t_far;
     ia_maskv searching = on & packet_clip(params, o, d, &t_near, &t_far);
     t_near = fmax(t_near, tn);
@@ -32,14 +75,24 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
     PACKET_COUNT(*rays, on);
     ia_realv lo = IAV_R(0), hi = IAV_R(0);
     ia_real time = params[PARAM_TIME_LO];
-    ia_maskv hit = packet_first_root(all_groups, o, d, 0, root_w, (packet_int)0, (packet_index)0, t_near, t_far,
-                                     searching, eps, newton, 0, iav_const(time, params[PARAM_TIME_HI]), &lo, &hi,
-                                     evals);
+    iav times = iav_const(time, params[PARAM_TIME_HI]);
+#ifdef PACKET_NEWTON
+    if (iav_any(searching & (leaving > 0)))
+        t_near = effects_leave(o, d, t_near, t_far, searching & (leaving > 0), leaving, times, evals);
+#else
+    (void)leaving;
+#endif
+    ia_real far[IA_VW], w = 0;
+    IAV_STORE(select(IAV_R(0), t_far, searching), far);
+    for (int k = 0; k < IA_VW; k++)
+        w = fmax(w, far[k]);
+    ia_maskv hit = packet_first_root(all_groups, o, d, 0, w, (packet_int)0, (packet_index)0, t_near, t_far,
+                                     searching, eps, newton, 0, times, &lo, &hi, evals);
     *t = select(IAV_R(IA_INF), lo, hit);
     if (normals) {
         ia_realv g[3] = {IAV_R(0), IAV_R(0), IAV_R(0)};
         if (iav_any(hit))
-            packet_gradients(all_groups, 0, root_w, hit, o, d, lo * (ia_real)0.5 + hi * (ia_real)0.5, time, g);
+            packet_gradients(all_groups, 0, w, hit, o, d, lo * (ia_real)0.5 + hi * (ia_real)0.5, time, g);
         shade_normals(g, d, n);
     }
     return hit;
@@ -134,8 +187,9 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
             n[c] = IAV_LOAD(n_k[c]);
     } else {
         int camera = mode == EFFECTS_MODE_AA;
-        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, root_w, camera ? aa_eps : eps,
-                            camera ? footprint : root_w, &t, 1, n, &rays, &evals);
+        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live,
+                            camera ? IAV_R(0) : effects_offset(eps, o, IAV_R(0)),
+                            camera ? aa_eps : eps, footprint, &t, 1, n, &rays, &evals);
     }
     /* the background of the pixels' rows, linear */
     shade_colorv bg[3], acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
@@ -177,7 +231,7 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
                 for (int c = 0; c < 3; c++)
                     so[c] = p[c] + off * n[c];
                 ia_realv dist = shade_towards(params, L, so, sd);
-                seen &= ~effects_trace(params, all_groups, so, sd, IAV_R(0), dist, seen, root_w, eps, root_w, &st, 0,
+                seen &= ~effects_trace(params, all_groups, so, sd, IAV_R(0), dist, seen, off, eps, footprint, &st, 0,
                                        unused, &rays, &evals);
             }
             shade_add_light(L, n, d, towards, seen, fx[EFFECTS_SHININESS], &diffuse, &highlight);
@@ -224,7 +278,7 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
         for (int c = 0; c < 3; c++)
             o[c] = select(o[c], p[c] - off * n[c], live);
         layers = select(layers, layers + 1, live);
-        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, root_w, eps, root_w, &t, 1, n,
+        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, off, eps, footprint, &t, 1, n,
                             &rays, &evals);
     }
     float out[3][IA_VW];
