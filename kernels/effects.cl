@@ -19,39 +19,46 @@
 #ifdef PACKET_NEWTON
 /* A secondary ray leaves a surface (or starts next to one): bisection must halve its first nodes down to its
  * distance from that surface before one excludes it, some 2 log2(length / distance) evaluations. Instead, from
- * t_near: [a, a + w] is proven root-free by the mean value form anchored at its start, F(a) + F'([a, a + w]) [0, w]
+ * t_near: [a, b] is proven root-free by the mean value form anchored at its start, F(a) + F'([a, b]) [0, b - a]
  * (F' = iacsg_Fdv's derivative along the ray over the segment's box, bounded: packet.h's theorem), which excludes
- * 0 wherever F(a) does and F does not turn back towards 0 within the segment, however wide it is next to how far
- * the surface is; then a moves to a + w and w grows fourfold, until a step fails (the lane's walk then starts at
- * a) or the ray is done. Returns each lane's a. */
+ * 0 wherever F(a) does and F does not turn back towards 0 within the segment, however long it is next to how far
+ * the surface is; then a moves to b, F(b) is enclosed by the same form at b (no evaluation), and the step grows
+ * fourfold; a step that fails is retried an eighth as long, down to the distance `leaving`. The lane's walk then
+ * starts at a. Measured on the reference view (eps 1e-5; evaluations per shadow ray, reflected ray, transparent
+ * layer): without it 14.8, 16.1, 49.8; first steps 8 `leaving` (x 4 on success, no retry) 16.4, 19.5, 46.1; 1024
+ * (x 4, / 8) 9.8, 13.6, 36.7; 4096 8.0, 11.9, 36.0; 16384 (/ 16) 8.4, 11.2, 38.5; an eighth of the ray 8.4, 12.2,
+ * 36.1. Returns each lane's a. */
 #define EFFECTS_LEAVE_STEPS 12
-#ifndef EFFECTS_LEAVE_FIRST
 #define EFFECTS_LEAVE_FIRST 4096
-#define EFFECTS_LEAVE_GROW 4
+#define EFFECTS_LEAVE_GROW 8
 #define EFFECTS_LEAVE_SHRINK 0.125f
-#endif
 static ia_realv effects_leave(const ia_realv o[3], const ia_realv d[3], ia_realv t_near, ia_realv t_far, ia_maskv on,
                               ia_realv leaving, iav time, packet_index *evals) {
     ia_realv a = t_near, w = EFFECTS_LEAVE_FIRST * leaving;
     ia_maskv going = on & (a < t_far);
+    iav at_a = iav_make(a, a);
+    iav fa = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_a), packet_extent(o[1], d[1], at_a),
+                      packet_extent(o[2], d[2], at_a), time);
+    PACKET_COUNT(*evals, going);
     for (int step = 0; step < EFFECTS_LEAVE_STEPS && iav_any(going); step++) {
         ia_realv b = fmin(a + w, t_far);
-        iav seg = iav_make(a, b), at_a = iav_make(a, a), slope;
+        iav seg = iav_make(a, b), slope;
         iav f = iacsg_Fdv(packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
                           packet_extent(o[2], d[2], seg), time, iav_make(d[0], d[0]), iav_make(d[1], d[1]),
                           iav_make(d[2], d[2]), &slope);
-        iav fa = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_a), packet_extent(o[1], d[1], at_a),
-                          packet_extent(o[2], d[2], at_a), time);
-        PACKET_COUNT(*evals, going);
         PACKET_COUNT(*evals, going);
         ia_maskv use = going & isfinite(slope.lo) & isfinite(slope.hi); /* NaN is not finite */
         /* lanes not using it multiply by 0: an infinite slope there would send every lane down iav_mul's slow path */
-        iav form = iav_add(fa, iav_mul(iav__pick(iav_point(0), slope, use), iav_make(IAV_R(0), b - a)));
+        iav s = iav__pick(iav_point(0), slope, use);
+        iav form = iav_add(fa, iav_mul(s, iav_sub(seg, at_a)));
         ia_realv lo = select(f.lo, fmax(f.lo, form.lo), use), hi = select(f.hi, fmin(f.hi, form.hi), use);
-        ia_maskv empty = going & ((lo > 0) | (hi < 0));
+        ia_maskv empty = use & ((lo > 0) | (hi < 0));
+        iav at_b = iav_make(b, b), fb = iav_add(fa, iav_mul(s, iav_sub(at_b, at_a)));
+        fa = iav_make(select(fa.lo, fb.lo, empty), select(fa.hi, fb.hi, empty));
         a = select(a, b, empty);
+        at_a = iav_make(a, a);
         w = select(w * EFFECTS_LEAVE_SHRINK, w * EFFECTS_LEAVE_GROW, empty);
-        going &= (a < t_far) & (empty | (w >= leaving));
+        going &= (a < t_far) & (empty | ((w >= leaving) & use));
     }
     return a;
 }
