@@ -131,6 +131,18 @@ TEST_FP(effects_shadow_boundary) {
     check_shadows(view, fr);
 }
 
+/* The same with the ball as a distance, sqrt(x^2 + y^2 + (z - 0.6)^2) - 0.5, whose derivative is unbounded at its
+ * centre: a shadow ray whose steps' boxes hold the centre has no bounded F' there, and must go on by bisection
+ * (kernels/effects.cl: effects_march) rather than be taken for a miss. */
+TEST_FP(effects_shadow_boundary_distance) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = shadow_effects();
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_expr("min(sqrt(x^2 + y^2 + (z - 0.6)^2) - 0.5, z)", &view, &fr);
+    check_shadows(view, fr);
+}
+
 /* The same scene as two regions of the expression's colour: the segment path's shadow rays. */
 TEST_FP(effects_shadow_boundary_regions) {
     iacsg_view view = ground_view(200);
