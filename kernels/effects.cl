@@ -173,15 +173,16 @@ static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shad
  * of pixel pixels[k], its hit the frame's (depth, normal); EFFECTS_MODE_AA, path k the ray (k mod aa^2) of an
  * aa x aa grid in pixel pixels[k / aa^2], weight 1 / aa^2, traced with leaves aa_eps and Newton's window
  * `footprint` (as camera rays); EFFECTS_MODE_PATHS, path k the ray paths[k] (EFFECTS_PATH_REALS) of pixel
- * pixels[k]. `bounce`: the reflections the paths have taken. Out per path: color (3 floats, linear light times
- * the weight), the reflected rays it lists (nkids, in kids from kid_slots k on), and with `stats` (KERNEL_STATS)
- * the rays it traced and their interval evaluations. */
+ * pixels[k]. `bounce`: the reflections the paths have taken. Out per path: its colour (3 floats: linear light
+ * times the weight, in `color`; a centre ray's in its pixel of the frame's `rgb`, display-encoded when it lists no
+ * reflected ray), the reflected rays it lists (nkids, in kids from kid_slots k on), and with `stats`
+ * (KERNEL_STATS) the rays it traced and their interval evaluations. */
 __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, int mode, int flags, int width,
                             int height, __global const int *pixels, __global const ia_real *paths, int npaths,
                             int bounce, int aa, __global const float *depth, __global const float *normal,
                             ia_real root_w, ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
-                            __global float *color, __global ia_real *kids, __global int *nkids, int kid_slots,
-                            __global uint *stats) {
+                            __global float *rgb, __global float *color, __global ia_real *kids,
+                            __global int *nkids, int kid_slots, __global uint *stats) {
     int first = (int)get_global_id(0) * IA_VW;
     if (first >= npaths)
         return;
@@ -333,8 +334,12 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
     IAV_STORE(rays, ray_count);
     IAV_STORE(evals, eval_count);
     for (int q = 0; q < IA_VW && first + q < npaths; q++) {
+        /* a centre ray's pixel is its alone: its display colour where it listed no reflected ray (gamma 2, as
+         * light.h encodes), else its linear light, which the reflected rays add to */
+        __global float *to = mode == EFFECTS_MODE_CENTRE ? rgb + 3 * (size_t)pix[q] : color + 3 * (first + q);
+        int final = mode == EFFECTS_MODE_CENTRE && nk[q] == 0;
         for (int c = 0; c < 3; c++)
-            color[3 * (first + q) + c] = out[c][q];
+            to[c] = final ? sqrt(fmin(fmax(out[c][q], 0.0f), 1.0f)) : out[c][q];
         if (kids)
             nkids[first + q] = nk[q];
         if (stats) { /* with KERNEL_STATS (-stats); else 0 */

@@ -582,8 +582,9 @@ static void expr_block(const fx_frame *f, double b[EFFECTS_COUNT]) {
     }
 }
 
-/* The first-root path: the centre rays' colours (all of them, or where the kernel's stand only the misses, for
- * the background), then -aa's edges, all shaded on the device (render_effects_device.c). */
+/* The first-root path: the centre rays' colours (the hits', and the misses' where the background is not the
+ * kernel's; none where the kernel's colours stand), then -aa's edges, all shaded on the device
+ * (render_effects_device.c). */
 static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, const int *order, size_t count, iacsg_error *err) {
     const iacsg_effects *e = f->e;
     double block[EFFECTS_COUNT];
@@ -594,25 +595,17 @@ static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, const int *order
     if (!listed)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     size_t n = 0;
-    for (size_t k = 0; k < count; k++)
-        if (!keep || isinf(frame->depth[order[k]]))
+    for (size_t k = 0; k < count; k++) {
+        int miss = isinf(frame->depth[order[k]]);
+        if (miss ? e->background : !keep)
             listed[n++] = order[k];
-    for (size_t k = 0; k < n; k++)
-        memset(frame->rgb + 3 * (size_t)listed[k], 0, 3 * sizeof(float));
+    }
     double none[2] = {0, 0};
-    iacsg_status st = fx_device_run(&f->tracer, block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, none, frame,
-                                    frame->rgb, err);
-    for (size_t k = 0; st == IACSG_OK && k < n; k++)
-        encode(frame->rgb, listed[k]);
+    iacsg_status st = fx_device_run(&f->tracer, block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, none, frame, err);
     if (st == IACSG_OK && e->aa > 1) {
-        n = edge_pixels(f, frame, order, count, listed);
-        for (size_t k = 0; k < n; k++)
-            memset(frame->rgb + 3 * (size_t)listed[k], 0, 3 * sizeof(float));
         double aa[2] = {aa_eps(f), f->tracer.footprint};
-        st = fx_device_run(&f->tracer, block, kid_slots, EFFECTS_MODE_AA, listed, n, e->aa, aa, frame, frame->rgb,
-                           err);
-        for (size_t k = 0; st == IACSG_OK && k < n; k++)
-            encode(frame->rgb, listed[k]);
+        n = edge_pixels(f, frame, order, count, listed);
+        st = fx_device_run(&f->tracer, block, kid_slots, EFFECTS_MODE_AA, listed, n, e->aa, aa, frame, err);
     }
     free(listed);
     return st;

@@ -1,15 +1,19 @@
 /* src/render_effects_device.c -- the first-root path's effects on the device (kernels/effects.cl): the paths of
- * one kind (the frame's centre rays, or -aa's rays) launched in slices, each launch adding its paths' colours
- * into the frame and listing their reflected rays, which the next launch takes (one launch per bounce):
+ * one kind (the frame's centre rays, or -aa's rays) launched in slices, each launch colouring the frame and
+ * listing the paths' reflected rays, which the next launch takes (one launch per bounce):
  *
- *   pixels (block order) --> iacsg_effects (mode) --> colours summed per pixel; reflected rays
- *     --> iacsg_effects (EFFECTS_MODE_PATHS, bounce + 1) --> ... until none is listed
+ *   pixels (block order) --> iacsg_effects (mode) --> a centre ray's colour in its pixel (final where it listed
+ *     no reflected ray), -aa's colours summed per pixel; reflected rays
+ *     --> iacsg_effects (EFFECTS_MODE_PATHS, bounce + 1) --> colours summed per pixel --> ... until none is listed
+ *   --> the pixels summed on the host encoded (gamma 2)
  *
- * The host only converts the effects' block to the working precision, moves the lists and sums the colours.
+ * The host only converts the effects' block to the working precision, moves the lists and sums the colours of
+ * the paths that share a pixel.
  */
 #include "render_effects_trace.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -46,10 +50,12 @@ static int generation_reserve(fx_generation *g, size_t n, size_t rb) {
 typedef struct {
     fx_tracer *t;
     cl_kernel k;
-    cl_mem fx, depth, normal;
+    cl_mem fx, depth, normal, rgb;
     const iacsg_view *view;
     int kid_slots; /* reflected rays a path may list */
-    float *accum;
+    float *accum;  /* the frame's rgb */
+    int *summed;   /* the pixels whose light is summed here, to encode at the end */
+    size_t nsummed;
     const double *aa_eps_footprint; /* -aa: the leaves' width and Newton's window */
     /* per launch, reused: colours, reflected rays and their counts, statistics */
     float *color;
@@ -108,9 +114,9 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
                 {sizeof(cl_mem), &mem[0]},       {sizeof(cl_mem), &mem[1]},  {sizeof ni, &ni},
                 {sizeof cl_bounce, &cl_bounce},  {sizeof cl_aa, &cl_aa},     {sizeof(cl_mem), &x->depth},
                 {sizeof(cl_mem), &x->normal},    {rb, root_w},               {rb, aa_eps},
-                {rb, footprint},                 {sizeof(cl_mem), &x->t->all_groups}, {sizeof(cl_mem), &mem[2]},
-                {sizeof(cl_mem), &mem[3]},       {sizeof(cl_mem), &mem[4]},  {sizeof slots, &slots},
-                {sizeof(cl_mem), &mem[5]}};
+                {rb, footprint},                 {sizeof(cl_mem), &x->t->all_groups}, {sizeof(cl_mem), &x->rgb},
+                {sizeof(cl_mem), &mem[2]},       {sizeof(cl_mem), &mem[3]},  {sizeof(cl_mem), &mem[4]},
+                {sizeof slots, &slots},          {sizeof(cl_mem), &mem[5]}};
     for (cl_uint a = 0; a < sizeof args / sizeof args[0] && st == IACSG_OK; a++)
         st = set_arg(x->k, a, args[a].bytes, args[a].v, err);
     size_t global = n > 0 ? (n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */
@@ -135,13 +141,15 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
     size_t samples = mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1;
     for (size_t i = 0; st == IACSG_OK && i < n; i++) {
         int pixel = pixels[i / samples];
-        for (int c = 0; c < 3; c++)
+        for (int c = 0; mode != EFFECTS_MODE_CENTRE && c < 3; c++) /* a centre ray's is in the frame already */
             x->accum[3 * (size_t)pixel + c] += x->color[3 * i + c];
         if (mem[5]) {
             x->t->rays += x->stats[2 * i];
             x->t->evals += x->stats[2 * i + 1];
         }
         int nk = x->kid_slots ? x->nkids[i] : 0;
+        if (mode == EFFECTS_MODE_CENTRE && nk > 0) /* its linear light, which the reflected rays add to */
+            x->summed[x->nsummed++] = pixel;
         if (nk > 0 && !generation_reserve(next, next->n + (size_t)nk, rb))
             st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the reflected rays");
         for (int q = 0; st == IACSG_OK && q < nk; q++) {
@@ -172,14 +180,14 @@ static iacsg_status launch_all(fx_device *x, int mode, const int *pixels, const 
     return st;
 }
 
-iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int mode,
-                           const int *pixels, size_t npixels, int aa, const double aa_eps_footprint[2],
-                           const iacsg_frame *frame, float *accum, iacsg_error *err) {
+iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int mode, const int *pixels,
+                           size_t npixels, int aa, const double aa_eps_footprint[2], iacsg_frame *frame,
+                           iacsg_error *err) {
     iacsg_renderer *r = t->r;
     size_t rb = real_bytes(r), n = npixels * (mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1);
     if (n == 0)
         return IACSG_OK;
-    fx_device x = {.t = t, .k = r->fx->trace, .view = t->view, .kid_slots = kid_slots, .accum = accum,
+    fx_device x = {.t = t, .k = r->fx->trace, .view = t->view, .kid_slots = kid_slots, .accum = frame->rgb,
                    .aa_eps_footprint = aa_eps_footprint};
     fx_generation gen[2] = {{0}};
     char reals[EFFECTS_COUNT * sizeof(double)];
@@ -193,7 +201,8 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
     size_t npix = (size_t)frame->width * (size_t)frame->height;
     cl_int rc = CL_SUCCESS;
     iacsg_status st = IACSG_OK;
-    if (!x.color || !x.nkids || (r->config.stats && !x.stats) || (kid_slots && !x.kids))
+    x.summed = malloc((npixels + 1) * sizeof *x.summed);
+    if (!x.color || !x.nkids || (r->config.stats && !x.stats) || (kid_slots && !x.kids) || !x.summed)
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     if (st == IACSG_OK) {
         x.fx = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, EFFECTS_COUNT * rb, reals, &rc);
@@ -203,9 +212,17 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
         if (rc == CL_SUCCESS)
             x.normal = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
                                       3 * npix * sizeof(float), frame->normal, &rc);
+        if (rc == CL_SUCCESS)
+            x.rgb = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, 3 * npix * sizeof(float),
+                                   frame->rgb, &rc);
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clCreateBuffer(effects)", __func__, __LINE__);
     }
+    if (st == IACSG_OK && mode == EFFECTS_MODE_AA) /* the samples' light replaces the centre ray's colour */
+        for (size_t k = 0; k < npixels; k++) {
+            memset(frame->rgb + 3 * (size_t)pixels[k], 0, 3 * sizeof(float));
+            x.summed[x.nsummed++] = pixels[k];
+        }
     if (st == IACSG_OK)
         st = launch_all(&x, mode, pixels, NULL, n, 0, aa, &gen[0], err);
     for (int bounce = 1, g = 0; st == IACSG_OK && gen[g].n > 0; bounce++, g = 1 - g) {
@@ -213,8 +230,21 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
         st = launch_all(&x, EFFECTS_MODE_PATHS, gen[g].pixel, gen[g].rec, gen[g].n, bounce, aa, &gen[1 - g], err);
         gen[g].n = 0;
     }
-    cl_mem all[3] = {x.fx, x.depth, x.normal};
-    for (int k = 0; k < 3; k++)
+    if (st == IACSG_OK && x.rgb) { /* the frame current on the host after the kernels wrote it */
+        void *p = clEnqueueMapBuffer(r->rt.queue, x.rgb, CL_TRUE, CL_MAP_READ | CL_MAP_WRITE, 0, 3 * npix * sizeof(float),
+                                     0, NULL, NULL, &rc);
+        if (rc == CL_SUCCESS)
+            rc = clEnqueueUnmapMemObject(r->rt.queue, x.rgb, p, 0, NULL, NULL);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clEnqueueMapBuffer(effects)", __func__, __LINE__);
+    }
+    for (size_t k = 0; st == IACSG_OK && k < x.nsummed; k++) /* gamma 2, as light.h encodes */
+        for (int c = 0; c < 3; c++) {
+            float *v = frame->rgb + 3 * (size_t)x.summed[k] + c;
+            *v = sqrtf(*v < 0 ? 0 : *v > 1 ? 1 : *v);
+        }
+    cl_mem all[4] = {x.fx, x.depth, x.normal, x.rgb};
+    for (int k = 0; k < 4; k++)
         if (all[k])
             clReleaseMemObject(all[k]);
     for (int g = 0; g < 2; g++) {
@@ -225,6 +255,7 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
     free(x.nkids);
     free(x.stats);
     free(x.kids);
+    free(x.summed);
     return st;
 }
 

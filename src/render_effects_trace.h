@@ -52,11 +52,12 @@ void fx_tracer_close(fx_tracer *t);
 /* The first-root path's effects on the device (src/render_effects_device.c, kernels/effects.cl): the paths of
  * `mode` (kernels/effects.h: the centre rays of pixels[0 .. npixels), or -aa's aa x aa rays in each of them, with
  * leaves aa_eps_footprint[0] wide and Newton's window aa_eps_footprint[1]) and the reflected rays they lead to,
- * bounce after bounce, each path listing at most kid_slots of them; their colours (linear light, weighted) are
- * added to accum (3 floats per pixel). `block`: the effects' parameters (EFFECTS_COUNT, kernels/effects.h). */
+ * bounce after bounce, each path listing at most kid_slots of them; the pixels' colours in the frame (its depth
+ * and normals the centre rays' hits) are replaced by theirs, display-encoded. `block`: the effects' parameters
+ * (EFFECTS_COUNT, kernels/effects.h). */
 iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int mode, const int *pixels,
-                           size_t npixels, int aa, const double aa_eps_footprint[2], const iacsg_frame *frame,
-                           float *accum, iacsg_error *err);
+                           size_t npixels, int aa, const double aa_eps_footprint[2], iacsg_frame *frame,
+                           iacsg_error *err);
 /* One launch over no paths: PoCL compiles the kernel then (render_effects_trace.c: compile_trace_now). */
 iacsg_status fx_device_compile(fx_tracer *t, iacsg_error *err);
 
