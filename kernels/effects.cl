@@ -173,13 +173,13 @@ static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shad
  * of pixel pixels[k], its hit the frame's (depth, normal); EFFECTS_MODE_AA, path k the ray (k mod aa^2) of an
  * aa x aa grid in pixel pixels[k / aa^2], weight 1 / aa^2, traced with leaves aa_eps and Newton's window
  * `footprint` (as camera rays); EFFECTS_MODE_PATHS, path k the ray paths[k] (EFFECTS_PATH_REALS) of pixel
- * pixels[k]. `bounce`: the reflections the paths have taken. Out per path: its colour (3 floats: linear light
+ * pixels[k]. Out per path: its colour (3 floats: linear light
  * times the weight, in `color`; a centre ray's in its pixel of the frame's `rgb`, display-encoded when it lists no
  * reflected ray), the reflected rays it lists (nkids, in kids from kid_slots k on), and with `stats`
  * (KERNEL_STATS) the rays it traced and their interval evaluations. */
 __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, int mode, int flags, int width,
                             int height, __global const int *pixels, __global const ia_real *paths, int npaths,
-                            int bounce, int aa, __global const float *depth, __global const float *normal,
+                            int aa, __global const float *depth, __global const float *normal,
                             ia_real root_w, ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
                             __global float *rgb, __global float *color, __global ia_real *kids,
                             __global int *nkids, int kid_slots, __global uint *stats) {
@@ -187,7 +187,8 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
     if (first >= npaths)
         return;
     int samples = mode == EFFECTS_MODE_AA ? aa * aa : 1, pix[IA_VW];
-    ia_real valid_k[IA_VW], w_k[IA_VW], layers_k[IA_VW], row_k[IA_VW], x2_k[IA_VW], y2_k[IA_VW], t_k[IA_VW];
+    ia_real valid_k[IA_VW], w_k[IA_VW], layers_k[IA_VW], bounces_k[IA_VW], row_k[IA_VW], x2_k[IA_VW], y2_k[IA_VW];
+    ia_real t_k[IA_VW];
     ia_real o_k[3][IA_VW], d_k[3][IA_VW], n_k[3][IA_VW];
     for (int k = 0; k < IA_VW; k++) {
         int path = min(first + k, npaths - 1);
@@ -196,7 +197,7 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
         int i = pix[k] % width, j = pix[k] / width, s = path % samples;
         row_k[k] = (ia_real)j;
         w_k[k] = mode == EFFECTS_MODE_AA ? (ia_real)1 / (ia_real)samples : 1;
-        layers_k[k] = 0;
+        layers_k[k] = bounces_k[k] = 0;
         x2_k[k] = (ia_real)(2 * i + 1); /* the centre ray's, exactly as the camera kernel's (packet_rays) */
         y2_k[k] = (ia_real)(2 * j + 1);
         if (mode == EFFECTS_MODE_AA) {
@@ -214,9 +215,11 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
             }
             w_k[k] = q[EFFECTS_PATH_WEIGHT];
             layers_k[k] = q[EFFECTS_PATH_LAYERS];
+            bounces_k[k] = q[EFFECTS_PATH_BOUNCES];
         }
     }
     ia_realv o[3], d[3], n[3], t = IAV_LOAD(t_k), through = IAV_LOAD(w_k), layers = IAV_LOAD(layers_k);
+    ia_realv bounces = IAV_LOAD(bounces_k);
     ia_maskv live = IAV_LOAD(valid_k) != 0, hit;
     packet_index rays = (packet_index)0, evals = (packet_index)0;
     if (mode == EFFECTS_MODE_PATHS)
@@ -248,7 +251,7 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
     for (int c = 0; c < 3; c++)
         bg[c] *= bg[c];
     int shade = (int)fx[EFFECTS_SHADE], nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
-    ia_real a = fx[EFFECTS_OPACITY], k = bounce < (int)fx[EFFECTS_BOUNCES] ? fx[EFFECTS_REFLECT] : 0;
+    ia_real a = fx[EFFECTS_OPACITY], max_bounces = fx[EFFECTS_BOUNCES];
     int nk[IA_VW];
     for (int q = 0; q < IA_VW; q++)
         nk[q] = 0;
@@ -288,19 +291,40 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
             albedo[c] = shade == EFFECTS_SHADE_GRADIENT ? g * g : (shade_colorv)(float)fx[EFFECTS_ALBEDO + c];
         }
         shade_lit_linear(albedo, IAV_R(fx[EFFECTS_SPECULAR]), diffuse, highlight, lin);
+        /* the fraction of the light reflected: the last bounce is lit only */
+        ia_realv k = select(IAV_R(0), IAV_R(fx[EFFECTS_REFLECT]), bounces < max_bounces);
         effects_add(acc, live, through * (a * (1 - k)), lin);
-        ia_maskv mirror = live & (through * (a * k) >= (ia_real)EFFECTS_MIN_WEIGHT);
-        if (k > 0 && iav_any(mirror)) { /* the mirror direction, from off the surface */
-            ia_realv dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2], r[3], rec[EFFECTS_PATH_REALS];
-            for (int c = 0; c < 3; c++)
-                r[c] = d[c] - 2 * dn * n[c];
-            ia_realv len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+        ia_maskv mirror = live & (k > 0) & (through * (a * k) >= (ia_real)EFFECTS_MIN_WEIGHT);
+        ia_realv r[3]; /* the mirror direction */
+        ia_realv dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+        for (int c = 0; c < 3; c++)
+            r[c] = d[c] - 2 * dn * n[c];
+        ia_realv len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+        for (int c = 0; c < 3; c++)
+            r[c] = r[c] / len;
+        if (a >= 1) { /* opaque: the reflected ray goes on in this lane, from off the surface */
+            through = through * k;
+            live = mirror;
+            if (!iav_any(live))
+                break;
+            for (int c = 0; c < 3; c++) {
+                o[c] = select(o[c], p[c] + off * n[c], live);
+                d[c] = select(d[c], r[c], live);
+            }
+            bounces = select(bounces, bounces + 1, live);
+            hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, off, eps, footprint, &t, 1,
+                                n, &rays, &evals);
+            continue;
+        }
+        if (iav_any(mirror)) { /* transparent: the lane goes on through, the reflected ray is listed */
+            ia_realv rec[EFFECTS_PATH_REALS];
             for (int c = 0; c < 3; c++) {
                 rec[EFFECTS_PATH_O + c] = p[c] + off * n[c];
-                rec[EFFECTS_PATH_D + c] = r[c] / len;
+                rec[EFFECTS_PATH_D + c] = r[c];
             }
             rec[EFFECTS_PATH_WEIGHT] = through * (a * k);
             rec[EFFECTS_PATH_LAYERS] = layers;
+            rec[EFFECTS_PATH_BOUNCES] = bounces + 1;
             ia_real on[IA_VW], fields[EFFECTS_PATH_REALS][IA_VW];
             IAV_STORE(select(IAV_R(0), IAV_R(1), mirror), on);
             for (int f = 0; f < EFFECTS_PATH_REALS; f++)

@@ -7,10 +7,11 @@
 /* A ray: origin x y z, direction x y z, the part [tn, tf] of it to search. */
 #define EFFECTS_RAY_REALS 8
 
-/* A path of the first-root path's effects kernel (a reflected ray, listed by the kernel for the next bounce):
- * origin x y z, direction x y z, its weight in its pixel's colour, the transparent layers it has passed. */
+/* A path of the first-root path's effects kernel (a reflected ray off a transparent surface, listed by the
+ * kernel for the next launch): origin x y z, direction x y z, its weight in its pixel's colour, the transparent
+ * layers it has passed and the reflections it has taken. */
 enum { EFFECTS_PATH_O = 0, EFFECTS_PATH_D = 3, EFFECTS_PATH_WEIGHT = 6, EFFECTS_PATH_LAYERS = 7,
-       EFFECTS_PATH_REALS = 8 };
+       EFFECTS_PATH_BOUNCES = 8, EFFECTS_PATH_REALS = 9 };
 
 /* A light: its kind, three coordinates (a position, a direction towards the light, or for the default rig the
  * right and up coefficients of a direction fixed to the camera, light.h: shade_light_direction), the weight of its

@@ -589,7 +589,9 @@ static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, const int *order
     const iacsg_effects *e = f->e;
     double block[EFFECTS_COUNT];
     expr_block(f, block);
-    int kid_slots = e->bounces > 0 && e->reflect > 0 ? (e->transparency > 0 ? EFFECTS_MAX_LAYERS : 1) : 0;
+    /* reflected rays are listed for a next launch only off a transparent surface (off an opaque one the path goes
+     * on in its lane), one per layer at most */
+    int kid_slots = e->bounces > 0 && e->reflect > 0 && e->transparency > 0 ? EFFECTS_MAX_LAYERS : 0;
     int keep = kernel_colors_hold(f);
     int *listed = malloc((count + 1) * sizeof *listed);
     if (!listed)

@@ -33,7 +33,7 @@ typedef struct {
 static int generation_reserve(fx_generation *g, size_t n, size_t rb) {
     if (n <= g->cap)
         return 1;
-    size_t cap = n + n / 2 + 64;
+    size_t cap = 2 * n + 64; /* doubling: each growth copies what is there */
     int *p = realloc(g->pixel, cap * sizeof *p);
     if (p)
         g->pixel = p;
@@ -79,7 +79,7 @@ static void put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
 /* One launch over paths [0, n) of `mode` (kernels/effects.cl's arguments), n at most FX_DEVICE_SLOTS / kid_slots:
  * adds their colours to the frame and appends their reflected rays to `next`. */
 static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npixels, const char *recs, size_t n,
-                           int bounce, int aa, fx_generation *next, iacsg_error *err) {
+                           int aa, fx_generation *next, iacsg_error *err) {
     iacsg_renderer *r = x->t->r;
     size_t rb = real_bytes(r);
     cl_mem mem[6] = {0}; /* pixels, paths, colours, kids, nkids, stats */
@@ -97,7 +97,7 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
             st = clrt_record(err, rc, "clCreateBuffer(effects)", __func__, __LINE__);
     }
     cl_int flags = x->view->camera.ortho_height > 0 ? RENDER_ORTHO : 0, w = x->view->width, h = x->view->height;
-    cl_int ni = (cl_int)n, cl_mode = mode, cl_bounce = bounce, cl_aa = aa, slots = x->kid_slots;
+    cl_int ni = (cl_int)n, cl_mode = mode, cl_aa = aa, slots = x->kid_slots;
     char root_w[8], aa_eps[8], footprint[8];
     double reals[3] = {x->t->root_w, x->aa_eps_footprint[0], x->aa_eps_footprint[1]};
     char *dst[3] = {root_w, aa_eps, footprint};
@@ -112,7 +112,7 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
     } args[] = {{sizeof(cl_mem), &x->t->params}, {sizeof(cl_mem), &x->fx},   {sizeof cl_mode, &cl_mode},
                 {sizeof flags, &flags},          {sizeof w, &w},             {sizeof h, &h},
                 {sizeof(cl_mem), &mem[0]},       {sizeof(cl_mem), &mem[1]},  {sizeof ni, &ni},
-                {sizeof cl_bounce, &cl_bounce},  {sizeof cl_aa, &cl_aa},     {sizeof(cl_mem), &x->depth},
+                {sizeof cl_aa, &cl_aa},          {sizeof(cl_mem), &x->depth},
                 {sizeof(cl_mem), &x->normal},    {rb, root_w},               {rb, aa_eps},
                 {rb, footprint},                 {sizeof(cl_mem), &x->t->all_groups}, {sizeof(cl_mem), &x->rgb},
                 {sizeof(cl_mem), &mem[2]},       {sizeof(cl_mem), &mem[3]},  {sizeof(cl_mem), &mem[4]},
@@ -166,8 +166,8 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
 }
 
 /* The launches over n paths of `mode`, in slices that the per-launch buffers hold (for -aa, whole pixels). */
-static iacsg_status launch_all(fx_device *x, int mode, const int *pixels, const char *recs, size_t n, int bounce,
-                               int aa, fx_generation *next, iacsg_error *err) {
+static iacsg_status launch_all(fx_device *x, int mode, const int *pixels, const char *recs, size_t n, int aa,
+                               fx_generation *next, iacsg_error *err) {
     size_t rb = real_bytes(x->t->r), samples = mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1;
     size_t slice = FX_DEVICE_SLOTS / (x->kid_slots ? (size_t)x->kid_slots : 1) / (samples * PACKET_LANES) * samples *
                    PACKET_LANES;
@@ -175,7 +175,7 @@ static iacsg_status launch_all(fx_device *x, int mode, const int *pixels, const 
     for (size_t at = 0; st == IACSG_OK && at < n; at += slice) {
         size_t m = n - at < slice ? n - at : slice;
         st = launch(x, mode, pixels + at / samples, (m + samples - 1) / samples,
-                    recs ? recs + at * EFFECTS_PATH_REALS * rb : NULL, m, bounce, aa, next, err);
+                    recs ? recs + at * EFFECTS_PATH_REALS * rb : NULL, m, aa, next, err);
     }
     return st;
 }
@@ -223,11 +223,14 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
             memset(frame->rgb + 3 * (size_t)pixels[k], 0, 3 * sizeof(float));
             x.summed[x.nsummed++] = pixels[k];
         }
+    /* room for one reflected ray a path, what a frame without transparency lists at most */
+    if (st == IACSG_OK && kid_slots && !generation_reserve(&gen[0], n, rb))
+        st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the reflected rays");
     if (st == IACSG_OK)
-        st = launch_all(&x, mode, pixels, NULL, n, 0, aa, &gen[0], err);
-    for (int bounce = 1, g = 0; st == IACSG_OK && gen[g].n > 0; bounce++, g = 1 - g) {
+        st = launch_all(&x, mode, pixels, NULL, n, aa, &gen[0], err);
+    for (int g = 0; st == IACSG_OK && gen[g].n > 0; g = 1 - g) {
         gen[1 - g].n = 0;
-        st = launch_all(&x, EFFECTS_MODE_PATHS, gen[g].pixel, gen[g].rec, gen[g].n, bounce, aa, &gen[1 - g], err);
+        st = launch_all(&x, EFFECTS_MODE_PATHS, gen[g].pixel, gen[g].rec, gen[g].n, aa, &gen[1 - g], err);
         gen[g].n = 0;
     }
     if (st == IACSG_OK && x.rgb) { /* the frame current on the host after the kernels wrote it */
@@ -264,5 +267,5 @@ iacsg_status fx_device_compile(fx_tracer *t, iacsg_error *err) {
     double none[2] = {0, 0};
     x.aa_eps_footprint = none;
     int pixel = 0;
-    return launch(&x, EFFECTS_MODE_CENTRE, &pixel, 0, NULL, 0, 0, 1, NULL, err);
+    return launch(&x, EFFECTS_MODE_CENTRE, &pixel, 0, NULL, 0, 1, NULL, err);
 }
