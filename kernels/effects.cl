@@ -157,17 +157,6 @@ static ia_realv effects_offset(ia_real eps, const ia_realv p[3], ia_realv t) {
     return 4 * eps + (ia_real)4e-6 * (1 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]) + fabs(t));
 }
 
-/* The colours of the previews (-shade normals, depth, ids), linear, at hits with normals n and depths t. */
-static void effects_preview(__constant ia_real *fx, int shade, const ia_realv n[3], ia_realv t, shade_colorv lin[3]) {
-    ia_real span = fx[EFFECTS_DEPTH_HI] - fx[EFFECTS_DEPTH_LO];
-    ia_realv v = span > 0 ? fmin(fmax((t - fx[EFFECTS_DEPTH_LO]) / span, IAV_R(0)), IAV_R(1)) : IAV_R(0);
-    for (int c = 0; c < 3; c++) {
-        shade_colorv shown = shade_to_color(shade == EFFECTS_SHADE_NORMALS ? (ia_real)0.5 + (ia_real)0.5 * n[c]
-                                                                             : (ia_real)1 - (ia_real)0.85 * v);
-        lin[c] = shade == EFFECTS_SHADE_IDS ? (shade_colorv)(float)fx[EFFECTS_ID_RGB + c] : shown * shown;
-    }
-}
-
 /* acc += w c in the lanes of `on`. */
 static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shade_colorv c[3]) {
     IAV_CAT(int, IA_VW) lanes = IAV_CAT(convert_int, IA_VW)(on) != 0;
@@ -258,6 +247,11 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
     for (int c = 0; c < 3; c++)
         bg[c] *= bg[c];
     int shade = (int)fx[EFFECTS_SHADE], nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
+    shade_colorv albedo[3], id_rgb[3];
+    for (int c = 0; c < 3; c++) {
+        albedo[c] = (shade_colorv)(float)fx[EFFECTS_ALBEDO + c];
+        id_rgb[c] = (shade_colorv)(float)fx[EFFECTS_ID_RGB + c];
+    }
     ia_real a = fx[EFFECTS_OPACITY], max_bounces = fx[EFFECTS_BOUNCES];
     int nk[IA_VW];
     for (int q = 0; q < IA_VW; q++)
@@ -270,34 +264,31 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
         ia_realv p[3];
         for (int c = 0; c < 3; c++)
             p[c] = o[c] + t * d[c];
-        shade_colorv lin[3];
-        if (shade >= EFFECTS_SHADE_NORMALS) { /* unlit, opaque */
-            effects_preview(fx, shade, n, t, lin);
-            effects_add(acc, live, through, lin);
-            break;
-        }
-        ia_realv off = effects_offset(eps, p, t), diffuse = IAV_R(EFFECTS_AMBIENT), highlight = IAV_R(0);
+        /* the lights each hit sees: those in front of it, where no shadow ray from off the surface (on the light's
+         * side) to the light finds anything */
+        ia_realv off = effects_offset(eps, p, t);
+        ia_maskv seen[EFFECTS_MAX_LIGHTS];
         for (int l = 0; l < nlights; l++) {
             __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
             ia_realv towards[3];
             shade_towards(params, L, p, towards);
-            ia_maskv seen = live & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
-            if (shadows && iav_any(seen)) { /* from off the surface, on the light's side, to the light */
+            seen[l] = live & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
+            if (shadows && shade < EFFECTS_SHADE_NORMALS && iav_any(seen[l])) {
                 ia_realv so[3], sd[3], st, unused[3];
                 for (int c = 0; c < 3; c++)
                     so[c] = p[c] + off * n[c];
                 ia_realv dist = shade_towards(params, L, so, sd);
-                seen &= ~effects_trace(params, all_groups, so, sd, IAV_R(0), dist, seen, off, eps, footprint, &st, 0,
-                                       unused, &rays, &evals);
+                seen[l] &= ~effects_trace(params, all_groups, so, sd, IAV_R(0), dist, seen[l], off, eps, footprint,
+                                          &st, 0, unused, &rays, &evals);
             }
-            shade_add_light(L, n, d, towards, seen, fx[EFFECTS_SHININESS], &diffuse, &highlight);
         }
-        shade_colorv albedo[3];
-        for (int c = 0; c < 3; c++) { /* -shade gradient: the normal's direction as the colour */
-            shade_colorv g = shade_to_color((ia_real)0.5 + (ia_real)0.5 * n[c]);
-            albedo[c] = shade == EFFECTS_SHADE_GRADIENT ? g * g : (shade_colorv)(float)fx[EFFECTS_ALBEDO + c];
+        shade_colorv lin[3];
+        shade_effects(params, fx, p, t, n, d, seen, albedo, IAV_R(fx[EFFECTS_SPECULAR]), IAV_R(fx[EFFECTS_SHININESS]),
+                      id_rgb, lin);
+        if (shade >= EFFECTS_SHADE_NORMALS) { /* the previews: unlit, opaque */
+            effects_add(acc, live, through, lin);
+            break;
         }
-        shade_lit_linear(albedo, IAV_R(fx[EFFECTS_SPECULAR]), diffuse, highlight, lin);
         /* the fraction of the light reflected: the last bounce is lit only */
         ia_realv k = select(IAV_R(0), IAV_R(fx[EFFECTS_REFLECT]), bounces < max_bounces);
         effects_add(acc, live, through * (a * (1 - k)), lin);

@@ -144,22 +144,12 @@ IA_FN ia_realv shade_towards(const KERNEL_CONSTANT ia_real *params, const KERNEL
     return IAV_R(IA_INF);
 }
 
-/* nh^shininess, 0 where nh is 0: by squaring for the first-root path's 48, else by exp2 and log2. */
-IA_FN ia_realv shade_highlight(ia_realv nh, ia_real shininess) {
-    if (shininess == 48)
+/* nh^shininess, 0 where nh is 0: by squaring where every lane's exponent is the first-root path's 48, else by
+ * exp2 and log2. */
+IA_FN ia_realv shade_highlight(ia_realv nh, ia_realv shininess) {
+    if (!iav_any(shininess != 48))
         return shade_power48(nh);
     return select(IAV_R(0), exp2(shininess * log2(nh)), nh > 0);
-}
-
-/* Adds light L's terms at the hits of the lanes of `seen` (normals n, view directions d, l towards the light) to
- * the diffuse and highlight sums. */
-IA_FN void shade_add_light(const KERNEL_CONSTANT ia_real *L, const ia_realv n[3], const ia_realv d[3],
-                           const ia_realv l[3], ia_maskv seen, ia_real shininess, ia_realv *diffuse,
-                           ia_realv *highlight) {
-    ia_realv nl, nh;
-    shade_light(n, d, l, &nl, &nh);
-    *diffuse += select(IAV_R(0), L[EFFECTS_LIGHT_INTENSITY] * nl, seen);
-    *highlight += select(IAV_R(0), L[EFFECTS_LIGHT_HIGHLIGHT] * shade_highlight(nh, shininess), seen);
 }
 
 /* The linear colour of a lit hit: albedo times the diffuse sum (the ambient term included) plus specular times
@@ -169,6 +159,42 @@ IA_FN void shade_lit_linear(const shade_colorv albedo[3], ia_realv specular, ia_
     shade_colorv dc = shade_to_color(diffuse), hc = shade_to_color(specular * highlight);
     for (int c = 0; c < 3; c++)
         lin[c] = albedo[c] * dc + hc;
+}
+
+/* The effects' colours (linear) of hits at points p, at depths t along view directions d, with unit normals n
+ * facing them, by the effects' block fx (kernels/effects.h): the previews (-shade normals, depth, ids: id_rgb,
+ * linear), or lit: albedo (-shade gradient: the normal's direction), specular and shininess, under each light l
+ * in the lanes where seen[l] (no shadow ray found it blocked). */
+IA_FN void shade_effects(const KERNEL_CONSTANT ia_real *params, const KERNEL_CONSTANT ia_real *fx, const ia_realv p[3],
+                         ia_realv t, const ia_realv n[3], const ia_realv d[3], const ia_maskv seen[EFFECTS_MAX_LIGHTS],
+                         const shade_colorv albedo[3], ia_realv specular, ia_realv shininess,
+                         const shade_colorv id_rgb[3], shade_colorv lin[3]) {
+    int shade = (int)fx[EFFECTS_SHADE];
+    if (shade >= EFFECTS_SHADE_NORMALS) {
+        ia_real span = fx[EFFECTS_DEPTH_HI] - fx[EFFECTS_DEPTH_LO];
+        ia_realv v = span > 0 ? fmin(fmax((t - fx[EFFECTS_DEPTH_LO]) / span, IAV_R(0)), IAV_R(1)) : IAV_R(0);
+        for (int c = 0; c < 3; c++) {
+            shade_colorv shown = shade_to_color(shade == EFFECTS_SHADE_NORMALS ? (ia_real)0.5 + (ia_real)0.5 * n[c]
+                                                                                 : (ia_real)1 - (ia_real)0.85 * v);
+            lin[c] = shade == EFFECTS_SHADE_IDS ? id_rgb[c] : shown * shown;
+        }
+        return;
+    }
+    ia_realv diffuse = IAV_R(EFFECTS_AMBIENT), highlight = IAV_R(0);
+    for (int l = 0; l < (int)fx[EFFECTS_NLIGHTS]; l++) {
+        const KERNEL_CONSTANT ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
+        ia_realv towards[3], nl, nh;
+        shade_towards(params, L, p, towards);
+        shade_light(n, d, towards, &nl, &nh);
+        diffuse += select(IAV_R(0), L[EFFECTS_LIGHT_INTENSITY] * nl, seen[l]);
+        highlight += select(IAV_R(0), L[EFFECTS_LIGHT_HIGHLIGHT] * shade_highlight(nh, shininess), seen[l]);
+    }
+    shade_colorv lit[3];
+    for (int c = 0; c < 3; c++) { /* -shade gradient: the normal's direction as the colour */
+        shade_colorv g = shade_to_color((ia_real)0.5 + (ia_real)0.5 * n[c]);
+        lit[c] = shade == EFFECTS_SHADE_GRADIENT ? g * g : albedo[c];
+    }
+    shade_lit_linear(lit, specular, diffuse, highlight, lin);
 }
 
 #endif
