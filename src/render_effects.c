@@ -60,11 +60,6 @@ typedef struct {
     fx_hit hit;
 } fx_path;
 
-typedef struct {
-    double rgb[3]; /* linear */
-    double specular, shininess, reflect, opacity;
-} fx_material;
-
 /* A buffer that only grows: a frame's passes reuse its pages (a malloc and free per pass of several MB went to
  * mmap and back, and its pages faulted in each time). */
 typedef struct {
@@ -95,7 +90,9 @@ typedef struct {
     float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
     /* scratch: shadow rays, their hits, which ray each (path, light) cast (-1: none); the generations of paths
      * (two, in turn); the rays and hits of a generation */
-    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits;
+    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, bits, colors;
+    double block[EFFECTS_COUNT]; /* the effects' parameters for the kernels (kernels/effects.h) */
+    float *palette;              /* a scene's: each item's -shade ids colour, linear */
 } fx_frame;
 
 /* Whether a material of the renderer's reflects light (an expression's: e->reflect). */
@@ -175,28 +172,6 @@ static void resolve_lights(fx_frame *f) {
     f->nlights = e->nlights < IACSG_MAX_LIGHTS ? e->nlights : IACSG_MAX_LIGHTS;
 }
 
-/* The background of row y (display-encoded), as linear light. */
-static void background_at(const fx_frame *f, double y, double lin[3]) {
-    const float *top = f->e->background ? f->e->background_top : fx_default_top;
-    const float *bottom = f->e->background ? f->e->background_bottom : fx_default_bottom;
-    double v = fmin(fmax(y / (f->view->height > 1 ? f->view->height - 1 : 1), 0), 1);
-    for (int c = 0; c < 3; c++) {
-        double shown = top[c] + (bottom[c] - top[c]) * v;
-        lin[c] = shown * shown;
-    }
-}
-
-static void material_of(const fx_frame *f, int item, fx_material *m) {
-    const render_fx *fx = f->r->fx;
-    const float *a = render_scene_materials(f->r) + SCENE_MATERIAL_FLOATS * item;
-    for (int c = 0; c < 3; c++)
-        m->rgb[c] = a[SCENE_MATERIAL_RGB + c];
-    m->specular = a[SCENE_MATERIAL_SPECULAR];
-    m->shininess = a[SCENE_MATERIAL_SHININESS];
-    m->reflect = fx && item < fx->nitems ? fx->items[item].reflect : 0;
-    m->opacity = fx && item < fx->nitems ? fx->items[item].opacity : 1;
-}
-
 /* How far a secondary ray starts off its hit: past the hit leaf's distance from the surface (a few eps) and the
  * rounding of the hit point (the depth is float32 and the host's ray differs from the device's by ulps). */
 static double offset_of(const fx_frame *f, const double p[3], double t) {
@@ -241,55 +216,6 @@ static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx
     return 1;
 }
 
-/* The linear colour of q's hit under the lights, each seen where `seen` (NULL: all). */
-static void lit_color(const fx_frame *f, const fx_path *q, const fx_material *m, const double albedo[3],
-                      const unsigned char *seen, double lin[3]) {
-    double p[3], n[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]}, diffuse = EFFECTS_AMBIENT, highlight = 0;
-    hit_point(q, p);
-    for (int l = 0; l < f->nlights; l++) {
-        double L[3], h[3];
-        towards(&f->lights[l], p, L);
-        double nl = dot3(n, L);
-        if (nl <= 0 || (seen && !seen[l]))
-            continue;
-        for (int k = 0; k < 3; k++)
-            h[k] = L[k] - q->ray.d[k]; /* the half vector between the light and the eye */
-        double hh = sqrt(dot3(h, h)), nh = hh > 0 ? fmax(dot3(n, h) / hh, 0) : 0;
-        diffuse += f->lights[l].intensity * nl;
-        highlight += f->lights[l].highlight * (nh > 0 ? pow(nh, m->shininess) : 0);
-    }
-    for (int c = 0; c < 3; c++)
-        lin[c] = albedo[c] * diffuse + m->specular * highlight;
-}
-
-/* The unlit previews' colour (linear) of a hit, or 0 when the mode lights its hits. */
-static int preview_color(const fx_frame *f, const fx_path *q, double lin[3]) {
-    double shown[3];
-    switch (f->e->shade) {
-    case IACSG_SHADE_NORMALS:
-        for (int c = 0; c < 3; c++)
-            shown[c] = 0.5 + 0.5 * q->hit.n[c];
-        break;
-    case IACSG_SHADE_DEPTH: {
-        double span = f->depth_hi - f->depth_lo;
-        double v = span > 0 ? fmin(fmax((q->hit.t - f->depth_lo) / span, 0), 1) : 0;
-        shown[0] = shown[1] = shown[2] = 1 - 0.85 * v;
-        break;
-    }
-    case IACSG_SHADE_IDS: {
-        float rgb[3];
-        scene_palette(q->hit.item, rgb);
-        for (int c = 0; c < 3; c++)
-            shown[c] = sqrt(rgb[c]);
-        break;
-    }
-    default: return 0;
-    }
-    for (int c = 0; c < 3; c++)
-        lin[c] = shown[c] * shown[c];
-    return 1;
-}
-
 static void add(float *accum, int pixel, double w, const double lin[3]) {
     for (int c = 0; c < 3; c++)
         accum[3 * (size_t)pixel + c] += (float)(w * lin[c]);
@@ -321,27 +247,35 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
         for (size_t k = 0; k < n * nl; k++)
             seen[k] = ray_of[k] >= 0 && isinf(hits[ray_of[k]].t);
     }
+    /* the colours of the hits, on the device (light.h), with the lights each sees */
+    fx_ray *rays = reserve(&f->rays, (n + 1) * sizeof *rays);
+    fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
+    int *bits = reserve(&f->bits, (2 * n + 1) * sizeof *bits), *rows = bits + n;
+    float *out = reserve(&f->colors, (6 * n + 1) * sizeof *out);
+    if (!rays || !hits || !bits || !out)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    for (size_t i = 0; i < n; i++) {
+        rays[i] = paths[i].ray;
+        hits[i] = paths[i].hit;
+        rows[i] = paths[i].pixel / f->view->width;
+        bits[i] = 0;
+        for (size_t l = 0; l < nl; l++)
+            bits[i] |= (!seen || seen[i * nl + l]) << l;
+    }
+    iacsg_status st = fx_scene_shade(&f->tracer, f->block, rays, hits, bits, rows, n, f->palette, out, err);
+    if (st != IACSG_OK)
+        return st;
     size_t nkids = 0;
     for (size_t i = 0; i < n; i++) {
         const fx_path *q = &paths[i];
-        double lin[3];
-        int row = q->pixel / f->view->width;
-        if (q->hit.item < 0) {
-            background_at(f, row, lin);
+        const float *color = out + 6 * i, *background = color + 3;
+        double lin[3] = {color[0], color[1], color[2]};
+        if (q->hit.item < 0 || !lit) { /* the background, or a preview's colour */
             add(f->accum, q->pixel, q->w, lin);
             continue;
         }
-        if (preview_color(f, q, lin)) {
-            add(f->accum, q->pixel, q->w, lin);
-            continue;
-        }
-        fx_material m;
-        material_of(f, q->hit.item, &m);
-        double albedo[3];
-        for (int c = 0; c < 3; c++) /* gradient shading: the normal's direction as the colour */
-            albedo[c] = e->shade == IACSG_SHADE_GRADIENT ? pow(0.5 + 0.5 * q->hit.n[c], 2) : m.rgb[c];
-        lit_color(f, q, &m, albedo, seen ? seen + i * nl : NULL, lin);
-        double a = m.opacity, k = q->bounces < e->bounces ? m.reflect : 0;
+        const fx_item *m = &f->r->fx->items[q->hit.item];
+        double a = m->opacity, k = q->bounces < e->bounces ? m->reflect : 0;
         add(f->accum, q->pixel, q->w * a * (1 - k), lin);
         double p[3], n3[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
         hit_point(q, p);
@@ -363,8 +297,8 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
         }
         double through = q->w * (1 - a);
         if (through > 0 && (through < EFFECTS_MIN_WEIGHT || q->layers + 1 >= EFFECTS_MAX_LAYERS)) {
-            background_at(f, row, lin); /* what is left of the path */
-            add(f->accum, q->pixel, through, lin);
+            double left[3] = {background[0], background[1], background[2]}; /* what is left of the path */
+            add(f->accum, q->pixel, through, left);
         } else if (through > 0) { /* on through the surface: from just past it, the same direction */
             fx_path *c = &kids[nkids++];
             *c = *q;
@@ -376,7 +310,7 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             c->ray.tf = INFINITY;
             /* a region is a volume: the ray, now inside it, passes through it to what lies behind (one layer
              * where it enters); a surface is crossed like the expression's */
-            c->ray.passing = f->r->scene && f->r->fx->items[q->hit.item].region ? 1 + q->hit.item : 0;
+            c->ray.passing = m->region ? 1 + q->hit.item : 0;
         }
     }
     *nout = nkids;
@@ -549,7 +483,7 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
 
 /* The first-root path's effects' block (kernels/effects.h): the view's lights or the default rig (its lights
  * computed on the device as the plain kernel computes them), the expression's material. */
-static void expr_block(const fx_frame *f, double b[EFFECTS_COUNT]) {
+static void effects_block(const fx_frame *f, double b[EFFECTS_COUNT]) {
     const iacsg_effects *e = f->e;
     memset(b, 0, EFFECTS_COUNT * sizeof *b);
     b[EFFECTS_SHADE] = e->shade;
@@ -587,8 +521,6 @@ static void expr_block(const fx_frame *f, double b[EFFECTS_COUNT]) {
  * (render_effects_device.c). */
 static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, const int *order, size_t count, iacsg_error *err) {
     const iacsg_effects *e = f->e;
-    double block[EFFECTS_COUNT];
-    expr_block(f, block);
     /* reflected rays are listed for a next launch only off a transparent surface (off an opaque one the path goes
      * on in its lane), one per layer at most */
     int kid_slots = e->bounces > 0 && e->reflect > 0 && e->transparency > 0 ? EFFECTS_MAX_LAYERS : 0;
@@ -603,11 +535,12 @@ static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, const int *order
             listed[n++] = order[k];
     }
     double none[2] = {0, 0};
-    iacsg_status st = fx_device_run(&f->tracer, block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, none, frame, err);
+    iacsg_status st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, none, frame,
+                                    err);
     if (st == IACSG_OK && e->aa > 1) {
         double aa[2] = {aa_eps(f), f->tracer.footprint};
         n = edge_pixels(f, frame, order, count, listed);
-        st = fx_device_run(&f->tracer, block, kid_slots, EFFECTS_MODE_AA, listed, n, e->aa, aa, frame, err);
+        st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_AA, listed, n, e->aa, aa, frame, err);
     }
     free(listed);
     return st;
@@ -622,23 +555,17 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, const int *orde
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     int keep = kernel_colors_hold(f);
     for (size_t k = 0; st == IACSG_OK && k < count;) {
-        size_t n = 0, first = k;
+        size_t n = 0;
         for (; k < count && n < FX_CHUNK; k++) {
-            int pixel = order[k], miss = isinf(frame->depth[pixel]);
-            if (miss || !keep)
+            int pixel = order[k];
+            if (isinf(frame->depth[pixel]) ? f->e->background : !keep) {
                 memset(frame->rgb + 3 * (size_t)pixel, 0, 3 * sizeof(float));
-            if (miss) {
-                double lin[3];
-                background_at(f, pixel / f->view->width, lin);
-                add(f->accum, pixel, 1, lin);
-            } else if (!keep) {
                 centre_path(f, frame, pixel, &paths[n++]);
             }
         }
         st = run_paths(f, paths, n, err);
-        for (size_t q = first; st == IACSG_OK && q < k; q++)
-            if (!keep || isinf(frame->depth[order[q]]))
-                encode(frame->rgb, order[q]);
+        for (size_t q = 0; st == IACSG_OK && q < n; q++)
+            encode(frame->rgb, paths[q].pixel);
     }
     if (st == IACSG_OK && f->e->aa > 1)
         st = antialias(f, frame, order, count, paths, err);
@@ -663,10 +590,20 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
     if (st == IACSG_OK && !(order = block_order(&f, frame, &count)))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     resolve_lights(&f);
+    effects_block(&f, f.block);
+    if (st == IACSG_OK && r->scene) { /* -shade ids: each item's palette colour */
+        int nitems = r->fx && r->fx->nitems > 0 ? r->fx->nitems : 1;
+        if (!(f.palette = malloc(3 * (size_t)nitems * sizeof *f.palette)))
+            st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+        for (int i = 0; st == IACSG_OK && i < nitems; i++)
+            scene_palette(i, f.palette + 3 * i);
+    }
     if (st == IACSG_OK)
         st = r->scene ? apply_scene(&f, frame, order, count, err) : apply_expr(&f, frame, order, count, err);
     free(order);
-    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1], &f.rays, &f.hits};
+    free(f.palette);
+    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1],
+                      &f.rays,        &f.hits,        &f.bits,      &f.colors};
     for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
         free(bufs[k]->p);
     frame->secondary_rays = f.tracer.rays;

@@ -1,10 +1,12 @@
 /* src/render_effects_trace.c -- see render_effects_trace.h. The device side of a frame's effects (parameters,
- * the kernel made at the renderer's first use), and the segment path's secondary rays: they go to the device in
- * one buffer per call, in the working precision (kernels/effects.h), traced one per work-item with per-ray buffers
- * that every ray fits (render_scene.c). */
+ * the kernels made at the renderer's first use), and the segment path's secondary rays and colours: the rays go
+ * to the device in one buffer per call, in the working precision (kernels/effects.h), traced one per work-item
+ * with per-ray buffers that every ray fits (render_scene.c); their hits are shaded 16 at a time in SIMD lanes
+ * (kernels/scene_effects.cl: iacsg_scene_shade, by light.h). */
 #include "render_effects_trace.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"
+#include "kernels/scene_data.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,6 +76,11 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
         fx->trace = clCreateKernel(r->program, r->scene ? "iacsg_scene_trace_rays" : "iacsg_effects", &rc);
         CLRT_CHECK(err, rc);
         st = compile_trace_now(t, err);
+        if (st == IACSG_OK && r->scene) {
+            fx->shade = clCreateKernel(r->program, "iacsg_scene_shade", &rc);
+            CLRT_CHECK(err, rc);
+            st = fx_scene_shade(t, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, err);
+        }
         r->build_seconds += render_now_seconds() - t0;
         if (st != IACSG_OK)
             return st;
@@ -228,4 +235,74 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
 fail:
     release_trace_buffers(&b);
     return IACSG_ERR_OPENCL;
+}
+
+iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *rays, const fx_hit *hits,
+                            const int *seen_bits, const int *rows, size_t n, const float *palette, float *out,
+                            iacsg_error *err) {
+    iacsg_renderer *r = t->r;
+    size_t rb = real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1;
+    char *reals = malloc((n * (EFFECTS_RAY_REALS + 1) + EFFECTS_COUNT + 1) * rb);
+    float *normal = malloc((3 * n + 1) * sizeof *normal);
+    cl_int *item = malloc((n + 1) * sizeof *item);
+    cl_mem mem[9] = {0}; /* block, materials, palette, rays, depths, normals, items, seen, rows; then out */
+    cl_mem out_mem = NULL;
+    iacsg_status st = reals && normal && item ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    char *ray_reals = reals + EFFECTS_COUNT * rb, *depth = ray_reals + n * EFFECTS_RAY_REALS * rb;
+    for (int k = 0; st == IACSG_OK && block && k < EFFECTS_COUNT; k++)
+        put_real(r, reals, (size_t)k, block[k]);
+    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
+        const fx_ray *y = &rays[i];
+        double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
+        for (int k = 0; k < EFFECTS_RAY_REALS; k++)
+            put_real(r, ray_reals, EFFECTS_RAY_REALS * i + (size_t)k, v[k]);
+        put_real(r, depth, i, isinf(hits[i].t) ? 0 : hits[i].t);
+        memcpy(normal + 3 * i, hits[i].n, sizeof hits[i].n);
+        item[i] = hits[i].item;
+    }
+    const void *host[9] = {reals, render_scene_materials(r), palette, ray_reals, depth, normal, item, seen_bits, rows};
+    size_t bytes[9] = {EFFECTS_COUNT * rb, SCENE_MATERIAL_FLOATS * nitems * sizeof(float), 3 * nitems * sizeof(float),
+                       n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
+                       n * sizeof(int), n * sizeof(int)};
+    cl_int rc = CL_SUCCESS;
+    for (int b = 0; b < 9 && st == IACSG_OK && n > 0; b++) {
+        mem[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes[b], (void *)host[b], &rc);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
+    }
+    if (st == IACSG_OK && n > 0) {
+        out_mem = clCreateBuffer(r->rt.context, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, 6 * n * sizeof(float), out, &rc);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
+    }
+    cl_kernel k = r->fx->shade;
+    cl_int height = t->view->height, count = (cl_int)n;
+    cl_mem *args[] = {&t->params, &mem[0], &mem[1], &mem[2], NULL, &mem[3], &mem[4], &mem[5], &mem[6], &mem[7],
+                      &mem[8], NULL, &out_mem};
+    for (cl_uint a = 0; a < 13 && st == IACSG_OK; a++) {
+        rc = a == 4 ? clSetKernelArg(k, a, sizeof height, &height)
+             : a == 11 ? clSetKernelArg(k, a, sizeof count, &count)
+                       : clSetKernelArg(k, a, sizeof(cl_mem), *args[a] ? args[a] : NULL);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clSetKernelArg(iacsg_scene_shade)", __func__, __LINE__);
+    }
+    size_t global = n > 0 ? (n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile it now */
+    if (st == IACSG_OK) {
+        rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
+        if (rc == CL_SUCCESS)
+            rc = clFinish(r->rt.queue);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_scene_shade)", __func__, __LINE__);
+    }
+    if (st == IACSG_OK && out_mem)
+        st = sync_to_host(r->rt.queue, out_mem, 6 * n * sizeof(float), err);
+    for (int b = 0; b < 9; b++)
+        if (mem[b])
+            clReleaseMemObject(mem[b]);
+    if (out_mem)
+        clReleaseMemObject(out_mem);
+    free(reals);
+    free(normal);
+    free(item);
+    return st;
 }

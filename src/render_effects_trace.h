@@ -25,6 +25,7 @@ typedef struct {
 /* What a renderer keeps for its effects (render_internal.h: r->fx), made at the first use. */
 struct render_fx {
     cl_kernel trace; /* iacsg_effects (kernels/effects.cl) or iacsg_scene_trace_rays */
+    cl_kernel shade; /* a scene's: iacsg_scene_shade */
     fx_item *items;  /* a scene's items' materials, as the effects need them */
     int nitems;
 };
@@ -63,5 +64,13 @@ iacsg_status fx_device_compile(fx_tracer *t, iacsg_error *err);
 
 /* The segment path's secondary rays: traces rays[0 .. n) with leaves of width eps into hits[0 .. n). */
 iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err);
+
+/* The segment path's colours (kernels/scene_effects.cl: iacsg_scene_shade) of the hits[0 .. n) of rays[0 .. n):
+ * each lit by the lights of the effects' block (EFFECTS_COUNT, kernels/effects.h) whose bit it has in seen_bits,
+ * its pixel's row in rows; palette: 3 linear floats per item (-shade ids). Out: 6 floats per hit, its colour
+ * (a miss: the background) and its row's background, linear. n = 0: only compiles the kernel. */
+iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *rays, const fx_hit *hits,
+                            const int *seen_bits, const int *rows, size_t n, const float *palette, float *out,
+                            iacsg_error *err);
 
 #endif
