@@ -1,19 +1,21 @@
-/* kernels/effects.cl -- iacsg_effects, the first-root path's ray-tracing effects (src/render_effects.c), one
- * launch per bounce, 16 paths per work-item in SIMD lanes:
+/* kernels/effects.cl -- iacsg_effects, the first-root path's ray-tracing effects (src/render_effects.c,
+ * src/render_effects_device.c), 16 paths per work-item in SIMD lanes:
  *
  *   the paths' rays: the frame's centre rays (their hits its depth and normals: nothing traced), -aa's n x n rays
- *   of listed pixels, or the reflected rays the previous launch listed --> their first hits (packet.h)
- *   --> per hit: the lights (light.h), each seen or not by a shadow ray traced in the lanes --> the colour times
- *       the path's weight --> a reflected ray listed for the next launch (weight reflect)
- *   --> through a transparent hit: the ray goes on from past it, traced again in the same launch, until every
- *       lane is opaque, out of weight or layers, or has met the background
- *   --> per path: its summed linear light, and the reflected rays it listed (kid_slots at most)
+ *   of listed pixels, or the reflected rays a previous launch listed --> their first hits (effects_trace)
+ *   --> per hit: the lights, each seen or not by a shadow ray traced in the lanes --> its colour (light.h:
+ *       shade_effects) times the path's weight
+ *   --> off an opaque hit: the reflected ray goes on in the lane (weight reflect), traced in the same launch
+ *   --> through a transparent hit: the ray goes on from past it, traced in the same launch; a reflected ray off
+ *       it is listed for the next launch (kid_slots at most a path)
+ *   --> until every lane is out of weight, bounces or layers, or has met the background
+ *   --> per path: its colour (a centre ray's into its pixel of the frame), the reflected rays it listed
  *
- * Every ray is traced by the camera rays' bisection (packet.h) over the tree [0, root_w], past every ray's exit
- * from the bounds, with all groups of a union (no tile pass bounded these rays), so an occluder or a surface a
- * ray crosses inside the bounds is never missed. The rays of a packet come from neighbouring pixels (the host
- * lists them in blocks of 4 x 4), so that they walk similar nodes. The normals are render.cl's packet_gradients
- * (this file is appended to the first-root path's program after render.cl).
+ * Every secondary ray is traced rigorously (effects_trace: effects_march, then packet.h's bisection) with all
+ * groups of a union (no tile pass bounded these rays), so an occluder or a surface a ray crosses inside the bounds
+ * is never missed. The rays of a packet come from neighbouring pixels (the host lists them in blocks of 4 x 4),
+ * so that they take similar steps. The normals are render.cl's packet_gradients (this file is appended to the
+ * first-root path's program after render.cl).
  */
 
 #ifdef PACKET_NEWTON
@@ -176,7 +178,7 @@ static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shad
 __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, int mode, int flags, int width,
                             int height, __global const int *pixels, __global const ia_real *paths, int npaths,
                             int aa, __global const float *depth, __global const float *normal,
-                            ia_real root_w, ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
+                            ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
                             __global float *rgb, __global float *color, __global ia_real *kids,
                             __global int *nkids, int kid_slots, __global uint *stats) {
     int first = (int)get_global_id(0) * IA_VW;

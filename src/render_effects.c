@@ -7,10 +7,12 @@
  *     --> -aa N: the pixels whose centre rays differ from a neighbour's (edges) get N x N paths of their own
  *   --> rgb (linear light summed, then gamma 2 as kernels/light.h encodes).
  *
- * Every secondary ray is traced on the device by the path's own bisection (render_effects_trace.c), so an
- * occluder or a reflected surface that the ray crosses inside the bounds is never missed. The shading is the
- * kernels' (light.h) in double on the host: with the default rig and no effect but -aa or -background, a pixel
- * gets the colour the plain render gives it.
+ * Everything per ray runs on the device, shaded by light.h (shade_effects): an expression's paths wholly in
+ * kernels/effects.cl (render_effects_device.c launches it: this file lists the pixels); a scene's secondary rays
+ * traced by kernels/scene_effects.cl and their hits shaded there (render_effects_trace.c), while this file keeps
+ * the paths, their shadow rays and children. So an occluder or a reflected surface that a ray crosses inside the
+ * bounds is never missed, and with the default rig and no effect but -aa or -background a pixel gets the colour
+ * the plain render gives it.
  */
 #include "render_effects_trace.h"
 #include "implicits/scene.h"
@@ -22,11 +24,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A shadow ray's leaves, in eps: as wide as the camera rays' (the seed allows coarser). Coarser leaves need a
- * start as much farther off the surface (offset_of), which then hides occluders that close, and show a near
- * miss as a shadow. Measured on min(sphere, torus) (1024x1024, eps 1e-5), interval evaluations per shadow ray:
- * 9.1 at 1 eps, 7.6 at 4, 6.1 at 16, 4.6 at 64; the shadow pass is a small part of the effects' cost
- * (BENCHMARKS.md), so the rigour of the camera rays is kept. */
+/* A shadow ray's leaves, in eps: as wide as the camera rays' (the seed allows coarser), here and in
+ * kernels/effects.cl. Coarser leaves need a start as much farther off the surface (offset_of), which then hides
+ * occluders that close, and show a near miss as a shadow. Measured on min(sphere, torus) (1024x1024, eps 1e-5)
+ * when shadow rays were bisected from the root: 9.1 interval evaluations a ray at 1 eps, 7.6 at 4, 6.1 at 16, 4.6
+ * at 64; they march now (kernels/effects.cl), 3.9 a ray at eps on the reference view, so the rigour of the
+ * camera rays is kept. */
 #define FX_SHADOW_EPS_FACTOR 1.0
 /* The first-root path's material (kernels/shade.h). */
 static const float fx_expr_albedo[3] = {0.80f, 0.52f, 0.28f};
@@ -534,8 +537,8 @@ static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, const int *order
         if (miss ? e->background : !keep)
             listed[n++] = order[k];
     }
-    double none[2] = {0, 0};
-    iacsg_status st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, none, frame,
+    double centre[2] = {0, f->tracer.footprint}; /* Newton's window for the walks of the secondary rays */
+    iacsg_status st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, centre, frame,
                                     err);
     if (st == IACSG_OK && e->aa > 1) {
         double aa[2] = {aa_eps(f), f->tracer.footprint};

@@ -98,10 +98,10 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
     }
     cl_int flags = x->view->camera.ortho_height > 0 ? RENDER_ORTHO : 0, w = x->view->width, h = x->view->height;
     cl_int ni = (cl_int)n, cl_mode = mode, cl_aa = aa, slots = x->kid_slots;
-    char root_w[8], aa_eps[8], footprint[8];
-    double reals[3] = {x->t->root_w, x->aa_eps_footprint[0], x->aa_eps_footprint[1]};
-    char *dst[3] = {root_w, aa_eps, footprint};
-    for (int q = 0; q < 3; q++) {
+    char aa_eps[8], footprint[8];
+    double reals[2] = {x->aa_eps_footprint[0], x->aa_eps_footprint[1]};
+    char *dst[2] = {aa_eps, footprint};
+    for (int q = 0; q < 2; q++) {
         double one[1];
         put_real(r, one, 0, reals[q]);
         memcpy(dst[q], one, rb);
@@ -113,7 +113,7 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
                 {sizeof flags, &flags},          {sizeof w, &w},             {sizeof h, &h},
                 {sizeof(cl_mem), &mem[0]},       {sizeof(cl_mem), &mem[1]},  {sizeof ni, &ni},
                 {sizeof cl_aa, &cl_aa},          {sizeof(cl_mem), &x->depth},
-                {sizeof(cl_mem), &x->normal},    {rb, root_w},               {rb, aa_eps},
+                {sizeof(cl_mem), &x->normal},    {rb, aa_eps},
                 {rb, footprint},                 {sizeof(cl_mem), &x->t->all_groups}, {sizeof(cl_mem), &x->rgb},
                 {sizeof(cl_mem), &mem[2]},       {sizeof(cl_mem), &mem[3]},  {sizeof(cl_mem), &mem[4]},
                 {sizeof slots, &slots},          {sizeof(cl_mem), &mem[5]}};

@@ -33,18 +33,6 @@ static void put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
         ((float *)block)[k] = (float)v;
 }
 
-/* The tree of the secondary rays covers [0, root_w]: a ray from inside the bounds leaves them within their
- * diagonal, a camera ray (antialiasing) within the eye's farthest corner; doubled for the origins' offsets. */
-static double root_width(const iacsg_view *v) {
-    double diag2 = 0, far2 = 0;
-    for (int k = 0; k < 3; k++) {
-        double e = v->camera.eye[k], lo = v->bounds[k], hi = v->bounds[k + 3];
-        diag2 += (hi - lo) * (hi - lo);
-        far2 += fmax((e - lo) * (e - lo), (e - hi) * (e - hi));
-    }
-    return 2 * (sqrt(diag2) + sqrt(far2)) + 1;
-}
-
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
                                  iacsg_error *err);
 
@@ -90,7 +78,6 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
         ones[k] = ~(cl_ulong)0;
     t->all_groups = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof ones, ones, &rc);
     CLRT_CHECK(err, rc);
-    t->root_w = root_width(view);
     double p[PARAM_COUNT], far2 = 0;
     st = iacsg_camera_params(&view->camera, view->width, view->height, p, err);
     for (int k = 0; k < 3; k++) {

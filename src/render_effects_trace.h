@@ -39,7 +39,6 @@ typedef struct {
     iacsg_renderer *r;
     const iacsg_view *view;
     cl_mem params, all_groups;
-    double root_w;    /* the secondary rays' tree, [0, root_w]: past every ray's exit from the bounds */
     double footprint; /* a pixel's footprint at the bounds' farthest corner */
     void *host;       /* the rays and hits of a call, in the working precision; grows, reused by each call */
     long long rays;   /* secondary rays traced, and their interval evaluations (with config.stats) */
