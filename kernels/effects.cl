@@ -266,26 +266,37 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
         ia_realv p[3];
         for (int c = 0; c < 3; c++)
             p[c] = o[c] + t * d[c];
-        /* the lights each hit sees: those in front of it, where no shadow ray from off the surface (on the light's
-         * side) to the light finds anything */
-        ia_realv off = effects_offset(eps, p, t);
-        ia_maskv seen[EFFECTS_MAX_LIGHTS];
+        /* the light each hit gets from each light in front of it: all of it, or where shadows are cast what a
+         * shadow ray from off the surface (on the light's side) to the light lets through: each crossing of a
+         * transparent surface on the way keeps 1 - A of it (a layer, as the camera rays see it), an opaque one none */
+        ia_realv off = effects_offset(eps, p, t), vis[EFFECTS_MAX_LIGHTS];
         for (int l = 0; l < nlights; l++) {
             __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
             ia_realv towards[3];
             shade_towards(params, L, p, towards);
-            seen[l] = live & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
-            if (shadows && shade < EFFECTS_SHADE_NORMALS && iav_any(seen[l])) {
-                ia_realv so[3], sd[3], st, unused[3];
-                for (int c = 0; c < 3; c++)
-                    so[c] = p[c] + off * n[c];
-                ia_realv dist = shade_towards(params, L, so, sd);
-                seen[l] &= ~effects_trace(params, all_groups, so, sd, IAV_R(0), dist, seen[l], off, eps, footprint,
-                                          &st, 0, unused, &rays, &evals);
+            ia_maskv ray = live & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
+            vis[l] = select(IAV_R(0), IAV_R(1), ray);
+            ia_realv so[3], sd[3], sp = off, sn[3] = {n[0], n[1], n[2]};
+            for (int c = 0; c < 3; c++)
+                so[c] = p[c];
+            for (int layer = 0; shadows && shade < EFFECTS_SHADE_NORMALS && iav_any(ray); layer++) {
+                for (int c = 0; c < 3; c++) /* off the surface it leaves, on the light's side */
+                    so[c] = select(so[c], so[c] + sp * sn[c], ray);
+                ia_realv dist = shade_towards(params, L, so, sd), st;
+                ia_maskv blocked = effects_trace(params, all_groups, so, sd, IAV_R(0), dist, ray, sp, eps, footprint,
+                                                 &st, a < 1, sn, &rays, &evals);
+                vis[l] = select(vis[l], vis[l] * (1 - a), blocked);
+                ray = layer + 1 < EFFECTS_MAX_LAYERS ? blocked & (vis[l] >= (ia_real)EFFECTS_MIN_WEIGHT) : (ia_maskv)0;
+                for (int c = 0; c < 3; c++) { /* on from past it: its normal faces the shadow ray */
+                    ia_realv q = so[c] + st * sd[c];
+                    so[c] = select(so[c], q, ray);
+                    sn[c] = -sn[c];
+                }
+                sp = effects_offset(eps, so, st);
             }
         }
         shade_colorv lin[3];
-        shade_effects(params, fx, p, t, n, d, seen, albedo, IAV_R(fx[EFFECTS_SPECULAR]), IAV_R(fx[EFFECTS_SHININESS]),
+        shade_effects(params, fx, p, t, n, d, vis, albedo, IAV_R(fx[EFFECTS_SPECULAR]), IAV_R(fx[EFFECTS_SHININESS]),
                       id_rgb, lin);
         if (shade >= EFFECTS_SHADE_NORMALS) { /* the previews: unlit, opaque */
             effects_add(acc, live, through, lin);

@@ -163,10 +163,10 @@ IA_FN void shade_lit_linear(const shade_colorv albedo[3], ia_realv specular, ia_
 
 /* The effects' colours (linear) of hits at points p, at depths t along view directions d, with unit normals n
  * facing them, by the effects' block fx (kernels/effects.h): the previews (-shade normals, depth, ids: id_rgb,
- * linear), or lit: albedo (-shade gradient: the normal's direction), specular and shininess, under each light l
- * in the lanes where seen[l] (no shadow ray found it blocked). */
+ * linear), or lit: albedo (-shade gradient: the normal's direction), specular and shininess, under each light l,
+ * of which the fraction vis[l] reaches the hit (shadow rays). */
 IA_FN void shade_effects(const KERNEL_CONSTANT ia_real *params, const KERNEL_CONSTANT ia_real *fx, const ia_realv p[3],
-                         ia_realv t, const ia_realv n[3], const ia_realv d[3], const ia_maskv seen[EFFECTS_MAX_LIGHTS],
+                         ia_realv t, const ia_realv n[3], const ia_realv d[3], const ia_realv vis[EFFECTS_MAX_LIGHTS],
                          const shade_colorv albedo[3], ia_realv specular, ia_realv shininess,
                          const shade_colorv id_rgb[3], shade_colorv lin[3]) {
     int shade = (int)fx[EFFECTS_SHADE];
@@ -186,8 +186,9 @@ IA_FN void shade_effects(const KERNEL_CONSTANT ia_real *params, const KERNEL_CON
         ia_realv towards[3], nl, nh;
         shade_towards(params, L, p, towards);
         shade_light(n, d, towards, &nl, &nh);
-        diffuse += select(IAV_R(0), L[EFFECTS_LIGHT_INTENSITY] * nl, seen[l]);
-        highlight += select(IAV_R(0), L[EFFECTS_LIGHT_HIGHLIGHT] * shade_highlight(nh, shininess), seen[l]);
+        diffuse += select(IAV_R(0), vis[l] * (L[EFFECTS_LIGHT_INTENSITY] * nl), vis[l] > 0);
+        highlight += select(IAV_R(0), vis[l] * (L[EFFECTS_LIGHT_HIGHLIGHT] * shade_highlight(nh, shininess)),
+                            vis[l] > 0);
     }
     shade_colorv lit[3];
     for (int c = 0; c < 3; c++) { /* -shade gradient: the normal's direction as the colour */

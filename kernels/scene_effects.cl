@@ -96,7 +96,8 @@ __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *
     }
     ia_realv o[3], d[3], nv[3], p[3], t = IAV_LOAD(t_k);
     shade_colorv albedo[3], id_rgb[3], lin[3], bg[3];
-    ia_maskv hit = IAV_LOAD(on_k) != 0, seen[EFFECTS_MAX_LIGHTS];
+    ia_maskv hit = IAV_LOAD(on_k) != 0;
+    ia_realv vis[EFFECTS_MAX_LIGHTS];
     for (int c = 0; c < 3; c++) {
         o[c] = IAV_LOAD(o_k[c]);
         d[c] = IAV_LOAD(d_k[c]);
@@ -106,8 +107,8 @@ __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *
         id_rgb[c] = IAV_CAT(vload, IA_VW)(0, id_k[c]);
     }
     for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++)
-        seen[l] = hit & (IAV_LOAD(seen_k[l]) != 0);
-    shade_effects(params, fx, p, t, nv, d, seen, albedo, IAV_LOAD(specular_k), IAV_LOAD(shininess_k), id_rgb, lin);
+        vis[l] = select(IAV_R(0), IAV_LOAD(seen_k[l]), hit);
+    shade_effects(params, fx, p, t, nv, d, vis, albedo, IAV_LOAD(specular_k), IAV_LOAD(shininess_k), id_rgb, lin);
     float top[3], bottom[3];
     for (int c = 0; c < 3; c++) {
         top[c] = (float)fx[EFFECTS_BG_TOP + c];

@@ -143,6 +143,68 @@ TEST_FP(effects_shadow_boundary_distance) {
     check_shadows(view, fr);
 }
 
+/* The same scene with -opacity 0.6: the ball casts a shadow that lets (1 - 0.6)^2 of the light through (a shadow
+ * ray crosses its surface twice). The ground, the solid z < 0, is one layer where the camera ray enters it (the
+ * ray leaves the bounds inside it): a pixel of the ground is 0.6 of its lit colour, the light on it times the
+ * fraction that reaches it, and 0.4 of the background (the default gradient at its row, kernels/light.h), in
+ * linear light. Pixels within 2e-3 of the shadow's edge, or whose ray meets the ball, are left out. */
+TEST_FP(effects_shadow_through_transparent) {
+    iacsg_view view = ground_view(160);
+    iacsg_effects fx = shadow_effects();
+    fx.transparency = 0.4; /* opacity 0.6 */
+    const char *expr = "min(move(sphere(0.5), 0, 0, 0.6), z)";
+    iacsg_frame fr;
+    view.effects = &fx;
+    render_expr(expr, &view, &fr);
+    sphere ball = {{0, 0, 0.6}, 0.5};
+    ia_real p[PARAM_COUNT];
+    view_params(&view, p);
+    const double a = 0.6, *light = shadow_light;
+    long lit = 0, dark = 0, bad = 0;
+    double worst = 0;
+    static const double top[3] = {0.42f, 0.46f, 0.52f}, bottom[3] = {0.13f, 0.14f, 0.17f};
+    static const double albedo[3] = {0.80f, 0.52f, 0.28f};
+    for (int j = 0; j < view.height; j++) {
+        for (int i = 0; i < view.width; i++) {
+            double o[3], d[3], t1, t2, hit[3], l[3], h[3];
+            pixel_ray(p, &view, i, j, o, d);
+            if (sphere_span(ball, o, d, &t1, &t2) || !(d[2] < 0))
+                continue;
+            double t = -o[2] / d[2];
+            for (int k = 0; k < 3; k++) {
+                hit[k] = o[k] + t * d[k];
+                l[k] = light[k] - hit[k];
+            }
+            double edge = segment_distance(ball.c, hit, light) - ball.r;
+            if (fabs(hit[0]) > 1.99 || fabs(hit[1]) > 1.99 || fabs(edge) < 2e-3)
+                continue;
+            double len = sqrt(dot(l, l)), T = edge < 0 ? (1 - a) * (1 - a) : 1;
+            for (int k = 0; k < 3; k++) {
+                l[k] /= len;
+                h[k] = l[k] - d[k];
+            }
+            double nl = l[2], nh = h[2] / sqrt(dot(h, h));
+            size_t px = (size_t)j * view.width + i;
+            for (int c = 0; c < 3; c++) {
+                double lin = albedo[c] * (0.1 + 0.9 * nl * T) + 0.45 * 0.9 * pow(nh, 48) * T;
+                double shown_bg = top[c] + (bottom[c] - top[c]) * j / (view.height - 1);
+                double off = fabs(fr.rgb[3 * px + c] - sqrt(a * lin + (1 - a) * shown_bg * shown_bg));
+                if (off > 2e-3 && c == 0 && bad++ < 5)
+                    test_note("pixel (%d, %d), %s: red %.4f, want %.4f", i, j, T < 1 ? "in the shadow" : "lit",
+                              fr.rgb[3 * px], sqrt(a * lin + (1 - a) * shown_bg * shown_bg));
+                worst = fmax(worst, off);
+            }
+            lit += T == 1;
+            dark += T < 1;
+        }
+    }
+    iacsg_frame_free(&fr);
+    CHECK(worst <= 1e-4, "a pixel of the ground is %g off its colour under the light that reaches it", worst);
+    CHECK(lit > 5000 && dark > 500, "too few pixels: %ld lit, %ld in the shadow", lit, dark);
+    test_note("%ld pixels lit, %ld in the shadow of the transparent ball (0.16 of the light), within %.1e", lit, dark,
+              worst);
+}
+
 /* The same scene as two regions of the expression's colour: the segment path's shadow rays. */
 TEST_FP(effects_shadow_boundary_regions) {
     iacsg_view view = ground_view(200);
