@@ -93,7 +93,7 @@ typedef struct {
     float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
     /* scratch: shadow rays, their hits, which ray each (path, light) cast (-1: none); the generations of paths
      * (two, in turn); the rays and hits of a generation */
-    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, bits, colors;
+    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, rows, vis, colors;
     double block[EFFECTS_COUNT]; /* the effects' parameters for the kernels (kernels/effects.h) */
     float *palette;              /* a scene's: each item's -shade ids colour, linear */
 } fx_frame;
@@ -224,48 +224,81 @@ static void add(float *accum, int pixel, double w, const double lin[3]) {
         accum[3 * (size_t)pixel + c] += (float)(w * lin[c]);
 }
 
-/* Adds the colours of paths[0 .. n) that their hits give now, lit with shadow rays (traced first); kids gets
- * their children, reflected and transmitted rays not yet traced (*nout of them, at most 2n). */
+/* The fraction of light l that reaches the hit of paths[i], vis[EFFECTS_MAX_LIGHTS i + l]: none where the light
+ * is behind its surface; else what a shadow ray from off the surface to the light lets through: 1 - opacity of
+ * each transparent item it meets (a region is a volume, entered once: the ray goes on from inside it, passing
+ * through it as a camera ray does; a surface is crossed), none past an opaque one; for at most EFFECTS_MAX_LAYERS
+ * items, or until less than EFFECTS_MIN_WEIGHT of the light is left. */
+static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n, float *vis, iacsg_error *err) {
+    size_t nl = (size_t)f->nlights, m = 0;
+    fx_ray *rays = reserve(&f->shadow_rays, (n * nl + 1) * sizeof *rays);
+    fx_hit *hits = reserve(&f->shadow_hits, (n * nl + 1) * sizeof *hits);
+    long *owner = reserve(&f->shadow_of, (n * nl + 1) * sizeof *owner); /* the (path, light) of each ray */
+    if (!rays || !hits || !owner)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    for (size_t i = 0; i < n; i++)
+        for (size_t l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
+            int cast = l < nl && paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[m]);
+            vis[EFFECTS_MAX_LIGHTS * i + l] = cast;
+            if (cast)
+                owner[m++] = (long)(EFFECTS_MAX_LIGHTS * i + l);
+        }
+    for (int layer = 0; m > 0 && layer < EFFECTS_MAX_LAYERS; layer++) {
+        iacsg_status st = fx_trace(&f->tracer, rays, m, FX_SHADOW_EPS_FACTOR * f->view->eps, hits, err);
+        if (st != IACSG_OK)
+            return st;
+        size_t next = 0;
+        for (size_t j = 0; j < m; j++) { /* in place: ray j is read before ray next <= j is written */
+            if (hits[j].item < 0)
+                continue; /* it reached the light */
+            const fx_item *it = &f->r->fx->items[hits[j].item];
+            float *v = &vis[owner[j]];
+            *v *= 1 - it->opacity;
+            if (*v < EFFECTS_MIN_WEIGHT)
+                continue;
+            fx_path past = {.ray = rays[j], .hit = hits[j]}; /* on from past it: its normal faces the ray */
+            double p[3];
+            hit_point(&past, p);
+            double off = offset_of(f, p, hits[j].t);
+            fx_ray *y = &rays[next];
+            for (int k = 0; k < 3; k++)
+                y->o[k] = p[k] - off * hits[j].n[k];
+            y->tf = towards(&f->lights[owner[j] % EFFECTS_MAX_LIGHTS], y->o, y->d);
+            y->tn = 0;
+            y->passing = it->region ? 1 + hits[j].item : 0;
+            owner[next++] = owner[j];
+        }
+        m = next;
+    }
+    return IACSG_OK;
+}
+
+/* Adds the colours of paths[0 .. n) that their hits give now, lit as far as their shadow rays let the lights
+ * through; kids gets their children, reflected and transmitted rays not yet traced (*nout of them, at most 2n). */
 static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n, fx_path *kids, size_t *nout,
                                      iacsg_error *err) {
     const iacsg_effects *e = f->e;
     int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
-    size_t nl = (size_t)f->nlights, nshadow = 0;
-    unsigned char *seen = NULL;
-    if (lit && e->shadows) { /* one shadow ray per hit and light in front of it */
-        fx_ray *rays = reserve(&f->shadow_rays, (n * nl + 1) * sizeof *rays);
-        fx_hit *hits = reserve(&f->shadow_hits, (n * nl + 1) * sizeof *hits);
-        long *ray_of = reserve(&f->shadow_of, (n * nl + 1) * sizeof *ray_of);
-        if (!rays || !hits || !ray_of)
-            return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-        for (size_t i = 0; i < n; i++)
-            for (size_t l = 0; l < nl; l++) {
-                int cast = paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[nshadow]);
-                ray_of[i * nl + l] = cast ? (long)nshadow++ : -1;
-            }
-        iacsg_status st = fx_trace(&f->tracer, rays, nshadow, FX_SHADOW_EPS_FACTOR * f->view->eps, hits, err);
-        if (st != IACSG_OK)
-            return st;
-        seen = (unsigned char *)ray_of; /* in place: entry k is read before byte k is written */
-        for (size_t k = 0; k < n * nl; k++)
-            seen[k] = ray_of[k] >= 0 && isinf(hits[ray_of[k]].t);
-    }
-    /* the colours of the hits, on the device (light.h), with the lights each sees */
     fx_ray *rays = reserve(&f->rays, (n + 1) * sizeof *rays);
     fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
-    int *bits = reserve(&f->bits, (2 * n + 1) * sizeof *bits), *rows = bits + n;
+    int *rows = reserve(&f->rows, (n + 1) * sizeof *rows);
+    float *vis = reserve(&f->vis, (EFFECTS_MAX_LIGHTS * n + 1) * sizeof *vis);
     float *out = reserve(&f->colors, (6 * n + 1) * sizeof *out);
-    if (!rays || !hits || !bits || !out)
+    if (!rays || !hits || !rows || !vis || !out)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    iacsg_status st = IACSG_OK;
+    if (lit && e->shadows)
+        st = shadow_fractions(f, paths, n, vis, err);
+    for (size_t k = 0; !(lit && e->shadows) && k < EFFECTS_MAX_LIGHTS * n; k++)
+        vis[k] = 1;
+    /* the colours of the hits, on the device (light.h) */
     for (size_t i = 0; i < n; i++) {
         rays[i] = paths[i].ray;
         hits[i] = paths[i].hit;
         rows[i] = paths[i].pixel / f->view->width;
-        bits[i] = 0;
-        for (size_t l = 0; l < nl; l++)
-            bits[i] |= (!seen || seen[i * nl + l]) << l;
     }
-    iacsg_status st = fx_scene_shade(&f->tracer, f->block, rays, hits, bits, rows, n, f->palette, out, err);
+    if (st == IACSG_OK)
+        st = fx_scene_shade(&f->tracer, f->block, rays, hits, vis, rows, n, f->palette, out, err);
     if (st != IACSG_OK)
         return st;
     size_t nkids = 0;
@@ -606,7 +639,7 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
     free(order);
     free(f.palette);
     fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1],
-                      &f.rays,        &f.hits,        &f.bits,      &f.colors};
+                      &f.rays,        &f.hits,        &f.rows,      &f.vis,     &f.colors};
     for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
         free(bufs[k]->p);
     frame->secondary_rays = f.tracer.rays;

@@ -225,14 +225,14 @@ fail:
 }
 
 iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *rays, const fx_hit *hits,
-                            const int *seen_bits, const int *rows, size_t n, const float *palette, float *out,
+                            const float *vis, const int *rows, size_t n, const float *palette, float *out,
                             iacsg_error *err) {
     iacsg_renderer *r = t->r;
     size_t rb = real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1;
     char *reals = malloc((n * (EFFECTS_RAY_REALS + 1) + EFFECTS_COUNT + 1) * rb);
     float *normal = malloc((3 * n + 1) * sizeof *normal);
     cl_int *item = malloc((n + 1) * sizeof *item);
-    cl_mem mem[9] = {0}; /* block, materials, palette, rays, depths, normals, items, seen, rows; then out */
+    cl_mem mem[9] = {0}; /* block, materials, palette, rays, depths, normals, items, light fractions, rows */
     cl_mem out_mem = NULL;
     iacsg_status st = reals && normal && item ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     char *ray_reals = reals + EFFECTS_COUNT * rb, *depth = ray_reals + n * EFFECTS_RAY_REALS * rb;
@@ -247,10 +247,10 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *ray
         memcpy(normal + 3 * i, hits[i].n, sizeof hits[i].n);
         item[i] = hits[i].item;
     }
-    const void *host[9] = {reals, render_scene_materials(r), palette, ray_reals, depth, normal, item, seen_bits, rows};
+    const void *host[9] = {reals, render_scene_materials(r), palette, ray_reals, depth, normal, item, vis, rows};
     size_t bytes[9] = {EFFECTS_COUNT * rb, SCENE_MATERIAL_FLOATS * nitems * sizeof(float), 3 * nitems * sizeof(float),
                        n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
-                       n * sizeof(int), n * sizeof(int)};
+                       EFFECTS_MAX_LIGHTS * n * sizeof(float), n * sizeof(int)};
     cl_int rc = CL_SUCCESS;
     for (int b = 0; b < 9 && st == IACSG_OK && n > 0; b++) {
         mem[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes[b], (void *)host[b], &rc);

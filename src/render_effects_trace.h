@@ -65,11 +65,12 @@ iacsg_status fx_device_compile(fx_tracer *t, iacsg_error *err);
 iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err);
 
 /* The segment path's colours (kernels/scene_effects.cl: iacsg_scene_shade) of the hits[0 .. n) of rays[0 .. n):
- * each lit by the lights of the effects' block (EFFECTS_COUNT, kernels/effects.h) whose bit it has in seen_bits,
- * its pixel's row in rows; palette: 3 linear floats per item (-shade ids). Out: 6 floats per hit, its colour
- * (a miss: the background) and its row's background, linear. n = 0: only compiles the kernel. */
+ * each lit by the lights of the effects' block (EFFECTS_COUNT, kernels/effects.h), of which the fractions
+ * vis[EFFECTS_MAX_LIGHTS i + l] reach hit i; its pixel's row in rows; palette: 3 linear floats per item (-shade
+ * ids). Out: 6 floats per hit, its colour (a miss: the background) and its row's background, linear. n = 0:
+ * only compiles the kernel. */
 iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *rays, const fx_hit *hits,
-                            const int *seen_bits, const int *rows, size_t n, const float *palette, float *out,
+                            const float *vis, const int *rows, size_t n, const float *palette, float *out,
                             iacsg_error *err);
 
 #endif
