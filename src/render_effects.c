@@ -454,21 +454,28 @@ static int differ(const iacsg_frame *fr, int a, int b) {
     return ia >= 0 && fabsf(fr->depth[a] - fr->depth[b]) > FX_AA_DEPTH * fminf(fr->depth[a], fr->depth[b]);
 }
 
-/* The traced pixels on an edge (differ), in block order (`order`, count of them), into edges; returns how many. */
-static size_t edge_pixels(const fx_frame *f, const iacsg_frame *fr, const int *order, size_t count, int *edges) {
+/* The traced pixels on an edge (differ), in block order (`order`, count of them), into edges; returns how many,
+ * or -1 out of memory. Each pair of neighbours is compared once. */
+static long edge_pixels(const fx_frame *f, const iacsg_frame *fr, const int *order, size_t count, int *edges) {
     const iacsg_view *v = f->view;
     int row0, row1, w = v->width;
     traced_rows(v, &row0, &row1);
-    size_t n = 0;
-    for (size_t k = 0; k < count; k++) {
-        int p = order[k], i = p % w, j = p / w, edge = 0;
-        for (int di = -1; di <= 1; di += 2)
-            edge |= i + di >= 0 && i + di < w && differ(fr, p, p + di);
-        for (int dj = -1; dj <= 1; dj += 2)
-            edge |= j + dj >= row0 && j + dj < row1 && differ(fr, p, p + dj * w);
-        if (edge)
-            edges[n++] = p;
-    }
+    unsigned char *edge = calloc((size_t)v->width * (size_t)v->height + 1, 1);
+    if (!edge)
+        return -1;
+    for (int j = row0; j < row1; j++)
+        for (int i = 0; i < w; i++) {
+            int p = j * w + i;
+            if (i + 1 < w && differ(fr, p, p + 1))
+                edge[p] = edge[p + 1] = 1;
+            if (j + 1 < row1 && differ(fr, p, p + w))
+                edge[p] = edge[p + w] = 1;
+        }
+    long n = 0;
+    for (size_t k = 0; k < count; k++)
+        if (edge[order[k]])
+            edges[n++] = order[k];
+    free(edge);
     return n;
 }
 
@@ -489,7 +496,12 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
     int *edges = malloc((count + 1) * sizeof *edges);
     if (!edges)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
-    size_t nedges = edge_pixels(f, fr, order, count, edges);
+    long found = edge_pixels(f, fr, order, count, edges);
+    if (found < 0) {
+        free(edges);
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    }
+    size_t nedges = (size_t)found;
     iacsg_status st = IACSG_OK;
     size_t per_chunk = FX_CHUNK / ((size_t)aa * aa), k = 0;
     while (st == IACSG_OK && k < nedges) { /* the edge pixels in block order, per_chunk at a time */
@@ -575,8 +587,12 @@ static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, const int *order
                                     err);
     if (st == IACSG_OK && e->aa > 1) {
         double aa[2] = {aa_eps(f), f->tracer.footprint};
-        n = edge_pixels(f, frame, order, count, listed);
-        st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_AA, listed, n, e->aa, aa, frame, err);
+        long edges = edge_pixels(f, frame, order, count, listed);
+        n = edges > 0 ? (size_t)edges : 0;
+        if (edges < 0)
+            st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+        if (st == IACSG_OK)
+            st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_AA, listed, n, e->aa, aa, frame, err);
     }
     free(listed);
     return st;
