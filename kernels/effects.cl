@@ -169,9 +169,9 @@ static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shad
 
 /* Paths first .. first + 15 of the launch. mode (kernels/effects.h): EFFECTS_MODE_CENTRE, path k the centre ray
  * of pixel pixels[k], its hit the frame's (depth, normal); EFFECTS_MODE_AA, path k the ray (k mod aa^2) of an
- * aa x aa grid in pixel pixels[k / aa^2], weight 1 / aa^2, traced with leaves aa_eps and Newton's window
- * `footprint` (as camera rays); EFFECTS_MODE_PATHS, path k the ray paths[k] (EFFECTS_PATH_REALS) of pixel
- * pixels[k]. Out per path: its colour (3 floats: linear light
+ * aa x aa grid in pixel pixels[k / aa^2], weight 1 / aa^2, traced with leaves aa_eps (as camera rays);
+ * EFFECTS_MODE_PATHS, path k the ray paths[k] (EFFECTS_PATH_REALS) of pixel pixels[k]. Interval Newton's window
+ * in the walks (packet.h): 32 `footprint`s, the camera rays'. Out per path: its colour (3 floats: linear light
  * times the weight, in `color`; a centre ray's in its pixel of the frame's `rgb`, display-encoded when it lists no
  * reflected ray), the reflected rays it lists (nkids, in kids from kid_slots k on), and with `stats`
  * (KERNEL_STATS) the rays it traced and their interval evaluations. */
