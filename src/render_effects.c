@@ -436,12 +436,6 @@ static void centre_path(const fx_frame *f, const iacsg_frame *fr, int pixel, fx_
     q->hit.item = isinf(q->hit.t) ? -1 : fr->ids ? (int)fr->ids[pixel] : 0;
 }
 
-/* A pixel's summed linear light to its display colour, in place (kernels/light.h: gamma 2). */
-static void encode(float *rgb, int pixel) {
-    for (int c = 0; c < 3; c++)
-        rgb[3 * (size_t)pixel + c] = sqrtf(fminf(fmaxf(rgb[3 * (size_t)pixel + c], 0), 1));
-}
-
 /* Whether pixels a and b (both traced) differ enough that the edge between them needs more rays. */
 static int differ(const iacsg_frame *fr, int a, int b) {
     float ia = isinf(fr->depth[a]) ? -1 : fr->ids ? fr->ids[a] : 0;
@@ -523,7 +517,7 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
         if (st == IACSG_OK)
             st = run_paths(f, paths, n, err);
         for (size_t q = first; st == IACSG_OK && q < k; q++)
-            encode(fr->rgb, edges[q]);
+            fx_encode(fr->rgb, edges[q]);
     }
     free(edges);
     return st;
@@ -617,7 +611,7 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, const int *orde
         }
         st = run_paths(f, paths, n, err);
         for (size_t q = 0; st == IACSG_OK && q < n; q++)
-            encode(frame->rgb, paths[q].pixel);
+            fx_encode(frame->rgb, paths[q].pixel);
     }
     if (st == IACSG_OK && f->e->aa > 1)
         st = antialias(f, frame, order, count, paths, err);

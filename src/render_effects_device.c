@@ -13,14 +13,11 @@
 #include "render_effects_trace.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* Paths times their reflected rays' slots per launch: its buffers stay a few MB. */
 #define FX_DEVICE_SLOTS ((size_t)1 << 18)
-
-static size_t real_bytes(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
 
 /* A generation of paths of the mode EFFECTS_MODE_PATHS: their pixels and records (EFFECTS_PATH_REALS each, in the
  * working precision). Grows. */
@@ -69,19 +66,12 @@ static iacsg_status set_arg(cl_kernel k, cl_uint at, size_t bytes, const void *v
     return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clSetKernelArg(iacsg_effects)", __func__, __LINE__);
 }
 
-static void put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
-    if (r->config.fp64)
-        ((double *)block)[k] = v;
-    else
-        ((float *)block)[k] = (float)v;
-}
-
 /* One launch over paths [0, n) of `mode` (kernels/effects.cl's arguments), n at most FX_DEVICE_SLOTS / kid_slots:
  * adds their colours to the frame and appends their reflected rays to `next`. */
 static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npixels, const char *recs, size_t n,
                            int aa, fx_generation *next, iacsg_error *err) {
     iacsg_renderer *r = x->t->r;
-    size_t rb = real_bytes(r);
+    size_t rb = fx_real_bytes(r);
     cl_mem mem[6] = {0}; /* pixels, paths, colours, kids, nkids, stats */
     size_t bytes[6] = {npixels * sizeof(int), n * EFFECTS_PATH_REALS * rb, 3 * n * sizeof(float),
                        n * (size_t)x->kid_slots * EFFECTS_PATH_REALS * rb, n * sizeof(int), 2 * n * sizeof(cl_uint)};
@@ -103,7 +93,7 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
     char *dst[2] = {aa_eps, footprint};
     for (int q = 0; q < 2; q++) {
         double one[1];
-        put_real(r, one, 0, reals[q]);
+        fx_put_real(r, one, 0, reals[q]);
         memcpy(dst[q], one, rb);
     }
     struct {
@@ -128,16 +118,9 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
             st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_effects)", __func__, __LINE__);
     }
     /* a CPU device wrote the host arrays in place; another is made to by mapping them */
-    for (int b = 2; b < 6 && st == IACSG_OK; b++) {
-        if (!mem[b])
-            continue;
-        cl_int rc = CL_SUCCESS;
-        void *p = clEnqueueMapBuffer(r->rt.queue, mem[b], CL_TRUE, CL_MAP_READ, 0, bytes[b], 0, NULL, NULL, &rc);
-        if (rc == CL_SUCCESS)
-            rc = clEnqueueUnmapMemObject(r->rt.queue, mem[b], p, 0, NULL, NULL);
-        if (rc != CL_SUCCESS)
-            st = clrt_record(err, rc, "clEnqueueMapBuffer(effects)", __func__, __LINE__);
-    }
+    for (int b = 2; b < 6 && st == IACSG_OK; b++)
+        if (mem[b])
+            st = fx_sync_to_host(r->rt.queue, mem[b], bytes[b], err);
     size_t samples = mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1;
     for (size_t i = 0; st == IACSG_OK && i < n; i++) {
         int pixel = pixels[i / samples];
@@ -168,7 +151,7 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
 /* The launches over n paths of `mode`, in slices that the per-launch buffers hold (for -aa, whole pixels). */
 static iacsg_status launch_all(fx_device *x, int mode, const int *pixels, const char *recs, size_t n, int aa,
                                fx_generation *next, iacsg_error *err) {
-    size_t rb = real_bytes(x->t->r), samples = mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1;
+    size_t rb = fx_real_bytes(x->t->r), samples = mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1;
     size_t slice = FX_DEVICE_SLOTS / (x->kid_slots ? (size_t)x->kid_slots : 1) / (samples * PACKET_LANES) * samples *
                    PACKET_LANES;
     iacsg_status st = IACSG_OK;
@@ -184,7 +167,7 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
                            size_t npixels, int aa, const double aa_eps_footprint[2], iacsg_frame *frame,
                            iacsg_error *err) {
     iacsg_renderer *r = t->r;
-    size_t rb = real_bytes(r), n = npixels * (mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1);
+    size_t rb = fx_real_bytes(r), n = npixels * (mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1);
     if (n == 0)
         return IACSG_OK;
     fx_device x = {.t = t, .k = r->fx->trace, .view = t->view, .kid_slots = kid_slots, .accum = frame->rgb,
@@ -192,7 +175,7 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
     fx_generation gen[2] = {{0}};
     char reals[EFFECTS_COUNT * sizeof(double)];
     for (int k = 0; k < EFFECTS_COUNT; k++)
-        put_real(r, reals, (size_t)k, block[k]);
+        fx_put_real(r, reals, (size_t)k, block[k]);
     size_t slots = FX_DEVICE_SLOTS, paths = slots / (kid_slots ? (size_t)kid_slots : 1) + PACKET_LANES;
     x.color = malloc(3 * paths * sizeof(float));
     x.nkids = malloc(paths * sizeof(int));
@@ -233,19 +216,10 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
         st = launch_all(&x, EFFECTS_MODE_PATHS, gen[g].pixel, gen[g].rec, gen[g].n, aa, &gen[1 - g], err);
         gen[g].n = 0;
     }
-    if (st == IACSG_OK && x.rgb) { /* the frame current on the host after the kernels wrote it */
-        void *p = clEnqueueMapBuffer(r->rt.queue, x.rgb, CL_TRUE, CL_MAP_READ | CL_MAP_WRITE, 0, 3 * npix * sizeof(float),
-                                     0, NULL, NULL, &rc);
-        if (rc == CL_SUCCESS)
-            rc = clEnqueueUnmapMemObject(r->rt.queue, x.rgb, p, 0, NULL, NULL);
-        if (rc != CL_SUCCESS)
-            st = clrt_record(err, rc, "clEnqueueMapBuffer(effects)", __func__, __LINE__);
-    }
-    for (size_t k = 0; st == IACSG_OK && k < x.nsummed; k++) /* gamma 2, as light.h encodes */
-        for (int c = 0; c < 3; c++) {
-            float *v = frame->rgb + 3 * (size_t)x.summed[k] + c;
-            *v = sqrtf(*v < 0 ? 0 : *v > 1 ? 1 : *v);
-        }
+    if (st == IACSG_OK && x.rgb) /* the frame current on the host after the kernels wrote it */
+        st = fx_sync_to_host(r->rt.queue, x.rgb, 3 * npix * sizeof(float), err);
+    for (size_t k = 0; st == IACSG_OK && k < x.nsummed; k++)
+        fx_encode(frame->rgb, x.summed[k]);
     cl_mem all[4] = {x.fx, x.depth, x.normal, x.rgb};
     for (int k = 0; k < 4; k++)
         if (all[k])

@@ -23,14 +23,18 @@ iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err) {
     return IACSG_OK;
 }
 
-static size_t real_bytes(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
+size_t fx_real_bytes(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
 
-/* Stores v as the working precision's real at index k of `block`. */
-static void put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
+void fx_put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
     if (r->config.fp64)
         ((double *)block)[k] = v;
     else
         ((float *)block)[k] = (float)v;
+}
+
+void fx_encode(float *rgb, int pixel) {
+    for (int c = 0; c < 3; c++)
+        rgb[3 * (size_t)pixel + c] = sqrtf(fminf(fmaxf(rgb[3 * (size_t)pixel + c], 0), 1));
 }
 
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
@@ -56,7 +60,7 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
     if (st != IACSG_OK)
         return st;
     cl_int rc = CL_SUCCESS;
-    t->params = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * real_bytes(r),
+    t->params = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * fx_real_bytes(r),
                                block, &rc);
     CLRT_CHECK(err, rc);
     if (!fx->trace) {
@@ -124,7 +128,7 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
         if (clSetKernelArg(k, at[a], sizeof(cl_mem), args[a] ? &args[a] : NULL) != CL_SUCCESS)
             st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
-                           clSetKernelArg(k, 4, real_bytes(r), eps_real) != CL_SUCCESS))
+                           clSetKernelArg(k, 4, fx_real_bytes(r), eps_real) != CL_SUCCESS))
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     for (cl_int first = 0; st == IACSG_OK && (first < n || first == 0); first += (cl_int)slots) {
         size_t global = (size_t)(n - first) < slots && n > 0 ? (size_t)(n - first) : slots, local = 1;
@@ -157,8 +161,7 @@ static iacsg_status reserve_scratch(fx_tracer *t, size_t bytes, iacsg_error *err
     return IACSG_OK;
 }
 
-/* Makes the host array current after the kernels wrote the buffer over it (a no-op on a CPU device). */
-static iacsg_status sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {
+iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {
     cl_int rc = CL_SUCCESS;
     void *p = clEnqueueMapBuffer(q, m, CL_TRUE, CL_MAP_READ, 0, bytes, 0, NULL, NULL, &rc);
     CLRT_CHECK(err, rc);
@@ -174,7 +177,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
     if (n > 0x7fffffff / EFFECTS_RAY_REALS)
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "too many secondary rays (%zu) in one pass", n);
     iacsg_renderer *r = t->r;
-    size_t rb = real_bytes(r);
+    size_t rb = fx_real_bytes(r);
     size_t bytes[6] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
                        n * sizeof(cl_uint), n * sizeof(cl_int)};
     size_t at[6] = {0};
@@ -188,7 +191,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
         const fx_ray *y = &rays[i];
         double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
         for (int k = 0; k < EFFECTS_RAY_REALS; k++)
-            put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
+            fx_put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
         ((cl_int *)(void *)(host + at[5]))[i] = y->passing;
     }
     trace_buffers b = {0};
@@ -202,11 +205,11 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
         CLRT_CHECK(err, rc);
     }
     double eps_block[1];
-    put_real(r, eps_block, 0, eps);
+    fx_put_real(r, eps_block, 0, eps);
     st = launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err);
     for (int k = 1; k < 5 && st == IACSG_OK; k++) /* the outputs */
         if (*dst[k])
-            st = sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
+            st = fx_sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
     const float *out_n = (const float *)(void *)(host + at[2]);
     const cl_int *out_item = (const cl_int *)(void *)(host + at[3]);
     for (size_t i = 0; st == IACSG_OK && i < n; i++) {
@@ -228,7 +231,7 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *ray
                             const float *vis, const int *rows, size_t n, const float *palette, float *out,
                             iacsg_error *err) {
     iacsg_renderer *r = t->r;
-    size_t rb = real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1;
+    size_t rb = fx_real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1;
     char *reals = malloc((n * (EFFECTS_RAY_REALS + 1) + EFFECTS_COUNT + 1) * rb);
     float *normal = malloc((3 * n + 1) * sizeof *normal);
     cl_int *item = malloc((n + 1) * sizeof *item);
@@ -237,13 +240,13 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *ray
     iacsg_status st = reals && normal && item ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     char *ray_reals = reals + EFFECTS_COUNT * rb, *depth = ray_reals + n * EFFECTS_RAY_REALS * rb;
     for (int k = 0; st == IACSG_OK && block && k < EFFECTS_COUNT; k++)
-        put_real(r, reals, (size_t)k, block[k]);
+        fx_put_real(r, reals, (size_t)k, block[k]);
     for (size_t i = 0; st == IACSG_OK && i < n; i++) {
         const fx_ray *y = &rays[i];
         double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
         for (int k = 0; k < EFFECTS_RAY_REALS; k++)
-            put_real(r, ray_reals, EFFECTS_RAY_REALS * i + (size_t)k, v[k]);
-        put_real(r, depth, i, isinf(hits[i].t) ? 0 : hits[i].t);
+            fx_put_real(r, ray_reals, EFFECTS_RAY_REALS * i + (size_t)k, v[k]);
+        fx_put_real(r, depth, i, isinf(hits[i].t) ? 0 : hits[i].t);
         memcpy(normal + 3 * i, hits[i].n, sizeof hits[i].n);
         item[i] = hits[i].item;
     }
@@ -282,7 +285,7 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *ray
             st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_scene_shade)", __func__, __LINE__);
     }
     if (st == IACSG_OK && out_mem)
-        st = sync_to_host(r->rt.queue, out_mem, 6 * n * sizeof(float), err);
+        st = fx_sync_to_host(r->rt.queue, out_mem, 6 * n * sizeof(float), err);
     for (int b = 0; b < 9; b++)
         if (mem[b])
             clReleaseMemObject(mem[b]);

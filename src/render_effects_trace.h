@@ -30,6 +30,15 @@ struct render_fx {
     int nitems;
 };
 
+/* The working precision's bytes per real; v stored as such a real at index k of `block`. */
+size_t fx_real_bytes(const iacsg_renderer *r);
+void fx_put_real(const iacsg_renderer *r, void *block, size_t k, double v);
+/* Makes the host array of a CL_MEM_USE_HOST_PTR buffer current after the kernels wrote it (a no-op on a CPU
+ * device). */
+iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err);
+/* A pixel's summed linear light (3 floats of rgb) to its display colour, in place (kernels/light.h: gamma 2). */
+void fx_encode(float *rgb, int pixel);
+
 /* Makes r->fx (without its kernel) when it is not there yet. */
 iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err);
 
