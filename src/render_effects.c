@@ -45,7 +45,8 @@ static const double fx_rig[2][4] = {{-0.6, 0.8, 0.85, 1.0}, {0.9, -0.2, 0.30, 0.
 #define FX_AA_DEPTH 0.02
 /* -aa's rays have leaves no narrower than a sample's footprint (at the bounds' farthest corner) / this. */
 #define FX_AA_EPS_PER_SAMPLE 4
-/* Paths are shaded this many pixels (or antialiasing rays) at a time: their buffers stay small and are reused. */
+/* The segment path's paths are shaded this many pixels (or antialiasing rays) at a time: their buffers stay small
+ * and are reused. */
 #define FX_CHUNK ((size_t)1 << 15)
 
 typedef struct {
@@ -91,8 +92,8 @@ typedef struct {
     int nlights;
     double depth_lo, depth_hi; /* the centre hits' range, for -shade depth */
     float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
-    /* scratch: shadow rays, their hits, which ray each (path, light) cast (-1: none); the generations of paths
-     * (two, in turn); the rays and hits of a generation */
+    /* the segment path's scratch: shadow rays, their hits, the (path, light) of each; the generations of paths
+     * (two, in turn); the rays, hits, rows, lights' fractions and colours of a generation */
     fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, rows, vis, colors;
     double block[EFFECTS_COUNT]; /* the effects' parameters for the kernels (kernels/effects.h) */
     float *palette;              /* a scene's: each item's -shade ids colour, linear */
