@@ -7,6 +7,7 @@
 #ifndef KERNELS_LIGHT_H
 #define KERNELS_LIGHT_H
 #include "params.h"
+#include "effects.h"
 #if IA_DEVICE && defined(IA_VW)
 
 typedef IAV_CAT(float, IA_VW) shade_colorv;
@@ -36,8 +37,8 @@ IA_FN void shade_light_direction(const KERNEL_CONSTANT ia_real *p, ia_real a, ia
 }
 
 /* One light's diffuse term and the cosine nh between the normal and the half vector (0 where the light is behind
- * the surface), for unit normals n, view directions d (from the eye) and the unit light direction l. */
-IA_FN void shade_light(const ia_realv n[3], const ia_realv d[3], const ia_real l[3], ia_realv *diffuse,
+ * the surface), for unit normals n, view directions d (from the eye) and the unit light directions l. */
+IA_FN void shade_light(const ia_realv n[3], const ia_realv d[3], const ia_realv l[3], ia_realv *diffuse,
                        ia_realv *nh_out) {
     ia_realv h[3], hh = IAV_R(0), nl = IAV_R(0), nh = IAV_R(0);
     for (int k = 0; k < 3; k++) {
@@ -58,6 +59,14 @@ IA_FN ia_realv shade_power48(ia_realv nh) {
     return nh16 * (nh16 * nh16);
 }
 
+/* The background of rows j (as floats) of `height`, display-encoded: top and bottom three floats each. */
+IA_FN void shade_background(shade_colorv j, int height, const float top[3], const float bottom[3],
+                            shade_colorv rgb[3]) {
+    shade_colorv v = j / (float)(height > 1 ? height - 1 : 1);
+    for (int c = 0; c < 3; c++)
+        rgb[c] = top[c] + (bottom[c] - top[c]) * v;
+}
+
 /* The displayed colours rgb: albedo lit by the key and fill lights' diffuse terms kd, fd, plus the highlights
  * ks, fs (weights included), in the lanes of `surface`; the background of their rows j (as floats) of `height`
  * in the others. */
@@ -66,12 +75,13 @@ IA_FN void shade_combine(ia_maskv surface, shade_colorv j, int height, const sha
     shade_colorv key_d = shade_to_color(kd), key_s = shade_to_color(ks);
     shade_colorv fill_d = shade_to_color(fd), fill_s = shade_to_color(fs);
     /* the background: a gradient from a light grey-blue at the top to a dark one below */
-    shade_colorv v = j / (float)(height > 1 ? height - 1 : 1);
     IAV_CAT(int, IA_VW) on_surface = IAV_CAT(convert_int, IA_VW)(surface) != 0;
     const float top[3] = {0.42f, 0.46f, 0.52f}, bottom[3] = {0.13f, 0.14f, 0.17f};
+    shade_colorv bg[3];
+    shade_background(j, height, top, bottom, bg);
     for (int c = 0; c < 3; c++) {
         shade_colorv lin = albedo[c] * (0.10f + 0.85f * key_d + 0.30f * fill_d) + key_s + fill_s;
-        rgb[c] = select(top[c] + (bottom[c] - top[c]) * v, sqrt(fmin(lin, 1.0f)), on_surface);
+        rgb[c] = select(bg[c], sqrt(fmin(lin, 1.0f)), on_surface);
     }
 }
 
@@ -81,8 +91,10 @@ IA_FN void shade_lights(const KERNEL_CONSTANT ia_real *p, const ia_realv n[3], c
     ia_real key[3], fill[3];
     shade_light_direction(p, (ia_real)-0.6, (ia_real)0.8, key);
     shade_light_direction(p, (ia_real)0.9, (ia_real)-0.2, fill);
-    shade_light(n, d, key, kd, knh);
-    shade_light(n, d, fill, fd, fnh);
+    ia_realv key_v[3] = {IAV_R(key[0]), IAV_R(key[1]), IAV_R(key[2])};
+    ia_realv fill_v[3] = {IAV_R(fill[0]), IAV_R(fill[1]), IAV_R(fill[2])};
+    shade_light(n, d, key_v, kd, knh);
+    shade_light(n, d, fill_v, fd, fnh);
 }
 
 /* The first-root path's colours: one albedo, highlights of weight 0.45 (key) and 0.10 (fill), exponent 48. */
@@ -105,6 +117,85 @@ IA_FN void shade_lit_materials(const KERNEL_CONSTANT ia_real *p, ia_maskv surfac
     ia_realv ks = select(IAV_R(0), exp2(shininess * log2(knh)), knh > 0);
     ia_realv fs = select(IAV_R(0), exp2(shininess * log2(fnh)), fnh > 0);
     shade_combine(surface, j, height, albedo, kd, fd, specular * ks, specular * (IAV_R(0.10 / 0.45) * fs), rgb);
+}
+
+/* The effects' lighting (src/render_effects.c, kernels/effects.cl): any lights (kernels/effects.h), each seen or
+ * not from the hit (shadow rays), the material's highlight weight and exponent; the default rig is the plain
+ * render's key and fill lights (EFFECTS_LIGHT_CAMERA), so that without shadows a hit gets the plain colour. */
+
+/* The unit directions l from points p towards light L (EFFECTS_LIGHT_REALS reals of the effects' block), and
+ * returns the distances to it (+inf for a light at infinity). */
+IA_FN ia_realv shade_towards(const KERNEL_CONSTANT ia_real *params, const KERNEL_CONSTANT ia_real *L,
+                             const ia_realv p[3], ia_realv l[3]) {
+    int kind = (int)L[EFFECTS_LIGHT_KIND];
+    if (kind == EFFECTS_LIGHT_POINT) {
+        for (int k = 0; k < 3; k++)
+            l[k] = L[EFFECTS_LIGHT_XYZ + k] - p[k];
+        ia_realv dist = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+        for (int k = 0; k < 3; k++)
+            l[k] = l[k] / dist;
+        return dist;
+    }
+    ia_real u[3];
+    if (kind == EFFECTS_LIGHT_CAMERA)
+        shade_light_direction(params, L[EFFECTS_LIGHT_XYZ], L[EFFECTS_LIGHT_XYZ + 1], u);
+    for (int k = 0; k < 3; k++)
+        l[k] = IAV_R(kind == EFFECTS_LIGHT_CAMERA ? u[k] : L[EFFECTS_LIGHT_XYZ + k]); /* the host made it unit */
+    return IAV_R(IA_INF);
+}
+
+/* nh^shininess, 0 where nh is 0: by squaring where every lane's exponent is the first-root path's 48, else by
+ * exp2 and log2. */
+IA_FN ia_realv shade_highlight(ia_realv nh, ia_realv shininess) {
+    if (!iav_any(shininess != 48))
+        return shade_power48(nh);
+    return select(IAV_R(0), exp2(shininess * log2(nh)), nh > 0);
+}
+
+/* The linear colour of a lit hit: albedo times the diffuse sum (the ambient term included) plus specular times
+ * the highlight sum. */
+IA_FN void shade_lit_linear(const shade_colorv albedo[3], ia_realv specular, ia_realv diffuse, ia_realv highlight,
+                            shade_colorv lin[3]) {
+    shade_colorv dc = shade_to_color(diffuse), hc = shade_to_color(specular * highlight);
+    for (int c = 0; c < 3; c++)
+        lin[c] = albedo[c] * dc + hc;
+}
+
+/* The effects' colours (linear) of hits at points p, at depths t along view directions d, with unit normals n
+ * facing them, by the effects' block fx (kernels/effects.h): the previews (-shade normals, depth, ids: id_rgb,
+ * linear), or lit: albedo (-shade gradient: the normal's direction), specular and shininess, under each light l,
+ * of which the fraction vis[l] reaches the hit (shadow rays). */
+IA_FN void shade_effects(const KERNEL_CONSTANT ia_real *params, const KERNEL_CONSTANT ia_real *fx, const ia_realv p[3],
+                         ia_realv t, const ia_realv n[3], const ia_realv d[3], const ia_realv vis[EFFECTS_MAX_LIGHTS],
+                         const shade_colorv albedo[3], ia_realv specular, ia_realv shininess,
+                         const shade_colorv id_rgb[3], shade_colorv lin[3]) {
+    int shade = (int)fx[EFFECTS_SHADE];
+    if (shade >= EFFECTS_SHADE_NORMALS) {
+        ia_real span = fx[EFFECTS_DEPTH_HI] - fx[EFFECTS_DEPTH_LO];
+        ia_realv v = span > 0 ? fmin(fmax((t - fx[EFFECTS_DEPTH_LO]) / span, IAV_R(0)), IAV_R(1)) : IAV_R(0);
+        for (int c = 0; c < 3; c++) {
+            shade_colorv shown = shade_to_color(shade == EFFECTS_SHADE_NORMALS ? (ia_real)0.5 + (ia_real)0.5 * n[c]
+                                                                                 : (ia_real)1 - (ia_real)0.85 * v);
+            lin[c] = shade == EFFECTS_SHADE_IDS ? id_rgb[c] : shown * shown;
+        }
+        return;
+    }
+    ia_realv diffuse = IAV_R(EFFECTS_AMBIENT), highlight = IAV_R(0);
+    for (int l = 0; l < (int)fx[EFFECTS_NLIGHTS]; l++) {
+        const KERNEL_CONSTANT ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
+        ia_realv towards[3], nl, nh;
+        shade_towards(params, L, p, towards);
+        shade_light(n, d, towards, &nl, &nh);
+        diffuse += select(IAV_R(0), vis[l] * (L[EFFECTS_LIGHT_INTENSITY] * nl), vis[l] > 0);
+        highlight += select(IAV_R(0), vis[l] * (L[EFFECTS_LIGHT_HIGHLIGHT] * shade_highlight(nh, shininess)),
+                            vis[l] > 0);
+    }
+    shade_colorv lit[3];
+    for (int c = 0; c < 3; c++) { /* -shade gradient: the normal's direction as the colour */
+        shade_colorv g = shade_to_color((ia_real)0.5 + (ia_real)0.5 * n[c]);
+        lit[c] = shade == EFFECTS_SHADE_GRADIENT ? g * g : albedo[c];
+    }
+    shade_lit_linear(lit, specular, diffuse, highlight, lin);
 }
 
 #endif

@@ -172,11 +172,12 @@ IA_FN packet_int packet_lane_numbers(void) {
     return packet_to_int(IAV_LOAD(k));
 }
 
-/* camera_ray for the pixels (i, j) of the lanes (in range). */
-IA_FN void packet_rays(const KERNEL_CONSTANT ia_real *p, int ortho, packet_int i, packet_int j, int width, int height,
-                       ia_realv o[3], ia_realv d[3]) {
-    ia_realv s = (packet_to_real(2 * i + 1) / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];
-    ia_realv v = ((ia_real)1 - packet_to_real(2 * j + 1) / (ia_real)height) * p[PARAM_SCALE_V];
+/* camera_ray through the points of the image whose coordinates, in pixels from its top left corner, are x2 / 2
+ * and y2 / 2 (pixel (i, j)'s centre: x2 = 2 i + 1, y2 = 2 j + 1, exact). */
+IA_FN void packet_rays_at(const KERNEL_CONSTANT ia_real *p, int ortho, ia_realv x2, ia_realv y2, int width,
+                          int height, ia_realv o[3], ia_realv d[3]) {
+    ia_realv s = (x2 / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];
+    ia_realv v = ((ia_real)1 - y2 / (ia_real)height) * p[PARAM_SCALE_V];
     for (int k = 0; k < 3; k++) {
         ia_realv offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
         o[k] = ortho ? p[PARAM_EYE + k] + offset : IAV_R(p[PARAM_EYE + k]);
@@ -187,6 +188,12 @@ IA_FN void packet_rays(const KERNEL_CONSTANT ia_real *p, int ortho, packet_int i
         for (int k = 0; k < 3; k++)
             d[k] = d[k] / len;
     }
+}
+
+/* camera_ray for the pixels (i, j) of the lanes (in range). */
+IA_FN void packet_rays(const KERNEL_CONSTANT ia_real *p, int ortho, packet_int i, packet_int j, int width, int height,
+                       ia_realv o[3], ia_realv d[3]) {
+    packet_rays_at(p, ortho, packet_to_real(2 * i + 1), packet_to_real(2 * j + 1), width, height, o, d);
 }
 
 /* camera_crossing: (plane - o) / d enclosed, for the lanes where d != 0. */

@@ -1,10 +1,12 @@
-/* kernels/scene_effects.cl -- iacsg_scene_trace_rays, the segment path's secondary rays (src/render_effects.c):
- * shadow, reflected and antialiasing rays from the host's ray buffer (kernels/effects.h), each traced as a camera
- * ray is (scene_trace.h), one ray per work-item. The per-ray buffers have room for every solid of the scene
- * (src/render_scene.c, render_scene_trace_args), so no ray overflows. Out per ray: the claimed partition's start
- * (+inf when nothing is hit in [tn, tf] within the bounds), the unit normal there facing the ray, the item, and
- * where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS). A ray continued through a transparent
- * region starts inside it and passes through it (passing[ray]: 1 + the region, weave.h).
+/* kernels/scene_effects.cl -- the segment path's effects (src/render_effects.c): its secondary rays
+ * (iacsg_scene_trace_rays) and the colours of their hits (iacsg_scene_shade).
+ *
+ * iacsg_scene_trace_rays: shadow, reflected and antialiasing rays from the host's ray buffer (kernels/effects.h),
+ * each traced as a camera ray is (scene_trace.h), one ray per work-item. The per-ray buffers have room for every
+ * solid of the scene (src/render_scene.c, render_scene_trace_args), so no ray overflows. Out per ray: the claimed
+ * partition's start (+inf when nothing is hit in [tn, tf] within the bounds), the unit normal there facing the
+ * ray, the item, and where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS). A ray continued
+ * through a transparent region starts inside it and passes through it (passing[ray]: 1 + the region, weave.h).
  */
 
 __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const ia_real *rays, int nrays, int first_ray,
@@ -54,4 +56,75 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
     int ok = len > 0 && isfinite(len);
     for (int c = 0; c < 3; c++) /* facing the ray; -d where the gradient vanishes (as light.h's shade_normals) */
         normal[3 * ray + c] = (float)(!found ? 0 : ok ? (facing > 0 ? -g[c] : g[c]) / len : -d[c]);
+}
+
+/* iacsg_scene_shade: the colours of the segment path's hits (src/render_effects.c lists them, with the lights each
+ * sees after its shadow rays), 16 per work-item in SIMD lanes, by light.h's shade_effects with each hit's item's
+ * material (SCENE_MATERIAL_FLOATS per item) and, for -shade ids, palette colour (3 linear floats per item). In
+ * per hit: its ray (EFFECTS_RAY_REALS), depth, normal (3 floats, facing the ray), item (-1: a miss), the
+ * fraction of each light that reaches it (EFFECTS_MAX_LIGHTS floats) and its pixel's row. Out per hit, 6 floats: its colour (a miss: the background) and
+ * the background of its row, both linear. */
+__kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *fx, __global const float *materials,
+                                __global const float *palette, int height, __global const ia_real *rays,
+                                __global const ia_real *hit_t, __global const float *hit_n,
+                                __global const int *hit_item, __global const float *vis_in,
+                                __global const int *rows, int n, __global float *out) {
+    int first = (int)get_global_id(0) * IA_VW;
+    if (first >= n)
+        return;
+    ia_real o_k[3][IA_VW], d_k[3][IA_VW], n_k[3][IA_VW], t_k[IA_VW], on_k[IA_VW], row_k[IA_VW];
+    ia_real specular_k[IA_VW], shininess_k[IA_VW], seen_k[EFFECTS_MAX_LIGHTS][IA_VW];
+    float albedo_k[3][IA_VW], id_k[3][IA_VW];
+    for (int k = 0; k < IA_VW; k++) {
+        int i = min(first + k, n - 1), item = hit_item[i], it = max(item, 0);
+        __global const ia_real *q = rays + EFFECTS_RAY_REALS * (size_t)i;
+        __global const float *m = materials + SCENE_MATERIAL_FLOATS * it;
+        for (int c = 0; c < 3; c++) {
+            o_k[c][k] = q[c];
+            d_k[c][k] = q[3 + c];
+            n_k[c][k] = hit_n[3 * i + c];
+            albedo_k[c][k] = m[SCENE_MATERIAL_RGB + c];
+            id_k[c][k] = palette[3 * it + c];
+        }
+        on_k[k] = item >= 0;
+        t_k[k] = item >= 0 ? hit_t[i] : 0;
+        row_k[k] = (ia_real)rows[i];
+        specular_k[k] = m[SCENE_MATERIAL_SPECULAR];
+        shininess_k[k] = m[SCENE_MATERIAL_SHININESS];
+        for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++)
+            seen_k[l][k] = vis_in[EFFECTS_MAX_LIGHTS * i + l];
+    }
+    ia_realv o[3], d[3], nv[3], p[3], t = IAV_LOAD(t_k);
+    shade_colorv albedo[3], id_rgb[3], lin[3], bg[3];
+    ia_maskv hit = IAV_LOAD(on_k) != 0;
+    ia_realv vis[EFFECTS_MAX_LIGHTS];
+    for (int c = 0; c < 3; c++) {
+        o[c] = IAV_LOAD(o_k[c]);
+        d[c] = IAV_LOAD(d_k[c]);
+        nv[c] = IAV_LOAD(n_k[c]);
+        p[c] = o[c] + t * d[c];
+        albedo[c] = IAV_CAT(vload, IA_VW)(0, albedo_k[c]);
+        id_rgb[c] = IAV_CAT(vload, IA_VW)(0, id_k[c]);
+    }
+    for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++)
+        vis[l] = select(IAV_R(0), IAV_LOAD(seen_k[l]), hit);
+    shade_effects(params, fx, p, t, nv, d, vis, albedo, IAV_LOAD(specular_k), IAV_LOAD(shininess_k), id_rgb, lin);
+    float top[3], bottom[3];
+    for (int c = 0; c < 3; c++) {
+        top[c] = (float)fx[EFFECTS_BG_TOP + c];
+        bottom[c] = (float)fx[EFFECTS_BG_BOTTOM + c];
+    }
+    shade_background(IAV_CAT(convert_float, IA_VW)(IAV_LOAD(row_k)), height, top, bottom, bg);
+    IAV_CAT(int, IA_VW) on = IAV_CAT(convert_int, IA_VW)(hit) != 0;
+    float colour[3][IA_VW], back[3][IA_VW];
+    for (int c = 0; c < 3; c++) {
+        bg[c] *= bg[c];
+        IAV_CAT(vstore, IA_VW)(select(bg[c], lin[c], on), 0, colour[c]);
+        IAV_CAT(vstore, IA_VW)(bg[c], 0, back[c]);
+    }
+    for (int k = 0; k < IA_VW && first + k < n; k++)
+        for (int c = 0; c < 3; c++) {
+            out[6 * (first + k) + c] = colour[c][k];
+            out[6 * (first + k) + 3 + c] = back[c][k];
+        }
 }

@@ -1,5 +1,6 @@
 /* src/cli_view_scene.c -- see cli_view_scene.h. */
 #include "cli_view_scene.h"
+#include "cli_effects.h"
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -22,6 +23,8 @@ iacsg_status view_scene_load(const render_options *o, view_scene **out, const ch
         snprintf(s->bounds_phrase, sizeof s->bounds_phrase, "%s", phrase);
     for (int k = 0; k < 6; k++)
         s->bounds[k] = chosen.view.bounds[k];
+    s->effects = o->effects;
+    s->has_effects = cli_effects_from_scene(&s->effects, s->scene) || o->view.effects;
     *out = s;
     return IACSG_OK;
 }

@@ -9,6 +9,10 @@ typedef struct {
     iacsg_scene *scene; /* a plain expression, or regions and surfaces */
     double bounds[6];       /* as the render command chooses them for the same options */
     char bounds_phrase[256]; /* which bounds, and what was proven (choose_bounds) */
+    /* the effects it is seen with, as the render command's: the options', with the scene's lights where the
+     * options give none (cli_effects_from_scene); has_effects: 0 for the plain render */
+    iacsg_effects effects;
+    int has_effects;
 } view_scene;
 
 /* Reads and compiles o->input into a new scene (*out); *name is the input's name for messages. A file that

@@ -28,6 +28,8 @@ struct view_worker {
     /* the thread's own */
     iacsg_renderer *renderer;
     unsigned renderer_scene;      /* which scene the renderer draws (n: the n-th handed over) */
+    iacsg_effects effects;        /* the effects its scene is seen with (view_scene), when has_effects */
+    int has_effects;
 };
 
 static double now_seconds(void) {
@@ -50,12 +52,16 @@ static void build_scene(view_worker *w, view_scene *s, unsigned number) {
     iacsg_renderer *r = NULL;
     iacsg_error err = {0};
     iacsg_status st = view_scene_renderer(s, &w->config, &r, &err);
+    iacsg_effects effects = s->effects;
+    int has_effects = s->has_effects;
     view_scene_destroy(s);
     pthread_mutex_lock(&w->lock);
     if (st == IACSG_OK) {
         iacsg_renderer_destroy(w->renderer);
         w->renderer = r;
         w->renderer_scene = number;
+        w->effects = effects;
+        w->has_effects = has_effects;
         w->done = w->wanted - 1; /* the newest request again, with the new scene */
     } else {
         w->build_error = err;
@@ -89,6 +95,7 @@ static void *worker_main(void *arg) {
         iacsg_view view = w->view;
         pthread_mutex_unlock(&w->lock);
 
+        view.effects = w->has_effects ? &w->effects : NULL; /* the scene's lights too, as the render command's */
         view.progress = NULL;
         view.cancel = superseded;
         view.cancel_ctx = w;

@@ -68,9 +68,9 @@ const char *iacsg_renderer_program(const iacsg_renderer *r);
 const char *iacsg_renderer_device_name(const iacsg_renderer *r);
 
 /* Ray-tracing effects of a frame (src/render_effects.c), all off in a zeroed struct. With none of them the frame
- * is the plain render, byte for byte; with any, the colours are computed again on the host from each pixel's
- * hits (traced by the same interval bisection: kernels/effects.cl, kernels/scene_effects.cl), and the AOVs
- * (depth, normals, ids) stay those of the pixel's centre ray. */
+ * is the plain render, byte for byte; with any, the colours are computed again on the device from each pixel's
+ * hits (their secondary rays traced by the same rigorous search: kernels/effects.cl, kernels/scene_effects.cl),
+ * and the AOVs (depth, normals, ids) stay those of the pixel's centre ray. */
 typedef enum {
     IACSG_SHADE_LIT = 0,  /* the lights (the plain render's, or `lights` with shadows and reflections) */
     IACSG_SHADE_GRADIENT, /* the colour of the normal's direction (Hijazi Fig. 6b), lit by the key light */

@@ -3,17 +3,20 @@
  *   frame (each pixel's centre ray: depth, normal, id) --> one path per pixel: (pixel, weight, ray, hit)
  *     --> shade each hit: its material under the lights, each light seen or not by a shadow ray (traced)
  *     --> children: a reflected ray (weight reflect), a ray through a transparent hit (weight 1 - opacity),
- *         traced, shaded in turn, until none is left (-bounces, FX_MAX_LAYERS) --> colours summed per pixel
+ *         traced, shaded in turn, until none is left (-bounces, EFFECTS_MAX_LAYERS) --> colours summed per pixel
  *     --> -aa N: the pixels whose centre rays differ from a neighbour's (edges) get N x N paths of their own
  *   --> rgb (linear light summed, then gamma 2 as kernels/light.h encodes).
  *
- * Every secondary ray is traced on the device by the path's own bisection (render_effects_trace.c), so an
- * occluder or a reflected surface that the ray crosses inside the bounds is never missed. The shading is the
- * kernels' (light.h) in double on the host: with the default rig and no effect but -aa or -background, a pixel
- * gets the colour the plain render gives it.
+ * Everything per ray runs on the device, shaded by light.h (shade_effects): an expression's paths wholly in
+ * kernels/effects.cl (render_effects_device.c launches it: this file lists the pixels); a scene's secondary rays
+ * traced by kernels/scene_effects.cl and their hits shaded there (render_effects_trace.c), while this file keeps
+ * the paths, their shadow rays and children. So an occluder or a reflected surface that a ray crosses inside the
+ * bounds is never missed, and with the default rig and no effect but -aa or -background a pixel gets the colour
+ * the plain render gives it.
  */
 #include "render_effects_trace.h"
 #include "implicits/scene.h"
+#include "kernels/effects.h"
 #include "kernels/params.h"
 #include "kernels/scene_data.h"
 #include "scene_tables.h"
@@ -21,28 +24,29 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A shadow ray's leaves, in eps: as wide as the camera rays' (the seed allows coarser). Coarser leaves need a
- * start as much farther off the surface (offset_of), which then hides occluders that close, and show a near
- * miss as a shadow. Measured on min(sphere, torus) (1024x1024, eps 1e-5), interval evaluations per shadow ray:
- * 9.1 at 1 eps, 7.6 at 4, 6.1 at 16, 4.6 at 64; the shadow pass is a small part of the effects' cost
- * (BENCHMARKS.md), so the rigour of the camera rays is kept. */
+/* A shadow ray's leaves, in eps: as wide as the camera rays' (the seed allows coarser), here and in
+ * kernels/effects.cl. Coarser leaves need a start as much farther off the surface (offset_of), which then hides
+ * occluders that close, and show a near miss as a shadow. Measured on min(sphere, torus) (1024x1024, eps 1e-5)
+ * when shadow rays were bisected from the root: 9.1 interval evaluations a ray at 1 eps, 7.6 at 4, 6.1 at 16, 4.6
+ * at 64; they march now (kernels/effects.cl), 3.9 a ray at eps on the reference view, so the rigour of the
+ * camera rays is kept. */
 #define FX_SHADOW_EPS_FACTOR 1.0
-/* Layers of transparent hits a path passes at most, and the weight below which it stops (the rest of it is the
- * background). */
-#define FX_MAX_LAYERS 16
-#define FX_MIN_WEIGHT (1.0 / 1024)
-/* The constant term of the lighting, and the first-root path's material (kernels/light.h, shade.h). */
-#define FX_AMBIENT 0.10
+/* The first-root path's material (kernels/shade.h). */
 static const float fx_expr_albedo[3] = {0.80f, 0.52f, 0.28f};
 /* The plain render's background, top to bottom (kernels/light.h). */
 static const float fx_default_top[3] = {0.42f, 0.46f, 0.52f}, fx_default_bottom[3] = {0.13f, 0.14f, 0.17f};
+/* The default rig, the plain render's key and fill lights (kernels/light.h): right and up coefficients of the
+ * direction towards each (fixed to the camera), the weight of its diffuse term and of its highlight (times the
+ * material's specular). */
+static const double fx_rig[2][4] = {{-0.6, 0.8, 0.85, 1.0}, {0.9, -0.2, 0.30, 0.10 / 0.45}};
 /* -aa: a pixel is an edge where its centre ray's id differs from a neighbour's, or its colour by this much in a
  * channel (shadow and reflection edges), or its depth by this fraction. */
 #define FX_AA_CONTRAST (1.0 / 16)
 #define FX_AA_DEPTH 0.02
 /* -aa's rays have leaves no narrower than a sample's footprint (at the bounds' farthest corner) / this. */
 #define FX_AA_EPS_PER_SAMPLE 4
-/* Paths are shaded this many pixels (or antialiasing rays) at a time: their buffers stay small and are reused. */
+/* The segment path's paths are shaded this many pixels (or antialiasing rays) at a time: their buffers stay small
+ * and are reused. */
 #define FX_CHUNK ((size_t)1 << 15)
 
 typedef struct {
@@ -59,11 +63,6 @@ typedef struct {
     fx_ray ray;
     fx_hit hit;
 } fx_path;
-
-typedef struct {
-    double rgb[3]; /* linear */
-    double specular, shininess, reflect, opacity;
-} fx_material;
 
 /* A buffer that only grows: a frame's passes reuse its pages (a malloc and free per pass of several MB went to
  * mmap and back, and its pages faulted in each time). */
@@ -93,9 +92,11 @@ typedef struct {
     int nlights;
     double depth_lo, depth_hi; /* the centre hits' range, for -shade depth */
     float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
-    /* scratch: shadow rays, their hits, which ray each (path, light) cast (-1: none); the generations of paths
-     * (two, in turn); the rays and hits of a generation */
-    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits;
+    /* the segment path's scratch: shadow rays, their hits, the (path, light) of each; the generations of paths
+     * (two, in turn); the rays, hits, rows, lights' fractions and colours of a generation */
+    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, rows, vis, colors;
+    double block[EFFECTS_COUNT]; /* the effects' parameters for the kernels (kernels/effects.h) */
+    float *palette;              /* a scene's: each item's -shade ids colour, linear */
 } fx_frame;
 
 /* Whether a material of the renderer's reflects light (an expression's: e->reflect). */
@@ -151,16 +152,15 @@ static void camera_ray_at(const fx_frame *f, double x, double y, fx_ray *ray) {
 static void resolve_lights(fx_frame *f) {
     const iacsg_effects *e = f->e;
     if (e->nlights == 0) {
-        static const double rig[2][4] = {{-0.6, 0.8, 0.85, 1.0}, {0.9, -0.2, 0.30, 0.10 / 0.45}};
         for (int l = 0; l < 2; l++) {
             fx_light *L = &f->lights[l];
             for (int k = 0; k < 3; k++)
-                L->v[k] = -f->cam[PARAM_FORWARD + k] + rig[l][0] * f->cam[PARAM_RIGHT + k] +
-                          rig[l][1] * f->cam[PARAM_UP + k];
+                L->v[k] = -f->cam[PARAM_FORWARD + k] + fx_rig[l][0] * f->cam[PARAM_RIGHT + k] +
+                          fx_rig[l][1] * f->cam[PARAM_UP + k];
             normalize3(L->v);
             L->point = 0;
-            L->intensity = rig[l][2];
-            L->highlight = rig[l][3];
+            L->intensity = fx_rig[l][2];
+            L->highlight = fx_rig[l][3];
         }
         f->nlights = 2;
         return;
@@ -174,37 +174,6 @@ static void resolve_lights(fx_frame *f) {
         L->intensity = L->highlight = e->lights[l].intensity;
     }
     f->nlights = e->nlights < IACSG_MAX_LIGHTS ? e->nlights : IACSG_MAX_LIGHTS;
-}
-
-/* The background of row y (display-encoded), as linear light. */
-static void background_at(const fx_frame *f, double y, double lin[3]) {
-    const float *top = f->e->background ? f->e->background_top : fx_default_top;
-    const float *bottom = f->e->background ? f->e->background_bottom : fx_default_bottom;
-    double v = fmin(fmax(y / (f->view->height > 1 ? f->view->height - 1 : 1), 0), 1);
-    for (int c = 0; c < 3; c++) {
-        double shown = top[c] + (bottom[c] - top[c]) * v;
-        lin[c] = shown * shown;
-    }
-}
-
-static void material_of(const fx_frame *f, int item, fx_material *m) {
-    const render_fx *fx = f->r->fx;
-    if (!f->r->scene) {
-        for (int c = 0; c < 3; c++)
-            m->rgb[c] = fx_expr_albedo[c];
-        m->specular = SCENE_DEFAULT_SPECULAR;
-        m->shininess = SCENE_DEFAULT_SHININESS;
-        m->reflect = f->e->reflect;
-        m->opacity = 1 - f->e->transparency;
-        return;
-    }
-    const float *a = render_scene_materials(f->r) + SCENE_MATERIAL_FLOATS * item;
-    for (int c = 0; c < 3; c++)
-        m->rgb[c] = a[SCENE_MATERIAL_RGB + c];
-    m->specular = a[SCENE_MATERIAL_SPECULAR];
-    m->shininess = a[SCENE_MATERIAL_SHININESS];
-    m->reflect = fx && item < fx->nitems ? fx->items[item].reflect : 0;
-    m->opacity = fx && item < fx->nitems ? fx->items[item].opacity : 1;
 }
 
 /* How far a secondary ray starts off its hit: past the hit leaf's distance from the surface (a few eps) and the
@@ -251,113 +220,104 @@ static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx
     return 1;
 }
 
-/* The linear colour of q's hit under the lights, each seen where `seen` (NULL: all). */
-static void lit_color(const fx_frame *f, const fx_path *q, const fx_material *m, const double albedo[3],
-                      const unsigned char *seen, double lin[3]) {
-    double p[3], n[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]}, diffuse = FX_AMBIENT, highlight = 0;
-    hit_point(q, p);
-    for (int l = 0; l < f->nlights; l++) {
-        double L[3], h[3];
-        towards(&f->lights[l], p, L);
-        double nl = dot3(n, L);
-        if (nl <= 0 || (seen && !seen[l]))
-            continue;
-        for (int k = 0; k < 3; k++)
-            h[k] = L[k] - q->ray.d[k]; /* the half vector between the light and the eye */
-        double hh = sqrt(dot3(h, h)), nh = hh > 0 ? fmax(dot3(n, h) / hh, 0) : 0;
-        diffuse += f->lights[l].intensity * nl;
-        highlight += f->lights[l].highlight * (nh > 0 ? pow(nh, m->shininess) : 0);
-    }
-    for (int c = 0; c < 3; c++)
-        lin[c] = albedo[c] * diffuse + m->specular * highlight;
-}
-
-/* The unlit previews' colour (linear) of a hit, or 0 when the mode lights its hits. */
-static int preview_color(const fx_frame *f, const fx_path *q, double lin[3]) {
-    double shown[3];
-    switch (f->e->shade) {
-    case IACSG_SHADE_NORMALS:
-        for (int c = 0; c < 3; c++)
-            shown[c] = 0.5 + 0.5 * q->hit.n[c];
-        break;
-    case IACSG_SHADE_DEPTH: {
-        double span = f->depth_hi - f->depth_lo;
-        double v = span > 0 ? fmin(fmax((q->hit.t - f->depth_lo) / span, 0), 1) : 0;
-        shown[0] = shown[1] = shown[2] = 1 - 0.85 * v;
-        break;
-    }
-    case IACSG_SHADE_IDS: {
-        float rgb[3];
-        scene_palette(q->hit.item, rgb);
-        for (int c = 0; c < 3; c++)
-            shown[c] = sqrt(rgb[c]);
-        break;
-    }
-    default: return 0;
-    }
-    for (int c = 0; c < 3; c++)
-        lin[c] = shown[c] * shown[c];
-    return 1;
-}
-
 static void add(float *accum, int pixel, double w, const double lin[3]) {
     for (int c = 0; c < 3; c++)
         accum[3 * (size_t)pixel + c] += (float)(w * lin[c]);
 }
 
-/* Adds the colours of paths[0 .. n) that their hits give now, lit with shadow rays (traced first); kids gets
- * their children, reflected and transmitted rays not yet traced (*nout of them, at most 2n). */
+/* The fraction of light l that reaches the hit of paths[i], vis[EFFECTS_MAX_LIGHTS i + l]: none where the light
+ * is behind its surface; else what a shadow ray from off the surface to the light lets through: 1 - opacity of
+ * each transparent item it meets (a region is a volume, entered once: the ray goes on from inside it, passing
+ * through it as a camera ray does; a surface is crossed), none past an opaque one; for at most EFFECTS_MAX_LAYERS
+ * items, or until less than EFFECTS_MIN_WEIGHT of the light is left. */
+static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n, float *vis, iacsg_error *err) {
+    size_t nl = (size_t)f->nlights, m = 0;
+    fx_ray *rays = reserve(&f->shadow_rays, (n * nl + 1) * sizeof *rays);
+    fx_hit *hits = reserve(&f->shadow_hits, (n * nl + 1) * sizeof *hits);
+    long *owner = reserve(&f->shadow_of, (n * nl + 1) * sizeof *owner); /* the (path, light) of each ray */
+    if (!rays || !hits || !owner)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    for (size_t i = 0; i < n; i++)
+        for (size_t l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
+            int cast = l < nl && paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[m]);
+            vis[EFFECTS_MAX_LIGHTS * i + l] = cast;
+            if (cast)
+                owner[m++] = (long)(EFFECTS_MAX_LIGHTS * i + l);
+        }
+    for (int layer = 0; m > 0 && layer < EFFECTS_MAX_LAYERS; layer++) {
+        iacsg_status st = fx_trace(&f->tracer, rays, m, FX_SHADOW_EPS_FACTOR * f->view->eps, hits, err);
+        if (st != IACSG_OK)
+            return st;
+        size_t next = 0;
+        for (size_t j = 0; j < m; j++) { /* in place: ray j is read before ray next <= j is written */
+            if (hits[j].item < 0)
+                continue; /* it reached the light */
+            const fx_item *it = &f->r->fx->items[hits[j].item];
+            float *v = &vis[owner[j]];
+            *v *= 1 - it->opacity;
+            if (*v < EFFECTS_MIN_WEIGHT)
+                continue;
+            fx_path past = {.ray = rays[j], .hit = hits[j]}; /* on from past it: its normal faces the ray */
+            double p[3];
+            hit_point(&past, p);
+            double off = offset_of(f, p, hits[j].t);
+            fx_ray *y = &rays[next];
+            for (int k = 0; k < 3; k++)
+                y->o[k] = p[k] - off * hits[j].n[k];
+            y->tf = towards(&f->lights[owner[j] % EFFECTS_MAX_LIGHTS], y->o, y->d);
+            y->tn = 0;
+            y->passing = it->region ? 1 + hits[j].item : 0;
+            owner[next++] = owner[j];
+        }
+        m = next;
+    }
+    return IACSG_OK;
+}
+
+/* Adds the colours of paths[0 .. n) that their hits give now, lit as far as their shadow rays let the lights
+ * through; kids gets their children, reflected and transmitted rays not yet traced (*nout of them, at most 2n). */
 static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n, fx_path *kids, size_t *nout,
                                      iacsg_error *err) {
     const iacsg_effects *e = f->e;
     int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
-    size_t nl = (size_t)f->nlights, nshadow = 0;
-    unsigned char *seen = NULL;
-    if (lit && e->shadows) { /* one shadow ray per hit and light in front of it */
-        fx_ray *rays = reserve(&f->shadow_rays, (n * nl + 1) * sizeof *rays);
-        fx_hit *hits = reserve(&f->shadow_hits, (n * nl + 1) * sizeof *hits);
-        long *ray_of = reserve(&f->shadow_of, (n * nl + 1) * sizeof *ray_of);
-        if (!rays || !hits || !ray_of)
-            return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-        for (size_t i = 0; i < n; i++)
-            for (size_t l = 0; l < nl; l++) {
-                int cast = paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[nshadow]);
-                ray_of[i * nl + l] = cast ? (long)nshadow++ : -1;
-            }
-        iacsg_status st = fx_trace(&f->tracer, rays, nshadow, FX_SHADOW_EPS_FACTOR * f->view->eps, f->tracer.root_w,
-                                   hits, err);
-        if (st != IACSG_OK)
-            return st;
-        seen = (unsigned char *)ray_of; /* in place: entry k is read before byte k is written */
-        for (size_t k = 0; k < n * nl; k++)
-            seen[k] = ray_of[k] >= 0 && isinf(hits[ray_of[k]].t);
+    fx_ray *rays = reserve(&f->rays, (n + 1) * sizeof *rays);
+    fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
+    int *rows = reserve(&f->rows, (n + 1) * sizeof *rows);
+    float *vis = reserve(&f->vis, (EFFECTS_MAX_LIGHTS * n + 1) * sizeof *vis);
+    float *out = reserve(&f->colors, (6 * n + 1) * sizeof *out);
+    if (!rays || !hits || !rows || !vis || !out)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    iacsg_status st = IACSG_OK;
+    if (lit && e->shadows)
+        st = shadow_fractions(f, paths, n, vis, err);
+    for (size_t k = 0; !(lit && e->shadows) && k < EFFECTS_MAX_LIGHTS * n; k++)
+        vis[k] = 1;
+    /* the colours of the hits, on the device (light.h) */
+    for (size_t i = 0; i < n; i++) {
+        rays[i] = paths[i].ray;
+        hits[i] = paths[i].hit;
+        rows[i] = paths[i].pixel / f->view->width;
     }
+    if (st == IACSG_OK)
+        st = fx_scene_shade(&f->tracer, f->block, rays, hits, vis, rows, n, f->palette, out, err);
+    if (st != IACSG_OK)
+        return st;
     size_t nkids = 0;
     for (size_t i = 0; i < n; i++) {
         const fx_path *q = &paths[i];
-        double lin[3];
-        int row = q->pixel / f->view->width;
-        if (q->hit.item < 0) {
-            background_at(f, row, lin);
+        const float *color = out + 6 * i, *background = color + 3;
+        double lin[3] = {color[0], color[1], color[2]};
+        if (q->hit.item < 0 || !lit) { /* the background, or a preview's colour */
             add(f->accum, q->pixel, q->w, lin);
             continue;
         }
-        if (preview_color(f, q, lin)) {
-            add(f->accum, q->pixel, q->w, lin);
-            continue;
-        }
-        fx_material m;
-        material_of(f, q->hit.item, &m);
-        double albedo[3];
-        for (int c = 0; c < 3; c++) /* gradient shading: the normal's direction as the colour */
-            albedo[c] = e->shade == IACSG_SHADE_GRADIENT ? pow(0.5 + 0.5 * q->hit.n[c], 2) : m.rgb[c];
-        lit_color(f, q, &m, albedo, seen ? seen + i * nl : NULL, lin);
-        double a = m.opacity, k = q->bounces < e->bounces ? m.reflect : 0;
+        const fx_item *m = &f->r->fx->items[q->hit.item];
+        double a = m->opacity, k = q->bounces < e->bounces ? m->reflect : 0;
         add(f->accum, q->pixel, q->w * a * (1 - k), lin);
         double p[3], n3[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
         hit_point(q, p);
         double off = offset_of(f, p, q->hit.t);
-        if (k > 0 && q->w * a * k >= FX_MIN_WEIGHT) { /* the mirror direction, from off the surface */
+        if (k > 0 && q->w * a * k >= EFFECTS_MIN_WEIGHT) { /* the mirror direction, from off the surface */
             fx_path *c = &kids[nkids++];
             *c = *q;
             c->w = q->w * a * k;
@@ -373,9 +333,9 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             c->ray.passing = 0;
         }
         double through = q->w * (1 - a);
-        if (through > 0 && (through < FX_MIN_WEIGHT || q->layers + 1 >= FX_MAX_LAYERS)) {
-            background_at(f, row, lin); /* what is left of the path */
-            add(f->accum, q->pixel, through, lin);
+        if (through > 0 && (through < EFFECTS_MIN_WEIGHT || q->layers + 1 >= EFFECTS_MAX_LAYERS)) {
+            double left[3] = {background[0], background[1], background[2]}; /* what is left of the path */
+            add(f->accum, q->pixel, through, left);
         } else if (through > 0) { /* on through the surface: from just past it, the same direction */
             fx_path *c = &kids[nkids++];
             *c = *q;
@@ -387,23 +347,22 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             c->ray.tf = INFINITY;
             /* a region is a volume: the ray, now inside it, passes through it to what lies behind (one layer
              * where it enters); a surface is crossed like the expression's */
-            c->ray.passing = f->r->scene && f->r->fx->items[q->hit.item].region ? 1 + q->hit.item : 0;
+            c->ray.passing = m->region ? 1 + q->hit.item : 0;
         }
     }
     *nout = nkids;
     return IACSG_OK;
 }
 
-/* Traces the rays of paths[0 .. n) into their hits, with leaves of width eps, Newton's window `newton`
- * (fx_trace). */
-static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double eps, double newton, iacsg_error *err) {
+/* Traces the rays of paths[0 .. n) into their hits, with leaves of width eps (fx_trace). */
+static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double eps, iacsg_error *err) {
     fx_ray *rays = reserve(&f->rays, (n + 1) * sizeof *rays);
     fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
     iacsg_status st = rays && hits ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         rays[i] = paths[i].ray;
     if (st == IACSG_OK)
-        st = fx_trace(&f->tracer, rays, n, eps, newton, hits, err);
+        st = fx_trace(&f->tracer, rays, n, eps, hits, err);
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         paths[i].hit = hits[i];
     return st;
@@ -421,7 +380,7 @@ static iacsg_status run_paths(fx_frame *f, fx_path *first, size_t n, iacsg_error
         paths = kids;
         n = nk;
         if (st == IACSG_OK)
-            st = trace_paths(f, paths, n, f->view->eps, f->tracer.root_w, err);
+            st = trace_paths(f, paths, n, f->view->eps, err);
     }
     return st;
 }
@@ -478,12 +437,6 @@ static void centre_path(const fx_frame *f, const iacsg_frame *fr, int pixel, fx_
     q->hit.item = isinf(q->hit.t) ? -1 : fr->ids ? (int)fr->ids[pixel] : 0;
 }
 
-/* A pixel's summed linear light to its display colour, in place (kernels/light.h: gamma 2). */
-static void encode(float *rgb, int pixel) {
-    for (int c = 0; c < 3; c++)
-        rgb[3 * (size_t)pixel + c] = sqrtf(fminf(fmaxf(rgb[3 * (size_t)pixel + c], 0), 1));
-}
-
 /* Whether pixels a and b (both traced) differ enough that the edge between them needs more rays. */
 static int differ(const iacsg_frame *fr, int a, int b) {
     float ia = isinf(fr->depth[a]) ? -1 : fr->ids ? fr->ids[a] : 0;
@@ -496,16 +449,15 @@ static int differ(const iacsg_frame *fr, int a, int b) {
     return ia >= 0 && fabsf(fr->depth[a] - fr->depth[b]) > FX_AA_DEPTH * fminf(fr->depth[a], fr->depth[b]);
 }
 
-/* -aa N: the pixels on an edge (differ) get N x N rays of their own, on a regular grid in the pixel, each
- * weighing 1 / N^2; their centre rays' colours are replaced. `order`: the traced pixels in block order. */
-static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, size_t count, fx_path *paths,
-                              iacsg_error *err) {
+/* The traced pixels on an edge (differ), in block order (`order`, count of them), into edges; returns how many,
+ * or -1 out of memory. Each pair of neighbours is compared once. */
+static long edge_pixels(const fx_frame *f, const iacsg_frame *fr, const int *order, size_t count, int *edges) {
     const iacsg_view *v = f->view;
-    int aa = f->e->aa, row0, row1, w = v->width;
+    int row0, row1, w = v->width;
     traced_rows(v, &row0, &row1);
     unsigned char *edge = calloc((size_t)v->width * (size_t)v->height + 1, 1);
     if (!edge)
-        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+        return -1;
     for (int j = row0; j < row1; j++)
         for (int i = 0; i < w; i++) {
             int p = j * w + i;
@@ -514,20 +466,43 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
             if (j + 1 < row1 && differ(fr, p, p + w))
                 edge[p] = edge[p + w] = 1;
         }
+    long n = 0;
+    for (size_t k = 0; k < count; k++)
+        if (edge[order[k]])
+            edges[n++] = order[k];
+    free(edge);
+    return n;
+}
+
+/* -aa's rays' leaves: eps, or a quarter of a sample's footprint where that is wider. A ray that passes that close
+ * to a surface may be shown hitting it, so a silhouette grows by at most a quarter of a sample; the samples only
+ * colour the pixel (its depth is the centre ray's). Rays grazing silhouettes are the costly ones: on
+ * min(sphere, torus) (eps 1e-5) 136 evaluations a sample at eps, 73 so (the camera rays: 2.4). */
+static double aa_eps(const fx_frame *f) {
+    return fmax(f->view->eps, f->tracer.footprint / (FX_AA_EPS_PER_SAMPLE * f->e->aa));
+}
+
+/* -aa N on the segment path: the pixels on an edge get N x N rays of their own, on a regular grid in the pixel,
+ * each weighing 1 / N^2; their centre rays' colours are replaced. `order`: the traced pixels in block order. */
+static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, size_t count, fx_path *paths,
+                              iacsg_error *err) {
+    const iacsg_view *v = f->view;
+    int aa = f->e->aa, w = v->width;
+    int *edges = malloc((count + 1) * sizeof *edges);
+    if (!edges)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    long found = edge_pixels(f, fr, order, count, edges);
+    if (found < 0) {
+        free(edges);
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    }
+    size_t nedges = (size_t)found;
     iacsg_status st = IACSG_OK;
     size_t per_chunk = FX_CHUNK / ((size_t)aa * aa), k = 0;
-    /* The samples' leaves: eps, or a quarter of a sample's footprint where that is wider. A ray that passes that
-     * close to a surface may be shown hitting it, so a silhouette grows by at most a quarter of a sample; the
-     * samples only colour the pixel (its depth is the centre ray's). Rays grazing silhouettes are the costly
-     * ones: on min(sphere, torus) (eps 1e-5) 136 evaluations a sample at eps, 73 so (the camera rays: 2.4). */
-    double aa_eps = fmax(f->view->eps, f->tracer.footprint / (FX_AA_EPS_PER_SAMPLE * aa));
-    while (st == IACSG_OK && k < count) { /* the edge pixels in block order, per_chunk at a time */
+    while (st == IACSG_OK && k < nedges) { /* the edge pixels in block order, per_chunk at a time */
         size_t n = 0, first = k;
-        for (size_t pixels = 0; k < count && pixels < per_chunk; k++) {
-            int pixel = order[k], i = pixel % w, j = pixel / w;
-            if (!edge[pixel])
-                continue;
-            pixels++;
+        for (; k < nedges && k - first < per_chunk; k++) {
+            int pixel = edges[k], i = pixel % w, j = pixel / w;
             for (int c = 0; c < 3; c++) /* the samples' light replaces the centre ray's colour */
                 fr->rgb[3 * (size_t)pixel + c] = 0;
             for (int b = 0; b < aa; b++)
@@ -539,14 +514,109 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, const int *order, si
                     camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
                 }
         }
-        st = trace_paths(f, paths, n, aa_eps, f->tracer.footprint, err);
+        st = trace_paths(f, paths, n, aa_eps(f), err);
         if (st == IACSG_OK)
             st = run_paths(f, paths, n, err);
-        for (size_t e = first; st == IACSG_OK && e < k; e++)
-            if (edge[order[e]])
-                encode(fr->rgb, order[e]);
+        for (size_t q = first; st == IACSG_OK && q < k; q++)
+            fx_encode(fr->rgb, edges[q]);
     }
-    free(edge);
+    free(edges);
+    return st;
+}
+
+/* The first-root path's effects' block (kernels/effects.h): the view's lights or the default rig (its lights
+ * computed on the device as the plain kernel computes them), the expression's material. */
+static void effects_block(const fx_frame *f, double b[EFFECTS_COUNT]) {
+    const iacsg_effects *e = f->e;
+    memset(b, 0, EFFECTS_COUNT * sizeof *b);
+    b[EFFECTS_SHADE] = e->shade;
+    b[EFFECTS_SHADOWS] = e->shadows;
+    b[EFFECTS_BOUNCES] = e->bounces;
+    for (int c = 0; c < 3; c++) {
+        float rgb[3];
+        scene_palette(0, rgb);
+        b[EFFECTS_ALBEDO + c] = fx_expr_albedo[c];
+        b[EFFECTS_BG_TOP + c] = e->background ? e->background_top[c] : fx_default_top[c];
+        b[EFFECTS_BG_BOTTOM + c] = e->background ? e->background_bottom[c] : fx_default_bottom[c];
+        b[EFFECTS_ID_RGB + c] = rgb[c];
+    }
+    b[EFFECTS_SPECULAR] = SCENE_DEFAULT_SPECULAR;
+    b[EFFECTS_SHININESS] = SCENE_DEFAULT_SHININESS;
+    b[EFFECTS_REFLECT] = e->reflect;
+    b[EFFECTS_OPACITY] = 1 - e->transparency;
+    b[EFFECTS_DEPTH_LO] = f->depth_lo;
+    b[EFFECTS_DEPTH_HI] = f->depth_hi;
+    b[EFFECTS_NLIGHTS] = f->nlights;
+    for (int l = 0; l < f->nlights; l++) {
+        double *L = b + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
+        L[EFFECTS_LIGHT_KIND] = e->nlights == 0 ? EFFECTS_LIGHT_CAMERA
+                                : f->lights[l].point ? EFFECTS_LIGHT_POINT
+                                                     : EFFECTS_LIGHT_DIR;
+        for (int k = 0; k < 3; k++)
+            L[EFFECTS_LIGHT_XYZ + k] = e->nlights == 0 ? (k < 2 ? fx_rig[l][k] : 0) : f->lights[l].v[k];
+        L[EFFECTS_LIGHT_INTENSITY] = f->lights[l].intensity;
+        L[EFFECTS_LIGHT_HIGHLIGHT] = f->lights[l].highlight;
+    }
+}
+
+/* The first-root path: the centre rays' colours (the hits', and the misses' where the background is not the
+ * kernel's; none where the kernel's colours stand), then -aa's edges, all shaded on the device
+ * (render_effects_device.c). */
+static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, const int *order, size_t count, iacsg_error *err) {
+    const iacsg_effects *e = f->e;
+    /* reflected rays are listed for a next launch only off a transparent surface (off an opaque one the path goes
+     * on in its lane), one per layer at most */
+    int kid_slots = e->bounces > 0 && e->reflect > 0 && e->transparency > 0 ? EFFECTS_MAX_LAYERS : 0;
+    int keep = kernel_colors_hold(f);
+    int *listed = malloc((count + 1) * sizeof *listed);
+    if (!listed)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    size_t n = 0;
+    for (size_t k = 0; k < count; k++) {
+        int miss = isinf(frame->depth[order[k]]);
+        if (miss ? e->background : !keep)
+            listed[n++] = order[k];
+    }
+    double centre[2] = {0, f->tracer.footprint}; /* Newton's window for the walks of the secondary rays */
+    iacsg_status st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, centre, frame,
+                                    err);
+    if (st == IACSG_OK && e->aa > 1) {
+        double aa[2] = {aa_eps(f), f->tracer.footprint};
+        long edges = edge_pixels(f, frame, order, count, listed);
+        n = edges > 0 ? (size_t)edges : 0;
+        if (edges < 0)
+            st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+        if (st == IACSG_OK)
+            st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_AA, listed, n, e->aa, aa, frame, err);
+    }
+    free(listed);
+    return st;
+}
+
+/* The segment path: the centre rays' colours FX_CHUNK hits at a time (a miss is its background, and a hit keeps
+ * the kernel's colour where the host's would be the same); then -aa decides its edges on them. */
+static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, const int *order, size_t count, iacsg_error *err) {
+    iacsg_status st = IACSG_OK;
+    fx_path *paths = malloc(FX_CHUNK * sizeof *paths);
+    if (!paths)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    int keep = kernel_colors_hold(f);
+    for (size_t k = 0; st == IACSG_OK && k < count;) {
+        size_t n = 0;
+        for (; k < count && n < FX_CHUNK; k++) {
+            int pixel = order[k];
+            if (isinf(frame->depth[pixel]) ? f->e->background : !keep) {
+                memset(frame->rgb + 3 * (size_t)pixel, 0, 3 * sizeof(float));
+                centre_path(f, frame, pixel, &paths[n++]);
+            }
+        }
+        st = run_paths(f, paths, n, err);
+        for (size_t q = 0; st == IACSG_OK && q < n; q++)
+            fx_encode(frame->rgb, paths[q].pixel);
+    }
+    if (st == IACSG_OK && f->e->aa > 1)
+        st = antialias(f, frame, order, count, paths, err);
+    free(paths);
     return st;
 }
 
@@ -563,38 +633,24 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
         st = fx_tracer_open(&f.tracer, r, view, err);
     size_t count = 0;
     int *order = NULL;
-    fx_path *paths = malloc(FX_CHUNK * sizeof *paths);
     f.accum = frame->rgb;
-    if (st == IACSG_OK && (!paths || !(order = block_order(&f, frame, &count))))
+    if (st == IACSG_OK && !(order = block_order(&f, frame, &count)))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     resolve_lights(&f);
-    /* The centre rays' colours, FX_CHUNK hits at a time (a miss is its background, and a hit keeps the kernel's
-     * colour where the host's would be the same); then -aa decides its edges on them. */
-    int keep = kernel_colors_hold(&f);
-    for (size_t k = 0; st == IACSG_OK && k < count;) {
-        size_t n = 0, first = k;
-        for (; k < count && n < FX_CHUNK; k++) {
-            int pixel = order[k], miss = isinf(frame->depth[pixel]);
-            if (miss || !keep)
-                memset(frame->rgb + 3 * (size_t)pixel, 0, 3 * sizeof(float));
-            if (miss) {
-                double lin[3];
-                background_at(&f, pixel / view->width, lin);
-                add(f.accum, pixel, 1, lin);
-            } else if (!keep) {
-                centre_path(&f, frame, pixel, &paths[n++]);
-            }
-        }
-        st = run_paths(&f, paths, n, err);
-        for (size_t q = first; st == IACSG_OK && q < k; q++)
-            if (!keep || isinf(frame->depth[order[q]]))
-                encode(frame->rgb, order[q]);
+    effects_block(&f, f.block);
+    if (st == IACSG_OK && r->scene) { /* -shade ids: each item's palette colour */
+        int nitems = r->fx && r->fx->nitems > 0 ? r->fx->nitems : 1;
+        if (!(f.palette = malloc(3 * (size_t)nitems * sizeof *f.palette)))
+            st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+        for (int i = 0; st == IACSG_OK && i < nitems; i++)
+            scene_palette(i, f.palette + 3 * i);
     }
-    if (st == IACSG_OK && f.e->aa > 1)
-        st = antialias(&f, frame, order, count, paths, err);
+    if (st == IACSG_OK)
+        st = r->scene ? apply_scene(&f, frame, order, count, err) : apply_expr(&f, frame, order, count, err);
     free(order);
-    free(paths);
-    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1], &f.rays, &f.hits};
+    free(f.palette);
+    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1],
+                      &f.rays,        &f.hits,        &f.rows,      &f.vis,     &f.colors};
     for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
         free(bufs[k]->p);
     frame->secondary_rays = f.tracer.rays;

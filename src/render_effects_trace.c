@@ -1,9 +1,12 @@
-/* src/render_effects_trace.c -- see render_effects_trace.h. The rays go to the device in one buffer per call,
- * in the working precision (kernels/effects.h); the first-root path traces 16 of them per work-item in SIMD
- * lanes, the segment path one per work-item with per-ray buffers that every ray fits (render_scene.c). */
+/* src/render_effects_trace.c -- see render_effects_trace.h. The device side of a frame's effects (parameters,
+ * the kernels made at the renderer's first use), and the segment path's secondary rays and colours: the rays go
+ * to the device in one buffer per call, in the working precision (kernels/effects.h), traced one per work-item
+ * with per-ray buffers that every ray fits (render_scene.c); their hits are shaded 16 at a time in SIMD lanes
+ * (kernels/scene_effects.cl: iacsg_scene_shade, by light.h). */
 #include "render_effects_trace.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"
+#include "kernels/scene_data.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,30 +23,20 @@ iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err) {
     return IACSG_OK;
 }
 
-static size_t real_bytes(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
+size_t fx_real_bytes(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
 
-/* Stores v as the working precision's real at index k of `block`. */
-static void put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
+void fx_put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
     if (r->config.fp64)
         ((double *)block)[k] = v;
     else
         ((float *)block)[k] = (float)v;
 }
 
-/* The tree of the secondary rays covers [0, root_w]: a ray from inside the bounds leaves them within their
- * diagonal, a camera ray (antialiasing) within the eye's farthest corner; doubled for the origins' offsets. */
-static double root_width(const iacsg_view *v) {
-    double diag2 = 0, far2 = 0;
-    for (int k = 0; k < 3; k++) {
-        double e = v->camera.eye[k], lo = v->bounds[k], hi = v->bounds[k + 3];
-        diag2 += (hi - lo) * (hi - lo);
-        far2 += fmax((e - lo) * (e - lo), (e - hi) * (e - hi));
-    }
-    return 2 * (sqrt(diag2) + sqrt(far2)) + 1;
+void fx_encode(float *rgb, int pixel) {
+    for (int c = 0; c < 3; c++)
+        rgb[3 * (size_t)pixel + c] = sqrtf(fminf(fmaxf(rgb[3 * (size_t)pixel + c], 0), 1));
 }
 
-static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
-                                double newton, iacsg_error *err);
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
                                  iacsg_error *err);
 
@@ -52,8 +45,7 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_b
 static iacsg_status compile_trace_now(fx_tracer *t, iacsg_error *err) {
     struct trace_buffers none = {0};
     double eps[1] = {0};
-    return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, err)
-                       : launch_expr(t, t->r->fx->trace, &none, 0, eps, 0, err);
+    return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, err) : fx_device_compile(t, err);
 }
 
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
@@ -68,14 +60,19 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
     if (st != IACSG_OK)
         return st;
     cl_int rc = CL_SUCCESS;
-    t->params = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * real_bytes(r),
+    t->params = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * fx_real_bytes(r),
                                block, &rc);
     CLRT_CHECK(err, rc);
     if (!fx->trace) {
         double t0 = render_now_seconds();
-        fx->trace = clCreateKernel(r->program, r->scene ? "iacsg_scene_trace_rays" : "iacsg_trace_rays", &rc);
+        fx->trace = clCreateKernel(r->program, r->scene ? "iacsg_scene_trace_rays" : "iacsg_effects", &rc);
         CLRT_CHECK(err, rc);
         st = compile_trace_now(t, err);
+        if (st == IACSG_OK && r->scene) {
+            fx->shade = clCreateKernel(r->program, "iacsg_scene_shade", &rc);
+            CLRT_CHECK(err, rc);
+            st = fx_scene_shade(t, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, err);
+        }
         r->build_seconds += render_now_seconds() - t0;
         if (st != IACSG_OK)
             return st;
@@ -85,7 +82,6 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
         ones[k] = ~(cl_ulong)0;
     t->all_groups = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof ones, ones, &rc);
     CLRT_CHECK(err, rc);
-    t->root_w = root_width(view);
     double p[PARAM_COUNT], far2 = 0;
     st = iacsg_camera_params(&view->camera, view->width, view->height, p, err);
     for (int k = 0; k < 3; k++) {
@@ -118,34 +114,6 @@ static void release_trace_buffers(trace_buffers *b) {
             clReleaseMemObject(all[k]);
 }
 
-/* The first-root path: arguments of kernels/effects.cl, one launch of n / 16 work-items. */
-static iacsg_status launch_expr(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
-                                double newton, iacsg_error *err) {
-    iacsg_renderer *r = t->r;
-    size_t rb = real_bytes(r);
-    double reals[2];
-    put_real(r, reals, 0, t->root_w);
-    char w_real[8], fp_real[8];
-    memcpy(w_real, reals, rb);
-    put_real(r, reals, 0, newton);
-    memcpy(fp_real, reals, rb);
-    CLRT_CHECK(err, clSetKernelArg(k, 0, sizeof(cl_mem), &t->params));
-    CLRT_CHECK(err, clSetKernelArg(k, 1, sizeof(cl_mem), &b->rays));
-    CLRT_CHECK(err, clSetKernelArg(k, 2, sizeof n, &n));
-    CLRT_CHECK(err, clSetKernelArg(k, 3, rb, w_real));
-    CLRT_CHECK(err, clSetKernelArg(k, 4, rb, eps_real));
-    CLRT_CHECK(err, clSetKernelArg(k, 5, rb, fp_real));
-    CLRT_CHECK(err, clSetKernelArg(k, 6, sizeof(cl_mem), &t->all_groups));
-    CLRT_CHECK(err, clSetKernelArg(k, 7, sizeof(cl_mem), &b->t));
-    CLRT_CHECK(err, clSetKernelArg(k, 8, sizeof(cl_mem), &b->normal));
-    CLRT_CHECK(err, clSetKernelArg(k, 9, sizeof(cl_mem), b->evals ? &b->evals : NULL));
-    size_t global = n > 0 ? ((size_t)n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */
-    CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL));
-    return IACSG_OK;
-fail:
-    return IACSG_ERR_OPENCL;
-}
-
 /* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items as the per-ray
  * buffers have room for (one after the other on the in-order queue, which they share). */
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
@@ -160,7 +128,7 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
         if (clSetKernelArg(k, at[a], sizeof(cl_mem), args[a] ? &args[a] : NULL) != CL_SUCCESS)
             st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
-                           clSetKernelArg(k, 4, real_bytes(r), eps_real) != CL_SUCCESS))
+                           clSetKernelArg(k, 4, fx_real_bytes(r), eps_real) != CL_SUCCESS))
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     for (cl_int first = 0; st == IACSG_OK && (first < n || first == 0); first += (cl_int)slots) {
         size_t global = (size_t)(n - first) < slots && n > 0 ? (size_t)(n - first) : slots, local = 1;
@@ -193,8 +161,7 @@ static iacsg_status reserve_scratch(fx_tracer *t, size_t bytes, iacsg_error *err
     return IACSG_OK;
 }
 
-/* Makes the host array current after the kernels wrote the buffer over it (a no-op on a CPU device). */
-static iacsg_status sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {
+iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {
     cl_int rc = CL_SUCCESS;
     void *p = clEnqueueMapBuffer(q, m, CL_TRUE, CL_MAP_READ, 0, bytes, 0, NULL, NULL, &rc);
     CLRT_CHECK(err, rc);
@@ -204,14 +171,13 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, double newton, fx_hit *hits,
-                      iacsg_error *err) {
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err) {
     if (n == 0)
         return IACSG_OK;
     if (n > 0x7fffffff / EFFECTS_RAY_REALS)
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "too many secondary rays (%zu) in one pass", n);
     iacsg_renderer *r = t->r;
-    size_t rb = real_bytes(r);
+    size_t rb = fx_real_bytes(r);
     size_t bytes[6] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
                        n * sizeof(cl_uint), n * sizeof(cl_int)};
     size_t at[6] = {0};
@@ -225,26 +191,25 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, do
         const fx_ray *y = &rays[i];
         double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
         for (int k = 0; k < EFFECTS_RAY_REALS; k++)
-            put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
+            fx_put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
         ((cl_int *)(void *)(host + at[5]))[i] = y->passing;
     }
     trace_buffers b = {0};
     cl_mem *dst[6] = {&b.rays, &b.t, &b.normal, &b.item, &b.evals, &b.passing};
     cl_int rc = CL_SUCCESS;
     for (int k = 0; k < 6; k++) {
-        if (((k == 3 || k == 5) && !r->scene) || (k == 4 && !r->config.stats))
+        if (k == 4 && !r->config.stats)
             continue;
         cl_mem_flags flags = (k == 0 || k == 5 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR;
         *dst[k] = clCreateBuffer(r->rt.context, flags, bytes[k], host + at[k], &rc);
         CLRT_CHECK(err, rc);
     }
     double eps_block[1];
-    put_real(r, eps_block, 0, eps);
-    st = r->scene ? launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err)
-                  : launch_expr(t, r->fx->trace, &b, (cl_int)n, eps_block, newton, err);
+    fx_put_real(r, eps_block, 0, eps);
+    st = launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err);
     for (int k = 1; k < 5 && st == IACSG_OK; k++) /* the outputs */
         if (*dst[k])
-            st = sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
+            st = fx_sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
     const float *out_n = (const float *)(void *)(host + at[2]);
     const cl_int *out_item = (const cl_int *)(void *)(host + at[3]);
     for (size_t i = 0; st == IACSG_OK && i < n; i++) {
@@ -260,4 +225,74 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, do
 fail:
     release_trace_buffers(&b);
     return IACSG_ERR_OPENCL;
+}
+
+iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *rays, const fx_hit *hits,
+                            const float *vis, const int *rows, size_t n, const float *palette, float *out,
+                            iacsg_error *err) {
+    iacsg_renderer *r = t->r;
+    size_t rb = fx_real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1;
+    char *reals = malloc((n * (EFFECTS_RAY_REALS + 1) + EFFECTS_COUNT + 1) * rb);
+    float *normal = malloc((3 * n + 1) * sizeof *normal);
+    cl_int *item = malloc((n + 1) * sizeof *item);
+    cl_mem mem[9] = {0}; /* block, materials, palette, rays, depths, normals, items, light fractions, rows */
+    cl_mem out_mem = NULL;
+    iacsg_status st = reals && normal && item ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    char *ray_reals = reals + EFFECTS_COUNT * rb, *depth = ray_reals + n * EFFECTS_RAY_REALS * rb;
+    for (int k = 0; st == IACSG_OK && block && k < EFFECTS_COUNT; k++)
+        fx_put_real(r, reals, (size_t)k, block[k]);
+    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
+        const fx_ray *y = &rays[i];
+        double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
+        for (int k = 0; k < EFFECTS_RAY_REALS; k++)
+            fx_put_real(r, ray_reals, EFFECTS_RAY_REALS * i + (size_t)k, v[k]);
+        fx_put_real(r, depth, i, isinf(hits[i].t) ? 0 : hits[i].t);
+        memcpy(normal + 3 * i, hits[i].n, sizeof hits[i].n);
+        item[i] = hits[i].item;
+    }
+    const void *host[9] = {reals, render_scene_materials(r), palette, ray_reals, depth, normal, item, vis, rows};
+    size_t bytes[9] = {EFFECTS_COUNT * rb, SCENE_MATERIAL_FLOATS * nitems * sizeof(float), 3 * nitems * sizeof(float),
+                       n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
+                       EFFECTS_MAX_LIGHTS * n * sizeof(float), n * sizeof(int)};
+    cl_int rc = CL_SUCCESS;
+    for (int b = 0; b < 9 && st == IACSG_OK && n > 0; b++) {
+        mem[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes[b], (void *)host[b], &rc);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
+    }
+    if (st == IACSG_OK && n > 0) {
+        out_mem = clCreateBuffer(r->rt.context, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, 6 * n * sizeof(float), out, &rc);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
+    }
+    cl_kernel k = r->fx->shade;
+    cl_int height = t->view->height, count = (cl_int)n;
+    cl_mem *args[] = {&t->params, &mem[0], &mem[1], &mem[2], NULL, &mem[3], &mem[4], &mem[5], &mem[6], &mem[7],
+                      &mem[8], NULL, &out_mem};
+    for (cl_uint a = 0; a < 13 && st == IACSG_OK; a++) {
+        rc = a == 4 ? clSetKernelArg(k, a, sizeof height, &height)
+             : a == 11 ? clSetKernelArg(k, a, sizeof count, &count)
+                       : clSetKernelArg(k, a, sizeof(cl_mem), *args[a] ? args[a] : NULL);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clSetKernelArg(iacsg_scene_shade)", __func__, __LINE__);
+    }
+    size_t global = n > 0 ? (n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile it now */
+    if (st == IACSG_OK) {
+        rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
+        if (rc == CL_SUCCESS)
+            rc = clFinish(r->rt.queue);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_scene_shade)", __func__, __LINE__);
+    }
+    if (st == IACSG_OK && out_mem)
+        st = fx_sync_to_host(r->rt.queue, out_mem, 6 * n * sizeof(float), err);
+    for (int b = 0; b < 9; b++)
+        if (mem[b])
+            clReleaseMemObject(mem[b]);
+    if (out_mem)
+        clReleaseMemObject(out_mem);
+    free(reals);
+    free(normal);
+    free(item);
+    return st;
 }

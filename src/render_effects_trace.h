@@ -24,10 +24,20 @@ typedef struct {
 
 /* What a renderer keeps for its effects (render_internal.h: r->fx), made at the first use. */
 struct render_fx {
-    cl_kernel trace; /* iacsg_trace_rays or iacsg_scene_trace_rays */
+    cl_kernel trace; /* iacsg_effects (kernels/effects.cl) or iacsg_scene_trace_rays */
+    cl_kernel shade; /* a scene's: iacsg_scene_shade */
     fx_item *items;  /* a scene's items' materials, as the effects need them */
     int nitems;
 };
+
+/* The working precision's bytes per real; v stored as such a real at index k of `block`. */
+size_t fx_real_bytes(const iacsg_renderer *r);
+void fx_put_real(const iacsg_renderer *r, void *block, size_t k, double v);
+/* Makes the host array of a CL_MEM_USE_HOST_PTR buffer current after the kernels wrote it (a no-op on a CPU
+ * device). */
+iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err);
+/* A pixel's summed linear light (3 floats of rgb) to its display colour, in place (kernels/light.h: gamma 2). */
+void fx_encode(float *rgb, int pixel);
 
 /* Makes r->fx (without its kernel) when it is not there yet. */
 iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err);
@@ -38,7 +48,6 @@ typedef struct {
     iacsg_renderer *r;
     const iacsg_view *view;
     cl_mem params, all_groups;
-    double root_w;    /* the secondary rays' tree, [0, root_w]: past every ray's exit from the bounds */
     double footprint; /* a pixel's footprint at the bounds' farthest corner */
     void *host;       /* the rays and hits of a call, in the working precision; grows, reused by each call */
     long long rays;   /* secondary rays traced, and their interval evaluations (with config.stats) */
@@ -49,12 +58,28 @@ typedef struct {
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err);
 void fx_tracer_close(fx_tracer *t);
 
-/* Traces rays[0 .. n) with leaves of width eps into hits[0 .. n). Interval Newton (the first-root path) starts
- * on nodes no wider than 32 `newton` (packet.h's window, NEWTON_PIXELS footprints): t->footprint for camera rays
- * (-aa), as the camera rays have it; t->root_w, all of the tree, for rays from a hit, whose first nodes hold the
- * surface they leave (measured on min(sphere, torus): 9.1 evaluations a shadow ray against 10.7, 12.7 a reflected
- * ray against 13.2; -aa's rays 73 against 99). */
-iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, double newton, fx_hit *hits,
-                      iacsg_error *err);
+/* The first-root path's effects on the device (src/render_effects_device.c, kernels/effects.cl): the paths of
+ * `mode` (kernels/effects.h: the centre rays of pixels[0 .. npixels), or -aa's aa x aa rays in each of them, with
+ * leaves aa_eps_footprint[0] wide and Newton's window aa_eps_footprint[1]) and the reflected rays they lead to,
+ * bounce after bounce, each path listing at most kid_slots of them; the pixels' colours in the frame (its depth
+ * and normals the centre rays' hits) are replaced by theirs, display-encoded. `block`: the effects' parameters
+ * (EFFECTS_COUNT, kernels/effects.h). */
+iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int mode, const int *pixels,
+                           size_t npixels, int aa, const double aa_eps_footprint[2], iacsg_frame *frame,
+                           iacsg_error *err);
+/* One launch over no paths: PoCL compiles the kernel then (render_effects_trace.c: compile_trace_now). */
+iacsg_status fx_device_compile(fx_tracer *t, iacsg_error *err);
+
+/* The segment path's secondary rays: traces rays[0 .. n) with leaves of width eps into hits[0 .. n). */
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err);
+
+/* The segment path's colours (kernels/scene_effects.cl: iacsg_scene_shade) of the hits[0 .. n) of rays[0 .. n):
+ * each lit by the lights of the effects' block (EFFECTS_COUNT, kernels/effects.h), of which the fractions
+ * vis[EFFECTS_MAX_LIGHTS i + l] reach hit i; its pixel's row in rows; palette: 3 linear floats per item (-shade
+ * ids). Out: 6 floats per hit, its colour (a miss: the background) and its row's background, linear. n = 0:
+ * only compiles the kernel. */
+iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *rays, const fx_hit *hits,
+                            const float *vis, const int *rows, size_t n, const float *palette, float *out,
+                            iacsg_error *err);
 
 #endif

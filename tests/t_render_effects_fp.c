@@ -131,6 +131,99 @@ TEST_FP(effects_shadow_boundary) {
     check_shadows(view, fr);
 }
 
+/* The same with the ball as a distance, sqrt(x^2 + y^2 + (z - 0.6)^2) - 0.5, whose derivative is unbounded at its
+ * centre: a shadow ray whose steps' boxes hold the centre has no bounded F' there, and must go on by bisection
+ * (kernels/effects.cl: effects_march) rather than be taken for a miss. */
+TEST_FP(effects_shadow_boundary_distance) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = shadow_effects();
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_expr("min(sqrt(x^2 + y^2 + (z - 0.6)^2) - 0.5, z)", &view, &fr);
+    check_shadows(view, fr);
+}
+
+/* The ground of the shadow scene under a ball that lets `fraction` of the light through: a pixel of the ground is
+ * `opacity` of its lit colour (the expression's clay albedo, the light times the fraction that reaches it) and
+ * 1 - opacity of the background (the default gradient at its row, kernels/light.h), in linear light. Pixels
+ * within 2e-3 of the shadow's edge, or whose ray meets the ball, are left out. */
+static void check_ground_light(const iacsg_view view, iacsg_frame fr, double opacity, double fraction) {
+    sphere ball = {{0, 0, 0.6}, 0.5};
+    ia_real p[PARAM_COUNT];
+    view_params(&view, p);
+    const double a = opacity, *light = shadow_light;
+    long lit = 0, dark = 0, bad = 0;
+    double worst = 0;
+    static const double top[3] = {0.42f, 0.46f, 0.52f}, bottom[3] = {0.13f, 0.14f, 0.17f};
+    static const double albedo[3] = {0.80f, 0.52f, 0.28f};
+    for (int j = 0; j < view.height; j++) {
+        for (int i = 0; i < view.width; i++) {
+            double o[3], d[3], t1, t2, hit[3], l[3], h[3];
+            pixel_ray(p, &view, i, j, o, d);
+            if (sphere_span(ball, o, d, &t1, &t2) || !(d[2] < 0))
+                continue;
+            double t = -o[2] / d[2];
+            for (int k = 0; k < 3; k++) {
+                hit[k] = o[k] + t * d[k];
+                l[k] = light[k] - hit[k];
+            }
+            double edge = segment_distance(ball.c, hit, light) - ball.r;
+            if (fabs(hit[0]) > 1.99 || fabs(hit[1]) > 1.99 || fabs(edge) < 2e-3)
+                continue;
+            double len = sqrt(dot(l, l)), T = edge < 0 ? fraction : 1;
+            for (int k = 0; k < 3; k++) {
+                l[k] /= len;
+                h[k] = l[k] - d[k];
+            }
+            double nl = l[2], nh = h[2] / sqrt(dot(h, h));
+            size_t px = (size_t)j * view.width + i;
+            for (int c = 0; c < 3; c++) {
+                double lin = albedo[c] * (0.1 + 0.9 * nl * T) + 0.45 * 0.9 * pow(nh, 48) * T;
+                double shown_bg = top[c] + (bottom[c] - top[c]) * j / (view.height - 1);
+                double want = sqrt(fmin(a * lin + (1 - a) * shown_bg * shown_bg, 1)); /* clipped at 1 */
+                double off = fabs(fr.rgb[3 * px + c] - want);
+                if (off > 1e-4 && c == 0 && bad++ < 5)
+                    test_note("pixel (%d, %d), %s: red %.4f, want %.4f", i, j, T < 1 ? "in the shadow" : "lit",
+                              fr.rgb[3 * px], want);
+                worst = fmax(worst, off);
+            }
+            lit += T == 1;
+            dark += T < 1;
+        }
+    }
+    iacsg_frame_free(&fr);
+    CHECK(worst <= 1e-4, "a pixel of the ground is %g off its colour under the light that reaches it", worst);
+    CHECK(lit > 5000 && dark > 500, "too few pixels: %ld lit, %ld in the shadow", lit, dark);
+    test_note("%ld pixels lit, %ld in the shadow of the transparent ball (%g of the light), within %.1e", lit, dark,
+              fraction, worst);
+}
+
+/* The shadow scene with -opacity 0.6: the ball lets (1 - 0.6)^2 of the light through (a shadow ray crosses its
+ * surface twice); the ground, the solid z < 0, is one layer where the camera ray enters it (the ray leaves the
+ * bounds inside it). */
+TEST_FP(effects_shadow_through_transparent) {
+    iacsg_view view = ground_view(160);
+    iacsg_effects fx = shadow_effects();
+    fx.transparency = 0.4; /* opacity 0.6 */
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_expr("min(move(sphere(0.5), 0, 0, 0.6), z)", &view, &fr);
+    check_ground_light(view, fr, 0.6, 0.4 * 0.4);
+}
+
+/* The same as regions: a ball of opacity 0.6, a volume that a shadow ray enters once, lets 0.4 of the light
+ * through onto the opaque ground. */
+TEST_FP(effects_shadow_through_transparent_region) {
+    iacsg_view view = ground_view(160);
+    iacsg_effects fx = shadow_effects();
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_scene_text("material glass = rgb(0.3, 0.6, 0.9) opacity 0.6\nmaterial clay = rgb(0.8, 0.52, 0.28)\n"
+                      "region ball = move(sphere(0.5), 0, 0, 0.6) : glass\nregion ground = z : clay\n",
+                      &view, &fr);
+    check_ground_light(view, fr, 1, 0.4);
+}
+
 /* The same scene as two regions of the expression's colour: the segment path's shadow rays. */
 TEST_FP(effects_shadow_boundary_regions) {
     iacsg_view view = ground_view(200);

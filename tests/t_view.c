@@ -300,7 +300,9 @@ static int printed_command(session *s, char *out, size_t size) {
     return 0;
 }
 
-static const char first_scene[] = "cube = pseudocube\nball = sphere(1.3)\ncube | ball\n";
+/* with a light of its own, which the window shows as the render command does */
+static const char first_scene[] = "light sun = dir(1, -2, 1) intensity 0.9\ncube = pseudocube\nball = sphere(1.3)\n"
+                                  "cube | ball\n";
 static const char second_scene[] = "ring = torus(R = 1, r = 0.4)\nring | sphere(0.5)\n";
 static const char broken_scene[] = "ring = torus(R = 1, r = 0.4\nring\n";
 

@@ -3,7 +3,8 @@
 # (issue 12), by hand: the render time that -stats prints (camera rays, effects and secondary rays included;
 # not the kernel build, nor the process), the median of RUNS runs with the variants taken in turn, so that a
 # ratio compares runs under the same load; and the secondary rays' interval evaluations (exact, load-free).
-# Prints markdown rows; BENCHMARKS.md's section "Ray-tracing effects" holds a run of it.
+# Prints markdown rows; tests/bench/NOTES.md's section "Ray-tracing effects" holds runs of it. BENCH_ONLY: the views
+# to run, of "reference regions" (both by default).
 set -eu
 bin=$(realpath "${1:-build/iacsg}")
 runs=${RUNS:-5}
@@ -61,9 +62,14 @@ table() {
     done
 }
 
+only=${BENCH_ONLY:-reference regions}
 echo "| view | effect | render s (median of $runs) | against plain | evaluations per secondary ray |"
 echo "|---|---|---|---|---|"
-view=("${ref[@]}")
-table "reference view" "min((x-0.5)^2+y^2+z^2-1, (1-sqrt(x^2+y^2))^2+z^2-0.125)"
-view=(-size 1024x1024 -eps 1e-5)
-table regions fig2.csg
+if [[ " $only " == *" reference "* ]]; then
+    view=("${ref[@]}")
+    table "reference view" "min((x-0.5)^2+y^2+z^2-1, (1-sqrt(x^2+y^2))^2+z^2-0.125)"
+fi
+if [[ " $only " == *" regions "* ]]; then
+    view=(-size 1024x1024 -eps 1e-5)
+    table regions fig2.csg
+fi

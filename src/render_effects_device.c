@@ -1,0 +1,245 @@
+/* src/render_effects_device.c -- the first-root path's effects on the device (kernels/effects.cl): the paths of
+ * one kind (the frame's centre rays, or -aa's rays) launched in slices, each launch colouring the frame and
+ * listing the paths' reflected rays, which the next launch takes (one launch per bounce):
+ *
+ *   pixels (block order) --> iacsg_effects (mode) --> a centre ray's colour in its pixel (final where it listed
+ *     no reflected ray), -aa's colours summed per pixel; reflected rays
+ *     --> iacsg_effects (EFFECTS_MODE_PATHS, bounce + 1) --> colours summed per pixel --> ... until none is listed
+ *   --> the pixels summed on the host encoded (gamma 2)
+ *
+ * The host only converts the effects' block to the working precision, moves the lists and sums the colours of
+ * the paths that share a pixel.
+ */
+#include "render_effects_trace.h"
+#include "kernels/effects.h"
+#include "kernels/params.h"
+#include <stdlib.h>
+#include <string.h>
+
+/* Paths times their reflected rays' slots per launch: its buffers stay a few MB. */
+#define FX_DEVICE_SLOTS ((size_t)1 << 18)
+
+/* A generation of paths of the mode EFFECTS_MODE_PATHS: their pixels and records (EFFECTS_PATH_REALS each, in the
+ * working precision). Grows. */
+typedef struct {
+    int *pixel;
+    char *rec;
+    size_t n, cap;
+} fx_generation;
+
+static int generation_reserve(fx_generation *g, size_t n, size_t rb) {
+    if (n <= g->cap)
+        return 1;
+    size_t cap = 2 * n + 64; /* doubling: each growth copies what is there */
+    int *p = realloc(g->pixel, cap * sizeof *p);
+    if (p)
+        g->pixel = p;
+    char *q = p ? realloc(g->rec, cap * EFFECTS_PATH_REALS * rb) : NULL;
+    if (q)
+        g->rec = q;
+    if (!p || !q)
+        return 0;
+    g->cap = cap;
+    return 1;
+}
+
+/* The host side of the launches of one frame. */
+typedef struct {
+    fx_tracer *t;
+    cl_kernel k;
+    cl_mem fx, depth, normal, rgb;
+    const iacsg_view *view;
+    int kid_slots; /* reflected rays a path may list */
+    float *accum;  /* the frame's rgb */
+    int *summed;   /* the pixels whose light is summed here, to encode at the end */
+    size_t nsummed;
+    const double *aa_eps_footprint; /* -aa: the leaves' width and Newton's window */
+    /* per launch, reused: colours, reflected rays and their counts, statistics */
+    float *color;
+    char *kids;
+    int *nkids;
+    cl_uint *stats;
+} fx_device;
+
+static iacsg_status set_arg(cl_kernel k, cl_uint at, size_t bytes, const void *v, iacsg_error *err) {
+    cl_int rc = clSetKernelArg(k, at, bytes, v);
+    return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clSetKernelArg(iacsg_effects)", __func__, __LINE__);
+}
+
+/* One launch over paths [0, n) of `mode` (kernels/effects.cl's arguments), n at most FX_DEVICE_SLOTS / kid_slots:
+ * adds their colours to the frame and appends their reflected rays to `next`. */
+static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npixels, const char *recs, size_t n,
+                           int aa, fx_generation *next, iacsg_error *err) {
+    iacsg_renderer *r = x->t->r;
+    size_t rb = fx_real_bytes(r);
+    cl_mem mem[6] = {0}; /* pixels, paths, colours, kids, nkids, stats */
+    size_t bytes[6] = {npixels * sizeof(int), n * EFFECTS_PATH_REALS * rb, 3 * n * sizeof(float),
+                       n * (size_t)x->kid_slots * EFFECTS_PATH_REALS * rb, n * sizeof(int), 2 * n * sizeof(cl_uint)};
+    void *host[6] = {(void *)pixels, (void *)recs, x->color, x->kids, x->nkids, x->stats};
+    iacsg_status st = IACSG_OK;
+    for (int b = 0; b < 6 && st == IACSG_OK; b++) {
+        if (!host[b] || bytes[b] == 0 || (b == 1 && mode != EFFECTS_MODE_PATHS) || ((b == 3 || b == 4) && !x->kid_slots))
+            continue;
+        cl_int rc = CL_SUCCESS;
+        mem[b] = clCreateBuffer(r->rt.context, (b < 2 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR,
+                                bytes[b], host[b], &rc);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clCreateBuffer(effects)", __func__, __LINE__);
+    }
+    cl_int flags = x->view->camera.ortho_height > 0 ? RENDER_ORTHO : 0, w = x->view->width, h = x->view->height;
+    cl_int ni = (cl_int)n, cl_mode = mode, cl_aa = aa, slots = x->kid_slots;
+    char aa_eps[8], footprint[8];
+    double reals[2] = {x->aa_eps_footprint[0], x->aa_eps_footprint[1]};
+    char *dst[2] = {aa_eps, footprint};
+    for (int q = 0; q < 2; q++) {
+        double one[1];
+        fx_put_real(r, one, 0, reals[q]);
+        memcpy(dst[q], one, rb);
+    }
+    struct {
+        size_t bytes;
+        const void *v;
+    } args[] = {{sizeof(cl_mem), &x->t->params}, {sizeof(cl_mem), &x->fx},   {sizeof cl_mode, &cl_mode},
+                {sizeof flags, &flags},          {sizeof w, &w},             {sizeof h, &h},
+                {sizeof(cl_mem), &mem[0]},       {sizeof(cl_mem), &mem[1]},  {sizeof ni, &ni},
+                {sizeof cl_aa, &cl_aa},          {sizeof(cl_mem), &x->depth},
+                {sizeof(cl_mem), &x->normal},    {rb, aa_eps},
+                {rb, footprint},                 {sizeof(cl_mem), &x->t->all_groups}, {sizeof(cl_mem), &x->rgb},
+                {sizeof(cl_mem), &mem[2]},       {sizeof(cl_mem), &mem[3]},  {sizeof(cl_mem), &mem[4]},
+                {sizeof slots, &slots},          {sizeof(cl_mem), &mem[5]}};
+    for (cl_uint a = 0; a < sizeof args / sizeof args[0] && st == IACSG_OK; a++)
+        st = set_arg(x->k, a, args[a].bytes, args[a].v, err);
+    size_t global = n > 0 ? (n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */
+    if (st == IACSG_OK) {
+        cl_int rc = clEnqueueNDRangeKernel(r->rt.queue, x->k, 1, NULL, &global, &local, 0, NULL, NULL);
+        if (rc == CL_SUCCESS)
+            rc = clFinish(r->rt.queue);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_effects)", __func__, __LINE__);
+    }
+    /* a CPU device wrote the host arrays in place; another is made to by mapping them */
+    for (int b = 2; b < 6 && st == IACSG_OK; b++)
+        if (mem[b])
+            st = fx_sync_to_host(r->rt.queue, mem[b], bytes[b], err);
+    size_t samples = mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1;
+    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
+        int pixel = pixels[i / samples];
+        for (int c = 0; mode != EFFECTS_MODE_CENTRE && c < 3; c++) /* a centre ray's is in the frame already */
+            x->accum[3 * (size_t)pixel + c] += x->color[3 * i + c];
+        if (mem[5]) {
+            x->t->rays += x->stats[2 * i];
+            x->t->evals += x->stats[2 * i + 1];
+        }
+        int nk = x->kid_slots ? x->nkids[i] : 0;
+        if (mode == EFFECTS_MODE_CENTRE && nk > 0) /* its linear light, which the reflected rays add to */
+            x->summed[x->nsummed++] = pixel;
+        if (nk > 0 && !generation_reserve(next, next->n + (size_t)nk, rb))
+            st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the reflected rays");
+        for (int q = 0; st == IACSG_OK && q < nk; q++) {
+            next->pixel[next->n] = pixel;
+            memcpy(next->rec + next->n * EFFECTS_PATH_REALS * rb,
+                   x->kids + (i * (size_t)x->kid_slots + (size_t)q) * EFFECTS_PATH_REALS * rb, EFFECTS_PATH_REALS * rb);
+            next->n++;
+        }
+    }
+    for (int b = 0; b < 6; b++)
+        if (mem[b])
+            clReleaseMemObject(mem[b]);
+    return st;
+}
+
+/* The launches over n paths of `mode`, in slices that the per-launch buffers hold (for -aa, whole pixels). */
+static iacsg_status launch_all(fx_device *x, int mode, const int *pixels, const char *recs, size_t n, int aa,
+                               fx_generation *next, iacsg_error *err) {
+    size_t rb = fx_real_bytes(x->t->r), samples = mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1;
+    size_t slice = FX_DEVICE_SLOTS / (x->kid_slots ? (size_t)x->kid_slots : 1) / (samples * PACKET_LANES) * samples *
+                   PACKET_LANES;
+    iacsg_status st = IACSG_OK;
+    for (size_t at = 0; st == IACSG_OK && at < n; at += slice) {
+        size_t m = n - at < slice ? n - at : slice;
+        st = launch(x, mode, pixels + at / samples, (m + samples - 1) / samples,
+                    recs ? recs + at * EFFECTS_PATH_REALS * rb : NULL, m, aa, next, err);
+    }
+    return st;
+}
+
+iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int mode, const int *pixels,
+                           size_t npixels, int aa, const double aa_eps_footprint[2], iacsg_frame *frame,
+                           iacsg_error *err) {
+    iacsg_renderer *r = t->r;
+    size_t rb = fx_real_bytes(r), n = npixels * (mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1);
+    if (n == 0)
+        return IACSG_OK;
+    fx_device x = {.t = t, .k = r->fx->trace, .view = t->view, .kid_slots = kid_slots, .accum = frame->rgb,
+                   .aa_eps_footprint = aa_eps_footprint};
+    fx_generation gen[2] = {{0}};
+    char reals[EFFECTS_COUNT * sizeof(double)];
+    for (int k = 0; k < EFFECTS_COUNT; k++)
+        fx_put_real(r, reals, (size_t)k, block[k]);
+    size_t slots = FX_DEVICE_SLOTS, paths = slots / (kid_slots ? (size_t)kid_slots : 1) + PACKET_LANES;
+    x.color = malloc(3 * paths * sizeof(float));
+    x.nkids = malloc(paths * sizeof(int));
+    x.stats = r->config.stats ? malloc(2 * paths * sizeof(cl_uint)) : NULL;
+    x.kids = kid_slots ? malloc((slots + PACKET_LANES * (size_t)kid_slots) * EFFECTS_PATH_REALS * rb) : NULL;
+    size_t npix = (size_t)frame->width * (size_t)frame->height;
+    cl_int rc = CL_SUCCESS;
+    iacsg_status st = IACSG_OK;
+    x.summed = malloc((npixels + 1) * sizeof *x.summed);
+    if (!x.color || !x.nkids || (r->config.stats && !x.stats) || (kid_slots && !x.kids) || !x.summed)
+        st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    if (st == IACSG_OK) {
+        x.fx = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, EFFECTS_COUNT * rb, reals, &rc);
+        if (rc == CL_SUCCESS)
+            x.depth = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, npix * sizeof(float),
+                                     frame->depth, &rc);
+        if (rc == CL_SUCCESS)
+            x.normal = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
+                                      3 * npix * sizeof(float), frame->normal, &rc);
+        if (rc == CL_SUCCESS)
+            x.rgb = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, 3 * npix * sizeof(float),
+                                   frame->rgb, &rc);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clCreateBuffer(effects)", __func__, __LINE__);
+    }
+    if (st == IACSG_OK && mode == EFFECTS_MODE_AA) /* the samples' light replaces the centre ray's colour */
+        for (size_t k = 0; k < npixels; k++) {
+            memset(frame->rgb + 3 * (size_t)pixels[k], 0, 3 * sizeof(float));
+            x.summed[x.nsummed++] = pixels[k];
+        }
+    /* room for one reflected ray a path, what a frame without transparency lists at most */
+    if (st == IACSG_OK && kid_slots && !generation_reserve(&gen[0], n, rb))
+        st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the reflected rays");
+    if (st == IACSG_OK)
+        st = launch_all(&x, mode, pixels, NULL, n, aa, &gen[0], err);
+    for (int g = 0; st == IACSG_OK && gen[g].n > 0; g = 1 - g) {
+        gen[1 - g].n = 0;
+        st = launch_all(&x, EFFECTS_MODE_PATHS, gen[g].pixel, gen[g].rec, gen[g].n, aa, &gen[1 - g], err);
+        gen[g].n = 0;
+    }
+    if (st == IACSG_OK && x.rgb) /* the frame current on the host after the kernels wrote it */
+        st = fx_sync_to_host(r->rt.queue, x.rgb, 3 * npix * sizeof(float), err);
+    for (size_t k = 0; st == IACSG_OK && k < x.nsummed; k++)
+        fx_encode(frame->rgb, x.summed[k]);
+    cl_mem all[4] = {x.fx, x.depth, x.normal, x.rgb};
+    for (int k = 0; k < 4; k++)
+        if (all[k])
+            clReleaseMemObject(all[k]);
+    for (int g = 0; g < 2; g++) {
+        free(gen[g].pixel);
+        free(gen[g].rec);
+    }
+    free(x.color);
+    free(x.nkids);
+    free(x.stats);
+    free(x.kids);
+    free(x.summed);
+    return st;
+}
+
+iacsg_status fx_device_compile(fx_tracer *t, iacsg_error *err) {
+    fx_device x = {.t = t, .k = t->r->fx->trace, .view = t->view};
+    double none[2] = {0, 0};
+    x.aa_eps_footprint = none;
+    int pixel = 0;
+    return launch(&x, EFFECTS_MODE_CENTRE, &pixel, 0, NULL, 0, 1, NULL, err);
+}
