@@ -23,6 +23,9 @@
  * last digits, as a database's rounded trc does. A cone's quadric is negative in both nappes: where A < 0 (the
  * ray crosses both) the slab keeps the one where r grows along the ray, after the later root (before the earlier
  * one where r falls); where r is 0 the quadric is u^2 + v^2 >= 0, so the other nappe holds no point of the slab.
+ * EHY: the slab -1 <= z <= 0 and prim.h's k1 (x^2 + y^2 - 1) - (z + k2)^2 + k2^2 = k1 (x^2 + y^2) - (z + k2)^2 + c'^2,
+ * negative inside both sheets of a hyperboloid; the slab's (z + k2 >= c') is the one where z + k2 > 0, and where
+ * z + k2 = 0 the quadric is positive: so where A < 0, the half-line on the side where z grows, as a cone's.
  *
  * Every root is one interval expression of the coefficients (the stable form: q = -(B + sign(B) sqrt(D)), roots
  * q / A and C / q), which holds the exact root of every quadratic with coefficients in their intervals. Where
@@ -127,7 +130,7 @@ IA_FN int prim_segments_quadric(prim_segments_span *s, ia_interval a, ia_interva
     return 1;
 }
 
-/* The pieces of an ell or a quadric tgc, from s = a + u b along the ray (a at ta, b = G d). */
+/* The pieces of an ell, a quadric tgc or an ehy, from s = a + u b along the ray (a at ta, b = G d). */
 IA_FN int prim_segments_frame(int type, const ia_real *p, const ia_interval a[3], const ia_interval b[3],
                               prim_segments_span *s, ia_real ta, ia_real width) {
     ia_interval aa = ia_add(ia_sqr(a[0]), ia_sqr(a[1])), ab = ia_add(ia_mul(a[0], b[0]), ia_mul(a[1], b[1]));
@@ -135,6 +138,14 @@ IA_FN int prim_segments_frame(int type, const ia_real *p, const ia_interval a[3]
     if (type == PRIM_ELL)
         return prim_segments_quadric(s, ia_add(bb, ia_sqr(b[2])), ia_add(ab, ia_mul(a[2], b[2])),
                                      ia_add_r(ia_add(aa, ia_sqr(a[2])), -1), 0, ta, width);
+    if (type == PRIM_EHY) { /* k1 (x^2 + y^2 - 1) - (z + k2)^2 + k2^2 on the slab -1 <= z <= 0 */
+        ia_interval k1 = prim_iv(p, 12), zk = ia_add(a[2], prim_iv(p, 13));
+        prim_segments_plane(s, a[2], b[2], ta, width);
+        prim_segments_plane(s, ia_sub(ia_make(-1, -1), a[2]), ia_neg(b[2]), ta, width);
+        return prim_segments_quadric(s, ia_sub(ia_mul(k1, bb), ia_sqr(b[2])), ia_sub(ia_mul(k1, ab), ia_mul(zk, b[2])),
+                                     ia_add(ia_sub(ia_mul(k1, ia_add_r(aa, -1)), ia_sqr(zk)), prim_iv(p, 14)),
+                                     b[2].lo > 0 ? 1 : b[2].hi < 0 ? -1 : 0, ta, width);
+    }
     ia_interval gamma = ia_hull(prim_iv(p, 12), prim_iv(p, 13));
     gamma.lo = fmax(gamma.lo, (ia_real)-1); /* alpha, beta = |C| / |A| - 1, |D| / |B| - 1 */
     if (!(gamma.hi - gamma.lo <= PRIM_SEGMENTS_SKEW))
@@ -157,7 +168,7 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
     if (type == PRIM_HALF || type == PRIM_ARB8) {
         for (int j = 0; j < (type == PRIM_HALF ? 1 : PRIM_ARB_PLANES); j++)
             prim_segments_plane(&s, prim_half_F(p + 8 * j, x, y, z), prim_dot3(p + 8 * j, 0, dx, dy, dz), ta, width);
-    } else if (type == PRIM_ELL || type == PRIM_TGC) {
+    } else if (type == PRIM_ELL || type == PRIM_TGC || type == PRIM_EHY) {
         ia_interval a[3], b[3];
         prim_frame(p, 0, x, y, z, a);
         prim_frame_dir(p, 0, dx, dy, dz, b);

@@ -13,7 +13,7 @@
  * stored or sorted, and the walks stop at the first claimed partition: a ray that hits the front of a solid never
  * bisects its back, nor the solids behind.
  *
- * A BRL-CAD primitive with a closed form (prim_segments.h: half, arb8, ell, and tgc where it is a quadric) walks
+ * A BRL-CAD primitive with a closed form (prim_segments.h: half, arb8, ell, ehy, and tgc where it is a quadric) walks
  * by it instead: its first step solves it along the ray, and the walk then moves through its four changes
  * (segments_closed_step); where the closed form cannot decide (a ray along a cylinder's axis) it bisects.
  *

@@ -460,7 +460,7 @@ static void run_type(int type, int variants, const char *name) {
     for (long it = 0; it < prims; it++) {
         /* the types and variants with a closed form (a tgc's variants 0-2: rec, rcc or trc, cone) */
         int quadric = type == SCENE_PRIM_HALF || type == SCENE_PRIM_ARB8 || type == SCENE_PRIM_ELL ||
-                      (type == SCENE_PRIM_TGC && it % variants < 3);
+                      type == SCENE_PRIM_EHY || (type == SCENE_PRIM_TGC && it % variants < 3);
         double q[64], mat[16], scale;
         int n = random_prim(rng, type, (int)(it % variants), q);
         int affine = it % 3 == 2 && (type == SCENE_PRIM_ELL || type == SCENE_PRIM_TGC || type == SCENE_PRIM_ARB8);
