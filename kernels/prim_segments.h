@@ -4,9 +4,11 @@
  * enclosure of the exit, OUT; every enclosure outward, so a boundary the ray crosses is never missed nor late.
  *
  *   prim_segments(type, p, o, d, ta, tend, e):
- *     1. the ray's point at ta enclosed (traverse.h's ray_extent), its direction d exact;
- *     2. each piece of the solid along the ray, u = t - ta: a plane's c + b u, a quadric's A u^2 + 2 B u + C, the
- *        coefficients intervals holding the exact ones (from kernels/prim.h's placed parameters);
+ *     1. the ray's origin o and direction d (exact), its point at ta enclosed (traverse.h's ray_extent);
+ *     2. each piece of the solid along the ray: a plane's c + b t from o (c and b each with 2 products of an
+ *        interval by a real: as precise as from ta, both a few ulps of t), a quadric's A u^2 + 2 B u + C in
+ *        u = t - ta (from the far origin its discriminant would cancel), the coefficients intervals holding the
+ *        exact ones (from kernels/prim.h's placed parameters);
  *     3. each piece's t span where it may be in (outside it certainly out) and where it is certainly in
  *        (prim_segments_plane, prim_segments_quadric);
  *     4. the solid, the intersection of its pieces (convex: one span each), clipped to [ta, tend]: its four
@@ -58,18 +60,24 @@ IA_FN void prim_segments_keep(prim_segments_span *s, ia_real plo, ia_real phi, i
     s->ihi = fmin(s->ihi, ihi);
 }
 
-/* A plane's piece c + b u, u = t - ta in [0, width]: in before its root where b > 0, after it where b < 0; where
- * b may be 0, in, out or undecided over the whole range by its enclosure there. */
-IA_FN void prim_segments_plane(prim_segments_span *s, ia_interval c, ia_interval b, ia_real ta, ia_real width) {
+/* a.v for intervals a = p's k..k+2 and a real vector v: interval times real (2 products, not 4). */
+IA_FN ia_interval prim_segments_dot(const ia_real *p, int k, const ia_real v[3]) {
+    return ia_add(ia_add(ia_mul_r(prim_iv(p, k), v[0]), ia_mul_r(prim_iv(p, k + 1), v[1])),
+                  ia_mul_r(prim_iv(p, k + 2), v[2]));
+}
+
+/* A plane's piece c + b (t - t0), over the range u = t - t0 in `range`: in before its root where b > 0, after it
+ * where b < 0; where b may be 0, in, out or undecided over the whole range by its enclosure there. */
+IA_FN void prim_segments_plane(prim_segments_span *s, ia_interval c, ia_interval b, ia_real t0, ia_interval range) {
     if (b.lo > 0 || b.hi < 0) {
-        ia_interval t = ia_add(ia_point(ta), ia_div(ia_neg(c), b));
+        ia_interval u = ia_div(ia_neg(c), b), t = t0 == 0 ? u : ia_add(ia_point(t0), u);
         if (b.lo > 0)
             prim_segments_keep(s, -IA_INF, t.hi, -IA_INF, t.lo);
         else
             prim_segments_keep(s, t.lo, IA_INF, t.hi, IA_INF);
         return;
     }
-    ia_interval g = ia_add(c, ia_mul(ia_make(0, width), b));
+    ia_interval g = ia_add(c, ia_mul(range, b));
     if (g.lo > 0)
         prim_segments_keep(s, IA_INF, -IA_INF, IA_INF, -IA_INF);
     else if (!(g.hi < 0))
@@ -140,8 +148,8 @@ IA_FN int prim_segments_frame(int type, const ia_real *p, const ia_interval a[3]
                                      ia_add_r(ia_add(aa, ia_sqr(a[2])), -1), 0, ta, width);
     if (type == PRIM_EHY) { /* k1 (x^2 + y^2 - 1) - (z + k2)^2 + k2^2 on the slab -1 <= z <= 0 */
         ia_interval k1 = prim_iv(p, 12), zk = ia_add(a[2], prim_iv(p, 13));
-        prim_segments_plane(s, a[2], b[2], ta, width);
-        prim_segments_plane(s, ia_sub(ia_make(-1, -1), a[2]), ia_neg(b[2]), ta, width);
+        prim_segments_plane(s, a[2], b[2], ta, ia_make(0, width));
+        prim_segments_plane(s, ia_sub(ia_make(-1, -1), a[2]), ia_neg(b[2]), ta, ia_make(0, width));
         return prim_segments_quadric(s, ia_sub(ia_mul(k1, bb), ia_sqr(b[2])), ia_sub(ia_mul(k1, ab), ia_mul(zk, b[2])),
                                      ia_add(ia_sub(ia_mul(k1, ia_add_r(aa, -1)), ia_sqr(zk)), prim_iv(p, 14)),
                                      b[2].lo > 0 ? 1 : b[2].hi < 0 ? -1 : 0, ta, width);
@@ -151,8 +159,8 @@ IA_FN int prim_segments_frame(int type, const ia_real *p, const ia_interval a[3]
     if (!(gamma.hi - gamma.lo <= PRIM_SEGMENTS_SKEW))
         return 0;
     ia_interval r0 = ia_add_r(ia_mul(gamma, a[2]), 1), r1 = ia_mul(gamma, b[2]); /* r = r0 + u r1 */
-    prim_segments_plane(s, ia_neg(a[2]), ia_neg(b[2]), ta, width);
-    prim_segments_plane(s, ia_add_r(a[2], -1), b[2], ta, width);
+    prim_segments_plane(s, ia_neg(a[2]), ia_neg(b[2]), ta, ia_make(0, width));
+    prim_segments_plane(s, ia_add_r(a[2], -1), b[2], ta, ia_make(0, width));
     return prim_segments_quadric(s, ia_sub(bb, ia_sqr(r1)), ia_sub(ab, ia_mul(r0, r1)), ia_sub(aa, ia_sqr(r0)),
                                  r1.lo > 0 ? 1 : r1.hi < 0 ? -1 : 0, ta, width);
 }
@@ -161,18 +169,17 @@ IA_FN int prim_segments_frame(int type, const ia_real *p, const ia_interval a[3]
  * bisect. */
 IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia_real d[3], ia_real ta, ia_real tend,
                         ia_real e[4]) {
-    ia_interval at = ia_point(ta), x = ray_extent(o[0], d[0], at), y = ray_extent(o[1], d[1], at);
-    ia_interval z = ray_extent(o[2], d[2], at), dx = ia_point(d[0]), dy = ia_point(d[1]), dz = ia_point(d[2]);
-    ia_real width = ia_hi(tend - ta);
     prim_segments_span s = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0};
-    if (type == PRIM_HALF || type == PRIM_ARB8) {
+    if (type == PRIM_HALF || type == PRIM_ARB8) { /* n.o - d + t n.d: from the ray's origin, an exact point */
         for (int j = 0; j < (type == PRIM_HALF ? 1 : PRIM_ARB_PLANES); j++)
-            prim_segments_plane(&s, prim_half_F(p + 8 * j, x, y, z), prim_dot3(p + 8 * j, 0, dx, dy, dz), ta, width);
+            prim_segments_plane(&s, ia_sub(prim_segments_dot(p + 8 * j, 0, o), prim_iv(p + 8 * j, 3)),
+                                prim_segments_dot(p + 8 * j, 0, d), 0, ia_make(ta, tend));
     } else if (type == PRIM_ELL || type == PRIM_TGC || type == PRIM_EHY) {
-        ia_interval a[3], b[3];
-        prim_frame(p, 0, x, y, z, a);
-        prim_frame_dir(p, 0, dx, dy, dz, b);
-        if (!prim_segments_frame(type, p, a, b, &s, ta, width))
+        ia_interval at = ia_point(ta), a[3], b[3];
+        prim_frame(p, 0, ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at), ray_extent(o[2], d[2], at), a);
+        for (int r = 0; r < 3; r++)
+            b[r] = prim_segments_dot(p, 3 + 3 * r, d);
+        if (!prim_segments_frame(type, p, a, b, &s, ta, ia_hi(tend - ta)))
             return 0;
     } else {
         return 0;

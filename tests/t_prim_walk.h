@@ -316,7 +316,8 @@ static void feature_point(test_rng_t *rng, const scene_prim *sp, const double bo
 
 typedef struct {
     long rays, nodes, boundary_leaves, grazing_leaves, vertex_leaves;
-    long closed; /* rays walked by a closed form (kernels/prim_segments.h) */
+    long closed;         /* rays walked by a closed form (kernels/prim_segments.h) */
+    double closed_worst; /* their farthest BOUNDARY from a crossing, in eps: their enclosures are a few ulps */
     unsigned long long evals;
     double worst; /* the farthest BOUNDARY leaf from a crossing along the ray, in eps */
 } tally;
@@ -394,6 +395,8 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
         near = nearest * len <= PRIM_NEAR * eps;
         if (near) {
             tl->worst = fmax(tl->worst, (double)(nearest * len / eps));
+            if (level[0] == SEGMENTS_CLOSED)
+                tl->closed_worst = fmax(tl->closed_worst, (double)(nearest * len / eps));
             continue;
         }
         /* a graze: the boundary passes within PRIM_NEAR eps of the leaf in space (the cube in the local frame,
@@ -518,6 +521,7 @@ static void run_type(int type, int variants, const char *name) {
     test_note("%s: %ld of %ld rays walked in closed form", name, tl.closed, closable);
     CHECK(tl.closed == closed_of_closable && closed_of_closable >= closable * 97 / 100,
           "%s: %ld rays in closed form, %ld of the %ld that have one", name, tl.closed, closed_of_closable, closable);
+    CHECK(tl.closed_worst <= 0.05, "%s: a closed form's BOUNDARY %.3g eps from its crossing", name, tl.closed_worst);
 #else
     CHECK(tl.closed == 0, "%s: %ld rays in closed form without SCENE_SOLID_PRIMS", name, tl.closed);
 #endif
