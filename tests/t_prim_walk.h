@@ -378,7 +378,8 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
         ld nearest = INFINITY;
         for (int k = 0; k < ncross; k++) {
             CHECK(s == SCENE_BOUNDARY || !(cross[k] > a + tol && cross[k] < b - tol),
-                  "type %d: a %s node [%.17g, %.17g] holds the crossing at %.20Lg", sp->type, s == SCENE_IN ? "IN" : "OUT",
+                  "type %d: a %s node [%.17g, %.17g] holds the crossing at %.20Lg", sp->type,
+                  s == SCENE_IN ? "IN" : "OUT",
                   (double)a, (double)b, cross[k]);
             ld gap = cross[k] < a ? a - cross[k] : cross[k] > b ? cross[k] - b : 0;
             nearest = fminl(nearest, gap);
