@@ -39,8 +39,8 @@
 #include "prim.h"
 #include "traverse.h"
 
-/* The most reals of parameters a closed-form type has (an arb8's 24 intervals; src: implicits/scene_emit.c pads
- * to 8). */
+/* The most reals of parameters a closed-form type has: an arb8's 24 intervals (implicits/scene_emit.c stores
+ * each type's padded to a multiple of 8 reals, 48 for an arb8). */
 #define PRIM_SEGMENTS_REALS (2 * PRIM_ARB8_N)
 /* A tgc is a quadric here where its alpha and beta are this close (their hull's width). */
 #define PRIM_SEGMENTS_SKEW ((ia_real)1e-6)
