@@ -479,6 +479,9 @@ iacsg_status brlcad_model_build(const brlcad_db *db, const char *const *objects,
         return st;
     }
     out->ninstances = out->scene->nsolids;
+    for (int k = 0; k < out->scene->nsolids; k++) /* placed once: for rt's model box, the BVH and the program */
+        if (out->scene->solids[k].prim)
+            prim_keep(out->scene->solids[k].prim);
     return IACSG_OK;
 }
 

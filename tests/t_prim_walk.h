@@ -472,7 +472,7 @@ static void run_type(int type, int variants, const char *name) {
             random_affine(rng, mat, &scale);
         else
             random_matrix(rng, mat, &scale);
-        scene_prim sp = {type, n, q, {0}};
+        scene_prim sp = {type, n, q, {0}, NULL};
         memcpy(sp.mat, mat, sizeof mat);
         prim_placed pl;
         iacsg_error err = {0};
