@@ -39,8 +39,8 @@ void brlcad_model_free(brlcad_model *m);
 
 /* rt's model box of a scene: the union of its regions' boxes, each from its solids' proven boxes as rt_bound_tree
  * bounds a tree (a union's hull, an intersection's overlap, a difference's left side), unbounded regions (a
- * half-space) left out, rounded out to whole mm (rt_prep); 0 if no region is bounded. Every bounded region lies
- * inside it. */
+ * half-space) left out, rounded out to whole mm (rt_prep); 0 if no region is bounded (or memory ran out). Every
+ * bounded region lies inside it. */
 int brlcad_scene_bounds(const iacsg_scene *s, double box[6]);
 
 #endif

@@ -479,6 +479,9 @@ iacsg_status brlcad_model_build(const brlcad_db *db, const char *const *objects,
         return st;
     }
     out->ninstances = out->scene->nsolids;
+    for (int k = 0; k < out->scene->nsolids; k++) /* placed once: for rt's model box, the BVH and the program */
+        if (out->scene->solids[k].prim)
+            prim_keep(out->scene->solids[k].prim);
     return IACSG_OK;
 }
 
@@ -490,8 +493,10 @@ void brlcad_model_free(brlcad_model *m) {
 
 /* The box of region `item`'s tree as rt_bound_tree makes it: a union's hull, an intersection's overlap, the left
  * side of a difference; from the last node back to the root, boxes of finished subtrees on a stack. 0 when
- * unbounded (a half-space under a union) or when a solid is not valid (the renderer says why). */
-static int region_box(const iacsg_scene *s, int item, double box[6]) {
+ * unbounded (a half-space under a union) or when a solid is not valid (the renderer says why). solid_boxes: each
+ * solid's world box, infinite where it is unbounded (a solid is a leaf of many regions after the push-down:
+ * placing it at each took 0.1 s of havoc's command). */
+static int region_box(const iacsg_scene *s, const double (*solid_boxes)[6], int item, double box[6]) {
     int root = s->items[item].tree, n = scene_tree_size(s, root), top = 0, ok = 1;
     double(*stack)[6] = malloc((size_t)n * sizeof *stack);
     if (!stack)
@@ -499,11 +504,7 @@ static int region_box(const iacsg_scene *s, int item, double box[6]) {
     for (int k = root + n - 1; k >= root; k--) {
         int op = CSG_NODE_OP(s->nodes[k]);
         if (op == CSG_INSIDE) {
-            const scene_prim *p = s->solids[CSG_NODE_ARG(s->nodes[k])].prim;
-            if (!p || !prim_world_box(p, stack[top])) /* unbounded: the infinite box, as librt */
-                for (int j = 0; j < 3; j++)
-                    stack[top][j] = -INFINITY, stack[top][j + 3] = INFINITY;
-            top++;
+            memcpy(stack[top++], solid_boxes[CSG_NODE_ARG(s->nodes[k])], sizeof stack[0]);
             continue;
         }
         /* children come after their parent: the left operand is on top, the right below it */
@@ -526,13 +527,22 @@ static int region_box(const iacsg_scene *s, int item, double box[6]) {
 
 int brlcad_scene_bounds(const iacsg_scene *s, double box[6]) {
     int any = 0;
+    double(*solid_boxes)[6] = malloc((size_t)(s->nsolids ? s->nsolids : 1) * sizeof *solid_boxes);
+    if (!solid_boxes)
+        return 0;
+    for (int k = 0; k < s->nsolids; k++) {
+        const scene_prim *p = s->solids[k].prim;
+        if (!p || !prim_world_box(p, solid_boxes[k])) /* unbounded: the infinite box, as librt */
+            for (int j = 0; j < 3; j++)
+                solid_boxes[k][j] = -INFINITY, solid_boxes[k][j + 3] = INFINITY;
+    }
     for (int k = 0; k < 3; k++) {
         box[k] = INFINITY;
         box[k + 3] = -INFINITY;
     }
     for (int r = 0; r < s->nitems; r++) {
         double b[6];
-        if (s->items[r].kind != SCENE_REGION || !region_box(s, r, b))
+        if (s->items[r].kind != SCENE_REGION || !region_box(s, (const double(*)[6])solid_boxes, r, b))
             continue; /* an unbounded region (a half-space) is left out, as librt leaves it out */
         for (int j = 0; j < 3; j++) {
             box[j] = fmin(box[j], b[j]);
@@ -540,6 +550,7 @@ int brlcad_scene_bounds(const iacsg_scene *s, double box[6]) {
         }
         any = 1;
     }
+    free(solid_boxes);
     for (int j = 0; j < 3 && any; j++) { /* whole mm outward, as rt_prep rounds its model box */
         box[j] = floor(box[j]);
         box[j + 3] = ceil(box[j + 3]);

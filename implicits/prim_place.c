@@ -657,8 +657,26 @@ static int all_finite(const double *x, int n) {
     return 1;
 }
 
+/* A copy of a kept placement: 0 when memory runs out. */
+static int copy_placed(const prim_placed *from, prim_placed *out) {
+    *out = *from;
+    out->lo = malloc((size_t)from->n * sizeof *out->lo);
+    out->hi = malloc((size_t)from->n * sizeof *out->hi);
+    if (!out->lo || !out->hi) {
+        prim_placed_free(out);
+        return 0;
+    }
+    memcpy(out->lo, from->lo, (size_t)from->n * sizeof *out->lo);
+    memcpy(out->hi, from->hi, (size_t)from->n * sizeof *out->hi);
+    return 1;
+}
+
 iacsg_status prim_place(const scene_prim *sp, const char *name, prim_placed *out, iacsg_error *err) {
     memset(out, 0, sizeof *out);
+    if (sp->placed)
+        return copy_placed(sp->placed, out)
+                   ? IACSG_OK
+                   : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory placing solid '%s'", name ? name : "");
     out->type = sp->type;
     const char *why = "it is not a supported primitive type";
     int ok = -1;
@@ -691,13 +709,30 @@ void prim_placed_free(prim_placed *out) {
     out->n = 0;
 }
 
-int prim_world_box(const scene_prim *p, double box[6]) {
-    prim_placed placed;
+void prim_keep(scene_prim *p) {
+    prim_placed *placed = p->placed ? NULL : malloc(sizeof *placed);
     iacsg_error err = {0};
-    int ok = prim_place(p, NULL, &placed, &err) == IACSG_OK;
-    int bounded = ok && isfinite(placed.box[0]) && isfinite(placed.box[3]);
+    if (placed && prim_place(p, NULL, placed, &err) == IACSG_OK)
+        p->placed = placed;
+    else
+        free(placed);
+}
+
+void prim_unkeep(scene_prim *p) {
+    if (p->placed)
+        prim_placed_free(p->placed);
+    free(p->placed);
+    p->placed = NULL;
+}
+
+int prim_world_box(const scene_prim *p, double box[6]) {
+    prim_placed placed = {0};
+    iacsg_error err = {0};
+    int ok = p->placed || prim_place(p, NULL, &placed, &err) == IACSG_OK;
+    const double *b = p->placed ? p->placed->box : placed.box;
+    int bounded = ok && isfinite(b[0]) && isfinite(b[3]);
     for (int c = 0; c < 6; c++)
-        box[c] = bounded ? placed.box[c] : c < 3 ? -INFINITY : INFINITY;
+        box[c] = bounded ? b[c] : c < 3 ? -INFINITY : INFINITY;
     prim_placed_free(&placed);
     return bounded;
 }

@@ -1,6 +1,7 @@
 /* implicits/scene.c -- the scene structure (scene.h): the builder the front ends call, destruction, and the host's
  * evaluation of a tree. Parsing the scene language is in scene_parse.c. */
 #include "scene.h"
+#include "prim_place.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,8 +15,10 @@ void iacsg_scene_destroy(iacsg_scene *s) {
     for (int k = 0; k < s->nsolids; k++) {
         free(s->solids[k].name);
         iacsg_expr_destroy(s->solids[k].expr);
-        if (s->solids[k].prim)
+        if (s->solids[k].prim) {
             free(s->solids[k].prim->params);
+            prim_unkeep(s->solids[k].prim);
+        }
         free(s->solids[k].prim);
     }
     for (int k = 0; k < s->nitems; k++)
@@ -109,6 +112,7 @@ int scene_add_primitive(iacsg_scene *s, const char *name, scene_prim_type type, 
     p->nparams = nparams;
     p->params = copy;
     memcpy(p->mat, mat, sizeof p->mat);
+    p->placed = NULL;
     s->solids[s->nsolids] = (scene_solid){.name = copied, .prim = p};
     return s->nsolids++;
 }

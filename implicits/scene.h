@@ -51,6 +51,7 @@ typedef struct {
     int nparams;
     double *params;
     double mat[16];
+    struct prim_placed *placed; /* its placement once made (implicits/prim_place.h: prim_keep), or NULL */
 } scene_prim;
 
 typedef struct {

@@ -12,7 +12,8 @@
  * kernels/prim.h's, which the program holds once (src/render_scene.c puts them before the solids). That costs
  * about 2.5-3 ms of build per solid here (1000 arbs or ells, medians of 3 on a loaded machine), against ~30 ms
  * for an expression; with Fd too (a scene of primitives only) the build took 25 % longer for 19 % fewer
- * evaluations and no faster frame, so the limit counts all solids. */
+ * evaluations and no faster frame, so the limit counts all solids. scene_solid_P hands a primitive's type and
+ * parameters to the walks' closed forms (kernels/prim_segments.h). */
 #include "scene_emit.h"
 #include "prim_place.h"
 #include "strbuf.h"
@@ -55,6 +56,21 @@ static void emit_dispatcher(strbuf *b, int nsolids, int which) {
     strbuf_printf(b, "    }\n    %s\n}\n", otherwise);
 }
 
+/* scene_solid_P(k, p, cap): solid k's primitive type, its parameters stored into p, or -1 when it is no primitive
+ * or they need more than cap reals (kernels/segments.h's closed forms; SCENE_SOLID_PRIMS says it is there). */
+static void emit_parameters_dispatcher(strbuf *b, const iacsg_scene *s) {
+    strbuf_printf(b, "#define SCENE_SOLID_PRIMS 1\nIA_FN int scene_solid_P(int k, ia_real *p, int cap) {\n"
+                     "    switch (k / %d) {\n", SCENE_EMIT_GROUP);
+    for (int g = 0; g * SCENE_EMIT_GROUP < s->nsolids; g++) {
+        int any = 0;
+        for (int k = g * SCENE_EMIT_GROUP; k < s->nsolids && k < (g + 1) * SCENE_EMIT_GROUP; k++)
+            any |= s->solids[k].prim != NULL;
+        if (any)
+            strbuf_printf(b, "    case %d: return scene_g%d_P(k, p, cap);\n", g, g);
+    }
+    strbuf_printf(b, "    }\n    return -1;\n}\n");
+}
+
 /* A bound as a literal of either precision: the double itself, and its float rounded outward (down for a lower
  * bound), for kernels/prim.h's PRIM_R. */
 static void emit_bound(strbuf *b, double x, int upper) {
@@ -76,8 +92,8 @@ static iacsg_status emit_primitive(strbuf *params, strbuf *code, const scene_sol
     if (st != IACSG_OK)
         return st;
     int g = k / SCENE_EMIT_GROUP;
-    strbuf_printf(params, "    case %d:\n", k);
     int nreal = 2 * placed.n, padded = (nreal + 7) / 8 * 8;
+    strbuf_printf(params, "    case %d:\n        if (cap < %d)\n            return -1;\n", k, padded);
     for (int i = 0; i < padded; i++) {
         if (i % 8 == 0)
             strbuf_printf(params, "        vstore8((prim_real8)(");
@@ -88,17 +104,17 @@ static iacsg_status emit_primitive(strbuf *params, strbuf *code, const scene_sol
         strbuf_printf(params, i % 8 == 7 ? "), %d, p);\n" : ", ", i / 8);
     }
     strbuf_printf(params, "        return %d;\n", placed.type);
-    const char *fill = "    ia_real p[%d];\n    int type = scene_g%d_P(%d, p);\n    (void)t;\n";
+    const char *fill = "    ia_real p[%d];\n    int type = scene_g%d_P(%d, p, %d);\n    (void)t;\n";
     strbuf_printf(code, "IA_FN ia_interval scene_s%d_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n", k);
-    strbuf_printf(code, fill, (2 * placed.n + 7) / 8 * 8, g, k);
+    strbuf_printf(code, fill, padded, g, k, padded);
     strbuf_printf(code, "    return prim_F(type, p, x, y, z);\n}\n");
     strbuf_printf(code, "IA_FN ia_real scene_s%d_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, "
                         "ia_real *gy, ia_real *gz) {\n", k);
-    strbuf_printf(code, fill, (2 * placed.n + 7) / 8 * 8, g, k);
+    strbuf_printf(code, fill, padded, g, k, padded);
     strbuf_printf(code, "    return prim_f_grad(type, p, x, y, z, gx, gy, gz);\n}\n");
     strbuf_printf(code, "#ifdef IACSG_SCALAR_FD\nIA_FN ia_interval scene_s%d_Fd(ia_interval x, ia_interval y, ia_interval z, "
                         "ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {\n", k);
-    strbuf_printf(code, fill, (2 * placed.n + 7) / 8 * 8, g, k);
+    strbuf_printf(code, fill, padded, g, k, padded);
     strbuf_printf(code, "    return prim_Fd(type, p, x, y, z, dx, dy, dz, dt);\n}\n#endif\n");
     prim_placed_free(&placed);
     return IACSG_OK;
@@ -118,7 +134,8 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
             if (open_group >= 0)
                 strbuf_printf(&params, "    }\n    return -1;\n}\n");
             open_group = k / SCENE_EMIT_GROUP;
-            strbuf_printf(&params, "__attribute__((noinline)) int scene_g%d_P(int k, ia_real *p) {\n    switch (k) {\n",
+            strbuf_printf(&params,
+                          "__attribute__((noinline)) int scene_g%d_P(int k, ia_real *p, int cap) {\n    switch (k) {\n",
                           open_group);
         }
         st = s->solids[k].prim ? emit_primitive(&params, &code, &s->solids[k], k, err)
@@ -127,8 +144,10 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
             strbuf_printf(&code, "%s", text);
         free(text);
     }
-    if (open_group >= 0)
+    if (open_group >= 0) {
         strbuf_printf(&params, "    }\n    return -1;\n}\n");
+        emit_parameters_dispatcher(&params, s);
+    }
     char *params_text = strbuf_finish(&params), *code_text = strbuf_finish(&code);
     if (st == IACSG_OK) {
         strbuf_printf(&b, "%s%s", params_text ? params_text : "", code_text ? code_text : "");

@@ -13,16 +13,23 @@
  * stored or sorted, and the walks stop at the first claimed partition: a ray that hits the front of a solid never
  * bisects its back, nor the solids behind.
  *
- * Needs scene_solid_F (src/render_scene.c's program, or the host tests' own).
+ * A BRL-CAD primitive with a closed form (prim_segments.h: half, arb8, ell, ehy, and tgc where it is a quadric)
+ * walks by it instead: its first step solves it along the ray, and the walk then moves through its four changes
+ * (segments_closed_step); where the closed form cannot decide (a ray along a cone's side line) it bisects.
+ *
+ * Needs scene_solid_F (src/render_scene.c's program, or the host tests' own), and with SCENE_SOLID_PRIMS (a scene
+ * with primitives) scene_solid_P: a solid's primitive type and parameters (implicits/scene_emit.c).
  */
 #ifndef KERNELS_SEGMENTS_H
 #define KERNELS_SEGMENTS_H
 #include "traverse.h"
 #include "scene_data.h"
+#include "prim_segments.h"
 
 /* A candidate's walk: node (level[c], index[c]) of the tree over [range[2c], range[2c] + range[2c + 1]], whose
  * start is pos[c]; level SEGMENTS_CLOSING when the walk has covered the range and the solid's final OUT at its
- * end is due at pos[c]; pos[c] = +inf when nothing is left. */
+ * end is due at pos[c]; pos[c] = +inf when nothing is left. A closed-form walk has level SEGMENTS_CLOSED and keeps
+ * its four changes (prim_segments) in range[2c], range[2c + 1], newton_t[2c], newton_t[2c + 1]. */
 typedef struct {
     KERNEL_GLOBAL int *solid;
     KERNEL_GLOBAL ia_real *range; /* start, width */
@@ -34,6 +41,37 @@ typedef struct {
 } segments_walks;
 
 #define SEGMENTS_CLOSING (-1)
+#define SEGMENTS_CLOSED (-2)
+
+#ifdef SCENE_SOLID_PRIMS
+/* At a walk's first step: solves candidate c's solid in closed form where it has one (counted as one
+ * evaluation), keeping the changes; 0 when it must bisect. */
+IA_FN int segments_closed_start(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3],
+                                kernel_u32 *evals) {
+    ia_real p[PRIM_SEGMENTS_REALS], e[4], ta = w->range[2 * c];
+    int type = scene_solid_P(w->solid[c], p, PRIM_SEGMENTS_REALS);
+    if (type < 0 || !prim_segments(type, p, o, d, ta, node_bound(ta, w->range[2 * c + 1], 0, 1), e))
+        return 0;
+    *evals += 1;
+    w->level[c] = SEGMENTS_CLOSED;
+    w->range[2 * c] = e[0];
+    w->range[2 * c + 1] = e[1];
+    w->newton_t[2 * c] = e[2];
+    w->newton_t[2 * c + 1] = e[3];
+    return 1;
+}
+
+/* A closed-form walk's step: the state from pos[c] on, after the changes at or before it (OUT, BOUNDARY, IN,
+ * BOUNDARY, OUT), and pos[c] on to the next change. */
+IA_FN int segments_closed_step(const segments_walks *w, int c) {
+    ia_real e[4] = {w->range[2 * c], w->range[2 * c + 1], w->newton_t[2 * c], w->newton_t[2 * c + 1]};
+    int j = 0;
+    while (j < 4 && e[j] <= w->pos[c])
+        j++;
+    w->pos[c] = j < 4 ? e[j] : IA_INF;
+    return j == 2 ? SCENE_IN : j & 1 ? SCENE_BOUNDARY : SCENE_OUT;
+}
+#endif
 
 IA_FN void segments_start(const segments_walks *w, int c) {
     w->level[c] = 0;
@@ -102,6 +140,10 @@ IA_FN int segments_step(const segments_walks *w, int c, const ia_real o[3], cons
         w->pos[c] = IA_INF;
         return SCENE_OUT;
     }
+#ifdef SCENE_SOLID_PRIMS
+    if (level == SEGMENTS_CLOSED || (level == 0 && w->index[c] == 0 && segments_closed_start(w, c, o, d, evals)))
+        return segments_closed_step(w, c);
+#endif
     bisect_index i = w->index[c];
     int s;
     for (;;) {

@@ -15,7 +15,7 @@ static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0,
 
 static void expect_refused(const char *name, scene_prim_type type, const double *q, int n, const double mat[16],
                            const char *reason) {
-    scene_prim sp = {type, n, (double *)q, {0}};
+    scene_prim sp = {type, n, (double *)q, {0}, NULL};
     memcpy(sp.mat, mat, sizeof sp.mat);
     prim_placed pl;
     iacsg_error err = {0};
@@ -83,7 +83,7 @@ TEST(prim_errors_valid_boxes) {
                                        {-1, -0.5, 0, 1, 0.5, 2},
                                        {0, -0.5, -0.5, 5.5, 5, 0.5}};
     for (size_t k = 0; k < sizeof valid / sizeof valid[0]; k++) {
-        scene_prim sp = {valid[k].type, valid[k].n, (double *)valid[k].q, {0}};
+        scene_prim sp = {valid[k].type, valid[k].n, (double *)valid[k].q, {0}, NULL};
         memcpy(sp.mat, identity, sizeof sp.mat);
         double box[6];
         int bounded = prim_world_box(&sp, box);

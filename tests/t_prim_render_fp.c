@@ -30,7 +30,7 @@ static void add_prim(prim_scene *ps, int k, scene_prim_type type, const double *
     iacsg_error err = {0};
     CHECK(scene_add_primitive(ps->scene, NULL, type, q, n, mat, &err) == k, "scene_add_primitive: %s", err.message);
     memcpy(ps->params[k], q, sizeof(double) * (size_t)n);
-    ps->prims[k] = (scene_prim){type, n, ps->params[k], {0}};
+    ps->prims[k] = (scene_prim){type, n, ps->params[k], {0}, NULL};
     memcpy(ps->prims[k].mat, mat, 16 * sizeof(double));
 }
 

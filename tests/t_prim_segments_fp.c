@@ -1,5 +1,8 @@
-/* tests/t_prim_segments_fp.c -- each primitive type through the segment path's bisection walk alone (as scenes of
- * more than 64 solids run it), against the exact reference: tests/t_prim_walk.h says what is checked. */
+/* tests/t_prim_segments_fp.c -- each primitive type through the segment path's walk as scenes of more than 64 solids
+ * run it: the closed forms of kernels/prim_segments.h (half, arb8, ell, ehy, the quadric tgcs), bisection for the rest
+ * and for the rays the closed forms leave to it; against the exact reference: tests/t_prim_walk.h says what is
+ * checked. */
+#define SCENE_SOLID_PRIMS 1
 #include "t_prim_walk.h"
 
 TEST_FP(prim_segments_half) { run_type(SCENE_PRIM_HALF, 1, "half"); }

@@ -43,6 +43,17 @@ static ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interv
 }
 #endif
 
+#ifdef SCENE_SOLID_PRIMS
+static int host_nreals;
+static int scene_solid_P(int k, ia_real *p, int cap) {
+    (void)k;
+    if (cap < host_nreals)
+        return -1;
+    memcpy(p, host_params, sizeof(ia_real) * (size_t)host_nreals);
+    return host_type;
+}
+#endif
+
 #include "kernels/segments.h"
 
 
@@ -256,12 +267,30 @@ static void feature_point(test_rng_t *rng, const scene_prim *sp, const double bo
         break;
     }
     case SCENE_PRIM_TGC:
+    case SCENE_PRIM_ELL:
+        if (kind == 2) { /* on the surface (a tgc's side), along a tangent: a grazing ray */
+            int ell = sp->type == SCENE_PRIM_ELL;
+            double phi = rnd(rng, 0, 6.283185307179586), w = ell ? rnd(rng, -0.95, 0.95) : rnd(rng, 0.05, 0.95);
+            double len2[4] = {0, 0, 0, 0}; /* a tgc's |A|^2, |B|^2, |C|^2, |D|^2 */
+            for (int k = 0; k < 4 && !ell; k++)
+                for (int c = 0; c < 3; c++)
+                    len2[k] += q[6 + 3 * k + c] * q[6 + 3 * k + c];
+            double ca = ell ? sqrt(1 - w * w) : 1 + w * (sqrt(len2[2] / len2[0]) - 1); /* the radii at w */
+            double cb = ell ? ca : 1 + w * (sqrt(len2[3] / len2[1]) - 1);
+            double s[3] = {ca * cos(phi), cb * sin(phi), w}, t[3] = {-ca * sin(phi), cb * cos(phi), 0};
+            const double *e0 = ell ? q + 3 : q + 6, *e1 = ell ? q + 6 : q + 9, *e2 = ell ? q + 9 : q + 3;
+            for (int c = 0; c < 3; c++) {
+                local[c] = q[c] + s[0] * e0[c] + s[1] * e1[c] + s[2] * e2[c];
+                axis[c] = t[0] * e0[c] + t[1] * e1[c];
+            }
+            break;
+        }
+        /* fall through */
     case SCENE_PRIM_EHY: /* on the axis, along it */
     case SCENE_PRIM_TOR:
-    case SCENE_PRIM_ELL:
         for (int c = 0; c < 3; c++) {
             local[c] = q[c];
-            axis[c] = sp->type == SCENE_PRIM_ELL ? q[3 + c] : q[3 + c];
+            axis[c] = q[3 + c];
         }
         break;
     default: { /* along a pipe's segment */
@@ -287,6 +316,8 @@ static void feature_point(test_rng_t *rng, const scene_prim *sp, const double bo
 
 typedef struct {
     long rays, nodes, boundary_leaves, grazing_leaves, vertex_leaves;
+    long closed;         /* rays walked by a closed form (kernels/prim_segments.h) */
+    double closed_worst; /* their farthest BOUNDARY from a crossing, in eps: their enclosures are a few ulps */
     unsigned long long evals;
     double worst; /* the farthest BOUNDARY leaf from a crossing along the ray, in eps */
 } tally;
@@ -336,6 +367,7 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
     while (pos[0] < IA_INF) {
         ia_real a = pos[0];
         int s = segments_step(&walk, 0, ray->o, ray->d, eps, ia_point(0), &evals);
+        tl->closed += guard == 0 && level[0] == SEGMENTS_CLOSED;
         ia_real b = pos[0] < IA_INF ? pos[0] : end;
         if (s == SCENE_OUT && !(b > a)) /* the final OUT at the range's end */
             break;
@@ -346,7 +378,8 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
         ld nearest = INFINITY;
         for (int k = 0; k < ncross; k++) {
             CHECK(s == SCENE_BOUNDARY || !(cross[k] > a + tol && cross[k] < b - tol),
-                  "type %d: a %s node [%.9g, %.9g] holds the crossing at %.12Lg", sp->type, s == SCENE_IN ? "IN" : "OUT",
+                  "type %d: a %s node [%.17g, %.17g] holds the crossing at %.20Lg", sp->type,
+                  s == SCENE_IN ? "IN" : "OUT",
                   (double)a, (double)b, cross[k]);
             ld gap = cross[k] < a ? a - cross[k] : cross[k] > b ? cross[k] - b : 0;
             nearest = fminl(nearest, gap);
@@ -363,6 +396,8 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
         near = nearest * len <= PRIM_NEAR * eps;
         if (near) {
             tl->worst = fmax(tl->worst, (double)(nearest * len / eps));
+            if (level[0] == SEGMENTS_CLOSED)
+                tl->closed_worst = fmax(tl->closed_worst, (double)(nearest * len / eps));
             continue;
         }
         /* a graze: the boundary passes within PRIM_NEAR eps of the leaf in space (the cube in the local frame,
@@ -425,8 +460,11 @@ static int clip(const double box[6], const test_ray *ray, ia_real *ta, ia_real *
 static void run_type(int type, int variants, const char *name) {
     test_rng_t *rng = test_rng();
     tally tl = {0};
-    long prims = test_iters(40), per_prim = 30;
+    long prims = test_iters(40), per_prim = 30, closable = 0, closed_of_closable = 0;
     for (long it = 0; it < prims; it++) {
+        /* the types and variants with a closed form (a tgc's variants 0-2: rec, rcc or trc, cone) */
+        int quadric = type == SCENE_PRIM_HALF || type == SCENE_PRIM_ARB8 || type == SCENE_PRIM_ELL ||
+                      type == SCENE_PRIM_EHY || (type == SCENE_PRIM_TGC && it % variants < 3);
         double q[64], mat[16], scale;
         int n = random_prim(rng, type, (int)(it % variants), q);
         int affine = it % 3 == 2 && (type == SCENE_PRIM_ELL || type == SCENE_PRIM_TGC || type == SCENE_PRIM_ARB8);
@@ -434,7 +472,7 @@ static void run_type(int type, int variants, const char *name) {
             random_affine(rng, mat, &scale);
         else
             random_matrix(rng, mat, &scale);
-        scene_prim sp = {type, n, q, {0}};
+        scene_prim sp = {type, n, q, {0}, NULL};
         memcpy(sp.mat, mat, sizeof mat);
         prim_placed pl;
         iacsg_error err = {0};
@@ -446,6 +484,9 @@ static void run_type(int type, int variants, const char *name) {
                 box[c] = mat[4 * c + 3] - 8 * scale, box[c + 3] = mat[4 * c + 3] + 8 * scale;
         host_type = pl.type;
         host_params = params_of(&pl);
+#ifdef SCENE_SOLID_PRIMS
+        host_nreals = 2 * pl.n;
+#endif
         ia_real eps = (ia_real)(1e-3 * scale);
         for (long k = 0; k < per_prim; k++) {
             double target[3], axis[3], dir[3], dl = 0;
@@ -462,8 +503,12 @@ static void run_type(int type, int variants, const char *name) {
                 ray.o[c] = (ia_real)(target[c] - 40 * scale * dir[c] / dl);
             }
             ia_real ta, w;
-            if (clip(box, &ray, &ta, &w))
-                check_ray(&sp, scale, &ray, ta, w, eps, &tl);
+            long closed = tl.closed;
+            if (!clip(box, &ray, &ta, &w))
+                continue;
+            check_ray(&sp, scale, &ray, ta, w, eps, &tl);
+            closable += quadric;
+            closed_of_closable += quadric && tl.closed > closed;
         }
         free(host_params);
         prim_placed_free(&pl);
@@ -473,6 +518,14 @@ static void run_type(int type, int variants, const char *name) {
               name, tl.rays, (double)tl.evals / (double)(tl.rays ? tl.rays : 1), tl.boundary_leaves, tl.worst,
               tl.grazing_leaves, tl.vertex_leaves);
     CHECK(tl.rays > prims * per_prim / 3, "%s: too few rays met the box (%ld)", name, tl.rays);
+#ifdef SCENE_SOLID_PRIMS /* the closed forms take every ray they can decide, and only those types' */
+    test_note("%s: %ld of %ld rays walked in closed form", name, tl.closed, closable);
+    CHECK(tl.closed == closed_of_closable && closed_of_closable >= closable * 97 / 100,
+          "%s: %ld rays in closed form, %ld of the %ld that have one", name, tl.closed, closed_of_closable, closable);
+    CHECK(tl.closed_worst <= 0.05, "%s: a closed form's BOUNDARY %.3g eps from its crossing", name, tl.closed_worst);
+#else
+    CHECK(tl.closed == 0, "%s: %ld rays in closed form without SCENE_SOLID_PRIMS", name, tl.closed);
+#endif
 }
 
 #endif
