@@ -78,8 +78,7 @@ IA_FN ia_interval ia__sincos(ia_interval a, ia_real f_lo, ia_real f_hi, ia_real 
     return ia_make(fmax(lo, (ia_real)-1), fmin(hi, (ia_real)1));
 }
 
-#if IA_DEVICE && !defined(IA_FP64) && defined(cl_khr_fp64)
-#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#ifdef IA_DEVICE_DOUBLE
 /* Float sin and cos on the device from one argument reduction in double per end point, where the device has double.
  * PoCL's float cos spent as much in its argument reduction as in its polynomial, each interval took two calls
  * (four where an extremum might lie inside), and the level-set scene icos.csg spent 40 % of its render there;
@@ -136,20 +135,10 @@ IA_FN double ia__sincos_value(int k, double r, int shift) {
     return ia__quadrant_cos(k - shift, sin_r, cos_r);
 }
 
-/* The float bounds below lo and above hi, padded by their error bounds: rounded to nearest, then moved one
- * step out (ia_lo, ia_hi) where that landed inside, and clipped to [-1, 1]. Without branches (select, and
- * comparisons rather than fmin and fmax): a branch on the rounding's direction is mispredicted half the time. */
+/* The float bounds below lo and above hi, padded by their error bounds, clipped to [-1, 1]. */
 IA_FN ia_interval ia__sincos_bounds(double lo, double hi, double pad_lo, double pad_hi) {
-#ifdef IA_FAST
-    (void)pad_lo, (void)pad_hi;
-    return ia_make((ia_real)lo, (ia_real)hi);
-#else
-    double b_lo = lo - pad_lo, b_hi = hi + pad_hi;
-    ia_real f_lo = (ia_real)b_lo, f_hi = (ia_real)b_hi;
-    f_lo = select(f_lo, ia_lo(f_lo), (int)((double)f_lo > b_lo));
-    f_hi = select(f_hi, ia_hi(f_hi), (int)((double)f_hi < b_hi));
+    ia_real f_lo = ia__float_below(lo - pad_lo), f_hi = ia__float_above(hi + pad_hi);
     return ia_make(f_lo < -1 ? (ia_real)-1 : f_lo, f_hi > 1 ? (ia_real)1 : f_hi);
-#endif
 }
 
 /* The pad of a value v computed from a reduction with quotient k. */

@@ -189,7 +189,39 @@ IAV_INLINE ia_realv iav__round_dir(ia_realv r, ia_realv s) {
     return fmax(select(v, IAV_R(IA_REAL_MAX), isnan(v)), IAV_R(0));
 #endif
 }
+#ifdef IA_DEVICE_DOUBLE
+typedef IAV_CAT(double, IA_VW) iav__doublev;
+#define iav__to_double IAV_CAT(convert_double, IA_VW)
+#define iav__to_real IAV_CAT(convert_float, IA_VW)
+#define iav__to_mask IAV_CAT(convert_int, IA_VW)
+/* ia__pown_double and its outward rounding (ia__pown_nonneg) in lanes, the same operations in the same order:
+ * bit-identical. The lanes where the double chain does not apply (x = 0 or +inf, or the result beyond 2^-+1000)
+ * are set in *off. */
+IAV_INLINE ia_realv iav__pown_double(ia_realv x, unsigned int n, ia_realv s, ia_maskv *off) {
+    iav__doublev r = (iav__doublev)1, b = iav__to_double(x);
+    for (;;) {
+        if (n & 1)
+            r *= b;
+        n >>= 1;
+        if (n == 0)
+            break;
+        b *= b;
+    }
+    *off = ~iav__to_mask((r >= 0x1p-1000) & (r <= 0x1p1000)) | (x == IA_INF);
+    iav__doublev sd = iav__to_double(s), bound = r + sd * (r * 0x1p-38);
+    ia_realv f = iav__to_real(bound);
+    iav__doublev back = iav__to_double(f);
+    ia_maskv wrong = iav__to_mask(select(back < bound, back > bound, sd < 0));
+    return select(f, iav__round_dir(f, s), wrong);
+}
+#endif
 IAV_INLINE ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
+#ifdef IA_DEVICE_DOUBLE
+    ia_maskv off;
+    ia_realv d = iav__pown_double(x, n, s, &off);
+    if (!iav_any(off))
+        return d;
+#endif
     ia_realv r = IAV_R(1), b = x;
     int first = 1; /* as in ia__pown_nonneg: the first factor unrounded */
     while (1) {
@@ -198,7 +230,11 @@ IAV_INLINE ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
         first &= !(n & 1);
         n >>= 1;
         if (n == 0)
+#ifdef IA_DEVICE_DOUBLE
+            return select(d, select(r, IAV_R(0), x == 0), off);
+#else
             return select(r, IAV_R(0), x == 0);
+#endif
         b = iav__round_dir(b * b, s);
     }
 }
