@@ -192,6 +192,15 @@ IA_FN ia_interval ia__sincos_mid(ia_interval a, int shift) {
     return ia__sincos_bounds(lo, hi, ia__sincos_pad(size, k), ia__sincos_pad(size, k));
 }
 
+/* cos (shift 0) or sin (shift 1) at a point, by the same reduction and kernels rounded to nearest: the emitted
+ * point code's (ia_cos_point, ia_sin_point), so that a point's value lies in the interval functions' bounds over
+ * any interval holding the point (as the platform's cos within the platform's widening did). */
+IA_FN ia_real ia__sincos_point(ia_real x, int shift) {
+    double r;
+    int k = ia__reduce(x, &r);
+    return (ia_real)ia__sincos_value(k, r, shift);
+}
+
 /* cos (shift 0) or sin (shift 1) of a nonempty bounded a, by one of the above, or -2 in lo where neither applies. */
 IA_FN ia_interval ia__sincos_reduced(ia_interval a, int shift) {
     if (!(fabs(a.lo) <= IA__REDUCED_MAX && fabs(a.hi) <= IA__REDUCED_MAX))
@@ -218,6 +227,22 @@ IA_FN ia_interval ia_cos(ia_interval a) {
         return c;
 #endif
     return ia__sincos(a, cos(a.lo), cos(a.hi), 0);
+}
+
+/* cos and sin at a point, for the emitted point code: consistent with ia_cos and ia_sin (above). */
+IA_FN ia_real ia_cos_point(ia_real x) {
+#ifdef IA_SINCOS_REDUCED
+    if (fabs(x) <= IA__REDUCED_MAX)
+        return ia__sincos_point(x, 0);
+#endif
+    return cos(x);
+}
+IA_FN ia_real ia_sin_point(ia_real x) {
+#ifdef IA_SINCOS_REDUCED
+    if (fabs(x) <= IA__REDUCED_MAX)
+        return ia__sincos_point(x, 1);
+#endif
+    return sin(x);
 }
 
 /* sin(a). Empty stays empty; an unbounded a gives [-1, 1]. */

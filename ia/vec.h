@@ -194,10 +194,8 @@ typedef IAV_CAT(double, IA_VW) iav__doublev;
 #define iav__to_double IAV_CAT(convert_double, IA_VW)
 #define iav__to_real IAV_CAT(convert_float, IA_VW)
 #define iav__to_mask IAV_CAT(convert_int, IA_VW)
-/* ia__pown_double and its outward rounding (ia__pown_nonneg) in lanes, the same operations in the same order:
- * bit-identical. The lanes where the double chain does not apply (x = 0 or +inf, or the result beyond 2^-+1000)
- * are set in *off. */
-IAV_INLINE ia_realv iav__pown_double(ia_realv x, unsigned int n, ia_realv s, ia_maskv *off) {
+/* ia__pown_double in lanes (x > 0 in the lanes that count), the same operations in the same order: bit-identical. */
+IAV_INLINE ia_realv iav__pown_double(ia_realv x, unsigned int n, ia_realv s) {
     iav__doublev r = (iav__doublev)1, b = iav__to_double(x);
     for (;;) {
         if (n & 1)
@@ -207,21 +205,20 @@ IAV_INLINE ia_realv iav__pown_double(ia_realv x, unsigned int n, ia_realv s, ia_
             break;
         b *= b;
     }
-    *off = ~iav__to_mask((r >= 0x1p-1000) & (r <= 0x1p1000)) | (x == IA_INF);
     iav__doublev sd = iav__to_double(s), bound = r + sd * (r * 0x1p-38);
     ia_realv f = iav__to_real(bound);
     iav__doublev back = iav__to_double(f);
     ia_maskv wrong = iav__to_mask(select(back < bound, back > bound, sd < 0));
-    return select(f, iav__round_dir(f, s), wrong);
+    f = select(f, iav__round_dir(f, s), wrong);
+    ia_maskv huge = ~iav__to_mask(r <= 0x1p1000), tiny = iav__to_mask(r < 0x1p-1000);
+    f = select(f, select(IAV_R(IA_INF), IAV_R(IA_REAL_MAX), s < 0), huge);
+    return select(f, select(iav__round_dir(IAV_R(0), s), IAV_R(0), s < 0), tiny);
 }
 #endif
 IAV_INLINE ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
 #ifdef IA_DEVICE_DOUBLE
-    ia_maskv off;
-    ia_realv d = iav__pown_double(x, n, s, &off);
-    if (!iav_any(off))
-        return d;
-#endif
+    return select(iav__pown_double(x, n, s), IAV_R(0), x == 0);
+#else
     ia_realv r = IAV_R(1), b = x;
     int first = 1; /* as in ia__pown_nonneg: the first factor unrounded */
     while (1) {
@@ -230,13 +227,10 @@ IAV_INLINE ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
         first &= !(n & 1);
         n >>= 1;
         if (n == 0)
-#ifdef IA_DEVICE_DOUBLE
-            return select(d, select(r, IAV_R(0), x == 0), off);
-#else
             return select(r, IAV_R(0), x == 0);
-#endif
         b = iav__round_dir(b * b, s);
     }
+#endif
 }
 
 /* The scalar ia/ operation in each lane, for the operations with no vector version. */
