@@ -43,7 +43,8 @@ KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/tra
 # The segment path's program (src/render_scene.c): the same ia/ headers, the scene's solids, then these.
 SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h kernels/csg_node.h \
                        kernels/scene_data.h kernels/bvh.h kernels/segments.h kernels/classify.h kernels/weave.h \
-                       kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h kernels/light.h kernels/render_scene.cl \
+                       kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h kernels/light.h kernels/packet.h \
+                       kernels/scene_union.h kernels/render_scene.cl \
                        kernels/effects.h kernels/scene_effects.cl
 # BRL-CAD's primitives, between the ia/ headers and the scene's solids (which call them).
 PRIM_KERNEL_SOURCES = kernels/prim.h

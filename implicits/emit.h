@@ -7,4 +7,7 @@
  * free()s *source. */
 iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, iacsg_error *err);
 
+/* 1 when some node reachable from root may be undefined somewhere (a pole, a domain edge, an empty constant). */
+int emit_may_be_undefined(const dag *d, int root);
+
 #endif
