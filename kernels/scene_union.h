@@ -12,7 +12,7 @@
  *
  * Guarantee: a region is in at a point only where g <= 0 (scene_emit.c). g is continuous (its solids are
  * defined everywhere); the nodes before the leaf tile [t_near, leaf) without gaps and none holds 0 in its
- * enclosure of g (proven over the packet's box of rays, tile.h, or the ray's own boxes, packet.h), so g keeps one
+ * enclosure of g (proven over the packet's box of rays, surface.h, or the ray's own boxes, packet.h), so g keeps one
  * sign there; where g > 0 at t_near (its enclosure at the point), no region is in before the leaf's start, and
  * none at all on a ray without a leaf. Where g may be <= 0 at t_near (the ray may start inside a region) the ray
  * is woven from t_near as without the pre-pass.
