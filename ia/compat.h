@@ -19,6 +19,11 @@
 #pragma OPENCL FP_CONTRACT OFF
 #ifdef IA_FP64
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#elif defined(cl_khr_fp64)
+/* float intervals on a device that has double: some functions compute in double and round outward to float
+ * (ia/arith.h's pown, ia/elem.h's sin and cos) */
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#define IA_DEVICE_DOUBLE 1
 #endif
 #define IA_FN static inline
 #define IA_BOOL int

@@ -189,7 +189,36 @@ IAV_INLINE ia_realv iav__round_dir(ia_realv r, ia_realv s) {
     return fmax(select(v, IAV_R(IA_REAL_MAX), isnan(v)), IAV_R(0));
 #endif
 }
+#ifdef IA_DEVICE_DOUBLE
+typedef IAV_CAT(double, IA_VW) iav__doublev;
+#define iav__to_double IAV_CAT(convert_double, IA_VW)
+#define iav__to_real IAV_CAT(convert_float, IA_VW)
+#define iav__to_mask IAV_CAT(convert_int, IA_VW)
+/* ia__pown_double in lanes (x > 0 in the lanes that count), the same operations in the same order: bit-identical. */
+IAV_INLINE ia_realv iav__pown_double(ia_realv x, unsigned int n, ia_realv s) {
+    iav__doublev r = (iav__doublev)1, b = iav__to_double(x);
+    for (;;) {
+        if (n & 1)
+            r *= b;
+        n >>= 1;
+        if (n == 0)
+            break;
+        b *= b;
+    }
+    iav__doublev sd = iav__to_double(s), bound = r + sd * (r * 0x1p-38);
+    ia_realv f = iav__to_real(bound);
+    iav__doublev back = iav__to_double(f);
+    ia_maskv wrong = iav__to_mask(select(back < bound, back > bound, sd < 0));
+    f = select(f, iav__round_dir(f, s), wrong);
+    ia_maskv huge = ~iav__to_mask(r <= 0x1p1000), tiny = iav__to_mask(r < 0x1p-1000);
+    f = select(f, select(IAV_R(IA_INF), IAV_R(IA_REAL_MAX), s < 0), huge);
+    return select(f, select(iav__round_dir(IAV_R(0), s), IAV_R(0), s < 0), tiny);
+}
+#endif
 IAV_INLINE ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
+#ifdef IA_DEVICE_DOUBLE
+    return select(iav__pown_double(x, n, s), IAV_R(0), x == 0);
+#else
     ia_realv r = IAV_R(1), b = x;
     int first = 1; /* as in ia__pown_nonneg: the first factor unrounded */
     while (1) {
@@ -201,6 +230,7 @@ IAV_INLINE ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
             return select(r, IAV_R(0), x == 0);
         b = iav__round_dir(b * b, s);
     }
+#endif
 }
 
 /* The scalar ia/ operation in each lane, for the operations with no vector version. */

@@ -49,6 +49,16 @@ static int op_may_be_undefined(const dag_node *n) {
     return n->op >= OP_NEG && strcmp(dag_ops[n->op].undefined, "0") != 0 && !(n->op == OP_POWN && n->n >= 0);
 }
 
+int emit_may_be_undefined(const dag *d, int root) {
+    int *order = NULL, count = dag_reachable(d, root, &order), partial = count < 0;
+    for (int k = 0; k < count && !partial; k++) {
+        const dag_node *n = &d->nodes[order[k]];
+        partial = op_may_be_undefined(n) || (n->op == OP_CONST && !(n->lo <= n->hi));
+    }
+    free(order);
+    return partial;
+}
+
 typedef struct {
     const dag *d;
     unsigned char *axes;      /* per node: bit k set when its derivative along axis k is not identically 0 */
@@ -151,12 +161,15 @@ static int is_ident_char(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
 }
 
-/* The point code's integer powers (x^n in the value and n x^(n-1) in the gradient) by repeated squaring for
- * |n| <= 8, the built-in pown beyond. PoCL's pown goes through exp and log: in the heart's frames (pown 3, twice)
- * __pocl_expep and __pocl_epln, shading the hit pixels lane by lane, took as many samples as the whole render
- * kernel. The exponent is a constant: after inlining, the loop is a few multiplications. */
+/* The point code's integer powers (x^n in the value and n x^(n-1) in the gradient): on a float device with double,
+ * ia_pown_point (ia/arith.h: the interval pown's chain in double, rounded once, so that a point's value lies in the
+ * enclosures over it); else by repeated squaring for |n| <= 8, the built-in pown beyond. PoCL's pown goes through
+ * exp and log: in the heart's frames (pown 3, twice) __pocl_expep and __pocl_epln, shading the hit pixels lane by
+ * lane, took as many samples as the whole render kernel. The exponent is a constant: after inlining, the loop is a
+ * few multiplications. */
 #define POINT_POWN                                                                                              \
     "IA_FN ia_real iacsg_pown(ia_real a, int n) {\n"                                                          \
+    "    int done;\n    ia_real d = ia_pown_point(a, n, &done);\n    if (done)\n        return d;\n"      \
     "    if (n > 8 || n < -8)\n        return pown(a, n);\n"                                                 \
     "    ia_real r = 1, p = a;\n"                                                                             \
     "    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {\n        if (m & 1)\n            r *= p;\n"         \
@@ -204,6 +217,8 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
             strbuf_printf(b, "iav_%.*s", (int)len - 3, p + 3);
         else if (!is_interval(r) && IS("pown"))
             strbuf_printf(b, "iacsg_pown"); /* the point code's powers: see POINT_POWN */
+        else if (!is_interval(r) && (IS("sin") || IS("cos")))
+            strbuf_printf(b, "ia_%.*s_point", (int)len, p); /* as ia_sin and ia_cos compute (ia/elem.h) */
         else
             strbuf_append(b, p, len);
 #undef IS

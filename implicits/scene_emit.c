@@ -15,6 +15,8 @@
  * evaluations and no faster frame, so the limit counts all solids. scene_solid_P hands a primitive's type and
  * parameters to the walks' closed forms (kernels/prim_segments.h). */
 #include "scene_emit.h"
+#include "emit.h"
+#include "expr_internal.h"
 #include "prim_place.h"
 #include "strbuf.h"
 #include <math.h>
@@ -38,7 +40,9 @@ static const struct {
      "x, y, z, t, dx, dy, dz, dt", "*dt = ia_entire();\n    return ia_entire();"},
 };
 
-static void emit_dispatcher(strbuf *b, int nsolids, int which) {
+/* with_union: F of solid nsolids is the union of the regions (scene_union_F, for kernels/scene_union.h's block
+ * pass), in group 0 (nsolids <= SCENE_EMIT_UNION_MAX). */
+static void emit_dispatcher(strbuf *b, int nsolids, int which, int with_union) {
     const char *name = dispatched[which].name, *type = dispatched[which].type, *params = dispatched[which].params;
     const char *args = dispatched[which].args, *otherwise = dispatched[which].otherwise;
     int groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP;
@@ -47,6 +51,8 @@ static void emit_dispatcher(strbuf *b, int nsolids, int which) {
                       params);
         for (int k = g * SCENE_EMIT_GROUP; k < nsolids && k < (g + 1) * SCENE_EMIT_GROUP; k++)
             strbuf_printf(b, "    case %d: return scene_s%d_%s(%s);\n", k, k, name, args);
+        if (g == 0 && with_union && which == 0)
+            strbuf_printf(b, "    case %d: return scene_union_F(%s);\n", nsolids, args);
         strbuf_printf(b, "    }\n    %s\n}\n", otherwise);
     }
     strbuf_printf(b, "IA_FN %s scene_solid_%s(int k, %s) {\n    switch (k / %d) {\n", type, name, params,
@@ -120,6 +126,63 @@ static iacsg_status emit_primitive(strbuf *params, strbuf *code, const scene_sol
     return IACSG_OK;
 }
 
+/* The union of the regions as one expression (kernels/render_scene.cl's pre-pass), over the regions' trees:
+ * union min, intersection max, difference max(a, -b), "f > 0" -f. A region is in at a point only where this is
+ * <= 0 (in: f < 0 at an INSIDE leaf, not in: f >= 0; min and max keep both). Only in scenes of at most
+ * SCENE_EMIT_UNION_MAX solids and regions, all expressions defined everywhere (continuous: the pre-pass's sign
+ * argument needs it), and with at least one region. */
+#define SCENE_EMIT_UNION_MAX 8
+static int union_of_tree(dag *d, const uint32_t *nodes, int k, const int *solid, iacsg_error *err) {
+    uint32_t node = nodes[k];
+    int op = CSG_NODE_OP(node), arg = (int)CSG_NODE_ARG(node);
+    if (op == CSG_INSIDE || op == CSG_OUTSIDE)
+        return op == CSG_INSIDE ? solid[arg] : dag_add(d, OP_NEG, solid[arg], -1, 0, err);
+    int a = union_of_tree(d, nodes, k + 1, solid, err);
+    if (a < 0 || op == CSG_NOT)
+        return a < 0 ? a : dag_add(d, OP_NEG, a, -1, 0, err);
+    int b = union_of_tree(d, nodes, arg, solid, err);
+    if (b >= 0 && op == CSG_DIFFERENCE)
+        b = dag_add(d, OP_NEG, b, -1, 0, err);
+    return b < 0 ? b : dag_add(d, op == CSG_UNION ? OP_MIN : OP_MAX, a, b, 0, err);
+}
+
+/* The union's code when the scene qualifies (else both texts NULL): its scalar code as scene_union_F, and its
+ * vector code (iacsg_Fv, and where Newton pays iacsg_Fdv). The caller free()s them. */
+static iacsg_status emit_regions_union(const iacsg_scene *s, char **scalar, char **vector, iacsg_error *err) {
+    *scalar = *vector = NULL;
+    int regions = 0;
+    for (int k = 0; k < s->nitems; k++)
+        regions += s->items[k].kind == SCENE_REGION;
+    if (regions == 0 || regions > SCENE_EMIT_UNION_MAX || s->nsolids > SCENE_EMIT_UNION_MAX)
+        return IACSG_OK;
+    for (int k = 0; k < s->nsolids; k++)
+        if (!s->solids[k].expr || emit_may_be_undefined(&s->solids[k].expr->simple, s->solids[k].expr->root))
+            return IACSG_OK;
+    dag d;
+    dag_init(&d);
+    static const int same[4] = {-1, -1, -1, -1};
+    int solid[SCENE_EMIT_UNION_MAX], root = -1, failed = 0;
+    for (int k = 0; k < s->nsolids && !failed; k++)
+        failed = (solid[k] = dag_substitute(&s->solids[k].expr->simple, s->solids[k].expr->root, &d, same, NULL, 0,
+                                            err)) < 0;
+    for (int k = 0; k < s->nitems && !failed; k++) {
+        if (s->items[k].kind != SCENE_REGION)
+            continue;
+        int r = union_of_tree(&d, s->nodes, s->items[k].tree, solid, err);
+        root = r < 0 || root < 0 ? r : dag_add(&d, OP_MIN, root, r, 0, err);
+        failed = root < 0;
+    }
+    iacsg_expr *u = NULL;
+    iacsg_status st = failed ? err->status : expr_from_dag(&d, root, "regions", 1, &u, err);
+    dag_free(&d);
+    if (st == IACSG_OK)
+        st = iacsg_expr_emit_cl(u, "scene_union", scalar, err);
+    if (st == IACSG_OK)
+        st = iacsg_expr_emit_cl(u, "iacsg", vector, err);
+    iacsg_expr_destroy(u);
+    return st;
+}
+
 iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err) {
     *source = NULL;
     strbuf b = {0}, params = {0}, code = {0};
@@ -148,14 +211,21 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
         strbuf_printf(&params, "    }\n    return -1;\n}\n");
         emit_parameters_dispatcher(&params, s);
     }
-    char *params_text = strbuf_finish(&params), *code_text = strbuf_finish(&code);
+    char *params_text = strbuf_finish(&params), *code_text = strbuf_finish(&code), *scalar = NULL, *vector = NULL;
+    if (st == IACSG_OK)
+        st = emit_regions_union(s, &scalar, &vector, err);
     if (st == IACSG_OK) {
-        strbuf_printf(&b, "%s%s", params_text ? params_text : "", code_text ? code_text : "");
+        strbuf_printf(&b, "%s%s%s", params_text ? params_text : "", code_text ? code_text : "", scalar ? scalar : "");
         for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0] - !with_fd; which++)
-            emit_dispatcher(&b, s->nsolids, (int)which);
+            emit_dispatcher(&b, s->nsolids, (int)which, scalar != NULL);
+        /* last: without IACSG_SCALAR_CODE the program holds kernels/packet.h and tile.h */
+        if (vector)
+            strbuf_printf(&b, "#undef IACSG_SCALAR_CODE\n#define SCENE_REGIONS_UNION %d\n%s", s->nsolids, vector);
     }
     free(params_text);
     free(code_text);
+    free(scalar);
+    free(vector);
     *source = strbuf_finish(&b);
     if (st != IACSG_OK) {
         free(*source);

@@ -25,7 +25,7 @@
 #ifndef KERNELS_PACKET_H
 #define KERNELS_PACKET_H
 #include "traverse.h"
-#if IA_DEVICE && defined(IA_VW)
+#if IA_DEVICE && defined(IA_VW) && !defined(IACSG_SCALAR_CODE) /* (the segment path: SCENE_REGIONS_UNION) */
 
 /* Per-lane integers of the width of ia_maskv (so that select takes them), and conversions between the lane
  * types (OpenCL's convert_ functions are overloaded on the source type). */

@@ -14,6 +14,7 @@
  */
 #include "scene_trace.h"
 #include "light.h"
+#include "scene_union.h"
 
 /* The unit normal at o + t d of the solid: its gradient (scene_solid_f_grad). */
 static void scene_gradient(int solid, const ia_real o[3], const ia_real d[3], ia_real t, ia_real time,
@@ -73,6 +74,16 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     surface_start starts[SURFACE_BLOCK_MAX];
     kernel_u32 block_evals =
         pixels ? 0 : scene_block(params, flags, i0, j0, width, height, items, nodes, time, starts, &view);
+    ia_real from[PACKET_LANES]; /* where each ray's weave starts (scene_union.h), or -inf: its own t_near */
+    kernel_u32 from_evals[PACKET_LANES];
+    for (int k = 0; k < PACKET_LANES; k++) {
+        from[k] = -IA_INF;
+        from_evals[k] = 0;
+    }
+#ifdef SCENE_UNION_PREPASS
+    if (!pixels)
+        scene_union_packet(params, flags, i0, j0, width, height, from, from_evals);
+#endif
     int pixel[PACKET_LANES];
     ia_real dk[3][PACKET_LANES], gk[3][PACKET_LANES], on[PACKET_LANES];
     float rows[PACKET_LANES], color[3][PACKET_LANES];
@@ -85,16 +96,23 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
             j = n < npixels ? pixels[n] / width : height;
         }
         pixel[k] = i < width && j < row_end ? j * width + i : -1; /* the band's rows only */
-        if (pixels && pixel[k] >= 0) /* traced as in the first pass: from its packet's block passes */
+        int lane = k;
+        if (pixels && pixel[k] >= 0) { /* traced as in the first pass: from its packet's block passes */
             block_evals = scene_block(params, flags, i - i % PACKET_W, j - j % PACKET_H, width, height, items, nodes,
                                       time, starts, &view);
+#ifdef SCENE_UNION_PREPASS
+            scene_union_packet(params, flags, i - i % PACKET_W, j - j % PACKET_H, width, height, from, from_evals);
+            lane = j % PACKET_H * PACKET_W + i % PACKET_W;
+#endif
+        }
         rows[k] = (float)min(j, height - 1);
         ia_real o[3], d[3], tn, tf;
         camera_ray(params, flags & RENDER_ORTHO, min(i, width - 1), min(j, height - 1), width, height, o, d);
         weave_hit hit = {0, -1, -1, -1};
         ray.evals = ray.segments = ray.partitions = 0;
-        int found = pixel[k] >= 0 && camera_clip(params, o, d, &tn, &tf) ? scene_trace_ray(&view, &ray, o, d, tn, tf, &hit)
-                                                                          : 0;
+        int found = pixel[k] >= 0 && camera_clip(params, o, d, &tn, &tf)
+                        ? scene_trace_ray_from(&view, &ray, o, d, tn, fmax(tn, from[lane]), tf, &hit)
+                        : 0;
         if (found == SCENE_TRACE_OVERFLOW) {
             overflow[atomic_inc(noverflow)] = pixel[k];
             pixel[k] = -1;
@@ -118,7 +136,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
         ids[pixel[k]] = found ? (float)hit.item : -1.0f;
         overlap[pixel[k]] = found ? hit.overlap : -1;
 #ifdef KERNEL_STATS
-        counts[3 * pixel[k]] = ray.evals + block_evals;
+        counts[3 * pixel[k]] = ray.evals + block_evals + from_evals[lane];
         counts[3 * pixel[k] + 1] = ray.segments;
         counts[3 * pixel[k] + 2] = ray.partitions;
 #else

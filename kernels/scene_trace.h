@@ -49,10 +49,12 @@ IA_FN int scene_trace_surfaces(const scene_view *v, scene_ray *r, const ia_real 
     return found;
 }
 
-/* Traces the ray o + t d over [tn, tf]: 1 with *hit, 0 when nothing is hit, SCENE_TRACE_OVERFLOW when the ray
- * meets more boxes than r has room for. Leaves every solid's state OUT. */
-IA_FN int scene_trace_ray(const scene_view *v, scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real tn,
-                          ia_real tf, weave_hit *hit) {
+/* Traces the ray o + t d over [tn, tf], its regions from `from` on (tn; or where no region can be in before,
+ * kernels/scene_union.h, whose walks then start at nodes of eps; +inf where none is in): 1 with *hit, 0 when
+ * nothing is hit, SCENE_TRACE_OVERFLOW when the ray meets more boxes than r has room for. Leaves every solid's
+ * state OUT. */
+IA_FN int scene_trace_ray_from(const scene_view *v, scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real tn,
+                               ia_real from, ia_real tf, weave_hit *hit) {
     bvh_walk b;
     b.box = v->box;
     b.link = v->link;
@@ -60,12 +62,21 @@ IA_FN int scene_trace_ray(const scene_view *v, scene_ray *r, const ia_real o[3],
     b.r = bvh_ray_of(d);
     b.o = o;
     b.d = d;
-    b.tn = tn;
+    b.tn = from;
     b.tf = tf;
-    int found = weave_ray(r, &b, v->eps, v->time, hit);
+    r->deep = from > tn;
+    r->deep_from = from;
+    r->deep_eps = v->eps;
+    r->nstarted = 0;
+    int found = from <= tf ? weave_ray(r, &b, v->eps, v->time, hit) : 0;
     for (int c = 0; c < r->nstarted; c++)
         r->state[r->walks.solid[c]] = SCENE_OUT;
     return found < 0 ? SCENE_TRACE_OVERFLOW : scene_trace_surfaces(v, r, o, d, tn, tf, found, hit);
+}
+
+IA_FN int scene_trace_ray(const scene_view *v, scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real tn,
+                          ia_real tf, weave_hit *hit) {
+    return scene_trace_ray_from(v, r, o, d, tn, tn, tf, hit);
 }
 
 #endif

@@ -73,11 +73,23 @@ IA_FN int segments_closed_step(const segments_walks *w, int c) {
 }
 #endif
 
-IA_FN void segments_start(const segments_walks *w, int c) {
-    w->level[c] = 0;
+/* Starts candidate c's walk at the first node of `level` (0: the range's root). Any level tiles the range: the
+ * walk climbs from a deep first node as node_next leaves it (kernels/scene_union.h starts at nodes of eps). */
+IA_FN void segments_start_at(const segments_walks *w, int c, int level) {
+    w->level[c] = level;
     w->index[c] = 0;
     w->pos[c] = w->range[2 * c];
     w->newton[c] = -1;
+}
+
+IA_FN void segments_start(const segments_walks *w, int c) { segments_start_at(w, c, 0); }
+
+/* The first level whose nodes are no wider than eps over a range of that width (at most the deepest). */
+IA_FN int segments_leaf_level(ia_real width, ia_real eps) {
+    int level = 0;
+    while (level < BISECT_MAX_LEVEL && width * node_scale(level) > eps)
+        level += 1;
+    return level;
 }
 
 /* Interval Newton along the ray (where the program has scene_solid_Fd, and not with IA_FAST: unrounded, N can miss its

@@ -29,6 +29,8 @@ typedef struct {
     kernel_u32 evals, segments, partitions;
     int passing; /* 1 + a region the ray starts in and passes through (src/render_effects.c, transparency): not
                   * claimed until a partition where it is certainly out; 0: none */
+    int deep;        /* 1: the walks whose range starts at deep_from start at nodes no wider than deep_eps */
+    ia_real deep_from, deep_eps;
 } scene_ray;
 
 typedef struct {
@@ -117,7 +119,9 @@ IA_FN int weave_next_walk(scene_ray *r, const bvh_walk *b) {
         }
     if (r->nstarted < r->ncand && r->walks.range[2 * r->nstarted] <= least) {
         best = r->nstarted++;
-        segments_start(&r->walks, best);
+        ia_real start = r->walks.range[2 * best], width = r->walks.range[2 * best + 1];
+        segments_start_at(&r->walks, best,
+                          r->deep && start == r->deep_from ? segments_leaf_level(width, r->deep_eps) : 0);
         if (!weave_next_entry(r, b))
             return -2;
     }

@@ -89,3 +89,34 @@ TEST(codegen_scene_fd_only_in_small_scenes) {
         CHECK(n <= 64 ? with_fd : !any_fd, "%d solids: derivative code %s", n, n <= 64 ? "missing" : "emitted");
     }
 }
+
+/* The union of the regions as one expression, for the segment path's pre-pass in lanes (kernels/scene_union.h), is
+ * emitted only where its sign argument holds and it pays: some region, at most 8 solids and regions, every solid
+ * defined everywhere (no sqrt here, whose domain edge may be met). */
+TEST(codegen_scene_regions_union) {
+    static const struct {
+        const char *text;
+        int expected;
+    } cases[] = {
+        {"solid a = sphere(1.2)\nsolid b = box(1.5, 0.4, 0.4)\nregion r = a \\ b\nregion s = a & b", 1},
+        {"solid a = sphere(1.2)\nsolid b = sqrt(x^2 + y^2) - 0.5\nregion r = a \\ b", 0},
+        {"solid a = sphere(1.2)\nsurface s = x where a < 0", 0},
+        {"solid a = sphere(1)\nregion r1 = a\nregion r2 = a\nregion r3 = a\nregion r4 = a\nregion r5 = a\n"
+         "region r6 = a\nregion r7 = a\nregion r8 = a\nregion r9 = a",
+         0},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        iacsg_scene *s = NULL;
+        iacsg_error err = {0};
+        CHECK(iacsg_scene_parse(cases[c].text, "<test>", &s, &err) == IACSG_OK, "case %zu: %s", c, err.message);
+        char *src = NULL;
+        CHECK(scene_emit_cl(s, &src, &err) == IACSG_OK, "case %zu: %s", c, err.message);
+        int with_union = strstr(src, "#define SCENE_REGIONS_UNION") && strstr(src, "iacsg_Fv(") &&
+                         strstr(src, "return scene_union_F(");
+        int any_union = strstr(src, "SCENE_REGIONS_UNION") || strstr(src, "scene_union_F");
+        free(src);
+        iacsg_scene_destroy(s);
+        CHECK(cases[c].expected ? with_union : !any_union, "case %zu: the regions' union %s", c,
+              cases[c].expected ? "missing" : "emitted");
+    }
+}

@@ -441,6 +441,49 @@ TEST_FP(ia_tight) {
     test_note("%ld range checks " FMT_NAME "; max steps beyond the tightest bound, host/device:%s", total, line);
 }
 
+/* sin and cos on intervals near the multiples k pi/2 (|k| up to 2^18) where the device's float build reduces its
+ * arguments itself (ia/elem.h): points, a few ulps, up to 2^-11 wide (its midpoint form) and wider (its end points),
+ * on either side of the extremum or zero; containment and tightness of the exact range, host and device. */
+TEST_FP(ia_tight_sincos_quadrants) {
+    test_rng_t *r = test_rng();
+    long count = test_iters(20000);
+    char msg[2048];
+    int dev_table[ORACLE_NFNS + 2];
+    CHECK(FP_NAME(ia_dev_ulp_table)(dev_table, msg, sizeof msg) == 0, "%s", msg);
+    ia_case *k = calloc((size_t)count, sizeof *k);
+    ia_real *devo = malloc(sizeof *devo * 2 * (size_t)count), host[2];
+    CHECK(k && devo, "out of memory");
+    for (long i = 0; i < count; i++) {
+        long q = gen_u32(r, 2) ? (long)gen_u32(r, 9) - 4 : (long)gen_u32(r, 1u << 19) - (1l << 18);
+        ia_real x = (ia_real)((double)q * 1.57079632679489661923);
+        x = fmt_step(x, (int)gen_u32(r, 7) - 3);
+        double w = gen_u32(r, 4) == 0 ? 0 : ldexp(test_rand_unit(r), -(int)gen_u32(r, 24));
+        double before = w * test_rand_unit(r);
+        k[i].a = ia_make((ia_real)ia_lo((ia_real)(x - before)), (ia_real)ia_hi((ia_real)(x - before + w)));
+        if (gen_u32(r, 8) == 0)
+            k[i].a = ia_make(x, fmt_step(x, 1 + (int)gen_u32(r, 4)));
+    }
+    static const int ops[] = {ORACLE_SIN, ORACLE_COS};
+    long max_steps = 0;
+    for (int o = 0; o < 2; o++) {
+        CHECK(FP_NAME(ia_dev_ops)(0, ops[o], k, count, devo, msg, sizeof msg) == 0, "%s", msg);
+        tight_stats sh = {0, 0, 0}, sd = {0, 0, 0};
+        for (long i = 0; i < count; i++) {
+            ia_apply(ops[o], &k[i], host);
+            if (tight_check(ops[o], &k[i], host, host_table, "host", &sh, msg, sizeof msg) ||
+                tight_check(ops[o], &k[i], devo + 2 * i, dev_table, "device", &sd, msg, sizeof msg)) {
+                free(k), free(devo);
+                CHECK(0, "case %ld: %s", i, msg);
+            }
+        }
+        max_steps = sd.max_lo > max_steps ? sd.max_lo : max_steps;
+        max_steps = sd.max_hi > max_steps ? sd.max_hi : max_steps;
+    }
+    free(k), free(devo);
+    test_note("%ld intervals near multiples of pi/2, sin and cos contained and tight; device at most %ld steps out",
+              count, max_steps);
+}
+
 /* Pinned: the exact extrema and the exact 0 of the contract. */
 TEST_FP(ia_tight_extrema) {
     const ia_real pi_lo = IA_PI_LO, pi_hi = IA_PI_HI;

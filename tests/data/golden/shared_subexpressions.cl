@@ -8,6 +8,10 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 IA_FN ia_real iacsg_pown(ia_real a, int n) {
+    int done;
+    ia_real d = ia_pown_point(a, n, &done);
+    if (done)
+        return d;
     if (n > 8 || n < -8)
         return pown(a, n);
     ia_real r = 1, p = a;
@@ -51,8 +55,8 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
 #endif
 #endif
 IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz) {
-    ia_real v1 = sin(x);
-    iacsg_grad v1_d = cos(x) * (iacsg_grad)(1, 0, 0, 0);
+    ia_real v1 = ia_sin_point(x);
+    iacsg_grad v1_d = ia_cos_point(x) * (iacsg_grad)(1, 0, 0, 0);
     ia_real v3 = v1 * y;
     iacsg_grad v3_d = v1_d * y + v1 * (iacsg_grad)(0, 1, 0, 0);
     ia_real v5 = v1 + IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4);

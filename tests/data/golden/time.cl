@@ -8,6 +8,10 @@ typedef double4 iacsg_grad;
 typedef float4 iacsg_grad;
 #endif
 IA_FN ia_real iacsg_pown(ia_real a, int n) {
+    int done;
+    ia_real d = ia_pown_point(a, n, &done);
+    if (done)
+        return d;
     if (n > 8 || n < -8)
         return pown(a, n);
     ia_real r = 1, p = a;
