@@ -117,5 +117,87 @@ IA_FN iav tape_group(tape_ptr tape, int g, const ia_real *hull, ia_maskv live, i
     return r;
 }
 
+/* The lists of a tile pass (tape.h: TAPE_TILE_RECORD): for each lane's box (a tile's, over a segment of the frame's
+ * tree), the parts of the groups in `among` that are not proven positive there (bit g of groups[lane] set for
+ * group g when one of its parts is kept, as tile_groups sets it), less those dominated there: a part certainly
+ * defined whose lower bound exceeds the upper bound of another certainly defined part (at every point of the box
+ * it is larger, so the min of the others is the union there, and on every box inside it). lists[lane][0] is the
+ * count, or TAPE_LIST_FULL when more were kept than fit or a part's index does not fit 16 bits. */
+IA_FN void tape_tile_parts(tape_ptr tape, ulong among, iav x, iav y, iav z, iav t, ulong groups[IA_VW],
+                           ushort lists[IA_VW][TAPE_TILE_RECORD]) {
+    ia_real hull[6], least_hi[IA_VW], kept_lo[IA_VW][TAPE_TILE_RECORD - 1];
+    tape_hull((ia_maskv)-1, x, y, z, hull);
+    uint ngroups = tape[TAPE_W_GROUPS];
+    ushort start = tape[TAPE_W_PARTS] < TAPE_LIST_FULL ? 0 : TAPE_LIST_FULL;
+    for (int k = 0; k < IA_VW; k++) {
+        groups[k] = 0;
+        lists[k][0] = start;
+        least_hi[k] = IA_INF;
+    }
+    const __global ia_real *reals = tape_reals(tape);
+    const __global uint *parts = tape + tape[TAPE_W_PART_TABLE];
+    for (uint g = 0; g < ngroups; g++) {
+        if (!(among >> g & 1) ||
+            !tape_box_meets(reals + tape[TAPE_W_GROUP_TABLE + ngroups + 1 + g], hull, (ia_maskv)-1, x, y, z))
+            continue;
+        for (uint p = tape[TAPE_W_GROUP_TABLE + g]; p < tape[TAPE_W_GROUP_TABLE + g + 1]; p++) {
+            if (!tape_box_meets(reals + parts[TAPE_PART_WORDS * p + 3], hull, (ia_maskv)-1, x, y, z))
+                continue;
+            ia_real lo[IA_VW], hi[IA_VW];
+            iav v = tape_part(tape, p, x, y, z, t);
+            IAV_STORE(v.lo, lo);
+            IAV_STORE(v.hi, hi);
+            int defined = !(parts[TAPE_PART_WORDS * p + 2] >> 16 & 1);
+            for (int k = 0; k < IA_VW; k++) {
+                if (lo[k] > 0)
+                    continue;
+                groups[k] |= (ulong)1 << g;
+                uint n = lists[k][0];
+                if (n < TAPE_TILE_RECORD - 1) {
+                    lists[k][1 + n] = (ushort)p;
+                    kept_lo[k][n] = defined ? lo[k] : -IA_INF; /* never dominated */
+                    lists[k][0] = (ushort)(n + 1);
+                } else {
+                    lists[k][0] = TAPE_LIST_FULL;
+                }
+                if (defined)
+                    least_hi[k] = fmin(least_hi[k], hi[k]);
+            }
+        }
+    }
+    for (int k = 0; k < IA_VW; k++) { /* the dominated parts out (the part giving least_hi stays: lo <= hi) */
+        uint n = lists[k][0], m = 0;
+        if (n == TAPE_LIST_FULL)
+            continue;
+        for (uint j = 0; j < n; j++)
+            if (!(kept_lo[k][j] > least_hi[k]))
+                lists[k][1 + m++] = lists[k][1 + j];
+        lists[k][0] = (ushort)m;
+    }
+}
+
+/* The union of the parts of the tile's lists for segments first..last of the frame's tree (`records`: the
+ * tile's first, tape_tile_parts), a part in two lists taken twice (min is exact), those whose box meets none of
+ * the boxes of the lanes of `live` skipped as in tape_group (hull: theirs; NULL skips none). Returns 0 when a
+ * list is full (the caller takes the groups instead), else 1 with the union in *r. */
+IA_FN int tape_lists(tape_ptr tape, const __global ushort *records, int first, int last, const ia_real *hull,
+                     ia_maskv live, iav x, iav y, iav z, iav t, iav *r) {
+    for (int s = first; s <= last; s++)
+        if (records[TAPE_TILE_RECORD * s] == TAPE_LIST_FULL)
+            return 0;
+    const __global ia_real *reals = tape_reals(tape);
+    const __global uint *parts = tape + tape[TAPE_W_PART_TABLE];
+    *r = iav_point(IA_INF);
+    for (int s = first; s <= last; s++) {
+        const __global ushort *list = records + TAPE_TILE_RECORD * s;
+        for (uint k = 1; k <= list[0]; k++) {
+            uint p = list[k];
+            if (!hull || tape_box_meets(reals + parts[TAPE_PART_WORDS * p + 3], hull, live, x, y, z))
+                *r = iav_min(*r, tape_part(tape, p, x, y, z, t));
+        }
+    }
+    return 1;
+}
+
 #endif
 #endif
