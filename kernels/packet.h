@@ -201,10 +201,8 @@ IA_FN iav packet_F_nodes(PACKET_TAPE_PARAM const __global ulong *segment_groups,
 #ifdef IACSG_TAPE
     int first, last;
     packet_segments(live, level, i, &first, &last);
-    ia_real hull[6];
-    tape_hull(live, x, y, z, hull);
     iav r;
-    if (tape_lists(tape, (const __global ushort *)(segment_groups + SEGMENTS), first, last, hull, live, x, y, z, t, &r))
+    if (tape_lists(tape, (const __global ushort *)(segment_groups + SEGMENTS), first, last, 1, live, x, y, z, t, &r))
         return r;
 #endif
     return packet_F_live(PACKET_TAPE_ARG packet_groups(segment_groups, live, level, i), live, x, y, z, t);

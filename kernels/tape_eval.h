@@ -89,15 +89,20 @@ IA_FN void tape_hull(ia_maskv live, iav x, iav y, iav z, ia_real hull[6]) {
     }
 }
 
-/* Whether the closed box b (x0, y0, z0, x1, y1, z1) meets the box of a lane of `live`: first against the hull
- * of those boxes (a few scalar comparisons, which reject most parts), then lane by lane (the lanes of a packet
- * may lie on nodes far apart, so the hull alone keeps many parts that no lane needs). */
+/* Whether the closed box b (x0, y0, z0, x1, y1, z1) meets the box of a lane of `live`. */
+IA_FN int tape_box_meets_lanes(const __global ia_real *b, ia_maskv live, iav x, iav y, iav z) {
+    return iav_any(live & (x.lo <= b[3]) & (x.hi >= b[0]) & (y.lo <= b[4]) & (y.hi >= b[1]) & (z.lo <= b[5]) &
+                   (z.hi >= b[2]));
+}
+
+/* tape_box_meets_lanes, first against the hull of those boxes (a few scalar comparisons, which reject most of
+ * the parts of a group), then lane by lane (the lanes of a packet may lie on nodes far apart, so the hull alone
+ * keeps many parts that no lane needs). */
 IA_FN int tape_box_meets(const __global ia_real *b, const ia_real *hull, ia_maskv live, iav x, iav y, iav z) {
     if (!(hull[0] <= b[3] && hull[3] >= b[0] && hull[1] <= b[4] && hull[4] >= b[1] && hull[2] <= b[5] &&
           hull[5] >= b[2]))
         return 0;
-    return iav_any(live & (x.lo <= b[3]) & (x.hi >= b[0]) & (y.lo <= b[4]) & (y.hi >= b[1]) & (z.lo <= b[5]) &
-                   (z.hi >= b[2]));
+    return tape_box_meets_lanes(b, live, x, y, z);
 }
 
 /* The union of group g's parts (+inf past the tape's groups), skipping those whose box meets none of the boxes
@@ -177,11 +182,12 @@ IA_FN void tape_tile_parts(tape_ptr tape, ulong among, iav x, iav y, iav z, iav 
 }
 
 /* The union of the parts of the tile's lists for segments first..last of the frame's tree (`records`: the
- * tile's first, tape_tile_parts), a part in two lists taken twice (min is exact), those whose box meets none of
- * the boxes of the lanes of `live` skipped as in tape_group (hull: theirs; NULL skips none). Returns 0 when a
- * list is full (the caller takes the groups instead), else 1 with the union in *r. */
-IA_FN int tape_lists(tape_ptr tape, const __global ushort *records, int first, int last, const ia_real *hull,
-                     ia_maskv live, iav x, iav y, iav z, iav t, iav *r) {
+ * tile's first, tape_tile_parts), a part in two lists taken twice (min is exact); with `skip`, those whose box
+ * meets none of the boxes of the lanes of `live` left out as in tape_group (lane by lane only: a list is short,
+ * and the lanes' hull costs more than the tests it would spare). Returns 0 when a list is full (the caller takes
+ * the groups instead), else 1 with the union in *r. */
+IA_FN int tape_lists(tape_ptr tape, const __global ushort *records, int first, int last, int skip, ia_maskv live,
+                     iav x, iav y, iav z, iav t, iav *r) {
     for (int s = first; s <= last; s++)
         if (records[TAPE_TILE_RECORD * s] == TAPE_LIST_FULL)
             return 0;
@@ -192,7 +198,7 @@ IA_FN int tape_lists(tape_ptr tape, const __global ushort *records, int first, i
         const __global ushort *list = records + TAPE_TILE_RECORD * s;
         for (uint k = 1; k <= list[0]; k++) {
             uint p = list[k];
-            if (!hull || tape_box_meets(reals + parts[TAPE_PART_WORDS * p + 3], hull, live, x, y, z))
+            if (!skip || tape_box_meets_lanes(reals + parts[TAPE_PART_WORDS * p + 3], live, x, y, z))
                 *r = iav_min(*r, tape_part(tape, p, x, y, z, t));
         }
     }
