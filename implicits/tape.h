@@ -36,6 +36,8 @@
 #define TAPE_TILE_WORDS 4
 #define TAPE_TILE_RECORD (4 * TAPE_TILE_WORDS)
 #define TAPE_LIST_FULL 0xffff
+/* The most segments whose lists one evaluation merges (kernels/params.h's SEGMENTS: src/render.c checks). */
+#define TAPE_MAX_SEGMENTS 16
 
 enum { TAPE_W_GROUPS = 0, TAPE_W_PARTS, TAPE_W_PART_TABLE, TAPE_W_CODE, TAPE_W_REALS, TAPE_W_GROUP_TABLE = 8 };
 enum { TAPE_PART_WORDS = 4, TAPE_INSTR_WORDS = 4 };

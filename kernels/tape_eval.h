@@ -182,27 +182,37 @@ IA_FN void tape_tile_parts(tape_ptr tape, ulong among, iav x, iav y, iav z, iav 
 }
 
 /* The union of the parts of the tile's lists for segments first..last of the frame's tree (`records`: the
- * tile's first, tape_tile_parts), a part in two lists taken twice (min is exact); with `skip`, those whose box
- * meets none of the boxes of the lanes of `live` left out as in tape_group (lane by lane only: a list is short,
- * and the lanes' hull costs more than the tests it would spare). Returns 0 when a list is full (the caller takes
- * the groups instead), else 1 with the union in *r. */
+ * tile's first, tape_tile_parts), each part once (the lists are in increasing order: merged); with `skip`, those
+ * whose box meets none of the boxes of the lanes of `live` left out as in tape_group (lane by lane only: a list
+ * is short, and the lanes' hull costs more than the tests it would spare). Returns 0 when a list is full (the
+ * caller takes the groups instead), else 1 with the union in *r. */
 IA_FN int tape_lists(tape_ptr tape, const __global ushort *records, int first, int last, int skip, ia_maskv live,
                      iav x, iav y, iav z, iav t, iav *r) {
-    for (int s = first; s <= last; s++)
+    uint at[TAPE_MAX_SEGMENTS]; /* each list's next entry */
+    for (int s = first; s <= last; s++) {
         if (records[TAPE_TILE_RECORD * s] == TAPE_LIST_FULL)
             return 0;
+        at[s] = 1;
+    }
     const __global ia_real *reals = tape_reals(tape);
     const __global uint *parts = tape + tape[TAPE_W_PART_TABLE];
     *r = iav_point(IA_INF);
-    for (int s = first; s <= last; s++) {
-        const __global ushort *list = records + TAPE_TILE_RECORD * s;
-        for (uint k = 1; k <= list[0]; k++) {
-            uint p = list[k];
-            if (!skip || tape_box_meets_lanes(reals + parts[TAPE_PART_WORDS * p + 3], live, x, y, z))
-                *r = iav_min(*r, tape_part(tape, p, x, y, z, t));
+    while (1) {
+        uint p = TAPE_LIST_FULL; /* the least next entry of the lists, above every index */
+        for (int s = first; s <= last; s++) {
+            const __global ushort *list = records + TAPE_TILE_RECORD * s;
+            if (at[s] <= list[0])
+                p = min(p, (uint)list[at[s]]);
         }
+        if (p == TAPE_LIST_FULL)
+            return 1;
+        for (int s = first; s <= last; s++) {
+            const __global ushort *list = records + TAPE_TILE_RECORD * s;
+            at[s] += at[s] <= list[0] && list[at[s]] == p;
+        }
+        if (!skip || tape_box_meets_lanes(reals + parts[TAPE_PART_WORDS * p + 3], live, x, y, z))
+            *r = iav_min(*r, tape_part(tape, p, x, y, z, t));
     }
-    return 1;
 }
 
 #endif

@@ -262,6 +262,7 @@ static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t
     }
     b->tiles = clCreateBuffer(ctx, CL_MEM_READ_WRITE, 2 * tiles_n * real_size, NULL, &rc);
     CLRT_CHECK(err, rc);
+    _Static_assert(SEGMENTS <= TAPE_MAX_SEGMENTS, "a tape evaluation merges the lists of up to SEGMENTS segments");
     size_t tile_words = SEGMENTS * (r->tape ? 1 + TAPE_TILE_WORDS : 1); /* kernels/render.cl: TILE_GROUPS_WORDS */
     b->groups = clCreateBuffer(ctx, CL_MEM_READ_WRITE, tiles_n * tile_words * sizeof(cl_ulong), NULL, &rc);
     CLRT_CHECK(err, rc);
