@@ -11,8 +11,15 @@
  * on the box wherever the union is (a part left out is > 0 there), which is all the walk decides from (as
  * with the groups, packet_F). The shading's point evaluations do not skip: their differences need the values.
  *
+ * Lists (tape_tile_parts, tape_lists): the tile pass keeps, per tile and segment of the frame's tree, the parts it
+ * could not prove positive over the tile's box there, less those dominated there (certainly larger than another
+ * part at every point of the box, so never the min); the walk and the shading evaluate only the lists of the
+ * segments their nodes overlap, merged, and fall back to the groups where a list overflowed (tape.h:
+ * TAPE_TILE_RECORD). Never-miss as above: a part left out is > 0 or not the min wherever the rays look.
+ *
  * Private memory: TAPE_SLOTS intervals over lanes and two flags each (tape.h: 8 KiB in float, 16 KiB in
- * double); no recursion. */
+ * double); the tile pass's lists, 16-bit indices and a lower bound each over the lanes (1.5 KiB in float, 2.4
+ * KiB in double); no recursion. */
 #ifndef KERNELS_TAPE_EVAL_H
 #define KERNELS_TAPE_EVAL_H
 #if defined(IACSG_TAPE) && IA_DEVICE && defined(IA_VW)
