@@ -28,6 +28,16 @@
 #define TAPE_MAX_PART_NODES 16384
 /* The groups: as many as the masks of kernels/tile.h can name (a 64-bit mask), of consecutive parts. */
 #define TAPE_MAX_GROUPS 64
+/* A tile's list, per segment of the frame's tree (kernels/tape_eval.h: tape_tile_parts): the parts the tile pass
+ * could not prove positive over the tile's box there, the others left out. TAPE_TILE_RECORD 16-bit words a
+ * segment, TAPE_TILE_WORDS ulongs: a count (TAPE_LIST_FULL when more parts than fit, or a part's index above
+ * 16 bits: then the rays use the groups' masks, skipping nothing they would not) and up to TAPE_TILE_RECORD - 1
+ * part indices. 32 bytes a tile and segment, 512 a tile: 8 MiB more for a 1024x1024 frame (src/render.c). */
+#define TAPE_TILE_WORDS 4
+#define TAPE_TILE_RECORD (4 * TAPE_TILE_WORDS)
+#define TAPE_LIST_FULL 0xffff
+/* The most segments whose lists one evaluation merges (kernels/params.h's SEGMENTS: src/render.c checks). */
+#define TAPE_MAX_SEGMENTS 16
 
 enum { TAPE_W_GROUPS = 0, TAPE_W_PARTS, TAPE_W_PART_TABLE, TAPE_W_CODE, TAPE_W_REALS, TAPE_W_GROUP_TABLE = 8 };
 enum { TAPE_PART_WORDS = 4, TAPE_INSTR_WORDS = 4 };

@@ -37,10 +37,12 @@ char *tape_cl(void) {
                       "#define TAPE_W_CODE %d\n#define TAPE_W_REALS %d\n#define TAPE_W_GROUP_TABLE %d\n"
                       "#define TAPE_PART_WORDS %d\n#define TAPE_INSTR_WORDS %d\n#define TAPE_OP_CONST %d\n"
                       "#define TAPE_OP_MIN %d\n#define TAPE_UNDEFINED %d\n#define TAPE_OWN %d\n#define TAPE_UNION %d\n"
-                      "#define TAPE_A_REAL %d\n#define TAPE_B_REAL %d\n",
+                      "#define TAPE_A_REAL %d\n#define TAPE_B_REAL %d\n#define TAPE_TILE_WORDS %d\n#define TAPE_TILE_RECORD %d\n"
+                      "#define TAPE_LIST_FULL %d\n#define TAPE_MAX_SEGMENTS %d\n",
                   TAPE_MAX_GROUPS, TAPE_SLOTS, TAPE_W_GROUPS, TAPE_W_PARTS, TAPE_W_PART_TABLE, TAPE_W_CODE,
                   TAPE_W_REALS, TAPE_W_GROUP_TABLE, TAPE_PART_WORDS, TAPE_INSTR_WORDS, TAPE_OP_CONST, OP_MIN,
-                  TAPE_UNDEFINED, TAPE_OWN, TAPE_UNION, TAPE_A_REAL, TAPE_B_REAL);
+                  TAPE_UNDEFINED, TAPE_OWN, TAPE_UNION, TAPE_A_REAL, TAPE_B_REAL, TAPE_TILE_WORDS,
+                  TAPE_TILE_RECORD, TAPE_LIST_FULL, TAPE_MAX_SEGMENTS);
     strbuf_printf(&b, "IA_FN iav tape_apply(uint op, iav A, iav B, int N, ia_real KB) {\n"
                       "    (void)B, (void)N, (void)KB;\n    switch (op) {\n");
     for (int op = OP_NEG; op < OP_COUNT; op++) {

@@ -115,17 +115,30 @@ IAV_INLINE iav packet_F(PACKET_TAPE_PARAM ulong groups, iav x, iav y, iav z, iav
     return packet_F_live(PACKET_TAPE_ARG groups, (ia_maskv)-1, x, y, z, t);
 }
 
-/* packet_F at points (boxes of one point a lane), for the shading's differences: an interpreted expression
- * skips no part there (kernels/tape_eval.h), the compiled one is packet_F. */
-IAV_INLINE iav packet_F_points(PACKET_TAPE_PARAM ulong groups, iav x, iav y, iav z, iav t) {
+/* What the shading's point evaluations take (packet_F_points): the groups set in `groups`, or for a tape the
+ * tile's lists of segments first..last (records: the tile's first list) unless one is full. */
+typedef struct {
+    ulong groups;
 #ifdef IACSG_TAPE
-    iav r = iav_point(IA_INF);
+    const __global ushort *records;
+    int first, last;
+#endif
+} packet_parts;
+
+/* packet_F at points (boxes of one point a lane), for the shading's differences: an interpreted expression
+ * skips no part by its box there (kernels/tape_eval.h), the compiled one is packet_F. */
+IAV_INLINE iav packet_F_points(PACKET_TAPE_PARAM packet_parts parts, iav x, iav y, iav z, iav t) {
+#ifdef IACSG_TAPE
+    iav r;
+    if (tape_lists(tape, parts.records, parts.first, parts.last, 0, (ia_maskv)-1, x, y, z, t, &r))
+        return r;
+    r = iav_point(IA_INF);
     for (int g = 0; g < IACSG_GROUPS; g++)
-        if (groups >> g & 1)
+        if (parts.groups >> g & 1)
             r = iav_min(r, tape_group(tape, g, 0, (ia_maskv)-1, x, y, z, t)); /* hull NULL: skip none */
     return r;
 #else
-    return packet_F(groups, x, y, z, t);
+    return packet_F(parts.groups, x, y, z, t);
 #endif
 }
 
@@ -158,6 +171,41 @@ IA_FN ulong packet_groups(const __global ulong *segment_groups, ia_maskv live, p
     (void)segment_groups, (void)live, (void)level, (void)i;
     return ~(ulong)0;
 #endif
+}
+
+/* The segments first..last of the frame's tree that the nodes (level, i) of the lanes of `live` overlap
+ * (first > last when no lane is live). */
+IA_FN void packet_segments(ia_maskv live, packet_int level, packet_index i, int *first, int *last) {
+    ia_real on[IA_VW];
+    bisect_index index[IA_VW];
+    int lv[IA_VW];
+    IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
+    IAV_STORE(i, index);
+    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(level), 0, lv); /* packet_int is long in double */
+    *first = SEGMENTS;
+    *last = -1;
+    for (int k = 0; k < IA_VW; k++)
+        if (on[k] != 0) {
+            int shift = lv[k] - SEGMENT_LEVEL;
+            *first = min(*first, (int)(shift >= 0 ? index[k] >> shift : index[k] << -shift));
+            *last = max(*last, (int)(shift >= 0 ? index[k] >> shift : ((index[k] + 1) << -shift) - 1));
+        }
+}
+
+/* F on the nodes (level, i) of the lanes of `live`, for the walk: packet_F_live over the groups that can matter
+ * there (packet_groups); for a tape, over the tile's lists of parts of the segments the nodes overlap (the tile
+ * pass's, kernels/tape_eval.h: tape_tile_parts, after the segments' group masks in the tile's words) unless one
+ * is full. */
+IA_FN iav packet_F_nodes(PACKET_TAPE_PARAM const __global ulong *segment_groups, ia_maskv live, packet_int level,
+                         packet_index i, iav x, iav y, iav z, iav t) {
+#ifdef IACSG_TAPE
+    int first, last;
+    packet_segments(live, level, i, &first, &last);
+    iav r;
+    if (tape_lists(tape, (const __global ushort *)(segment_groups + SEGMENTS), first, last, 1, live, x, y, z, t, &r))
+        return r;
+#endif
+    return packet_F_live(PACKET_TAPE_ARG packet_groups(segment_groups, live, level, i), live, x, y, z, t);
 }
 
 /* Set-up, lane by lane: camera.h's and traverse.h's scalar code over vectors, the same operations in the same
@@ -369,9 +417,8 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
                 f = packet_mean_value(PACKET_TAPE_ARG segment_groups, o, d, t, level, i, tangent, time, evals);
             else
 #endif
-                f = packet_F_live(PACKET_TAPE_ARG packet_groups(segment_groups, live, level, i), live,
-                                  packet_extent(o[0], d[0], t),
-                             packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t), time);
+                f = packet_F_nodes(PACKET_TAPE_ARG segment_groups, live, level, i, packet_extent(o[0], d[0], t),
+                                   packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t), time);
             PACKET_COUNT(*evals, live);
             ia_maskv zero = live & iav_contains_zero(f);
             ia_maskv leaf = zero & ((b - a <= eps) | (level == BISECT_MAX_LEVEL));

@@ -12,6 +12,14 @@
 #include "tile.h"
 #include "shade.h"
 
+/* A tile's words in tile_groups_of: a group mask per segment of the frame's tree, and for a tape each segment's
+ * list of parts after them (kernels/tape_eval.h: tape_tile_parts; src/render.c sizes the buffer). */
+#ifdef IACSG_TAPE
+#define TILE_GROUPS_WORDS (SEGMENTS * (1 + TAPE_TILE_WORDS))
+#else
+#define TILE_GROUPS_WORDS SEGMENTS
+#endif
+
 /* Tiles are row-major, tiles_x per row. */
 static inline size_t tile_index(int tx, int ty, int tiles_x) { return (size_t)ty * (size_t)tiles_x + (size_t)tx; }
 
@@ -78,14 +86,29 @@ static void block_tiles(PACKET_TAPE_PARAM __constant ia_real *params, int flags,
     ulong in_tiles = in_image(groups, valid);
     for (int s = 0; s < SEGMENTS; s++) {
         ulong segment[IA_VW];
-        tile_groups(PACKET_TAPE_ARG base_v, dir_v,
-                    iav_make(packet_node_bound(t0, w, (packet_int)SEGMENT_LEVEL, (packet_index)s),
-                             packet_node_bound(t0, w, (packet_int)SEGMENT_LEVEL, (packet_index)(s + 1))),
-                    time, in_tiles, segment);
-        for (int k = 0; k < IA_VW; k++)
-            if (valid[k] != 0)
-                tile_groups_of[tile_index(tx0 + k % PACKET_W, ty0 + k / PACKET_W, tiles_x) * SEGMENTS + s] =
-                    segment[k] & groups[k];
+        iav ts = iav_make(packet_node_bound(t0, w, (packet_int)SEGMENT_LEVEL, (packet_index)s),
+                          packet_node_bound(t0, w, (packet_int)SEGMENT_LEVEL, (packet_index)(s + 1)));
+#ifdef IACSG_TAPE
+        ushort lists[IA_VW][TAPE_TILE_RECORD];
+        iav box[3];
+        for (int c = 0; c < 3; c++) /* tile_box */
+            box[c] = iav_add(base_v[c], iav_mul(ts, dir_v[c]));
+        tape_tile_parts(tape, in_tiles, box[0], box[1], box[2], time, segment, lists);
+#else
+        tile_groups(PACKET_TAPE_ARG base_v, dir_v, ts, time, in_tiles, segment);
+#endif
+        for (int k = 0; k < IA_VW; k++) {
+            if (valid[k] == 0)
+                continue;
+            __global ulong *record =
+                tile_groups_of + tile_index(tx0 + k % PACKET_W, ty0 + k / PACKET_W, tiles_x) * TILE_GROUPS_WORDS;
+            record[s] = segment[k] & groups[k];
+#ifdef IACSG_TAPE
+            __global ushort *list = (__global ushort *)(record + SEGMENTS) + TAPE_TILE_RECORD * s;
+            for (int n = 0; n < TAPE_TILE_RECORD; n++)
+                list[n] = lists[k][n];
+#endif
+        }
     }
     ia_real level_r[IA_VW], leaf_r[IA_VW];
     bisect_index count[IA_VW];
@@ -120,10 +143,23 @@ static void packet_gradients(PACKET_TAPE_PARAM const __global ulong *segment_gro
     for (int c = 0; c < 3; c++)
         p[c] = o[c] + t * d[c];
 #ifdef IACSG_GROUPS
-    ulong groups = 0;
-    for (int k = 0; k < IA_VW; k++)
-        groups |= on[k] != 0 ? segment_groups[node_at(t0, w, SEGMENT_LEVEL, tk[k])] : 0;
-    shade_gradients_by_differences(PACKET_TAPE_ARG groups, p, iav_point(time), g);
+    packet_parts parts = {0};
+#ifdef IACSG_TAPE
+    parts.records = (const __global ushort *)(segment_groups + SEGMENTS);
+    parts.first = SEGMENTS;
+    parts.last = -1;
+#endif
+    for (int k = 0; k < IA_VW; k++) {
+        if (on[k] == 0)
+            continue;
+        int s = (int)node_at(t0, w, SEGMENT_LEVEL, tk[k]);
+        parts.groups |= segment_groups[s];
+#ifdef IACSG_TAPE
+        parts.first = min(parts.first, s);
+        parts.last = max(parts.last, s);
+#endif
+    }
+    shade_gradients_by_differences(PACKET_TAPE_ARG parts, p, iav_point(time), g);
 #else
     (void)segment_groups, (void)t0, (void)w;
     ia_real pk[3][IA_VW], gk[3][IA_VW] = {{0}};
@@ -181,7 +217,7 @@ static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags
         return;
     size_t tile = tile_index(i0 / TILE_SIZE, j0 / TILE_SIZE, (width + TILE_SIZE - 1) / TILE_SIZE);
     int level = (int)tiles[2 * tile];
-    const __global ulong *segment_groups = tile_groups_of + tile * SEGMENTS;
+    const __global ulong *segment_groups = tile_groups_of + tile * TILE_GROUPS_WORDS;
     ia_real t0, w, time = params[PARAM_TIME_LO]; /* for the shading's point gradients */
     frame_root(params, &t0, &w);
     packet_int lanes = packet_lane_numbers();

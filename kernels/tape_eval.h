@@ -11,8 +11,15 @@
  * on the box wherever the union is (a part left out is > 0 there), which is all the walk decides from (as
  * with the groups, packet_F). The shading's point evaluations do not skip: their differences need the values.
  *
+ * Lists (tape_tile_parts, tape_lists): the tile pass keeps, per tile and segment of the frame's tree, the parts it
+ * could not prove positive over the tile's box there, less those dominated there (certainly larger than another
+ * part at every point of the box, so never the min); the walk and the shading evaluate only the lists of the
+ * segments their nodes overlap, merged, and fall back to the groups where a list overflowed (tape.h:
+ * TAPE_TILE_RECORD). Never-miss as above: a part left out is > 0 or not the min wherever the rays look.
+ *
  * Private memory: TAPE_SLOTS intervals over lanes and two flags each (tape.h: 8 KiB in float, 16 KiB in
- * double); no recursion. */
+ * double); the tile pass's lists, 16-bit indices and a lower bound each over the lanes (1.5 KiB in float, 2.4
+ * KiB in double); no recursion. */
 #ifndef KERNELS_TAPE_EVAL_H
 #define KERNELS_TAPE_EVAL_H
 #if defined(IACSG_TAPE) && IA_DEVICE && defined(IA_VW)
@@ -89,15 +96,20 @@ IA_FN void tape_hull(ia_maskv live, iav x, iav y, iav z, ia_real hull[6]) {
     }
 }
 
-/* Whether the closed box b (x0, y0, z0, x1, y1, z1) meets the box of a lane of `live`: first against the hull
- * of those boxes (a few scalar comparisons, which reject most parts), then lane by lane (the lanes of a packet
- * may lie on nodes far apart, so the hull alone keeps many parts that no lane needs). */
+/* Whether the closed box b (x0, y0, z0, x1, y1, z1) meets the box of a lane of `live`. */
+IA_FN int tape_box_meets_lanes(const __global ia_real *b, ia_maskv live, iav x, iav y, iav z) {
+    return iav_any(live & (x.lo <= b[3]) & (x.hi >= b[0]) & (y.lo <= b[4]) & (y.hi >= b[1]) & (z.lo <= b[5]) &
+                   (z.hi >= b[2]));
+}
+
+/* tape_box_meets_lanes, first against the hull of those boxes (a few scalar comparisons, which reject most of
+ * the parts of a group), then lane by lane (the lanes of a packet may lie on nodes far apart, so the hull alone
+ * keeps many parts that no lane needs). */
 IA_FN int tape_box_meets(const __global ia_real *b, const ia_real *hull, ia_maskv live, iav x, iav y, iav z) {
     if (!(hull[0] <= b[3] && hull[3] >= b[0] && hull[1] <= b[4] && hull[4] >= b[1] && hull[2] <= b[5] &&
           hull[5] >= b[2]))
         return 0;
-    return iav_any(live & (x.lo <= b[3]) & (x.hi >= b[0]) & (y.lo <= b[4]) & (y.hi >= b[1]) & (z.lo <= b[5]) &
-                   (z.hi >= b[2]));
+    return tape_box_meets_lanes(b, live, x, y, z);
 }
 
 /* The union of group g's parts (+inf past the tape's groups), skipping those whose box meets none of the boxes
@@ -115,6 +127,99 @@ IA_FN iav tape_group(tape_ptr tape, int g, const ia_real *hull, ia_maskv live, i
         if (!hull || tape_box_meets(reals + parts[TAPE_PART_WORDS * p + 3], hull, live, x, y, z))
             r = iav_min(r, tape_part(tape, p, x, y, z, t));
     return r;
+}
+
+/* The lists of a tile pass (tape.h: TAPE_TILE_RECORD): for each lane's box (a tile's, over a segment of the frame's
+ * tree), the parts of the groups in `among` that are not proven positive there (bit g of groups[lane] set for
+ * group g when one of its parts is kept, as tile_groups sets it), less those dominated there: a part certainly
+ * defined whose lower bound exceeds the upper bound of another certainly defined part (at every point of the box
+ * it is larger, so the min of the others is the union there, and on every box inside it). lists[lane][0] is the
+ * count, or TAPE_LIST_FULL when more were kept than fit or a part's index does not fit 16 bits. */
+IA_FN void tape_tile_parts(tape_ptr tape, ulong among, iav x, iav y, iav z, iav t, ulong groups[IA_VW],
+                           ushort lists[IA_VW][TAPE_TILE_RECORD]) {
+    ia_real hull[6], least_hi[IA_VW], kept_lo[IA_VW][TAPE_TILE_RECORD - 1];
+    tape_hull((ia_maskv)-1, x, y, z, hull);
+    uint ngroups = tape[TAPE_W_GROUPS];
+    ushort start = tape[TAPE_W_PARTS] < TAPE_LIST_FULL ? 0 : TAPE_LIST_FULL;
+    for (int k = 0; k < IA_VW; k++) {
+        groups[k] = 0;
+        lists[k][0] = start;
+        least_hi[k] = IA_INF;
+    }
+    const __global ia_real *reals = tape_reals(tape);
+    const __global uint *parts = tape + tape[TAPE_W_PART_TABLE];
+    for (uint g = 0; g < ngroups; g++) {
+        if (!(among >> g & 1) ||
+            !tape_box_meets(reals + tape[TAPE_W_GROUP_TABLE + ngroups + 1 + g], hull, (ia_maskv)-1, x, y, z))
+            continue;
+        for (uint p = tape[TAPE_W_GROUP_TABLE + g]; p < tape[TAPE_W_GROUP_TABLE + g + 1]; p++) {
+            if (!tape_box_meets(reals + parts[TAPE_PART_WORDS * p + 3], hull, (ia_maskv)-1, x, y, z))
+                continue;
+            ia_real lo[IA_VW], hi[IA_VW];
+            iav v = tape_part(tape, p, x, y, z, t);
+            IAV_STORE(v.lo, lo);
+            IAV_STORE(v.hi, hi);
+            int defined = !(parts[TAPE_PART_WORDS * p + 2] >> 16 & 1);
+            for (int k = 0; k < IA_VW; k++) {
+                if (lo[k] > 0)
+                    continue;
+                groups[k] |= (ulong)1 << g;
+                uint n = lists[k][0];
+                if (n < TAPE_TILE_RECORD - 1) {
+                    lists[k][1 + n] = (ushort)p;
+                    kept_lo[k][n] = defined ? lo[k] : -IA_INF; /* never dominated */
+                    lists[k][0] = (ushort)(n + 1);
+                } else {
+                    lists[k][0] = TAPE_LIST_FULL;
+                }
+                if (defined)
+                    least_hi[k] = fmin(least_hi[k], hi[k]);
+            }
+        }
+    }
+    for (int k = 0; k < IA_VW; k++) { /* the dominated parts out (the part giving least_hi stays: lo <= hi) */
+        uint n = lists[k][0], m = 0;
+        if (n == TAPE_LIST_FULL)
+            continue;
+        for (uint j = 0; j < n; j++)
+            if (!(kept_lo[k][j] > least_hi[k]))
+                lists[k][1 + m++] = lists[k][1 + j];
+        lists[k][0] = (ushort)m;
+    }
+}
+
+/* The union of the parts of the tile's lists for segments first..last of the frame's tree (`records`: the
+ * tile's first, tape_tile_parts), each part once (the lists are in increasing order: merged); with `skip`, those
+ * whose box meets none of the boxes of the lanes of `live` left out as in tape_group (lane by lane only: a list
+ * is short, and the lanes' hull costs more than the tests it would spare). Returns 0 when a list is full (the
+ * caller takes the groups instead), else 1 with the union in *r. */
+IA_FN int tape_lists(tape_ptr tape, const __global ushort *records, int first, int last, int skip, ia_maskv live,
+                     iav x, iav y, iav z, iav t, iav *r) {
+    uint at[TAPE_MAX_SEGMENTS]; /* each list's next entry */
+    for (int s = first; s <= last; s++) {
+        if (records[TAPE_TILE_RECORD * s] == TAPE_LIST_FULL)
+            return 0;
+        at[s] = 1;
+    }
+    const __global ia_real *reals = tape_reals(tape);
+    const __global uint *parts = tape + tape[TAPE_W_PART_TABLE];
+    *r = iav_point(IA_INF);
+    while (1) {
+        uint p = TAPE_LIST_FULL; /* the least next entry of the lists, above every index */
+        for (int s = first; s <= last; s++) {
+            const __global ushort *list = records + TAPE_TILE_RECORD * s;
+            if (at[s] <= list[0])
+                p = min(p, (uint)list[at[s]]);
+        }
+        if (p == TAPE_LIST_FULL)
+            return 1;
+        for (int s = first; s <= last; s++) {
+            const __global ushort *list = records + TAPE_TILE_RECORD * s;
+            at[s] += at[s] <= list[0] && list[at[s]] == p;
+        }
+        if (!skip || tape_box_meets_lanes(reals + parts[TAPE_PART_WORDS * p + 3], live, x, y, z))
+            *r = iav_min(*r, tape_part(tape, p, x, y, z, t));
+    }
 }
 
 #endif

@@ -3,6 +3,7 @@
  * traced in bands of rows, so that progress can be reported and no single launch runs for long. */
 #include "render_internal.h"
 #include "kernels/params.h"
+#include "implicits/tape.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -261,7 +262,9 @@ static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t
     }
     b->tiles = clCreateBuffer(ctx, CL_MEM_READ_WRITE, 2 * tiles_n * real_size, NULL, &rc);
     CLRT_CHECK(err, rc);
-    b->groups = clCreateBuffer(ctx, CL_MEM_READ_WRITE, tiles_n * SEGMENTS * sizeof(cl_ulong), NULL, &rc);
+    _Static_assert(SEGMENTS <= TAPE_MAX_SEGMENTS, "a tape evaluation merges the lists of up to SEGMENTS segments");
+    size_t tile_words = SEGMENTS * (r->tape ? 1 + TAPE_TILE_WORDS : 1); /* kernels/render.cl: TILE_GROUPS_WORDS */
+    b->groups = clCreateBuffer(ctx, CL_MEM_READ_WRITE, tiles_n * tile_words * sizeof(cl_ulong), NULL, &rc);
     CLRT_CHECK(err, rc);
     if (r->config.stats) {
         b->evals = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint), NULL, &rc);

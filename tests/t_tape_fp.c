@@ -5,7 +5,9 @@
  *     boxes (so it has every property the compiled code is tested for); and for those and for unions of 24 to
  *     40 parts (spheres, caps undefined off their disc, random texts), the interpreter's value encloses the MPFR
  *     value at points of the boxes, and with the parts skipped by their boxes it still holds every value <= 0
- *     of the expression and is > 0 somewhere wherever the expression is > 0 (what the walk decides from).
+ *     of the expression and is > 0 somewhere wherever the expression is > 0 (what the walk decides from); and
+ *     each box's list of parts (tape_tile_parts, the tile pass's) gives the union's lower bound bit for bit on
+ *     the box, and on a sub-box, skipping by boxes too, the same guarantee against MPFR.
  *   tape_fallback: a part that needs more registers than the interpreter has is refused with a message, and the
  *     renderer compiles it instead, saying so. */
 #include "clrt.h"
@@ -27,11 +29,14 @@
 extern const char iacsg_cl_ia[], iacsg_cl_tape_kernels[];
 
 #define TAPE_IN 8  /* a query: the box x0, x1, ..., t1 */
-#define TAPE_OUT 6 /* compiled [lo, hi] (NaN without), interpreted, interpreted skipping parts */
+/* compiled [lo, hi] (NaN without), interpreted, interpreted skipping parts; the box's own list of parts
+ * (tape_tile_parts: its count, -1 when full) and the interpreted value over its parts; over a sub-box (the
+ * lower half on every axis), the interpreted value and the value over the box's list */
+#define TAPE_OUT 13
 
 static const char kernel_head[] =
     "__kernel void tape_check(__global const int *which, __global const uint *tapes, __global const uint *at,\n"
-    "                         __global const ia_real *in, __global ia_real *out) {\n"
+    "                         __global const ia_real *in, __global ia_real *out, __global ushort *records) {\n"
     "    size_t g = get_global_id(0);\n"
     "    ia_real v[8][IA_VW];\n"
     "    for (int l = 0; l < IA_VW; l++)\n"
@@ -44,13 +49,39 @@ static const char kernel_head[] =
     "    tape_ptr tape = tapes + at[which[g]];\n"
     "    ia_real hull[6];\n"
     "    tape_hull((ia_maskv)-1, b[0], b[1], b[2], hull);\n"
+    "    iav h[3], sub_s = iav_point(IA_INF);\n"
+    "    for (int c = 0; c < 3; c++) { /* the sub-box: the lower half, where the midpoint is finite */\n"
+    "        ia_realv m = b[c].lo * (ia_real)0.5 + b[c].hi * (ia_real)0.5;\n"
+    "        h[c] = iav_make(b[c].lo, select(b[c].hi, m, isfinite(m) & (m >= b[c].lo) & (m <= b[c].hi)));\n"
+    "    }\n"
     "    for (int grp = 0; grp < IACSG_GROUPS; grp++) {\n"
     "        s = iav_min(s, tape_group(tape, grp, 0, (ia_maskv)-1, b[0], b[1], b[2], b[3]));\n"
     "        u = iav_min(u, tape_group(tape, grp, hull, (ia_maskv)-1, b[0], b[1], b[2], b[3]));\n"
+    "        sub_s = iav_min(sub_s, tape_group(tape, grp, 0, (ia_maskv)-1, h[0], h[1], h[2], b[3]));\n"
+    "    }\n"
+    "    ulong groups[IA_VW];\n"
+    "    ushort lists[IA_VW][TAPE_TILE_RECORD];\n"
+    "    tape_tile_parts(tape, ~(ulong)0, b[0], b[1], b[2], b[3], groups, lists);\n"
+    "    ia_real lo[5][IA_VW]; /* each lane over its own list, the list in records[g] */\n"
+    "    __global ushort *record = records + TAPE_TILE_RECORD * g;\n"
+    "    for (int l = 0; l < IA_VW; l++) {\n"
+    "        for (int k = 0; k < TAPE_TILE_RECORD; k++)\n"
+    "            record[k] = lists[l][k];\n"
+    "        iav on_box, on_sub;\n"
+    "        int listed = tape_lists(tape, record, 0, 0, 0, (ia_maskv)-1, b[0], b[1], b[2], b[3], &on_box);\n"
+    "        tape_lists(tape, record, 0, 0, 1, (ia_maskv)-1, h[0], h[1], h[2], b[3], &on_sub);\n"
+    "        ia_real a[IA_VW];\n"
+    "        lo[0][l] = listed ? lists[l][0] : -1;\n"
+    "        IAV_STORE(on_box.lo, a); lo[1][l] = listed ? a[l] : NAN;\n"
+    "        IAV_STORE(on_box.hi, a); lo[2][l] = listed ? a[l] : NAN;\n"
+    "        IAV_STORE(on_sub.lo, a); lo[3][l] = listed ? a[l] : NAN;\n"
+    "        IAV_STORE(on_sub.hi, a); lo[4][l] = listed ? a[l] : NAN;\n"
     "    }\n"
     "    switch (which[g]) {\n";
 static const char kernel_tail[] = "    }\n"
-                                  "    ia_real o[6][IA_VW];\n"
+                                  "    ia_real o[8][IA_VW];\n"
+                                  "    IAV_STORE(sub_s.lo, o[6]);\n"
+                                  "    IAV_STORE(sub_s.hi, o[7]);\n"
                                   "    IAV_STORE(r.lo, o[0]);\n"
                                   "    IAV_STORE(r.hi, o[1]);\n"
                                   "    IAV_STORE(s.lo, o[2]);\n"
@@ -58,8 +89,10 @@ static const char kernel_tail[] = "    }\n"
                                   "    IAV_STORE(u.lo, o[4]);\n"
                                   "    IAV_STORE(u.hi, o[5]);\n"
                                   "    for (int l = 0; l < IA_VW; l++)\n"
-                                  "        for (int k = 0; k < 6; k++)\n"
-                                  "            out[6 * (g * IA_VW + l) + k] = o[k][l];\n"
+                                  "        for (int k = 0; k < 13; k++)\n"
+                                  "            out[13 * (g * IA_VW + l) + k] =\n"
+                                  "                k < 6 ? o[k][l] : k == 6 ? lo[0][l] : k < 9 ? lo[k - 6][l]\n"
+                                  "                : k < 11 ? o[k - 3][l] : lo[k - 8][l];\n"
                                   "}\n";
 
 /* Builds ia/, the interpreter, sources[1 .. n-1] and the check kernel with `cases`; runs it over `items`
@@ -107,9 +140,10 @@ static void run_check(const char **sources, int n, const char *cases, size_t ite
                                (void *)at, &rc);
     cl_mem bi = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, TAPE_IN * q * real, host_in, &rc);
     cl_mem bo = clCreateBuffer(rt.context, CL_MEM_WRITE_ONLY, TAPE_OUT * q * real, NULL, &rc);
+    cl_mem br = clCreateBuffer(rt.context, CL_MEM_READ_WRITE, items * TAPE_TILE_RECORD * sizeof(cl_ushort), NULL, &rc);
     CHECK(rc == CL_SUCCESS, "buffers: %s", clrt_error_name(rc));
-    cl_mem args[] = {bw, bt, ba, bi, bo};
-    for (cl_uint a = 0; a < 5; a++)
+    cl_mem args[] = {bw, bt, ba, bi, bo, br};
+    for (cl_uint a = 0; a < 6; a++)
         clSetKernelArg(k, a, sizeof(cl_mem), &args[a]);
     size_t one = 1; /* as the renderer: PoCL keeps a work-group's private arrays on one thread's stack */
     rc = clEnqueueNDRangeKernel(rt.queue, k, 1, NULL, &items, &one, 0, NULL, NULL);
@@ -117,7 +151,7 @@ static void run_check(const char **sources, int n, const char *cases, size_t ite
         rc = clEnqueueReadBuffer(rt.queue, bo, CL_TRUE, 0, TAPE_OUT * q * real, host_out, 0, NULL, NULL);
     for (size_t i = 0; i < TAPE_OUT * q; i++)
         out[i] = FP64 ? ((double *)host_out)[i] : ((float *)host_out)[i];
-    for (int a = 0; a < 5; a++)
+    for (int a = 0; a < 6; a++)
         clReleaseMemObject(args[a]);
     clReleaseKernel(k);
     clReleaseProgram(program);
@@ -149,6 +183,27 @@ static void random_union(test_rng_t *r, int parts, char *buf, size_t size) {
         CHECK(used < size - 1, "union text too long");
     }
     snprintf(buf + used, size - used, ")");
+}
+
+/* The check kernel's sub-box of [lo, hi] on one axis (its bounds rounded outward to floats without fp64): from
+ * its lower bound to the midpoint, or to hi where that is not finite; the midpoint a unit in the last place lower
+ * (whether the device contracts the sum into an fma or not), so that points of sub are in the kernel's. */
+static void kernel_sub_box(double lo, double hi, double sub[2]) {
+    double l = lo, h = hi, m;
+    if (FP64) {
+        m = nextafter(lo * 0.5 + hi * 0.5, -INFINITY);
+    } else {
+        float lf = (float)lo, hf = (float)hi;
+        if ((double)lf > lo)
+            lf = nextafterf(lf, -INFINITY);
+        if ((double)hf < hi)
+            hf = nextafterf(hf, INFINITY);
+        l = lf;
+        h = hf;
+        m = nextafterf(lf * 0.5f + hf * 0.5f, -INFINITY);
+    }
+    sub[0] = l;
+    sub[1] = isfinite(l * 0.5 + h * 0.5) ? fmax(l, fmin(h, m)) : h;
 }
 
 #define MAX_EXPRS 72
@@ -200,8 +255,12 @@ TEST_FP(tape_matches_compiled) {
     CHECK(which && in && out, "out of memory");
     for (size_t g = 0; g < items; g++)
         which[g] = (int)(g / ITEMS);
-    for (size_t k = 0; k < q; k++)
+    for (size_t k = 0; k < q; k++) {
         expr_random_box(test_rng(), in + TAPE_IN * k);
+        if (which[k / PACKET_LANES] >= n && k % 4 == 0) /* a union over most of its parts: lists too long */
+            for (int c = 0; c < 6; c++)
+                in[TAPE_IN * k + c] = c % 2 ? 1.6 : -1.6;
+    }
     run_check(sources, 2 + n, cases, items, which, tapes, words, at, total, in, out);
     for (int i = 0; i < n; i++)
         free((char *)sources[2 + i]);
@@ -210,7 +269,7 @@ TEST_FP(tape_matches_compiled) {
 
     mpfr_t y;
     mpfr_init2(y, EXPR_ORACLE_PREC);
-    long same = 0, values = 0, skipped = 0;
+    long same = 0, values = 0, skipped = 0, listed = 0, full = 0, list_parts = 0, shorter = 0, sub_values = 0;
     for (size_t k = 0; k < q; k++) {
         int x = which[k / PACKET_LANES];
         const double *v = in + TAPE_IN * k, *o = out + TAPE_OUT * k;
@@ -222,6 +281,20 @@ TEST_FP(tape_matches_compiled) {
             same++;
         }
         skipped += o[4] != o[2] || o[5] != o[3];
+        /* the box's own list (tape_tile_parts): the parts left out are positive on the box or dominated there,
+         * so its bounds are the whole union's, bit for bit, except where those are > 0 (then higher) */
+        if (o[6] >= 0) {
+            listed++;
+            list_parts += (long)o[6];
+            CHECK((o[7] == o[2] || (o[7] != o[7] && o[2] != o[2]) || (o[2] > 0 && o[7] > o[2])) &&
+                      (o[8] == o[3] || (o[8] != o[8] && o[3] != o[3]) || (o[3] > 0 && o[8] > o[3])),
+                  "'%s' over x [%a, %a] y [%a, %a] z [%a, %a] t [%a, %a]: interpreted [%a, %a], over its list of "
+                  "%g parts [%a, %a]",
+                  texts[x], v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], o[2], o[3], o[6], o[7], o[8]);
+            shorter += o[8] != o[3];
+        } else {
+            full++;
+        }
         for (int s = 0; s < 6; s++) {
             double p[4];
             expr_random_point(test_rng(), v, p);
@@ -237,6 +310,25 @@ TEST_FP(tape_matches_compiled) {
                   texts[x], v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], o[2], o[3], o[4], o[5], p[0], p[1], p[2],
                   p[3], mpfr_get_d(y, MPFR_RNDN));
         }
+        /* the list on a sub-box (the lower ~half on every axis, inside the kernel's), skipping by the parts' boxes:
+         * as skipping, every value <= 0 held, and > 0 somewhere wherever the expression is > 0 */
+        double sub[TAPE_IN];
+        memcpy(sub, v, sizeof sub);
+        for (int c = 0; c < 3 && o[6] >= 0; c++)
+            kernel_sub_box(v[2 * c], v[2 * c + 1], sub + 2 * c);
+        for (int s = 0; s < 6 && o[6] >= 0; s++) {
+            double p[4];
+            expr_random_point(test_rng(), sub, p);
+            if (!expr_oracle(exprs[x], p, y))
+                continue;
+            sub_values++;
+            CHECK(mpfr_sgn(y) <= 0 ? mpfr_cmp_d(y, o[11]) >= 0 && mpfr_cmp_d(y, o[12]) <= 0 : o[12] > 0,
+                  "'%s' over x [%a, %a] y [%a, %a] z [%a, %a] t [%a, %a]: on the sub-box, over the box's list "
+                  "[%a, %a] (all its parts [%a, %a]), but at (%a, %a, %a, %a) the value is %.20g",
+                  texts[x], v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], o[11], o[12], o[9], o[10], p[0], p[1],
+                  p[2], p[3],
+                  mpfr_get_d(y, MPFR_RNDN));
+        }
     }
     mpfr_clear(y);
     for (int i = 0; i < total; i++)
@@ -247,7 +339,12 @@ TEST_FP(tape_matches_compiled) {
     test_note("%d expressions and %d unions, %zu boxes: %ld bit for bit the compiled code, %ld values checked, "
               "%ld boxes where parts were skipped (%ld parts boxed)",
               n, UNIONS, q, same, values, skipped, skipping);
-    CHECK(same > 5000 && values > 20000 && skipped > 100, "too little checked to mean anything");
+    test_note("tile lists: %ld boxes listed (%.1f parts a list, %ld with an upper bound raised by a part left out, "
+              "%ld sub-box values), %ld full", listed, listed ? (double)list_parts / listed : 0.0, shorter, sub_values,
+              full);
+    CHECK(same > 5000 && values > 20000 && skipped > 100 && listed > 1000 && full > 10 && shorter > 10 &&
+              sub_values > 5000,
+          "too little checked to mean anything");
 }
 
 TEST_FP(tape_fallback) {

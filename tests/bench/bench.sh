@@ -113,12 +113,16 @@ field() { # field LOG KEY: the number after "KEY" in a -stats log
                                        split(s, a, " "); print a[1]; exit}' "$1"
 }
 
-# measure RUNS ARGS...: sets M_* (first run, then medians over RUNS cached runs). M_OK=0 on failure.
+# measure RUNS ARGS...: sets M_* (first run, then medians over RUNS cached runs). M_OK=0 on failure. With PRIME
+# set (the arguments of another command, a word list), that command runs first in the fresh cache, untimed: the
+# first run then finds what the two share already built (the tape interpreter's program, for a large expression).
 measure() {
     n=$1
     shift
     dir=$(mktemp -d "$WORK/kcache.XXXXXX")
     M_OK=1 M_ERR=
+    # shellcheck disable=SC2086 # PRIME is a list of arguments
+    [ -n "${PRIME:-}" ] && run_once "$dir" "$WORK/prime.log" $PRIME
     run_once "$dir" "$WORK/first.log" "$@" || { M_OK=0; M_ERR=$(failure "$WORK/first.log"); }
     M_BUILD1=$(field "$WORK/first.log" "kernel build:")
     M_RENDER1=$(field "$WORK/first.log" "render:")
