@@ -46,6 +46,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
     ia_realv a = *t_near, t_far = *t_far_io, w = EFFECTS_MARCH_FIRST * leaving;
     ia_maskv going = *going_io & (a < t_far), hit = (ia_maskv)0, fresh = going, short_before = (ia_maskv)0;
     ia_maskv handed = (ia_maskv)0;
+    iav hs = iav_point(1); /* the handed lanes' slope over [a, t_far] */
     iav fa = iav_point(0);
     for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(going); step++) {
         iav at_a = iav_make(a, a);
@@ -75,6 +76,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
             leaf |= crossed;
         else
             handed |= crossed;
+        hs = iav_make(select(hs.lo, s.lo, crossed), select(hs.hi, s.hi, crossed));
         t_far = select(t_far, b, crossed);
         *hit_lo = select(*hit_lo, a, leaf);
         *hit_hi = select(*hit_hi, b, leaf);
@@ -109,6 +111,30 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
          * until F's enclosure decides, down to a leaf) */
         ia_realv off0 = fmin(fabs(fa.lo), fabs(fa.hi));
         fresh = going & (iav_contains_zero(fa) | (~whole & (fa.hi - fa.lo > (ia_real)0.25 * off0)) | ~use);
+    }
+    /* F crosses 0 in [a, t_far] of the handed lanes and its slope there, hs, keeps one sign (the root is unique):
+     * interval Newton with that slope, [a, t_far] <- [a, t_far] & (m - F(m) / hs), down to a leaf. Each step keeps
+     * the root and at least halves the part (m is outside m - F(m) / hs where F(m) excludes 0); a lane whose step
+     * halves it no more (F(m) holds 0 at a width above eps) goes on by the walk over its part. */
+    for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(handed); step++) {
+        ia_realv m = a * (ia_real)0.5 + t_far * (ia_real)0.5;
+        iav at_m = iav_make(m, m);
+        iav fm = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_m), packet_extent(o[1], d[1], at_m),
+                          packet_extent(o[2], d[2], at_m), time);
+        PACKET_COUNT(*evals, handed);
+        iav n = iav_sub(at_m, iav_div(fm, hs));
+        /* never narrower than half a leaf, as packet.h's Newton (the walk's leaf test follows it) */
+        ia_realv lo = fmax(a, n.lo), hi = fmin(t_far, n.hi);
+        hi = fmin(t_far, fmax(hi, lo + (ia_real)0.5 * eps));
+        ia_maskv ok = handed & (lo <= hi) & (hi - lo <= (ia_real)0.5 * (t_far - a));
+        a = select(a, lo, ok);
+        t_far = select(t_far, hi, ok);
+        ia_maskv leaf = ok & (t_far - a <= eps);
+        *hit_lo = select(*hit_lo, a, leaf);
+        *hit_hi = select(*hit_hi, t_far, leaf);
+        hit |= leaf;
+        going |= handed & ~ok; /* to the walk */
+        handed &= ok & ~leaf;
     }
     *t_near = a;
     *t_far_io = t_far;
