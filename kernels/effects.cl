@@ -31,13 +31,17 @@
  * enclosures hold 0 is the hit leaf, as the walk's. Every part a passes is proven root-free, so the leaf's start
  * is never after the first root. Where the caller asks only `whether` the ray meets a surface (an opaque shadow
  * ray), a step over which F(a) and the form at b have certain, opposite signs ends it too: F crosses 0 in it (the
- * first root lies in [a, b]), so the steps that would close in on that root are saved. The lanes still marching after EFFECTS_MARCH_STEPS, or whose F' is unbounded,
+ * first root lies in [a, b]), so the steps that would close in on that root are saved. For the other rays such a
+ * step (its slope then keeps one sign: the root is unique) is closed in on by interval Newton with that slope, one
+ * point evaluation a step: a sphere's exit ray, 20.5 -> 17.6 evaluations (before: the march's steps towards the
+ * root, two evaluations each). The lanes still marching after EFFECTS_MARCH_STEPS, or whose F' is unbounded,
  * go on by the walk from their a. The first step is EFFECTS_MARCH_FIRST times the start's distance from the
  * surface `leaving`. Measured on the reference view (eps 1e-5; evaluations per shadow ray, reflected ray,
  * transparent layer): the walk alone (from the root of a tree as long as the packet's rays) 14.8, 16.1, 49.8;
  * marching only off the surface (each step proven whole or the walk) 5.5, 8.0, 28.9; with the steps towards the
- * root 3.9, 4.9, 15.7; the step after one towards the root sized by the bracket [c, e] 3.9, 4.7, 14.4; first steps
- * of 1024 `leaving` 7.0, 9.1, 28.4 (before the steps towards the root). */
+ * root 3.9, 4.9, 15.7; the step after one towards the root sized by the bracket [c, e] 3.9, 4.7, 14.4; with the
+ * crossings proven and closed in on by Newton 3.8, 4.5, 12.4; first steps of 1024 `leaving` 7.0, 9.1, 28.4 (before
+ * the steps towards the root). */
 #define EFFECTS_MARCH_STEPS 32
 #define EFFECTS_MARCH_FIRST 4096
 static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv *t_near, ia_realv *t_far_io,
