@@ -400,7 +400,8 @@ static int kernel_colors_hold(const fx_frame *f) {
 }
 
 /* The pixels of the traced rows in blocks of 4x4, the order their paths are listed in, so that the secondary
- * rays of a packet (kernels/effects.cl) come from neighbouring pixels. Sets the centre hits' depth range. */
+ * rays of a packet (kernels/effects.cl) come from neighbouring pixels. Sets the centre hits' depth range where
+ * -shade depth needs it (a pass over the frame's megapixel of depths costs a few ms, all on one CPU). */
 static int *block_order(fx_frame *f, const iacsg_frame *fr, size_t *count) {
     const iacsg_view *v = f->view;
     int row0, row1;
@@ -411,13 +412,14 @@ static int *block_order(fx_frame *f, const iacsg_frame *fr, size_t *count) {
     size_t n = 0;
     f->depth_lo = INFINITY;
     f->depth_hi = -INFINITY;
+    int range = f->e->shade == IACSG_SHADE_DEPTH;
     for (int bj = row0; bj < row1; bj += PACKET_H)
         for (int bi = 0; bi < v->width; bi += PACKET_W)
             for (int j = bj; j < bj + PACKET_H && j < row1; j++)
                 for (int i = bi; i < bi + PACKET_W && i < v->width; i++) {
                     int pixel = j * v->width + i;
                     order[n++] = pixel;
-                    if (!isinf(fr->depth[pixel])) {
+                    if (range && !isinf(fr->depth[pixel])) {
                         f->depth_lo = fmin(f->depth_lo, fr->depth[pixel]);
                         f->depth_hi = fmax(f->depth_hi, fr->depth[pixel]);
                     }

@@ -16,8 +16,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Paths times their reflected rays' slots per launch: its buffers stay a few MB. */
+/* Paths times their reflected rays' slots per launch: its buffers stay a few MB. Paths that list no reflected ray
+ * go FX_DEVICE_PATHS a launch: a megapixel's hits in one launch (each launch waits for its end, costly on a busy
+ * machine). */
 #define FX_DEVICE_SLOTS ((size_t)1 << 18)
+#define FX_DEVICE_PATHS ((size_t)1 << 20)
+
+/* The paths of one launch at most. */
+static size_t launch_paths(int kid_slots) {
+    return kid_slots ? FX_DEVICE_SLOTS / (size_t)kid_slots : FX_DEVICE_PATHS;
+}
 
 /* A generation of paths of the mode EFFECTS_MODE_PATHS: their pixels and records (EFFECTS_PATH_REALS each, in the
  * working precision). Grows. */
@@ -66,7 +74,7 @@ static iacsg_status set_arg(cl_kernel k, cl_uint at, size_t bytes, const void *v
     return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clSetKernelArg(iacsg_effects)", __func__, __LINE__);
 }
 
-/* One launch over paths [0, n) of `mode` (kernels/effects.cl's arguments), n at most FX_DEVICE_SLOTS / kid_slots:
+/* One launch over paths [0, n) of `mode` (kernels/effects.cl's arguments), n at most launch_paths(kid_slots):
  * adds their colours to the frame and appends their reflected rays to `next`. */
 static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npixels, const char *recs, size_t n,
                            int aa, fx_generation *next, iacsg_error *err) {
@@ -152,8 +160,7 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
 static iacsg_status launch_all(fx_device *x, int mode, const int *pixels, const char *recs, size_t n, int aa,
                                fx_generation *next, iacsg_error *err) {
     size_t rb = fx_real_bytes(x->t->r), samples = mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1;
-    size_t slice = FX_DEVICE_SLOTS / (x->kid_slots ? (size_t)x->kid_slots : 1) / (samples * PACKET_LANES) * samples *
-                   PACKET_LANES;
+    size_t slice = launch_paths(x->kid_slots) / (samples * PACKET_LANES) * samples * PACKET_LANES;
     iacsg_status st = IACSG_OK;
     for (size_t at = 0; st == IACSG_OK && at < n; at += slice) {
         size_t m = n - at < slice ? n - at : slice;
@@ -176,7 +183,7 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
     char reals[EFFECTS_COUNT * sizeof(double)];
     for (int k = 0; k < EFFECTS_COUNT; k++)
         fx_put_real(r, reals, (size_t)k, block[k]);
-    size_t slots = FX_DEVICE_SLOTS, paths = slots / (kid_slots ? (size_t)kid_slots : 1) + PACKET_LANES;
+    size_t slots = FX_DEVICE_SLOTS, paths = launch_paths(kid_slots) + PACKET_LANES;
     x.color = malloc(3 * paths * sizeof(float));
     x.nkids = malloc(paths * sizeof(int));
     x.stats = r->config.stats ? malloc(2 * paths * sizeof(cl_uint)) : NULL;
