@@ -157,7 +157,7 @@ static void put_union(strbuf *b, const emitter *em, int i, role r) {
     }
 }
 
-static int is_ident_char(char c) {
+int emit_is_ident_char(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
 }
 
@@ -187,16 +187,16 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
         return;
     }
     for (const char *p = tpl; *p;) {
-        if (r == AS_POINT && (strncmp(p, ".lo", 3) == 0 || strncmp(p, ".hi", 3) == 0) && !is_ident_char(p[3])) {
+        if (r == AS_POINT && (strncmp(p, ".lo", 3) == 0 || strncmp(p, ".hi", 3) == 0) && !emit_is_ident_char(p[3])) {
             p += 3;
             continue;
         }
-        if (!is_ident_char(*p)) {
+        if (!emit_is_ident_char(*p)) {
             strbuf_append(b, p++, 1);
             continue;
         }
         size_t len = 1;
-        while (is_ident_char(p[len]))
+        while (emit_is_ident_char(p[len]))
             len++;
 #define IS(word) (len == sizeof(word) - 1 && strncmp(p, word, len) == 0)
         if (IS("A"))
@@ -234,7 +234,7 @@ static int valid_prefix(const char *p) {
     if (!p || !*p || strlen(p) > 64 || (*p >= '0' && *p <= '9'))
         return 0;
     for (; *p; p++)
-        if (!is_ident_char(*p))
+        if (!emit_is_ident_char(*p))
             return 0;
     return 1;
 }

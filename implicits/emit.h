@@ -11,6 +11,9 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
  * *out; 0 (and *out NULL) when the root is not a min or the parts are too many, -1 out of memory. */
 int emit_union_parts(const dag *d, int root, int **out);
 
+/* 1 for a character of a C identifier (the templates of ops.def are scanned word by word). */
+int emit_is_ident_char(char c);
+
 /* 1 when some node reachable from root may be undefined somewhere (a pole, a domain edge, an empty constant). */
 int emit_may_be_undefined(const dag *d, int root);
 

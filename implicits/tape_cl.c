@@ -3,23 +3,20 @@
  * interpreted operation is the very call a compiled one makes: tape_apply (an operation's value), tape_own_flags
  * (its `undefined` and `empty` columns), and the tape layout's numbers from tape.h. kernels/tape_eval.h runs the
  * instructions with them. */
+#include "emit.h"
 #include "strbuf.h"
 #include "tape.h"
 #include <string.h>
 
-static int is_ident_char(char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-}
-
 /* An ops.def template over lanes: A, B, N, KB and R stay the names of tape_apply's parameters. */
 static void put_vector_template(strbuf *b, const char *tpl) {
     for (const char *p = tpl; *p;) {
-        if (!is_ident_char(*p)) {
+        if (!emit_is_ident_char(*p)) {
             strbuf_append(b, p++, 1);
             continue;
         }
         size_t len = 1;
-        while (is_ident_char(p[len]))
+        while (emit_is_ident_char(p[len]))
             len++;
         if (len > 3 && strncmp(p, "ia_", 3) == 0)
             strbuf_printf(b, "iav_%.*s", (int)len - 3, p + 3);

@@ -153,15 +153,21 @@ IA_FN ulong packet_node_groups(const __global ulong *segment_groups, int level, 
     return groups;
 }
 
+/* The lanes' nodes as arrays: on[k] != 0 where lane k is live, its node (lv[k], index[k]). */
+IA_FN void packet_lane_nodes(ia_maskv live, packet_int level, packet_index i, ia_real on[IA_VW],
+                             bisect_index index[IA_VW], int lv[IA_VW]) {
+    IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
+    IAV_STORE(i, index);
+    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(level), 0, lv); /* packet_int is long in double */
+}
+
 /* The groups that can matter on the nodes of the lanes of `live`. */
 IA_FN ulong packet_groups(const __global ulong *segment_groups, ia_maskv live, packet_int level, packet_index i) {
 #ifdef IACSG_GROUPS
     ia_real on[IA_VW];
     bisect_index index[IA_VW];
     int lv[IA_VW];
-    IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
-    IAV_STORE(i, index);
-    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(level), 0, lv); /* packet_int is long in double */
+    packet_lane_nodes(live, level, i, on, index, lv);
     ulong groups = 0;
     for (int k = 0; k < IA_VW; k++)
         if (on[k] != 0)
@@ -179,9 +185,7 @@ IA_FN void packet_segments(ia_maskv live, packet_int level, packet_index i, int 
     ia_real on[IA_VW];
     bisect_index index[IA_VW];
     int lv[IA_VW];
-    IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
-    IAV_STORE(i, index);
-    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(level), 0, lv); /* packet_int is long in double */
+    packet_lane_nodes(live, level, i, on, index, lv);
     *first = SEGMENTS;
     *last = -1;
     for (int k = 0; k < IA_VW; k++)
