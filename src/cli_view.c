@@ -420,6 +420,10 @@ int cli_view(int argc, char **argv) {
                 v.o.view.height, MAX_SIDE, MAX_SIDE);
         return 2;
     }
+    /* Without a session bus, SDL's D-Bus calls (screensaver, input methods) make libdbus autolaunch one through
+     * the X server, which can block the window for good: "disabled:" makes them fail at once. Set here, before
+     * any thread starts. */
+    setenv("DBUS_SESSION_BUS_ADDRESS", "disabled:", 0);
     const char *x11 = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
     if ((!x11 || !*x11) && (!wayland || !*wayland)) {
         fprintf(stderr, "iacsg: no display for the viewer's window (neither DISPLAY nor WAYLAND_DISPLAY is set); "
