@@ -373,10 +373,14 @@ static int open_window(viewer *v) {
         return -1;
     }
     v->window = v->sdl.CreateWindow("iacsg view", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, v->width,
-                                    v->height, SDL_WINDOW_RESIZABLE);
+                                    v->height, SDL_WINDOW_RESIZABLE | SDL_WINDOW_HIDDEN);
     if (v->window) {
         v->sdl.SetWindowMaximumSize(v->window, MAX_SIDE, MAX_SIDE);
+        /* may replace the X window (another visual for OpenGL): shown only after it, so that what a user or a
+         * test finds on screen is the window that stays */
         v->screen = v->sdl.CreateRenderer(v->window, -1, 0);
+        if (v->screen)
+            v->sdl.ShowWindow(v->window);
     }
     if (!v->screen) {
         fprintf(stderr, "iacsg: cannot open a window: %s\n", v->sdl.GetError());

@@ -16,6 +16,7 @@
     X(void, DestroyWindow, (SDL_Window *))                                                                     \
     X(void, SetWindowTitle, (SDL_Window *, const char *))                                                      \
     X(void, SetWindowMaximumSize, (SDL_Window *, int, int))                                                    \
+    X(void, ShowWindow, (SDL_Window *))                                                                        \
     X(SDL_Renderer *, CreateRenderer, (SDL_Window *, int, Uint32))                                             \
     X(void, DestroyRenderer, (SDL_Renderer *))                                                                 \
     X(SDL_Texture *, CreateTexture, (SDL_Renderer *, Uint32, int, int, int))                                   \
