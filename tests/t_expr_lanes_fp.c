@@ -14,6 +14,7 @@
 #include "implicits/device_eval.h"
 #include "kernels/params.h"
 #include "t_expr_oracle.h"
+#include "t_lanes_run.h"
 #include "t_render_util.h"
 #include <string.h>
 
@@ -56,64 +57,16 @@ static const char lanes_tail[] = "    }\n"
 #define LANES_IN 11
 #define LANES_OUT 4
 
-/* Builds sources[0 .. n-1] followed by the lanes kernel with `cases`, runs it over `items` work-items and fills
- * out (LANES_OUT per query). in: LANES_IN exact doubles per query, the box rounded outward to floats without
- * fp64. */
-static void lanes_run(const char **sources, int n, const char *cases, size_t items, const int *which,
-                      const double *in, double *out) {
-    clrt rt;
-    iacsg_error err = {0};
-    CHECK(clrt_open(&rt, 0, &err) == IACSG_OK, "%s", err.message);
-    char options[512];
-    CHECK(clrt_ia_options(&rt, FP64, 0, options, sizeof options - 32, &err) == IACSG_OK, "%s", err.message);
-    snprintf(options + strlen(options), 32, " -D IA_VW=%d", PACKET_LANES);
-    size_t len = strlen(lanes_head) + strlen(cases) + strlen(lanes_tail) + 1;
-    char *kernel = malloc(len);
-    CHECK(kernel != NULL, "out of memory");
-    snprintf(kernel, len, "%s%s%s", lanes_head, cases, lanes_tail);
+/* Runs the lanes kernel with `cases` after sources[0 .. n-1] over `items` work-items and fills out (LANES_OUT
+ * per query). in: LANES_IN exact doubles per query, the box (8 bounds) rounded outward to floats without fp64. */
+static void lanes_eval_run(const char **sources, int n, const char *cases, size_t items, const int *which,
+                           const double *in, double *out) {
+    char *kernel = lanes_kernel_source(lanes_head, cases, lanes_tail);
     sources[n] = kernel;
-    cl_program program;
-    iacsg_status st = clrt_build(&rt, sources, (size_t)n + 1, options, &program, &err);
+    lanes_run(&(lanes_job){.sources = sources, .nsources = (size_t)n + 1, .kernel = "lanes_eval", .items = items,
+                           .which = which, .in = in, .in_per_query = LANES_IN, .bounds_per_query = 8, .out = out,
+                           .out_per_query = LANES_OUT});
     free(kernel);
-    CHECK(st == IACSG_OK, "%s", err.message);
-    size_t q = items * PACKET_LANES, real = FP64 ? sizeof(double) : sizeof(float);
-    void *host_in = malloc(LANES_IN * q * real), *host_out = malloc(LANES_OUT * q * real);
-    CHECK(host_in && host_out, "out of memory");
-    for (size_t i = 0; i < LANES_IN * q; i++) {
-        size_t k = i % LANES_IN;
-        float f = (float)in[i]; /* a box's lower bounds down, upper bounds up; the direction is exact */
-        if (k < 8 && (k % 2 == 0 ? (double)f > in[i] : (double)f < in[i]))
-            f = nextafterf(f, k % 2 == 0 ? -INFINITY : INFINITY);
-        if (FP64)
-            ((double *)host_in)[i] = in[i];
-        else
-            ((float *)host_in)[i] = f;
-    }
-    cl_int rc = CL_SUCCESS;
-    cl_kernel k = clCreateKernel(program, "lanes_eval", &rc);
-    cl_mem bw = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, items * sizeof(int), (void *)which,
-                               &rc);
-    cl_mem bi = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, LANES_IN * q * real, host_in, &rc);
-    cl_mem bo = clCreateBuffer(rt.context, CL_MEM_WRITE_ONLY, LANES_OUT * q * real, NULL, &rc);
-    CHECK(rc == CL_SUCCESS, "buffers: %s", clrt_error_name(rc));
-    clSetKernelArg(k, 0, sizeof bw, &bw);
-    clSetKernelArg(k, 1, sizeof bi, &bi);
-    clSetKernelArg(k, 2, sizeof bo, &bo);
-    size_t one = 1; /* as the renderer: PoCL keeps a work-group's private arrays on one thread's stack */
-    rc = clEnqueueNDRangeKernel(rt.queue, k, 1, NULL, &items, &one, 0, NULL, NULL);
-    if (rc == CL_SUCCESS)
-        rc = clEnqueueReadBuffer(rt.queue, bo, CL_TRUE, 0, LANES_OUT * q * real, host_out, 0, NULL, NULL);
-    for (size_t i = 0; i < LANES_OUT * q; i++)
-        out[i] = FP64 ? ((double *)host_out)[i] : ((float *)host_out)[i];
-    clReleaseMemObject(bw);
-    clReleaseMemObject(bi);
-    clReleaseMemObject(bo);
-    clReleaseKernel(k);
-    clReleaseProgram(program);
-    clrt_close(&rt);
-    free(host_in);
-    free(host_out);
-    CHECK(rc == CL_SUCCESS, "run: %s", clrt_error_name(rc));
 }
 
 static char *emit(const iacsg_expr *e, const char *prefix) {
@@ -164,7 +117,7 @@ TEST_FP(expr_lanes_slope) {
         for (int c = 0; c < 3; c++) /* a direction the device holds exactly */
             in[LANES_IN * k + 8 + c] = (float)(2 * test_rand_unit(test_rng()) - 1);
     }
-    lanes_run(sources, n + 1, cases, items, which, in, out);
+    lanes_eval_run(sources, n + 1, cases, items, which, in, out);
     for (int i = 0; i < n; i++)
         free((char *)sources[1 + i]);
 
@@ -263,7 +216,7 @@ static void check_agreement(const char *text, int is_union) {
         memcpy(dev_in + DEVICE_EVAL_IN * k, in + LANES_IN * k, DEVICE_EVAL_IN * sizeof *dev_in);
     }
     /* the kernels' union of the groups (packet_F), as the renderer evaluates it */
-    lanes_run(sources, 3, "    case 0: r = packet_F(~(ulong)0, b[0], b[1], b[2], b[3]); break;\n", AGREE_ITEMS, which,
+    lanes_eval_run(sources, 3, "    case 0: r = packet_F(~(ulong)0, b[0], b[1], b[2], b[3]); break;\n", AGREE_ITEMS, which,
               in, lanes);
     free(src);
     clrt rt;

@@ -14,6 +14,7 @@
 #include "implicits/tape.h"
 #include "kernels/params.h"
 #include "t_expr_oracle.h"
+#include "t_lanes_run.h"
 #include "render.h"
 #include <math.h>
 #include <stdio.h>
@@ -95,70 +96,22 @@ static const char kernel_tail[] = "    }\n"
                                   "                : k < 11 ? o[k - 3][l] : lo[k - 8][l];\n"
                                   "}\n";
 
-/* Builds ia/, the interpreter, sources[1 .. n-1] and the check kernel with `cases`; runs it over `items`
- * work-items of which[] expressions, whose tapes are at words at[] of tapes; fills out (TAPE_OUT per query) from
- * in (TAPE_IN exact doubles per query, rounded outward to floats without fp64). */
+/* Runs ia/, the interpreter, sources[1 .. n-1] and the check kernel with `cases` over `items` work-items of
+ * which[] expressions, whose tapes are at words at[] of tapes; fills out (TAPE_OUT per query) from in (TAPE_IN
+ * exact doubles per query, all box bounds, rounded outward to floats without fp64). */
 static void run_check(const char **sources, int n, const char *cases, size_t items, const int *which,
                       const unsigned *tapes, size_t tape_words, const unsigned *at, int nexprs, const double *in,
                       double *out) {
-    clrt rt;
-    iacsg_error err = {0};
-    CHECK(clrt_open(&rt, 0, &err) == IACSG_OK, "%s", err.message);
-    char options[512];
-    CHECK(clrt_ia_options(&rt, FP64, 0, options, sizeof options - 32, &err) == IACSG_OK, "%s", err.message);
-    snprintf(options + strlen(options), 32, " -D IA_VW=%d", PACKET_LANES);
-    size_t len = strlen(kernel_head) + strlen(cases) + strlen(kernel_tail) + 1;
-    char *kernel = malloc(len);
-    CHECK(kernel != NULL, "out of memory");
-    snprintf(kernel, len, "%s%s%s", kernel_head, cases, kernel_tail);
+    char *kernel = lanes_kernel_source(kernel_head, cases, kernel_tail);
     sources[n] = iacsg_cl_tape_kernels;
     sources[n + 1] = kernel;
-    cl_program program;
-    iacsg_status st = clrt_build(&rt, sources, (size_t)n + 2, options, &program, &err);
+    lanes_run(&(lanes_job){.sources = sources, .nsources = (size_t)n + 2, .kernel = "tape_check", .items = items,
+                           .which = which,
+                           .extra = {{tapes, tape_words * sizeof(unsigned)}, {at, (size_t)nexprs * sizeof(unsigned)}},
+                           .nextra = 2, .in = in, .in_per_query = TAPE_IN, .bounds_per_query = TAPE_IN, .out = out,
+                           .out_per_query = TAPE_OUT, .scratch_per_item = {TAPE_TILE_RECORD * sizeof(cl_ushort)},
+                           .nscratch = 1});
     free(kernel);
-    CHECK(st == IACSG_OK, "%s", err.message);
-    size_t q = items * PACKET_LANES, real = FP64 ? sizeof(double) : sizeof(float);
-    void *host_in = malloc(TAPE_IN * q * real), *host_out = malloc(TAPE_OUT * q * real);
-    CHECK(host_in && host_out, "out of memory");
-    for (size_t i = 0; i < TAPE_IN * q; i++) {
-        float f = (float)in[i]; /* lower bounds down, upper bounds up */
-        if (i % 2 == 0 ? (double)f > in[i] : (double)f < in[i])
-            f = nextafterf(f, i % 2 == 0 ? -INFINITY : INFINITY);
-        if (FP64)
-            ((double *)host_in)[i] = in[i];
-        else
-            ((float *)host_in)[i] = f;
-    }
-    cl_int rc = CL_SUCCESS;
-    cl_kernel k = clCreateKernel(program, "tape_check", &rc);
-    CHECK(rc == CL_SUCCESS, "kernel: %s", clrt_error_name(rc));
-    cl_mem bw = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, items * sizeof(int), (void *)which,
-                               &rc);
-    cl_mem bt = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, tape_words * sizeof(unsigned),
-                               (void *)tapes, &rc);
-    cl_mem ba = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, (size_t)nexprs * sizeof(unsigned),
-                               (void *)at, &rc);
-    cl_mem bi = clCreateBuffer(rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, TAPE_IN * q * real, host_in, &rc);
-    cl_mem bo = clCreateBuffer(rt.context, CL_MEM_WRITE_ONLY, TAPE_OUT * q * real, NULL, &rc);
-    cl_mem br = clCreateBuffer(rt.context, CL_MEM_READ_WRITE, items * TAPE_TILE_RECORD * sizeof(cl_ushort), NULL, &rc);
-    CHECK(rc == CL_SUCCESS, "buffers: %s", clrt_error_name(rc));
-    cl_mem args[] = {bw, bt, ba, bi, bo, br};
-    for (cl_uint a = 0; a < 6; a++)
-        clSetKernelArg(k, a, sizeof(cl_mem), &args[a]);
-    size_t one = 1; /* as the renderer: PoCL keeps a work-group's private arrays on one thread's stack */
-    rc = clEnqueueNDRangeKernel(rt.queue, k, 1, NULL, &items, &one, 0, NULL, NULL);
-    if (rc == CL_SUCCESS)
-        rc = clEnqueueReadBuffer(rt.queue, bo, CL_TRUE, 0, TAPE_OUT * q * real, host_out, 0, NULL, NULL);
-    for (size_t i = 0; i < TAPE_OUT * q; i++)
-        out[i] = FP64 ? ((double *)host_out)[i] : ((float *)host_out)[i];
-    for (int a = 0; a < 6; a++)
-        clReleaseMemObject(args[a]);
-    clReleaseKernel(k);
-    clReleaseProgram(program);
-    clrt_close(&rt);
-    free(host_in);
-    free(host_out);
-    CHECK(rc == CL_SUCCESS, "run: %s", clrt_error_name(rc));
 }
 
 /* A union of `parts` parts into buf: spheres, caps (sqrt(r^2 - (x-a)^2 - (y-b)^2) - (z-c), undefined off the
