@@ -10,8 +10,9 @@
 #
 # Every row is measured by running the whole `iacsg` command, never by a library call, so that its wall time is
 # what a user waits for. Per row:
-#   1. one first run with a fresh, empty PoCL kernel cache (POCL_CACHE_DIR=a new directory): "first";
-#   2. BENCH_RUNS runs with that now-filled cache: "cached" (medians; the render time also its minimum).
+#   1. one first run with fresh, empty kernel caches (POCL_CACHE_DIR and IACSG_CACHE_DIR=a new directory): "first";
+#   2. one untimed run, which saves the program's binary in iacsg's cache (src/clrt_cache.c: on a second build);
+#   3. BENCH_RUNS runs with those now-filled caches: "cached" (medians; the render time also its minimum).
 # The render time and kernel build time come from `-stats` (src/render.c: clBuildProgram, and kernel launches
 # to the image in host memory); the wall time from `date +%s%N` around the command (process start to file
 # written, exit). Everything runs with -stats, whose kernel counts evaluations; its cost is measured once (the
@@ -88,7 +89,7 @@ run_once() {
     times >"$WORK/times0"
     t0=$(now_us)
     # shellcheck disable=SC2086 # ENVX is a list of VAR=value words
-    env POCL_CACHE_DIR="$cache" $ENVX timeout "$TIMEOUT" "$IACSG" "$@" -stats -o "$WORK/image.png" >"$logf" 2>&1
+    env POCL_CACHE_DIR="$cache" IACSG_CACHE_DIR="$cache" $ENVX timeout "$TIMEOUT" "$IACSG" "$@" -stats -o "$WORK/image.png" >"$logf" 2>&1
     rc=$?
     t1=$(now_us)
     times >"$WORK/times1"
@@ -131,6 +132,8 @@ measure() {
     M_EMAX=$(awk '/evaluations per ray/ {sub(/.*max /, ""); print}' "$WORK/first.log")
     M_BOUNDS=$(awk '/^bounds/ {print $2; exit}' "$WORK/first.log")
     M_CPU1=$(field "$WORK/first.log" "cpu_s:")
+    # untimed: the second build of a program saves its binary (src/clrt_cache.c), which costs PoCL seconds once
+    [ "$M_OK" = 1 ] && run_once "$dir" "$WORK/run.log" "$@"
     : >"$WORK/b" ; : >"$WORK/r" ; : >"$WORK/w" ; : >"$WORK/c" ; : >"$WORK/wr"
     k=0
     while [ "$M_OK" = 1 ] && [ $k -lt "$n" ]; do
