@@ -1,6 +1,6 @@
 /* src/clrt_cache.c -- see clrt_cache.h. Stages: the key and the entry's path (clrt_cache_find), the entry read,
  * checked and built (clrt_cache_load), the entry written and the directory trimmed (clrt_cache_store). */
-#define _GNU_SOURCE /* mkostemp, utimensat */
+#define _GNU_SOURCE /* mkostemp, utimensat, nice */
 #include "clrt_cache.h"
 #include "iacsg.h"
 #include "sha256.h"
@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #define CACHE_MAGIC "iacsg program binary 1\n"
@@ -220,14 +221,11 @@ static int seen_before(const char *path, const char *dir) {
     return 0;
 }
 
-void clrt_cache_store(const clrt_cache_entry *entry, cl_program program) {
-    if (!entry->path[0])
-        return;
+/* Writes the program's binary as the entry (the binary's query is what costs). */
+static void save(const clrt_cache_entry *entry, cl_program program) {
     char dir[sizeof entry->path];
     snprintf(dir, sizeof dir, "%s", entry->path);
     *strrchr(dir, '/') = '\0';
-    if (!seen_before(entry->path, dir))
-        return;
     size_t size = 0;
     if (clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, NULL) != CL_SUCCESS || size == 0)
         return;
@@ -256,4 +254,61 @@ void clrt_cache_store(const clrt_cache_entry *entry, cl_program program) {
             trim(dir);
     }
     free(bin);
+}
+
+/* The saves clrt_cache_defer_saves holds back, their programs retained. */
+enum { MAX_DEFERRED = 8 };
+static struct {
+    int on, count;
+    clrt_cache_entry entries[MAX_DEFERRED];
+    cl_program programs[MAX_DEFERRED];
+} deferred;
+
+void clrt_cache_store(const clrt_cache_entry *entry, cl_program program) {
+    if (!entry->path[0])
+        return;
+    char dir[sizeof entry->path];
+    snprintf(dir, sizeof dir, "%s", entry->path);
+    *strrchr(dir, '/') = '\0';
+    if (!seen_before(entry->path, dir))
+        return;
+    if (!deferred.on) {
+        save(entry, program);
+    } else if (deferred.count < MAX_DEFERRED && clRetainProgram(program) == CL_SUCCESS) {
+        deferred.entries[deferred.count] = *entry;
+        deferred.programs[deferred.count++] = program;
+    }
+}
+
+void clrt_cache_defer_saves(void) { deferred.on = 1; }
+
+void clrt_cache_save_deferred(void) {
+    if (deferred.count == 0)
+        return;
+    fflush(NULL); /* or the saver's copy of the buffers could be written twice */
+    pid_t pid = fork();
+    if (pid == 0) { /* the saver's parent, which ends at once: the saver is no child of the command */
+        pid_t saver = setsid() < 0 ? -1 : fork();
+        if (saver == 0) {
+            int null = open("/dev/null", O_RDWR);
+            for (int fd = 0; fd < 3; fd++) /* holds no end of a caller's pipe, nor any inherited descriptor */
+                if (null < 0 || dup2(null, fd) < 0)
+                    close(fd);
+            if (close_range(3, ~0u, 0) != 0)
+                for (int fd = 3; fd < 65536; fd++)
+                    close(fd);
+            int niced = nice(19); /* it yields the CPUs to the commands that follow */
+            (void)niced;
+            alarm(600); /* a saver stuck in the driver after the fork ends anyway */
+            for (int k = 0; k < deferred.count; k++)
+                save(&deferred.entries[k], deferred.programs[k]);
+        }
+        _exit(0);
+    }
+    if (pid > 0)
+        while (waitpid(pid, NULL, 0) < 0 && errno == EINTR)
+            ;
+    for (int k = 0; k < deferred.count; k++)
+        clReleaseProgram(deferred.programs[k]);
+    deferred.count = 0;
 }

@@ -1,7 +1,7 @@
 /* tests/t_program_cache.c -- the cache of program binaries (src/clrt_cache.c): a program built a second time is
  * saved, the next build loads it (and the kernel computes the same), a damaged entry is refused and removed and
  * the program still builds from source, and a cache directory that cannot be made costs nothing but the cache. */
-#define _GNU_SOURCE /* utimes */
+#define _GNU_SOURCE /* utimes, usleep */
 #include "clrt.h"
 #include "test.h"
 #include <dirent.h>
@@ -138,11 +138,16 @@ TEST(program_cache_unwritable_dir) {
     test_remove_dir(dir);
 }
 
-/* The command's image from a cached program is the image from the source's build, byte for byte. */
+/* The command's image from a cached program is the image from the source's build, byte for byte. The command
+ * saves through a detached process (clrt_cache_save_deferred), which the test waits for. */
 TEST(program_cache_same_image) {
     char dir[256], cmd[2048];
     test_make_dir(dir, sizeof dir, "pcache-cli");
-    for (int k = 1; k <= 3; k++) { /* the first build marks it, the second saves it, the third loads it */
+    char path[1024], entry[1024];
+    snprintf(path, sizeof path, "%s/cache", dir);
+    for (int k = 1; k <= 3; k++) { /* the first build marks it, the second has it saved, the third loads it */
+        for (int wait = 0; k == 3 && wait < 600 && the_entry(path, entry, sizeof entry) != 1; wait++)
+            usleep(100000); /* the command's saver runs after it, detached */
         snprintf(cmd, sizeof cmd,
                  "cd '%s' && IACSG_KERNEL_CACHE=1 IACSG_CACHE_DIR='%s/cache' '%s' 'sphere' -size 24x16 -eye 0,-4,1 "
                  "-o run%d.png >/dev/null 2>&1",
@@ -150,8 +155,7 @@ TEST(program_cache_same_image) {
         int rc = system(cmd);
         CHECK(WIFEXITED(rc) && WEXITSTATUS(rc) == 0, "run %d failed", k);
     }
-    char path[1024], entry[1024];
-    int saved = the_entry(strcat(strcpy(path, dir), "/cache"), entry, sizeof entry);
+    int saved = the_entry(path, entry, sizeof entry);
     size_t n1 = 0, n3 = 0;
     snprintf(path, sizeof path, "%s/run1.png", dir);
     char *a = test_read_file(path, &n1);
