@@ -265,7 +265,8 @@ static _Noreturn void server_main(int listener, int idle) {
     for (int fd = 0; fd < 3; fd++)
         if (null < 0 || dup2(null, fd) < 0)
             close(fd);
-    if (close_range(3, (unsigned)listener - 1, 0) != 0 || close_range((unsigned)listener + 1, ~0u, 0) != 0)
+    if ((listener > 3 && close_range(3, (unsigned)listener - 1, 0) != 0) ||
+        close_range((unsigned)listener + 1, ~0u, 0) != 0)
         for (int fd = 3; fd < 65536; fd++)
             if (fd != listener)
                 close(fd);
