@@ -117,3 +117,30 @@ TEST(writer_server_idle_exit_and_disabled) {
     CHECK(rc == 0 && strstr(how, "child process"), "disabled: exit %d, writer %s", rc, how);
     test_remove_dir(dir);
 }
+
+/* A server killed while a command renders: the command writes the image itself, with no other difference. */
+TEST(writer_server_lost_mid_command) {
+    char dir[256], cmd[4096], how[256];
+    test_make_dir(dir, sizeof dir, "wserver-lost");
+    int rc = run_traced(dir, "lost", "", "sphere -size 8x8 -o a.png", how, sizeof how);
+    CHECK(rc == 0 && strstr(how, "server"), "exit %d, writer %s", rc, how);
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && export LD_LIBRARY_PATH=/nonexistent-lost-%d IACSG_WRITER_TRACE=1 && "
+             "for p in $(pgrep -x iacsg-writer); do tr '\\0' '\\n' </proc/$p/environ 2>/dev/null | "
+             "grep -qx \"LD_LIBRARY_PATH=$LD_LIBRARY_PATH\" && server=$p; done; [ -n \"$server\" ] || exit 3; "
+             "'%s' '%s/tests/data/brlcad/havoc.asc' havoc -size 1024x1024 -o b.png >/dev/null 2>err.txt & "
+             "sleep 0.3; kill $server; wait $!",
+             dir, (int)getpid(), test_binary_path(), test_source_dir());
+    rc = system(cmd);
+    rc = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    char path[512];
+    snprintf(path, sizeof path, "%s/err.txt", dir);
+    char *err = test_read_file(path, NULL);
+    snprintf(path, sizeof path, "%s/b.png", dir);
+    int written = access(path, F_OK) == 0;
+    CHECK(rc == 0 && written, "exit %d (3: no server found), b.png %s; stderr: %s", rc, written ? "written" : "missing",
+          err ? err : "");
+    CHECK(err && strstr(err, "the server was lost"), "the server was not lost before the write: %s", err ? err : "");
+    free(err);
+    test_remove_dir(dir);
+}
