@@ -15,7 +15,6 @@
 #include "cli_view_sdl.h"
 #include "cli_view_worker.h"
 #include "cli_writer.h"
-#include "clrt_cache.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -442,9 +441,6 @@ int cli_view(int argc, char **argv) {
     }
     setvbuf(stdout, NULL, _IOLBF, 0); /* each line out at once: other programs drive the viewer by them */
     iacsg_error err = {0};
-    /* The program cache's saves cost PoCL seconds: held back and never made here, so that a view never stalls
-     * on one (a render command of the same scene makes them). */
-    clrt_cache_defer_saves();
     /* before any thread (it forks): SDL's and the render thread's */
     if (cli_writer_start((size_t)MAX_SIDE * MAX_SIDE * 3, &v.writer, &err) == IACSG_OK) {
         cli_writer_check(v.writer, v.o.output);

@@ -1,5 +1,6 @@
-/* src/clrt_cache.c -- see clrt_cache.h. Stages: the key and the entry's path (clrt_cache_find), the entry read,
- * checked and built (clrt_cache_load), the entry written and the directory trimmed (clrt_cache_store). */
+/* src/clrt_cache.c -- see clrt_cache.h. Stages: the key and the entry's path (clrt_cache_find); the entry read,
+ * checked and built (clrt_cache_load); a program to save held back (clrt_cache_store), then handed to a detached
+ * process that writes the entry and trims the directory (clrt_cache_save_deferred). */
 #define _GNU_SOURCE /* mkostemp, utimensat, nice */
 #include "clrt_cache.h"
 #include "iacsg.h"
@@ -265,16 +266,12 @@ static struct {
 } deferred;
 
 void clrt_cache_store(const clrt_cache_entry *entry, cl_program program) {
-    if (!entry->path[0])
+    if (!entry->path[0] || !deferred.on)
         return;
     char dir[sizeof entry->path];
     snprintf(dir, sizeof dir, "%s", entry->path);
     *strrchr(dir, '/') = '\0';
-    if (!seen_before(entry->path, dir))
-        return;
-    if (!deferred.on) {
-        save(entry, program);
-    } else if (deferred.count < MAX_DEFERRED && clRetainProgram(program) == CL_SUCCESS) {
+    if (seen_before(entry->path, dir) && deferred.count < MAX_DEFERRED && clRetainProgram(program) == CL_SUCCESS) {
         deferred.entries[deferred.count] = *entry;
         deferred.programs[deferred.count++] = program;
     }

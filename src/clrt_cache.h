@@ -25,14 +25,16 @@ void clrt_cache_find(const clrt *rt, const char *const *sources, size_t count, c
  * is removed). */
 cl_program clrt_cache_load(const clrt *rt, const clrt_cache_entry *entry, const char *options);
 
-/* Saves the built program's binary as the entry, if its program was built before (see seen_before). */
+/* Holds the built program back for clrt_cache_save_deferred (retained), if saves are asked for
+ * (clrt_cache_defer_saves) and its program was built before (see seen_before). Without that call the process
+ * only reads the cache: the library saves nothing on its own, so a program embedding it never stalls on a save. */
 void clrt_cache_store(const clrt_cache_entry *entry, cl_program program);
 
-/* For the command: saves are held back (clrt_cache_store retains the program) until clrt_cache_save_deferred,
- * which hands them to a process of their own, detached and at the lowest priority, so that no command waits for
- * PoCL's compile of the binary (~4 s for the reference view's program, ~17 s for havoc's). That process is
- * forked after OpenCL's threads started: at the command's end, when no OpenCL call is under way, the saving
- * thread needs none of them; alarm() ends it should it ever block. */
+/* For the command: programs built from here on may be saved. clrt_cache_save_deferred hands those held back to a
+ * process of their own, detached and at the lowest priority, so that no command waits for PoCL's compile of the
+ * binary (~4 s for the reference view's program, ~17 s for havoc's); it returns at once. That process is forked
+ * after OpenCL's threads started: at the command's end, when no OpenCL call is under way, the saving thread needs
+ * none of them; alarm() ends it should it ever block. */
 void clrt_cache_defer_saves(void);
 void clrt_cache_save_deferred(void);
 
