@@ -7,6 +7,9 @@
 /* dlopen()s `name` from beside the running binary (the build tree), else from ../lib/iacsg/ relative to it (an
  * installed prefix: the Makefile's IMAGE_HELPER_DIR), so that a copied or relocated prefix still finds it.
  * NULL when it cannot, with "cannot load WHAT: why" in *err. */
+/* The path cli_library_open loads `name` from: 0, or -1 when the binary's own path cannot be read. */
+int cli_library_path(const char *name, char path[4096]);
+
 void *cli_library_open(const char *name, const char *what, int dlopen_flags, iacsg_error *err);
 
 #endif

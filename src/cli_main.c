@@ -96,7 +96,13 @@ static const char usage_more[] =
     "read: arb8 (and arb4-7), tgc (rcc, rec, trc, tec), ell (sph), tor, half, pipe, ehy; any other, a dangling\n"
     "member, a cycle or a malformed line is refused with its line. Colours: the combination's, else the colour\n"
     "table's, else the palette. The view defaults to rt's: orthographic (-ortho the bounds' diagonal, unless\n"
-    "-ortho or -fov is given), -az 35 -el 25, centred on the bounds, which are rt's model box; lengths in mm.\n";
+    "-ortho or -fov is given), -az 35 -el 25, centred on the bounds, which are rt's model box; lengths in mm.\n"
+    "\n"
+    "Environment:\n"
+    "  IACSG_WRITER_IDLE=S  the image writer (a process that has loaded OpenImageIO) stays for S seconds without\n"
+    "                     a command, for the next commands of this user and build [30]; 0: a writer per command\n"
+    "  IACSG_CACHE_DIR=DIR  where built OpenCL programs are kept (DIR/programs, at most 256 MB)\n"
+    "                     [$XDG_CACHE_HOME/iacsg, else ~/.cache/iacsg]; IACSG_KERNEL_CACHE=0: not kept\n";
 
 int main(int argc, char **argv) {
     if (argc < 2) {

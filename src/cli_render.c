@@ -6,6 +6,7 @@
 #include "cli_effects.h"
 #include "cli_render.h"
 #include "cli_writer.h"
+#include "clrt_cache.h"
 #include "clrt.h"
 #include "iacsg.h"
 #include "implicits/brlcad.h"
@@ -482,6 +483,7 @@ int cli_render(int argc, char **argv) {
     iacsg_scene *scene = NULL;
     iacsg_renderer *r = NULL;
     cli_writer *writer = NULL;
+    clrt_cache_defer_saves();
     /* first, so that the writer loads while OpenCL starts */
     iacsg_status st = cli_writer_start((size_t)o.view.width * (size_t)o.view.height * 3, &writer, &err);
     const char *outputs[CLI_MPI_IMAGES] = {o.output, o.depth_file, o.normals_file, o.ids_file};
@@ -557,6 +559,7 @@ int cli_render(int argc, char **argv) {
     rc = cli_job_end(job);
     cli_writer_stop(writer);
     iacsg_renderer_destroy(r);
+    clrt_cache_save_deferred(); /* in a process of its own: the command does not wait */
     iacsg_scene_destroy(scene);
     free(text);
     return rc;

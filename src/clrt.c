@@ -1,6 +1,7 @@
 /* src/clrt.c -- see clrt.h. */
 #define _POSIX_C_SOURCE 200809L
 #include "clrt.h"
+#include "clrt_cache.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -169,12 +170,18 @@ static int save_log(const char *log, char *path, size_t size) {
 
 iacsg_status clrt_build(clrt *rt, const char *const *sources, size_t count, const char *options,
                         cl_program *program, iacsg_error *err) {
+    clrt_cache_entry entry;
+    clrt_cache_find(rt, sources, count, options, &entry);
+    if ((*program = clrt_cache_load(rt, &entry, options)))
+        return IACSG_OK;
     cl_int rc = CL_SUCCESS;
     *program = clCreateProgramWithSource(rt->context, (cl_uint)count, (const char **)sources, NULL, &rc);
     CLRT_CHECK(err, rc);
     rc = clBuildProgram(*program, 1, &rt->device, options, NULL, NULL);
-    if (rc == CL_SUCCESS)
+    if (rc == CL_SUCCESS) {
+        clrt_cache_store(&entry, *program);
         return IACSG_OK;
+    }
     size_t len = 0;
     clGetProgramBuildInfo(*program, rt->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &len);
     char *log = malloc(len + 1);

@@ -63,7 +63,7 @@ state == "synopsis" && /^$/ {
     state = "options"
     next
 }
-state == "options" && /^  -/ {
+state == "options" && /^  (-|IACSG_)/ {
     print ".TP"
     print ".B " esc(tag_of($0))
     if (text_of($0) != "")
@@ -89,7 +89,8 @@ END {
     print ".TP"
     print ".I ../lib/iacsg/libiacsg_image.so"
     print "(relative to the directory of the command) the image writer, over OpenImageIO, that the command loads"
-    print "in a child process; in a build tree, \\fIlibiacsg_image.so\\fR beside the command."
+    print "in a process of its own (which serves the next commands: IACSG_WRITER_IDLE); in a build tree,"
+    print "\\fIlibiacsg_image.so\\fR beside the command."
     print ".SH SEE ALSO"
     print ".BR iacsg\\-language (7)"
     print "for the language of expressions and scene files; the library's header \\fI<iacsg/iacsg.h>\\fR"
