@@ -28,11 +28,11 @@ endif
 CFLAGS_ALL = -std=c11 $(WARN) $(OPT) -I. -Isrc -I$(BUILD) -D_POSIX_C_SOURCE=200809L $(CFLAGS)
 CXXFLAGS_ALL = -std=c++17 -Wall -Wextra -Werror $(OPT) -I. -Isrc $(CXXFLAGS)
 IMAGE_LIBS = -lOpenImageIO -lOpenImageIO_Util
-LIBS = -lOpenCL $(IMAGE_LIBS) -lmpfr -lgmp -lm -lstdc++
-CLI_LIBS = -lOpenCL -lm -ldl -lpthread
+LIBS = -lOpenCL $(IMAGE_LIBS) -lnettle -lmpfr -lgmp -lm -lstdc++
+CLI_LIBS = -lOpenCL -lnettle -lm -ldl -lpthread
 LDFLAGS_ALL = $(OPT) $(LDFLAGS)
 
-DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev libmpfr-dev \
+DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd ocl-icd-opencl-dev opencl-headers libopenimageio-dev nettle-dev libmpfr-dev \
                pkg-config groff-base libsdl2-dev xvfb xdotool openmpi-bin libopenmpi-dev
 
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
@@ -205,17 +205,17 @@ bench: deps
 # libFuzzer over the lexer, parser and compiler, seeded from examples/ and tests/data/fuzz/. New crashes land in
 # build-fuzz/crash-*: copy each into tests/data/fuzz/ so that every `make test` replays it.
 FUZZ_SECONDS ?= 60
-FUZZ_SRC = tests/fuzz/fuzz_expr.c tests/expr_exercise.c $(wildcard implicits/*.c) ia/decimal.c src/error.c src/clrt.c
+FUZZ_SRC = tests/fuzz/fuzz_expr.c tests/expr_exercise.c $(wildcard implicits/*.c) ia/decimal.c src/error.c src/clrt.c src/clrt_cache.c src/digest.c
 build-fuzz/fuzz_expr: $(FUZZ_SRC) $(BUILD)/embedded_ia.c
 	@mkdir -p $(dir $@)
 	clang -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -I. -Isrc \
-	    -D_POSIX_C_SOURCE=200809L $^ -lOpenCL -lm -o $@
+	    -D_POSIX_C_SOURCE=200809L $^ -lOpenCL -lnettle -lm -o $@
 
 # The BRL-CAD reader's target, seeded with the sample databases; its crashes go into tests/data/fuzz-brlcad/.
 build-fuzz/fuzz_brlcad: tests/fuzz/fuzz_brlcad.c tests/brlcad_exercise.c $(filter-out tests/%,$(FUZZ_SRC)) $(BUILD)/embedded_ia.c
 	@mkdir -p $(dir $@)
 	clang -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -I. -Isrc \
-	    -D_POSIX_C_SOURCE=200809L $^ -lOpenCL -lm -o $@
+	    -D_POSIX_C_SOURCE=200809L $^ -lOpenCL -lnettle -lm -o $@
 
 fuzz: deps
 	@$(MAKE) --no-print-directory build-fuzz/fuzz_expr build-fuzz/fuzz_brlcad
@@ -256,7 +256,7 @@ EXAMPLES = $(sort $(wildcard examples/*.c examples/*.csg))
 VERSION := $(shell sed -n 's/^\#define IACSG_VERSION "\(.*\)"$$/\1/p' src/iacsg.h 2>/dev/null)
 SONAME = libiacsg.so.$(firstword $(subst ., ,$(VERSION)))
 SHARED_LIB = $(BUILD)/libiacsg.so.$(VERSION)
-PC_LIBS_PRIVATE = -lOpenCL $(IMAGE_LIBS) -lstdc++ -lm
+PC_LIBS_PRIVATE = -lOpenCL $(IMAGE_LIBS) -lnettle -lstdc++ -lm
 MAN_PAGES = $(BUILD)/man/iacsg.1 $(BUILD)/man/iacsg-language.7
 INSTALLABLE = $(BUILD)/iacsg $(BUILD)/libiacsg.a $(BUILD)/libiacsg_image.so $(BUILD)/libiacsg_mpi.so $(SHARED_LIB) \
               $(BUILD)/include/iacsg.stamp $(MAN_PAGES)

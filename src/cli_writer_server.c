@@ -21,7 +21,7 @@
 #include "cli_writer_server.h"
 #include "cli_library.h"
 #include "cli_writer_lib.h"
-#include "sha256.h"
+#include "digest.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -58,7 +58,7 @@ int cli_writer_server_idle(void) {
 
 /* ---- the name ---- */
 
-static void hash_file(sha256_ctx *c, const char *path) {
+static void hash_file(digest_ctx *c, const char *path) {
     struct stat st;
     long long v[7] = {0};
     if (stat(path, &st) == 0) {
@@ -66,16 +66,16 @@ static void hash_file(sha256_ctx *c, const char *path) {
                           st.st_mtim.tv_nsec, st.st_ctim.tv_sec, st.st_ctim.tv_nsec};
         memcpy(v, f, sizeof v);
     }
-    sha256_update(c, v, sizeof v);
+    digest_update(c, v, sizeof v);
 }
 
-static void hash_string(sha256_ctx *c, const char *s) { sha256_update(c, s ? s : "", s ? strlen(s) + 1 : 1); }
+static void hash_string(digest_ctx *c, const char *s) { digest_update(c, s ? s : "", s ? strlen(s) + 1 : 1); }
 
 static socklen_t server_address(int idle, struct sockaddr_un *a) {
-    sha256_ctx c;
-    sha256_init(&c);
+    digest_ctx c;
+    digest_init(&c);
     unsigned version = WRITER_PROTOCOL;
-    sha256_update(&c, &version, sizeof version);
+    digest_update(&c, &version, sizeof version);
     hash_file(&c, "/proc/self/exe");
     char path[4096];
     if (cli_library_path("libiacsg_image.so", path) == 0)
@@ -83,18 +83,18 @@ static socklen_t server_address(int idle, struct sockaddr_un *a) {
     uid_t uid = geteuid();
     gid_t gid = getegid(), groups[256];
     int ngroups = getgroups(256, groups);
-    sha256_update(&c, &uid, sizeof uid);
-    sha256_update(&c, &gid, sizeof gid);
+    digest_update(&c, &uid, sizeof uid);
+    digest_update(&c, &gid, sizeof gid);
     if (ngroups > 0)
-        sha256_update(&c, groups, (size_t)ngroups * sizeof *groups);
+        digest_update(&c, groups, (size_t)ngroups * sizeof *groups);
     ssize_t n = readlink("/proc/self/ns/mnt", path, sizeof path - 1);
     path[n > 0 ? n : 0] = '\0';
     hash_string(&c, path);
     hash_string(&c, getenv("LD_LIBRARY_PATH"));
     hash_string(&c, getenv("LD_PRELOAD"));
-    sha256_update(&c, &idle, sizeof idle);
+    digest_update(&c, &idle, sizeof idle);
     char hex[65];
-    sha256_hex(&c, hex);
+    digest_hex(&c, hex);
     memset(a, 0, sizeof *a);
     a->sun_family = AF_UNIX; /* sun_path[0] == 0: the abstract namespace */
     int len = snprintf(a->sun_path + 1, sizeof a->sun_path - 1, "iacsg-writer-%u-%.32s", (unsigned)uid, hex);

@@ -4,7 +4,7 @@
 #define _GNU_SOURCE /* mkostemp, utimensat, nice */
 #include "clrt_cache.h"
 #include "iacsg.h"
-#include "sha256.h"
+#include "digest.h"
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -25,9 +25,9 @@ typedef struct {
     unsigned long long size;
 } entry_header;
 
-static void hash_string(sha256_ctx *c, const char *s) { sha256_update(c, s, strlen(s) + 1); }
+static void hash_string(digest_ctx *c, const char *s) { digest_update(c, s, strlen(s) + 1); }
 
-static void hash_device_info(sha256_ctx *c, cl_device_id d, cl_device_info what) {
+static void hash_device_info(digest_ctx *c, cl_device_id d, cl_device_info what) {
     char buf[1024] = "";
     clGetDeviceInfo(d, what, sizeof buf - 1, buf, NULL);
     hash_string(c, buf);
@@ -69,8 +69,8 @@ void clrt_cache_find(const clrt *rt, const char *const *sources, size_t count, c
     char dir[sizeof entry->path];
     if (cache_dir(dir, sizeof dir) != 0)
         return;
-    sha256_ctx c;
-    sha256_init(&c);
+    digest_ctx c;
+    digest_init(&c);
     hash_string(&c, CACHE_MAGIC);
     hash_string(&c, iacsg_version());
     hash_string(&c, rt->platform_name);
@@ -82,14 +82,14 @@ void clrt_cache_find(const clrt *rt, const char *const *sources, size_t count, c
     hash_device_info(&c, rt->device, CL_DRIVER_VERSION);
     hash_string(&c, options ? options : "");
     unsigned long long n = count;
-    sha256_update(&c, &n, sizeof n);
+    digest_update(&c, &n, sizeof n);
     for (size_t k = 0; k < count; k++) {
         n = strlen(sources[k]); /* with each length, so that no two splits of the text meet */
-        sha256_update(&c, &n, sizeof n);
-        sha256_update(&c, sources[k], n);
+        digest_update(&c, &n, sizeof n);
+        digest_update(&c, sources[k], n);
     }
     char key[65];
-    sha256_hex(&c, key);
+    digest_hex(&c, key);
     size_t len = strlen(dir); /* cache_dir left room for the name */
     dir[len] = '/';
     memcpy(dir + len + 1, key, 64);
@@ -109,12 +109,12 @@ static unsigned char *read_entry(const clrt_cache_entry *entry, size_t *size, in
     if (fread(&h, sizeof h, 1, f) == 1 && memcmp(h.magic, CACHE_MAGIC, sizeof h.magic) == 0 &&
         h.key[64] == '\0' && strncmp(name, h.key, 64) == 0 && h.binary_sha[64] == '\0' && h.size > 0 &&
         h.size < (1ull << 32) && (bin = malloc(h.size))) {
-        sha256_ctx c;
+        digest_ctx c;
         char sha[65];
-        sha256_init(&c);
+        digest_init(&c);
         if (fread(bin, 1, h.size, f) == h.size && fgetc(f) == EOF) {
-            sha256_update(&c, bin, h.size);
-            sha256_hex(&c, sha);
+            digest_update(&c, bin, h.size);
+            digest_hex(&c, sha);
         } else {
             sha[0] = '\0';
         }
@@ -241,10 +241,10 @@ static void save(const clrt_cache_entry *entry, cl_program program) {
         memset(&h, 0, sizeof h);
         memcpy(h.magic, CACHE_MAGIC, sizeof h.magic);
         memcpy(h.key, strrchr(entry->path, '/') + 1, 64);
-        sha256_ctx c;
-        sha256_init(&c);
-        sha256_update(&c, bin, size);
-        sha256_hex(&c, h.binary_sha);
+        digest_ctx c;
+        digest_init(&c);
+        digest_update(&c, bin, size);
+        digest_hex(&c, h.binary_sha);
         h.size = size;
         FILE *f = fdopen(fd, "wb");
         int ok = f && fwrite(&h, sizeof h, 1, f) == 1 && fwrite(bin, 1, size, f) == size;
