@@ -16,7 +16,8 @@
  * parameters to the walks' closed forms (kernels/prim_segments.h).
  *
  * Small scenes of regions also get the regions' union in SIMD lanes (SCENE_REGIONS_UNION, kernels/scene_union.h's
- * pre-pass), and SCENE_REGIONS_DISJOINT where no two regions can be in at one point (regions_disjoint). */
+ * pre-pass), and SCENE_REGIONS_DISJOINT where no two regions can be in at one point (regions_disjoint), with the
+ * solids in lanes too (emit_solids_in_lanes). */
 #include "scene_emit.h"
 #include "emit.h"
 #include "expr_internal.h"
@@ -208,6 +209,25 @@ static iacsg_status emit_regions_union(const iacsg_scene *s, char **vector, iacs
     return st;
 }
 
+/* For disjoint regions (kernels/scene_union.h claims at the union's leaf): each solid's code in lanes as scene_vK_Fv
+ * and their dispatcher scene_solid_Fv, for the solids' states over the packet's leaves. */
+static iacsg_status emit_solids_in_lanes(strbuf *b, const iacsg_scene *s, iacsg_error *err) {
+    for (int k = 0; k < s->nsolids; k++) {
+        char prefix[32], *text = NULL;
+        snprintf(prefix, sizeof prefix, "scene_v%d", k);
+        iacsg_status st = iacsg_expr_emit_cl(s->solids[k].expr, prefix, &text, err);
+        if (st != IACSG_OK)
+            return st;
+        strbuf_printf(b, "%s", text);
+        free(text);
+    }
+    strbuf_printf(b, "IA_FN iav scene_solid_Fv(int k, iav x, iav y, iav z, iav t) {\n    switch (k) {\n");
+    for (int k = 0; k < s->nsolids; k++)
+        strbuf_printf(b, "    case %d: return scene_v%d_Fv(x, y, z, t);\n", k, k);
+    strbuf_printf(b, "    }\n    return iav_const(-IA_INF, IA_INF);\n}\n");
+    return IACSG_OK;
+}
+
 iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err) {
     *source = NULL;
     strbuf b = {0}, params = {0}, code = {0};
@@ -244,9 +264,14 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
         for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0] - !with_fd; which++)
             emit_dispatcher(&b, s->nsolids, (int)which);
         /* last: without IACSG_SCALAR_CODE the program holds kernels/packet.h and tile.h */
+        int disjoint = vector && regions_disjoint(s);
         if (vector)
-            strbuf_printf(&b, "#undef IACSG_SCALAR_CODE\n#define SCENE_REGIONS_UNION %d\n%s%s", s->nsolids,
-                          regions_disjoint(s) ? "#define SCENE_REGIONS_DISJOINT 1\n" : "", vector);
+            strbuf_printf(&b, "#undef IACSG_SCALAR_CODE\n#define SCENE_REGIONS_UNION %d\n%s", s->nsolids,
+                          disjoint ? "#define SCENE_REGIONS_DISJOINT 1\n" : "");
+        if (disjoint) /* then the union's: IACSG_FDV says whether it (not a solid) has iacsg_Fdv */
+            st = emit_solids_in_lanes(&b, s, err);
+        if (vector)
+            strbuf_printf(&b, "#undef IACSG_FDV\n%s", vector);
     }
     free(params_text);
     free(code_text);

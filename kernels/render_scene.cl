@@ -109,7 +109,9 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         from_evals[k] = 0;
     }
 #ifdef SCENE_UNION_PREPASS
-    scene_union_packet(params, f->flags, height, tile, tile_evals, ok, dk, tn, tf, meets, from, leaf_hi, from_evals);
+    int states[SCENE_REGIONS_UNION][PACKET_LANES]; /* the solids' states over the leaves (disjoint regions) */
+    scene_union_packet(params, f->flags, height, tile, tile_evals, ok, dk, tn, tf, meets, from, leaf_hi, states,
+                       from_evals);
 #else
     (void)tile;
     (void)tile_evals;
@@ -126,10 +128,10 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         ray->evals = ray->segments = ray->partitions = 0;
         ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
         int found = 0, claimed = 0; /* claimed: at the union's leaf (scene_union_claim), or overflowing */
-        if (pixel[k] >= 0 && meets[k] != 0) {
+        if (pixel[k] >= 0 && meets[k] != 0 && (from[k] < IA_INF || view->nsurfaces > 0)) { /* else no hit */
 #ifdef SCENE_REGIONS_DISJOINT
             if (leaf_hi[k] >= from[k])
-                claimed = scene_union_claim(ray, o, d, fmax(tn[k], from[k]), leaf_hi[k], view->time, &hit);
+                claimed = scene_union_claim(ray, states, k, fmax(tn[k], from[k]), &hit);
 #endif
             found = claimed == SCENE_TRACE_OVERFLOW ? claimed
                     : claimed ? scene_trace_surfaces(view, ray, o, d, tn[k], tf[k], 1, &hit)

@@ -28,8 +28,9 @@
 #include "tile.h"
 
 /* The union's tile pass (tile.h, as render.cl's) over the PACKET_W x PACKET_H tiles from (tx0, ty0), searched in
- * SIMD lanes: tiles[k] the frame's tree and tile k's first coarse leaf (level -1: no ray of the tile can meet g),
- * evals[k] its evaluations. */
+ * SIMD lanes: tiles[k] the frame's tree and tile k's first coarse leaf (level -1: no ray of the tile can meet a
+ * zero of g; SCENE_UNION_EMPTY: nor a region), evals[k] its evaluations. */
+#define SCENE_UNION_EMPTY (-2)
 static void scene_union_tiles(__constant ia_real *params, int flags, int width, int height, int tx0, int ty0,
                               surface_start tiles[PACKET_LANES], kernel_u32 evals[PACKET_LANES]) {
     int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
@@ -62,12 +63,22 @@ static void scene_union_tiles(__constant ia_real *params, int flags, int width, 
     frame_root(params, &t0, &w);
     packet_int level = (packet_int)0;
     packet_index leaf = (packet_index)0, counts = (packet_index)0;
+    iav time = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     ia_maskv found = tile_first_leaves(~(ulong)0, base_v, dir_v, IAV_LOAD(spread), ortho, t0, w, params[PARAM_EPS],
-                                       IAV_LOAD(valid) != 0, iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]),
-                                       &level, &leaf, &counts);
+                                       IAV_LOAD(valid) != 0, time, &level, &leaf, &counts);
+    /* A tile without a leaf: g has no zero on its rays' points over the frame's tree (the nodes tile it, and none
+     * holds 0 over the tile's box), a connected set on which g, continuous, then keeps one sign. Where g > 0 over
+     * the tile's box at t0, it is > 0 all over, and no ray of the tile meets a region. */
+    iav at = iav_make(IAV_R(t0), IAV_R(t0)), box[3];
+    for (int c = 0; c < 3; c++)
+        box[c] = iav_add(base_v[c], iav_mul(at, dir_v[c]));
+    ia_maskv leafless = (IAV_LOAD(valid) != 0) & ~found;
+    ia_maskv empty = leafless & (iacsg_Fv(box[0], box[1], box[2], time).lo > 0);
+    PACKET_COUNT(counts, leafless);
     ia_real level_r[IA_VW], leaf_r[IA_VW];
     bisect_index count[IA_VW];
-    IAV_STORE(select((ia_realv)-1, packet_to_real(level), found), level_r);
+    IAV_STORE(select(select((ia_realv)-1, (ia_realv)SCENE_UNION_EMPTY, empty), packet_to_real(level), found),
+              level_r);
     IAV_STORE(packet_to_real(leaf), leaf_r);
     IAV_STORE(counts, count);
     for (int k = 0; k < IA_VW; k++) {
@@ -79,65 +90,34 @@ static void scene_union_tiles(__constant ia_real *params, int flags, int width, 
     }
 }
 
-/* Where the packet's rays (ok, dk, their parts [tn, tf] in the bounds where meets is not 0) start
- * their weaves, from their tile's leaf (scene_union_tiles): from[k] t_near, the leaf's start, or +inf for a ray on
- * which no region is in; leaf_hi[k] the leaf's end (-inf without a leaf); evals[k] the pre-pass's evaluations of each (the tile pass's shared out over the tile's
- * rays). */
-static void scene_union_packet(__constant ia_real *params, int flags, int height, const surface_start *tile,
-                               kernel_u32 tile_evals, const ia_real ok[3][PACKET_LANES],
-                               const ia_real dk[3][PACKET_LANES], const ia_real tn[PACKET_LANES],
-                               const ia_real tf[PACKET_LANES], const ia_real meets[PACKET_LANES],
-                               ia_real from[PACKET_LANES], ia_real leaf_hi[PACKET_LANES],
-                               kernel_u32 evals[PACKET_LANES]) {
-    int ortho = flags & RENDER_ORTHO;
-    ia_realv o[3], d[3], t_near = IAV_LOAD(tn), t_far = IAV_LOAD(tf);
-    for (int c = 0; c < 3; c++) {
-        o[c] = IAV_LOAD(ok[c]);
-        d[c] = IAV_LOAD(dk[c]);
+#ifdef SCENE_REGIONS_DISJOINT
+/* Each solid's state over the leaf [lo, hi] of g of each lane of `hit` (OUT where F > 0 or is empty, IN where
+ * F < 0, else BOUNDARY: the leaf is no wider than eps), in lanes (scene_solid_Fv), for scene_union_claim. */
+static void scene_union_states(const ia_realv o[3], const ia_realv d[3], ia_realv lo, ia_realv hi, ia_maskv hit,
+                               iav time, int states[SCENE_REGIONS_UNION][PACKET_LANES], packet_index *evals) {
+    iav t = iav_make(lo, hi);
+    iav x = packet_extent(o[0], d[0], t), y = packet_extent(o[1], d[1], t), z = packet_extent(o[2], d[2], t);
+    for (int k = 0; k < SCENE_REGIONS_UNION; k++) {
+        iav f = scene_solid_Fv(k, x, y, z, time);
+        PACKET_COUNT(*evals, hit);
+        ia_maskv out = !(f.lo <= f.hi) | (f.lo > 0);
+        ia_maskv s = select(select((ia_maskv)SCENE_BOUNDARY, (ia_maskv)SCENE_IN, f.hi < 0), (ia_maskv)SCENE_OUT, out);
+        IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(s), 0, states[k]); /* a mask of longs in double */
     }
-    ia_maskv searching = IAV_LOAD(meets) != 0;
-    iav time = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
-    packet_index counts = (packet_index)0;
-    iav at = iav_make(t_near, t_near);
-    ia_maskv outside = searching & (iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at),
-                                             packet_extent(o[2], d[2], at), time)
-                                        .lo > 0);
-    PACKET_COUNT(counts, searching);
-    ia_maskv hit = (ia_maskv)0;
-    ia_realv hit_lo = IAV_R(0), hit_hi = IAV_R(0);
-    if (tile->level >= 0 && iav_any(outside)) {
-        packet_index start = max((packet_index)tile->i, packet_node_at(tile->t0, tile->w, tile->level, t_near));
-        ia_real pixel = (ia_real)2 * params[PARAM_SCALE_V] / (ia_real)height; /* as render.cl's trace_packet */
-        hit = packet_first_root(0, o, d, tile->t0, tile->w, (packet_int)tile->level, start, t_near, t_far, outside,
-                                params[PARAM_EPS], ortho ? pixel : 0, ortho ? 0 : pixel, time, &hit_lo, &hit_hi,
-                                &counts);
-    }
-    IAV_STORE(select(t_near, select(IAV_R(IA_INF), hit_lo, hit), outside), from);
-    IAV_STORE(select(IAV_R(-IA_INF), hit_hi, hit), leaf_hi);
-    bisect_index count[IA_VW];
-    IAV_STORE(counts, count);
-    kernel_u32 shared = (tile_evals + TILE_SIZE * TILE_SIZE - 1) / (TILE_SIZE * TILE_SIZE);
-    for (int k = 0; k < IA_VW; k++)
-        evals[k] = (kernel_u32)count[k] + shared;
 }
 
-#ifdef SCENE_REGIONS_DISJOINT
-/* Claims the ray's partition at g's leaf [lo, hi] (before lo no region is in) when some region may be in over it,
- * as weave_ray would claim a partition starting at lo: each solid's state over the leaf's box (BOUNDARY where its
- * F holds 0: the leaf is no wider than eps), the first declared region that may be in there (weave_first_region),
- * and for the normal a solid of that region in a BOUNDARY state (else one not OUT). No two regions can be in at one
- * point (implicits/scene_emit.c: regions_disjoint), so there is no overlap to weave on for. Returns 0 when no
- * region may be in over the leaf (the ray is then woven from lo), SCENE_TRACE_OVERFLOW when more solids may be in
- * there than the ray's buffer lists; the states are left OUT. */
-IA_FN int scene_union_claim(scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real lo, ia_real hi,
-                            ia_interval time, weave_hit *hit) {
-    ia_interval t = ia_make(lo, hi);
-    ia_interval x = ray_extent(o[0], d[0], t), y = ray_extent(o[1], d[1], t), z = ray_extent(o[2], d[2], t);
+/* Claims the ray's partition at g's leaf from lo on (before lo no region is in) when some region may be in over it,
+ * as weave_ray would claim a partition starting at lo: from the solids' states over the leaf (scene_union_states,
+ * lane `lane`), the first declared region that may be in there (weave_first_region), and for the normal a solid of
+ * that region in a BOUNDARY state (else one not OUT). No two regions can be in at one point
+ * (implicits/scene_emit.c: regions_disjoint), so there is no overlap to weave on for. Returns 0 when no region may
+ * be in over the leaf (the ray is then woven from lo), SCENE_TRACE_OVERFLOW when more solids may be in there than
+ * the ray's buffer lists; the states table is left all OUT. */
+IA_FN int scene_union_claim(scene_ray *r, const int states[SCENE_REGIONS_UNION][PACKET_LANES], int lane, ia_real lo,
+                            weave_hit *hit) {
     r->nstarted = 0;
-    for (int k = 0; k < SCENE_REGIONS_UNION; k++) { /* the scene's solids (F of the next is g) */
-        ia_interval f = scene_solid_F(k, x, y, z, time);
-        r->evals += 1;
-        int s = !(f.lo <= f.hi) || f.lo > 0 ? SCENE_OUT : f.hi < 0 ? SCENE_IN : SCENE_BOUNDARY;
+    for (int k = 0; k < SCENE_REGIONS_UNION; k++) { /* the scene's solids */
+        int s = states[k][lane];
         if (s == SCENE_OUT)
             continue;
         if (r->nstarted == r->cand_cap) { /* no room to list it: traced again with more */
@@ -171,5 +151,57 @@ IA_FN int scene_union_claim(scene_ray *r, const ia_real o[3], const ia_real d[3]
     return 1;
 }
 #endif
+
+/* Where the packet's rays (ok, dk, their parts [tn, tf] in the bounds where meets is not 0) start
+ * their weaves, from their tile's leaf (scene_union_tiles): from[k] t_near, the leaf's start, or +inf for a ray on
+ * which no region is in; leaf_hi[k] the leaf's end (-inf without a leaf); evals[k] the pre-pass's evaluations of each (the tile pass's shared out over the tile's
+ * rays); with disjoint regions, states[k][lane] solid k's over the leaf (scene_union_states). */
+static void scene_union_packet(__constant ia_real *params, int flags, int height, const surface_start *tile,
+                               kernel_u32 tile_evals, const ia_real ok[3][PACKET_LANES],
+                               const ia_real dk[3][PACKET_LANES], const ia_real tn[PACKET_LANES],
+                               const ia_real tf[PACKET_LANES], const ia_real meets[PACKET_LANES],
+                               ia_real from[PACKET_LANES], ia_real leaf_hi[PACKET_LANES],
+                               int states[SCENE_REGIONS_UNION][PACKET_LANES], kernel_u32 evals[PACKET_LANES]) {
+    int ortho = flags & RENDER_ORTHO;
+    ia_realv o[3], d[3], t_near = IAV_LOAD(tn), t_far = IAV_LOAD(tf);
+    for (int c = 0; c < 3; c++) {
+        o[c] = IAV_LOAD(ok[c]);
+        d[c] = IAV_LOAD(dk[c]);
+    }
+    ia_maskv searching = IAV_LOAD(meets) != 0;
+    iav time = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
+    packet_index counts = (packet_index)0;
+    ia_maskv outside = searching; /* g > 0 at t_near: on every ray of an empty tile (scene_union_tiles) */
+    if (tile->level != SCENE_UNION_EMPTY && iav_any(searching)) {
+        iav at = iav_make(t_near, t_near);
+        outside = searching & (iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at),
+                                        packet_extent(o[2], d[2], at), time)
+                                   .lo > 0);
+        PACKET_COUNT(counts, searching);
+    }
+    ia_maskv hit = (ia_maskv)0;
+    ia_realv hit_lo = IAV_R(0), hit_hi = IAV_R(0);
+    if (tile->level >= 0 && iav_any(outside)) {
+        packet_index start = max((packet_index)tile->i, packet_node_at(tile->t0, tile->w, tile->level, t_near));
+        ia_real pixel = (ia_real)2 * params[PARAM_SCALE_V] / (ia_real)height; /* as render.cl's trace_packet */
+        hit = packet_first_root(0, o, d, tile->t0, tile->w, (packet_int)tile->level, start, t_near, t_far, outside,
+                                params[PARAM_EPS], ortho ? pixel : 0, ortho ? 0 : pixel, time, &hit_lo, &hit_hi,
+                                &counts);
+    }
+    IAV_STORE(select(t_near, select(IAV_R(IA_INF), hit_lo, hit), outside), from);
+    IAV_STORE(select(IAV_R(-IA_INF), hit_hi, hit), leaf_hi);
+#ifdef SCENE_REGIONS_DISJOINT
+    if (iav_any(hit))
+        scene_union_states(o, d, fmax(t_near, hit_lo), hit_hi, hit, time, states, &counts);
+#else
+    (void)states;
+#endif
+    bisect_index count[IA_VW];
+    IAV_STORE(counts, count);
+    kernel_u32 shared = (tile_evals + TILE_SIZE * TILE_SIZE - 1) / (TILE_SIZE * TILE_SIZE);
+    for (int k = 0; k < IA_VW; k++)
+        evals[k] = (kernel_u32)count[k] + shared;
+}
+
 #endif
 #endif
