@@ -94,7 +94,7 @@ static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, 
  * each is woven alone; `tile` is the union's tile pass for the packet's tile (scene_union.h), with its evaluations
  * shared out over the tile's rays. */
 static void scene_packet(__constant ia_real *params, const scene_frame *f, scene_view *view, scene_ray *ray, int i0,
-                         int j0, int only, const surface_start *tile, kernel_u32 tile_evals) {
+                         int j0, int only, const scene_tile *tile) {
     int width = f->width, height = f->height;
     surface_start starts[SURFACE_BLOCK_MAX];
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
@@ -110,11 +110,10 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     }
 #ifdef SCENE_UNION_PREPASS
     int states[SCENE_REGIONS_UNION][PACKET_LANES]; /* the solids' states over the leaves (disjoint regions) */
-    scene_union_packet(params, f->flags, height, tile, tile_evals, ok, dk, tn, tf, meets, from, leaf_hi, states,
+    scene_union_packet(params, f->flags, height, tile, ok, dk, tn, tf, meets, from, leaf_hi, states,
                        from_evals);
 #else
     (void)tile;
-    (void)tile_evals;
 #endif
     int pixel[PACKET_LANES];
     ia_real gk[3][PACKET_LANES], on[PACKET_LANES];
@@ -195,17 +194,18 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
 
 /* The union's tile pass over the block of tiles from (tx0, ty0), where the program has the union (else nothing). */
 static void scene_tiles(__constant ia_real *params, const scene_frame *f, int tx0, int ty0,
-                        surface_start tiles[PACKET_LANES], kernel_u32 tile_evals[PACKET_LANES]) {
+                        scene_tile tiles[PACKET_LANES]) {
 #ifdef SCENE_UNION_PREPASS
-    scene_union_tiles(params, f->flags, f->width, f->height, tx0, ty0, tiles, tile_evals);
+    scene_union_tiles(params, f->flags, f->width, f->height, tx0, ty0, tiles);
 #else
     (void)params;
     (void)f;
     (void)tx0;
     (void)ty0;
     for (int k = 0; k < PACKET_LANES; k++) {
-        tiles[k].level = -1;
-        tile_evals[k] = 0;
+        tiles[k].start.level = -1;
+        tiles[k].above = 0;
+        tiles[k].evals = 0;
     }
 #endif
 }
@@ -246,8 +246,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                      0};
     scene_frame f = {flags, width, height, row_end, items, nodes, albedo, rgb, depth, normal, ids,
                      overlap, counts, overflow, noverflow};
-    surface_start tiles[PACKET_LANES];
-    kernel_u32 tile_evals[PACKET_LANES];
+    scene_tile tiles[PACKET_LANES];
     if (pixels) {
         for (int k = 0; k < PACKET_LANES; k++) {
             int n = (block_row0 + (int)slot) * PACKET_LANES + k;
@@ -256,18 +255,18 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
             int i = pixels[n] % width, j = pixels[n] / width;
             int tx = i / TILE_SIZE, ty = j / TILE_SIZE, tx0 = tx - tx % PACKET_W, ty0 = ty - ty % PACKET_H;
             int t = (ty - ty0) * PACKET_W + tx - tx0;
-            scene_tiles(params, &f, tx0, ty0, tiles, tile_evals);
+            scene_tiles(params, &f, tx0, ty0, tiles);
             scene_packet(params, &f, &view, &ray, i - i % PACKET_W, j - j % PACKET_H,
-                         j % PACKET_H * PACKET_W + i % PACKET_W, &tiles[t], tile_evals[t]);
+                         j % PACKET_H * PACKET_W + i % PACKET_W, &tiles[t]);
         }
         return;
     }
-    scene_tiles(params, &f, bx / TILE_SIZE, by / TILE_SIZE, tiles, tile_evals);
+    scene_tiles(params, &f, bx / TILE_SIZE, by / TILE_SIZE, tiles);
     for (int t = 0; t < PACKET_LANES; t++)
         for (int j = 0; j < TILE_SIZE; j += PACKET_H)
             for (int i = 0; i < TILE_SIZE; i += PACKET_W) {
                 int i0 = bx + t % PACKET_W * TILE_SIZE + i, j0 = by + t / PACKET_W * TILE_SIZE + j;
                 if (i0 < width && j0 < min(height, row_end))
-                    scene_packet(params, &f, &view, &ray, i0, j0, -1, &tiles[t], tile_evals[t]);
+                    scene_packet(params, &f, &view, &ray, i0, j0, -1, &tiles[t]);
             }
 }

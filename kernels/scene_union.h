@@ -18,21 +18,33 @@
  * enclosure of g (proven over the tile's box of rays, tile.h, or the ray's own boxes, packet.h), so g keeps one
  * sign there; where g > 0 at t_near (its enclosure at the point), no region is in before the leaf's start, and
  * none at all on a ray without a leaf. Where g may be <= 0 at t_near (the ray may start inside a region) the ray
- * is woven from t_near as without the pre-pass. The claim at the leaf is the weave's claim of a partition that
- * starts there: states over the leaf's box, BOUNDARY where F holds 0 (the leaf is no wider than eps).
+ * is woven from t_near as without the pre-pass. "g > 0 at t_near" comes from the tile pass where t_near is before
+ * the tile's leaf and g > 0 over the tile's box at t0 (scene_union_tiles), else from g's enclosure at the point.
+ * The claim at the leaf is the weave's claim of a partition that starts there: states over the leaf's box,
+ * BOUNDARY where F holds 0 (the leaf is no wider than eps).
  */
 #ifndef KERNELS_SCENE_UNION_H
 #define KERNELS_SCENE_UNION_H
+
+/* A tile's result of the union's tile pass: where its rays start their search (level -1: none of them meets a zero
+ * of g), whether g > 0 on all its rays' points before that start (above), and the pass's evaluations for it. */
+typedef struct {
+    surface_start start;
+    int above;
+    kernel_u32 evals;
+} scene_tile;
+
 #if defined(SCENE_REGIONS_UNION) && !defined(IACSG_GROUPS)
 #define SCENE_UNION_PREPASS 1
 #include "tile.h"
 
 /* The union's tile pass (tile.h, as render.cl's) over the PACKET_W x PACKET_H tiles from (tx0, ty0), searched in
- * SIMD lanes: tiles[k] the frame's tree and tile k's first coarse leaf (level -1: no ray of the tile can meet a
- * zero of g; SCENE_UNION_EMPTY: nor a region), evals[k] its evaluations. */
-#define SCENE_UNION_EMPTY (-2)
+ * SIMD lanes: tiles[k] tile k's first coarse leaf in the frame's tree, and whether g > 0 before it (g over the
+ * tile's box at t0: the nodes before the leaf tile [t0, leaf) and none holds 0 over the tile's box, so g has no
+ * zero on the tile's rays' points there, a connected set on which g, continuous, keeps one sign; for a tile
+ * without a leaf, all along its rays). */
 static void scene_union_tiles(__constant ia_real *params, int flags, int width, int height, int tx0, int ty0,
-                              surface_start tiles[PACKET_LANES], kernel_u32 evals[PACKET_LANES]) {
+                              scene_tile tiles[PACKET_LANES]) {
     int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
     int ortho = flags & RENDER_ORTHO;
     ia_real base[2][3][IA_VW], dir[2][3][IA_VW], spread[IA_VW], valid[IA_VW];
@@ -66,27 +78,25 @@ static void scene_union_tiles(__constant ia_real *params, int flags, int width, 
     iav time = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     ia_maskv found = tile_first_leaves(~(ulong)0, base_v, dir_v, IAV_LOAD(spread), ortho, t0, w, params[PARAM_EPS],
                                        IAV_LOAD(valid) != 0, time, &level, &leaf, &counts);
-    /* A tile without a leaf: g has no zero on its rays' points over the frame's tree (the nodes tile it, and none
-     * holds 0 over the tile's box), a connected set on which g, continuous, then keeps one sign. Where g > 0 over
-     * the tile's box at t0, it is > 0 all over, and no ray of the tile meets a region. */
     iav at = iav_make(IAV_R(t0), IAV_R(t0)), box[3];
     for (int c = 0; c < 3; c++)
         box[c] = iav_add(base_v[c], iav_mul(at, dir_v[c]));
-    ia_maskv leafless = (IAV_LOAD(valid) != 0) & ~found;
-    ia_maskv empty = leafless & (iacsg_Fv(box[0], box[1], box[2], time).lo > 0);
-    PACKET_COUNT(counts, leafless);
-    ia_real level_r[IA_VW], leaf_r[IA_VW];
+    ia_maskv searched = IAV_LOAD(valid) != 0;
+    ia_maskv above_v = searched & (iacsg_Fv(box[0], box[1], box[2], time).lo > 0);
+    PACKET_COUNT(counts, searched);
+    ia_real level_r[IA_VW], leaf_r[IA_VW], above[IA_VW];
     bisect_index count[IA_VW];
-    IAV_STORE(select(select((ia_realv)-1, (ia_realv)SCENE_UNION_EMPTY, empty), packet_to_real(level), found),
-              level_r);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), above_v), above);
+    IAV_STORE(select((ia_realv)-1, packet_to_real(level), found), level_r);
     IAV_STORE(packet_to_real(leaf), leaf_r);
     IAV_STORE(counts, count);
     for (int k = 0; k < IA_VW; k++) {
-        tiles[k].t0 = t0;
-        tiles[k].w = w;
-        tiles[k].level = (int)level_r[k];
-        tiles[k].i = (bisect_index)leaf_r[k];
-        evals[k] = (kernel_u32)count[k];
+        tiles[k].start.t0 = t0;
+        tiles[k].start.w = w;
+        tiles[k].start.level = (int)level_r[k];
+        tiles[k].start.i = (bisect_index)leaf_r[k];
+        tiles[k].above = above[k] != 0;
+        tiles[k].evals = (kernel_u32)count[k];
     }
 }
 
@@ -156,8 +166,8 @@ IA_FN int scene_union_claim(scene_ray *r, const int states[SCENE_REGIONS_UNION][
  * their weaves, from their tile's leaf (scene_union_tiles): from[k] t_near, the leaf's start, or +inf for a ray on
  * which no region is in; leaf_hi[k] the leaf's end (-inf without a leaf); evals[k] the pre-pass's evaluations of each (the tile pass's shared out over the tile's
  * rays); with disjoint regions, states[k][lane] solid k's over the leaf (scene_union_states). */
-static void scene_union_packet(__constant ia_real *params, int flags, int height, const surface_start *tile,
-                               kernel_u32 tile_evals, const ia_real ok[3][PACKET_LANES],
+static void scene_union_packet(__constant ia_real *params, int flags, int height, const scene_tile *tile,
+                               const ia_real ok[3][PACKET_LANES],
                                const ia_real dk[3][PACKET_LANES], const ia_real tn[PACKET_LANES],
                                const ia_real tf[PACKET_LANES], const ia_real meets[PACKET_LANES],
                                ia_real from[PACKET_LANES], ia_real leaf_hi[PACKET_LANES],
@@ -171,20 +181,24 @@ static void scene_union_packet(__constant ia_real *params, int flags, int height
     ia_maskv searching = IAV_LOAD(meets) != 0;
     iav time = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     packet_index counts = (packet_index)0;
-    ia_maskv outside = searching; /* g > 0 at t_near: on every ray of an empty tile (scene_union_tiles) */
-    if (tile->level != SCENE_UNION_EMPTY && iav_any(searching)) {
+    const surface_start *leaf = &tile->start;
+    /* g > 0 at t_near: known where t_near is before the tile's leaf and g > 0 there (scene_union_tiles), else by
+     * g's enclosure at the point */
+    ia_real t_leaf = leaf->level >= 0 ? node_bound(leaf->t0, leaf->w, leaf->level, leaf->i) : IA_INF;
+    ia_maskv outside = tile->above ? searching & (t_near < t_leaf) : (ia_maskv)0, unknown = searching & ~outside;
+    if (iav_any(unknown)) {
         iav at = iav_make(t_near, t_near);
-        outside = searching & (iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at),
-                                        packet_extent(o[2], d[2], at), time)
-                                   .lo > 0);
-        PACKET_COUNT(counts, searching);
+        outside |= unknown & (iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at),
+                                       packet_extent(o[2], d[2], at), time)
+                                  .lo > 0);
+        PACKET_COUNT(counts, unknown);
     }
     ia_maskv hit = (ia_maskv)0;
     ia_realv hit_lo = IAV_R(0), hit_hi = IAV_R(0);
-    if (tile->level >= 0 && iav_any(outside)) {
-        packet_index start = max((packet_index)tile->i, packet_node_at(tile->t0, tile->w, tile->level, t_near));
+    if (leaf->level >= 0 && iav_any(outside)) {
+        packet_index start = max((packet_index)leaf->i, packet_node_at(leaf->t0, leaf->w, leaf->level, t_near));
         ia_real pixel = (ia_real)2 * params[PARAM_SCALE_V] / (ia_real)height; /* as render.cl's trace_packet */
-        hit = packet_first_root(0, o, d, tile->t0, tile->w, (packet_int)tile->level, start, t_near, t_far, outside,
+        hit = packet_first_root(0, o, d, leaf->t0, leaf->w, (packet_int)leaf->level, start, t_near, t_far, outside,
                                 params[PARAM_EPS], ortho ? pixel : 0, ortho ? 0 : pixel, time, &hit_lo, &hit_hi,
                                 &counts);
     }
@@ -198,7 +212,7 @@ static void scene_union_packet(__constant ia_real *params, int flags, int height
 #endif
     bisect_index count[IA_VW];
     IAV_STORE(counts, count);
-    kernel_u32 shared = (tile_evals + TILE_SIZE * TILE_SIZE - 1) / (TILE_SIZE * TILE_SIZE);
+    kernel_u32 shared = (tile->evals + TILE_SIZE * TILE_SIZE - 1) / (TILE_SIZE * TILE_SIZE);
     for (int k = 0; k < IA_VW; k++)
         evals[k] = (kernel_u32)count[k] + shared;
 }
