@@ -47,7 +47,7 @@ TAPE_KERNEL_SOURCES = kernels/tape_eval.h $(filter-out kernels/effects.cl,$(KERN
 SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h kernels/csg_node.h \
                        kernels/scene_data.h kernels/bvh.h kernels/prim_segments.h kernels/segments.h \
                        kernels/classify.h kernels/weave.h kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h \
-                       kernels/effects.h kernels/light.h kernels/packet.h kernels/scene_union.h kernels/render_scene.cl \
+                       kernels/effects.h kernels/light.h kernels/packet.h kernels/tile.h kernels/scene_union.h kernels/render_scene.cl \
                        kernels/scene_effects.cl
 # BRL-CAD's primitives, between the ia/ headers and the scene's solids (which call them).
 PRIM_KERNEL_SOURCES = kernels/prim.h

@@ -13,7 +13,11 @@
  * about 2.5-3 ms of build per solid here (1000 arbs or ells, medians of 3 on a loaded machine), against ~30 ms
  * for an expression; with Fd too (a scene of primitives only) the build took 25 % longer for 19 % fewer
  * evaluations and no faster frame, so the limit counts all solids. scene_solid_P hands a primitive's type and
- * parameters to the walks' closed forms (kernels/prim_segments.h). */
+ * parameters to the walks' closed forms (kernels/prim_segments.h).
+ *
+ * Small scenes of regions also get the regions' union in SIMD lanes (SCENE_REGIONS_UNION, kernels/scene_union.h's
+ * pre-pass), and SCENE_REGIONS_DISJOINT where no two regions can be in at one point (regions_disjoint), with the
+ * solids in lanes too (emit_solids_in_lanes). */
 #include "scene_emit.h"
 #include "emit.h"
 #include "expr_internal.h"
@@ -40,9 +44,7 @@ static const struct {
      "x, y, z, t, dx, dy, dz, dt", "*dt = ia_entire();\n    return ia_entire();"},
 };
 
-/* with_union: F of solid nsolids is the union of the regions (scene_union_F, for kernels/scene_union.h's block
- * pass), in group 0 (nsolids <= SCENE_EMIT_UNION_MAX). */
-static void emit_dispatcher(strbuf *b, int nsolids, int which, int with_union) {
+static void emit_dispatcher(strbuf *b, int nsolids, int which) {
     const char *name = dispatched[which].name, *type = dispatched[which].type, *params = dispatched[which].params;
     const char *args = dispatched[which].args, *otherwise = dispatched[which].otherwise;
     int groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP;
@@ -51,8 +53,6 @@ static void emit_dispatcher(strbuf *b, int nsolids, int which, int with_union) {
                       params);
         for (int k = g * SCENE_EMIT_GROUP; k < nsolids && k < (g + 1) * SCENE_EMIT_GROUP; k++)
             strbuf_printf(b, "    case %d: return scene_s%d_%s(%s);\n", k, k, name, args);
-        if (g == 0 && with_union && which == 0)
-            strbuf_printf(b, "    case %d: return scene_union_F(%s);\n", nsolids, args);
         strbuf_printf(b, "    }\n    %s\n}\n", otherwise);
     }
     strbuf_printf(b, "IA_FN %s scene_solid_%s(int k, %s) {\n    switch (k / %d) {\n", type, name, params,
@@ -146,10 +146,38 @@ static int union_of_tree(dag *d, const uint32_t *nodes, int k, const int *solid,
     return b < 0 ? b : dag_add(d, op == CSG_UNION ? OP_MIN : OP_MAX, a, b, 0, err);
 }
 
-/* The union's code when the scene qualifies (else both texts NULL): its scalar code as scene_union_F, and its
- * vector code (iacsg_Fv, and where Newton pays iacsg_Fdv). The caller free()s them. */
-static iacsg_status emit_regions_union(const iacsg_scene *s, char **scalar, char **vector, iacsg_error *err) {
-    *scalar = *vector = NULL;
+/* Whether region tree node k holds where the solids set in `inside` are in and the others out. */
+static int region_holds(const uint32_t *nodes, int k, unsigned inside) {
+    uint32_t node = nodes[k];
+    int op = CSG_NODE_OP(node), arg = (int)CSG_NODE_ARG(node);
+    if (op == CSG_INSIDE || op == CSG_OUTSIDE)
+        return (int)(inside >> arg & 1) == (op == CSG_INSIDE);
+    int a = region_holds(nodes, k + 1, inside);
+    if (op == CSG_NOT)
+        return !a;
+    int b = region_holds(nodes, arg, inside);
+    return op == CSG_UNION ? a || b : op == CSG_INTERSECT ? a && b : a && !b;
+}
+
+/* Whether no two regions can both be in at a point, whatever the solids' shapes: no assignment of in and out to
+ * the solids (at most SCENE_EMIT_UNION_MAX) makes two regions' trees hold. Then no partition has an overlap (both
+ * regions certainly in there would give such an assignment), and kernels/scene_union.h claims a ray's partition
+ * at the union's leaf without weaving on to look for one (SCENE_REGIONS_DISJOINT). */
+static int regions_disjoint(const iacsg_scene *s) {
+    for (unsigned inside = 0; inside < 1u << s->nsolids; inside++) {
+        int holding = 0;
+        for (int k = 0; k < s->nitems; k++)
+            holding += s->items[k].kind == SCENE_REGION && region_holds(s->nodes, s->items[k].tree, inside);
+        if (holding > 1)
+            return 0;
+    }
+    return 1;
+}
+
+/* The union's vector code when the scene qualifies (iacsg_Fv, and where Newton pays iacsg_Fdv; else NULL). The
+ * caller free()s it. */
+static iacsg_status emit_regions_union(const iacsg_scene *s, char **vector, iacsg_error *err) {
+    *vector = NULL;
     int regions = 0;
     for (int k = 0; k < s->nitems; k++)
         regions += s->items[k].kind == SCENE_REGION;
@@ -176,11 +204,28 @@ static iacsg_status emit_regions_union(const iacsg_scene *s, char **scalar, char
     iacsg_status st = failed ? err->status : expr_from_dag(&d, root, "regions", 1, &u, err);
     dag_free(&d);
     if (st == IACSG_OK)
-        st = iacsg_expr_emit_cl(u, "scene_union", scalar, err);
-    if (st == IACSG_OK)
         st = iacsg_expr_emit_cl(u, "iacsg", vector, err);
     iacsg_expr_destroy(u);
     return st;
+}
+
+/* For disjoint regions (kernels/scene_union.h claims at the union's leaf): each solid's code in lanes as scene_vK_Fv
+ * and their dispatcher scene_solid_Fv, for the solids' states over the packet's leaves. */
+static iacsg_status emit_solids_in_lanes(strbuf *b, const iacsg_scene *s, iacsg_error *err) {
+    for (int k = 0; k < s->nsolids; k++) {
+        char prefix[32], *text = NULL;
+        snprintf(prefix, sizeof prefix, "scene_v%d", k);
+        iacsg_status st = iacsg_expr_emit_cl(s->solids[k].expr, prefix, &text, err);
+        if (st != IACSG_OK)
+            return st;
+        strbuf_printf(b, "%s", text);
+        free(text);
+    }
+    strbuf_printf(b, "IA_FN iav scene_solid_Fv(int k, iav x, iav y, iav z, iav t) {\n    switch (k) {\n");
+    for (int k = 0; k < s->nsolids; k++)
+        strbuf_printf(b, "    case %d: return scene_v%d_Fv(x, y, z, t);\n", k, k);
+    strbuf_printf(b, "    }\n    return iav_const(-IA_INF, IA_INF);\n}\n");
+    return IACSG_OK;
 }
 
 iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err) {
@@ -211,20 +256,25 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
         strbuf_printf(&params, "    }\n    return -1;\n}\n");
         emit_parameters_dispatcher(&params, s);
     }
-    char *params_text = strbuf_finish(&params), *code_text = strbuf_finish(&code), *scalar = NULL, *vector = NULL;
+    char *params_text = strbuf_finish(&params), *code_text = strbuf_finish(&code), *vector = NULL;
     if (st == IACSG_OK)
-        st = emit_regions_union(s, &scalar, &vector, err);
+        st = emit_regions_union(s, &vector, err);
     if (st == IACSG_OK) {
-        strbuf_printf(&b, "%s%s%s", params_text ? params_text : "", code_text ? code_text : "", scalar ? scalar : "");
+        strbuf_printf(&b, "%s%s", params_text ? params_text : "", code_text ? code_text : "");
         for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0] - !with_fd; which++)
-            emit_dispatcher(&b, s->nsolids, (int)which, scalar != NULL);
+            emit_dispatcher(&b, s->nsolids, (int)which);
         /* last: without IACSG_SCALAR_CODE the program holds kernels/packet.h and tile.h */
+        int disjoint = vector && regions_disjoint(s);
         if (vector)
-            strbuf_printf(&b, "#undef IACSG_SCALAR_CODE\n#define SCENE_REGIONS_UNION %d\n%s", s->nsolids, vector);
+            strbuf_printf(&b, "#undef IACSG_SCALAR_CODE\n#define SCENE_REGIONS_UNION %d\n%s", s->nsolids,
+                          disjoint ? "#define SCENE_REGIONS_DISJOINT 1\n" : "");
+        if (disjoint) /* then the union's: IACSG_FDV says whether it (not a solid) has iacsg_Fdv */
+            st = emit_solids_in_lanes(&b, s, err);
+        if (vector)
+            strbuf_printf(&b, "#undef IACSG_FDV\n%s", vector);
     }
     free(params_text);
     free(code_text);
-    free(scalar);
     free(vector);
     *source = strbuf_finish(&b);
     if (st != IACSG_OK) {

@@ -1,16 +1,19 @@
-/* kernels/render_scene.cl -- the entry point of the segment path, iacsg_render_scene: one work-item per packet
- * of PACKET_W x PACKET_H pixels, either a block of the band of packet rows from block_row0 or, when `pixels` is
- * not NULL, the listed pixels 16 (block_row0 + g) + 0..15 (rays traced again with larger buffers). Rows from
- * row_end on (past the view's band of rows, iacsg_view.row_count) are neither traced nor written.
+/* kernels/render_scene.cl -- the entry point of the segment path, iacsg_render_scene: one work-item per block of
+ * PACKET_W x PACKET_H tiles (SCENE_BLOCK pixels square) of the band of block rows from block_row0 or, when
+ * `pixels` is not NULL, per 16 listed pixels 16 (block_row0 + g) + 0..15 (rays traced again with larger buffers).
+ * Rows from row_end on (past the view's band of rows, iacsg_view.row_count) are neither traced nor written.
  *
- * Per packet: the surfaces' block passes (scene_block), which prove where no ray of the packet can meet a
- * surface; a listed pixel gets its own packet's, so it is traced again exactly as in the first pass.
- * Per pixel: the camera ray (camera.h) clipped to the bounds, traced one at a time (scene_trace.h) with the
- * work-item's slice of the per-ray buffers; a ray that overflows them is appended to `overflow` and writes
- * nothing. Then, in SIMD lanes, the normals (the hit solid's gradient, facing the eye) and the colours (light.h,
- * each pixel's item's albedo). Outputs per pixel: rgb, depth (the claimed partition's start, +inf on a miss),
- * normal, ids (the item, -1 on a miss), overlap (another region certainly in the claimed partition, or -1), and
- * with KERNEL_STATS the evaluations, segments and partitions of each ray.
+ * Per block: the union's tile pass over its 16 tiles in SIMD lanes (scene_union.h, where the program has the
+ * union), then its packets of PACKET_W x PACKET_H pixels. Per packet: the surfaces' block passes (scene_block),
+ * which prove where no ray of the packet can meet a surface; the camera rays clipped to the bounds (camera.h, in
+ * lanes where the program has packet.h); with the union, its first root in lanes from the tile's leaf, and where
+ * the regions are disjoint the claim at that leaf (scene_union_claim). Per pixel: the ray traced one at a time
+ * (scene_trace.h) with the work-item's slice of the per-ray buffers; a ray that overflows them is appended to
+ * `overflow` and writes nothing. A listed pixel is traced with its own packet and its block's tile pass, so
+ * exactly as in the first pass. Then, in SIMD lanes, the normals (the hit solid's gradient, facing the eye) and
+ * the colours (light.h, each pixel's item's albedo). Outputs per pixel: rgb, depth (the claimed partition's start,
+ * +inf on a miss), normal, ids (the item, -1 on a miss), overlap (another region certainly in the claimed
+ * partition, or -1), and with KERNEL_STATS the evaluations, segments and partitions of each ray.
  */
 #include "scene_trace.h"
 #include "light.h"
@@ -40,6 +43,176 @@ static kernel_u32 scene_block(__constant ia_real *params, int flags, int i0, int
     return (evals + PACKET_LANES - 1) / PACKET_LANES;
 }
 
+/* What the packets of a work-item share: the frame's parameters, tables and outputs (the kernel's arguments). */
+typedef struct {
+    int flags, width, height, row_end;
+    __global const int *items;
+    __global const uint *nodes;
+    __global const float *albedo;
+    __global float *rgb, *depth, *normal, *ids;
+    __global int *overlap;
+    __global uint *counts;
+    __global int *overflow, *noverflow;
+} scene_frame;
+
+/* The rays of the packet of pixels from (i0, j0) (camera_ray), and where they meet the bounds (meets[k] 1, over
+ * [tn[k], tf[k]]: camera_clip); a pixel outside the image or the band's rows meets nothing. In SIMD lanes where
+ * the program has packet.h (the union's pre-pass searches the same rays), else one by one. */
+static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, int i0, int j0,
+                              ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real tn[PACKET_LANES],
+                              ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES]) {
+    int ortho = f->flags & RENDER_ORTHO, width = f->width, height = f->height;
+#ifdef SCENE_UNION_PREPASS
+    packet_int lanes = packet_lane_numbers();
+    packet_int col = i0 + lanes % PACKET_W, row = j0 + lanes / PACKET_W;
+    ia_realv o[3], d[3], t_near, t_far;
+    packet_rays(params, ortho, min(col, width - 1), min(row, height - 1), width, height, o, d);
+    ia_maskv in = (col < width) & (row < f->row_end) & packet_clip(params, o, d, &t_near, &t_far);
+    for (int c = 0; c < 3; c++) {
+        IAV_STORE(o[c], ok[c]);
+        IAV_STORE(d[c], dk[c]);
+    }
+    IAV_STORE(t_near, tn);
+    IAV_STORE(t_far, tf);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), in), meets);
+#else
+    for (int k = 0; k < PACKET_LANES; k++) {
+        int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
+        ia_real o[3], d[3];
+        camera_ray(params, ortho, min(i, width - 1), min(j, height - 1), width, height, o, d);
+        meets[k] = i < width && j < f->row_end && camera_clip(params, o, d, &tn[k], &tf[k]);
+        for (int c = 0; c < 3; c++) {
+            ok[c][k] = o[c];
+            dk[c][k] = d[c];
+        }
+    }
+#endif
+}
+
+/* Traces the packet of pixels from (i0, j0): all its rays, or (only >= 0) lane `only` alone, a listed ray traced
+ * again exactly as in the first pass. The rays and their parts in the bounds come in SIMD lanes (packet.h), then
+ * each is woven alone; `tile` is the union's tile pass for the packet's tile (scene_union.h), with its evaluations
+ * shared out over the tile's rays. */
+static void scene_packet(__constant ia_real *params, const scene_frame *f, scene_view *view, scene_ray *ray, int i0,
+                         int j0, int only, const scene_tile *tile) {
+    int width = f->width, height = f->height;
+    surface_start starts[SURFACE_BLOCK_MAX];
+    ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
+    kernel_u32 block_evals = scene_block(params, f->flags, i0, j0, width, height, f->items, f->nodes, time, starts, view);
+    ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES], meets[PACKET_LANES];
+    scene_packet_rays(params, f, i0, j0, ok, dk, tn, tf, meets);
+    ia_real from[PACKET_LANES]; /* where each ray's weave starts (scene_union.h), or -inf: its own t_near */
+    ia_real leaf_hi[PACKET_LANES]; /* the end of the union's leaf starting at from[k], or -inf */
+    kernel_u32 from_evals[PACKET_LANES];
+    for (int k = 0; k < PACKET_LANES; k++) {
+        from[k] = leaf_hi[k] = -IA_INF;
+        from_evals[k] = 0;
+    }
+#ifdef SCENE_UNION_PREPASS
+    int states[SCENE_REGIONS_UNION][PACKET_LANES]; /* the solids' states over the leaves (disjoint regions) */
+    scene_union_packet(params, f->flags, height, tile, ok, dk, tn, tf, meets, from, leaf_hi, states,
+                       from_evals);
+#else
+    (void)tile;
+#endif
+    int pixel[PACKET_LANES];
+    ia_real gk[3][PACKET_LANES], on[PACKET_LANES];
+    float color[3][PACKET_LANES], rows[PACKET_LANES];
+    ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
+    for (int k = 0; k < PACKET_LANES; k++) {
+        int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
+        pixel[k] = i < width && j < f->row_end && (only < 0 || k == only) ? j * width + i : -1;
+        rows[k] = (float)min(j, height - 1);
+        weave_hit hit = {0, -1, -1, -1};
+        ray->evals = ray->segments = ray->partitions = 0;
+        ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
+        int found = 0, claimed = 0; /* claimed: at the union's leaf (scene_union_claim), or overflowing */
+        if (pixel[k] >= 0 && meets[k] != 0 && (from[k] < IA_INF || view->nsurfaces > 0)) { /* else no hit */
+#ifdef SCENE_REGIONS_DISJOINT
+            if (leaf_hi[k] >= from[k])
+                claimed = scene_union_claim(ray, states, k, fmax(tn[k], from[k]), &hit);
+#endif
+            found = claimed == SCENE_TRACE_OVERFLOW ? claimed
+                    : claimed ? scene_trace_surfaces(view, ray, o, d, tn[k], tf[k], 1, &hit)
+                              : scene_trace_ray_from(view, ray, o, d, tn[k], fmax(tn[k], from[k]), tf[k], &hit);
+        }
+        if (found == SCENE_TRACE_OVERFLOW) {
+            f->overflow[atomic_inc(f->noverflow)] = pixel[k];
+            pixel[k] = -1;
+            found = 0;
+        }
+        on[k] = found;
+        ia_real gradient[3] = {0, 0, 0};
+        if (found)
+            scene_gradient(hit.solid, o, d, hit.t, params[PARAM_TIME_LO], gradient); /* a point for shading */
+        for (int c = 0; c < 3; c++) {
+            gk[c][k] = gradient[c];
+            color[c][k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_RGB + c] : 0;
+        }
+        specular[k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SPECULAR] : 0;
+        shininess[k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SHININESS] : 1;
+        if (pixel[k] < 0)
+            continue;
+        if (f->depth)
+            f->depth[pixel[k]] = found ? camera_depth_round_down(hit.t) : INFINITY;
+        f->ids[pixel[k]] = found ? (float)hit.item : -1.0f;
+        f->overlap[pixel[k]] = found ? hit.overlap : -1;
+#ifdef KERNEL_STATS
+        f->counts[3 * pixel[k]] = ray->evals + block_evals + from_evals[k];
+        f->counts[3 * pixel[k] + 1] = ray->segments;
+        f->counts[3 * pixel[k] + 2] = ray->partitions;
+#else
+        (void)block_evals;
+#endif
+    }
+    ia_realv g[3], d_v[3], n[3];
+    shade_colorv albedo_v[3], rgb_v[3];
+    for (int c = 0; c < 3; c++) {
+        g[c] = IAV_LOAD(gk[c]);
+        d_v[c] = IAV_LOAD(dk[c]);
+        albedo_v[c] = IAV_CAT(vload, IA_VW)(0, color[c]);
+    }
+    shade_normals(g, d_v, n);
+    ia_maskv hit_v = IAV_LOAD(on) != 0;
+    shade_lit_materials(params, hit_v, n, d_v, IAV_CAT(vload, IA_VW)(0, rows), height, albedo_v,
+                        IAV_LOAD(specular), IAV_LOAD(shininess), rgb_v);
+    ia_real nk[3][PACKET_LANES];
+    for (int c = 0; c < 3; c++) {
+        IAV_STORE(select(IAV_R(0), n[c], hit_v), nk[c]);
+        IAV_CAT(vstore, IA_VW)(rgb_v[c], 0, color[c]);
+    }
+    for (int k = 0; k < PACKET_LANES; k++) {
+        if (pixel[k] < 0)
+            continue;
+        for (int c = 0; c < 3; c++) {
+            f->rgb[3 * pixel[k] + c] = color[c][k];
+            if (f->normal)
+                f->normal[3 * pixel[k] + c] = (float)nk[c][k];
+        }
+    }
+}
+
+/* The union's tile pass over the block of tiles from (tx0, ty0), where the program has the union (else nothing). */
+static void scene_tiles(__constant ia_real *params, const scene_frame *f, int tx0, int ty0,
+                        scene_tile tiles[PACKET_LANES]) {
+#ifdef SCENE_UNION_PREPASS
+    scene_union_tiles(params, f->flags, f->width, f->height, tx0, ty0, tiles);
+#else
+    (void)params;
+    (void)f;
+    (void)tx0;
+    (void)ty0;
+    for (int k = 0; k < PACKET_LANES; k++) {
+        tiles[k].start.level = -1;
+        tiles[k].above = 0;
+        tiles[k].evals = 0;
+    }
+#endif
+}
+
+/* One work-item per block of PACKET_W x PACKET_H tiles (SCENE_BLOCK pixels square) from block row block_row0 on,
+ * or, when `pixels` is not NULL, per 16 listed pixels (block_row0 + g) 16 + 0..15, each traced again with its
+ * own packet, its block's tile pass included. */
 __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int width, int height, int block_row0,
                                  __global const int *pixels, int npixels, __global const ia_real *bvh_box,
                                  __global const int *bvh_link, int nbvh, __global const uint *nodes,
@@ -52,8 +225,8 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                  __global uint *counts, __global int *overflow, __global int *noverflow,
                                  int row_end) {
     size_t slot = get_global_id(1) * get_global_size(0) + get_global_id(0);
-    int i0 = (int)get_global_id(0) * PACKET_W, j0 = (block_row0 + (int)get_global_id(1)) * PACKET_H;
-    if (!pixels && (i0 >= width || j0 >= height))
+    int bx = (int)get_global_id(0) * SCENE_BLOCK, by = (block_row0 + (int)get_global_id(1)) * SCENE_BLOCK;
+    if (!pixels && (bx >= width || by >= height))
         return;
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, 0};
@@ -71,101 +244,29 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                      0,
                      0,
                      0};
-    surface_start starts[SURFACE_BLOCK_MAX];
-    kernel_u32 block_evals =
-        pixels ? 0 : scene_block(params, flags, i0, j0, width, height, items, nodes, time, starts, &view);
-    ia_real from[PACKET_LANES]; /* where each ray's weave starts (scene_union.h), or -inf: its own t_near */
-    kernel_u32 from_evals[PACKET_LANES];
-    for (int k = 0; k < PACKET_LANES; k++) {
-        from[k] = -IA_INF;
-        from_evals[k] = 0;
-    }
-#ifdef SCENE_UNION_PREPASS
-    if (!pixels)
-        scene_union_packet(params, flags, i0, j0, width, height, from, from_evals);
-#endif
-    int pixel[PACKET_LANES];
-    ia_real dk[3][PACKET_LANES], gk[3][PACKET_LANES], on[PACKET_LANES];
-    float rows[PACKET_LANES], color[3][PACKET_LANES];
-    ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
-    for (int k = 0; k < PACKET_LANES; k++) {
-        int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
-        if (pixels) {
+    scene_frame f = {flags, width, height, row_end, items, nodes, albedo, rgb, depth, normal, ids,
+                     overlap, counts, overflow, noverflow};
+    scene_tile tiles[PACKET_LANES];
+    if (pixels) {
+        for (int k = 0; k < PACKET_LANES; k++) {
             int n = (block_row0 + (int)slot) * PACKET_LANES + k;
-            i = n < npixels ? pixels[n] % width : width;
-            j = n < npixels ? pixels[n] / width : height;
+            if (n >= npixels)
+                return;
+            int i = pixels[n] % width, j = pixels[n] / width;
+            int tx = i / TILE_SIZE, ty = j / TILE_SIZE, tx0 = tx - tx % PACKET_W, ty0 = ty - ty % PACKET_H;
+            int t = (ty - ty0) * PACKET_W + tx - tx0;
+            scene_tiles(params, &f, tx0, ty0, tiles);
+            scene_packet(params, &f, &view, &ray, i - i % PACKET_W, j - j % PACKET_H,
+                         j % PACKET_H * PACKET_W + i % PACKET_W, &tiles[t]);
         }
-        pixel[k] = i < width && j < row_end ? j * width + i : -1; /* the band's rows only */
-        int lane = k;
-        if (pixels && pixel[k] >= 0) { /* traced as in the first pass: from its packet's block passes */
-            block_evals = scene_block(params, flags, i - i % PACKET_W, j - j % PACKET_H, width, height, items, nodes,
-                                      time, starts, &view);
-#ifdef SCENE_UNION_PREPASS
-            scene_union_packet(params, flags, i - i % PACKET_W, j - j % PACKET_H, width, height, from, from_evals);
-            lane = j % PACKET_H * PACKET_W + i % PACKET_W;
-#endif
-        }
-        rows[k] = (float)min(j, height - 1);
-        ia_real o[3], d[3], tn, tf;
-        camera_ray(params, flags & RENDER_ORTHO, min(i, width - 1), min(j, height - 1), width, height, o, d);
-        weave_hit hit = {0, -1, -1, -1};
-        ray.evals = ray.segments = ray.partitions = 0;
-        int found = pixel[k] >= 0 && camera_clip(params, o, d, &tn, &tf)
-                        ? scene_trace_ray_from(&view, &ray, o, d, tn, fmax(tn, from[lane]), tf, &hit)
-                        : 0;
-        if (found == SCENE_TRACE_OVERFLOW) {
-            overflow[atomic_inc(noverflow)] = pixel[k];
-            pixel[k] = -1;
-            found = 0;
-        }
-        on[k] = found;
-        ia_real gradient[3] = {0, 0, 0};
-        if (found)
-            scene_gradient(hit.solid, o, d, hit.t, params[PARAM_TIME_LO], gradient); /* a point for shading */
-        for (int c = 0; c < 3; c++) {
-            dk[c][k] = d[c];
-            gk[c][k] = gradient[c];
-            color[c][k] = found ? albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_RGB + c] : 0;
-        }
-        specular[k] = found ? albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SPECULAR] : 0;
-        shininess[k] = found ? albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SHININESS] : 1;
-        if (pixel[k] < 0)
-            continue;
-        if (depth)
-            depth[pixel[k]] = found ? camera_depth_round_down(hit.t) : INFINITY;
-        ids[pixel[k]] = found ? (float)hit.item : -1.0f;
-        overlap[pixel[k]] = found ? hit.overlap : -1;
-#ifdef KERNEL_STATS
-        counts[3 * pixel[k]] = ray.evals + block_evals + from_evals[lane];
-        counts[3 * pixel[k] + 1] = ray.segments;
-        counts[3 * pixel[k] + 2] = ray.partitions;
-#else
-        (void)counts;
-#endif
+        return;
     }
-    ia_realv g[3], d[3], n[3];
-    shade_colorv albedo_v[3], rgb_v[3];
-    for (int c = 0; c < 3; c++) {
-        g[c] = IAV_LOAD(gk[c]);
-        d[c] = IAV_LOAD(dk[c]);
-        albedo_v[c] = IAV_CAT(vload, IA_VW)(0, color[c]);
-    }
-    shade_normals(g, d, n);
-    ia_maskv hit_v = IAV_LOAD(on) != 0;
-    shade_lit_materials(params, hit_v, n, d, IAV_CAT(vload, IA_VW)(0, rows), height, albedo_v, IAV_LOAD(specular),
-                        IAV_LOAD(shininess), rgb_v);
-    ia_real nk[3][PACKET_LANES];
-    for (int c = 0; c < 3; c++) {
-        IAV_STORE(select(IAV_R(0), n[c], hit_v), nk[c]);
-        IAV_CAT(vstore, IA_VW)(rgb_v[c], 0, color[c]);
-    }
-    for (int k = 0; k < PACKET_LANES; k++) {
-        if (pixel[k] < 0)
-            continue;
-        for (int c = 0; c < 3; c++) {
-            rgb[3 * pixel[k] + c] = color[c][k];
-            if (normal)
-                normal[3 * pixel[k] + c] = (float)nk[c][k];
-        }
-    }
+    scene_tiles(params, &f, bx / TILE_SIZE, by / TILE_SIZE, tiles);
+    for (int t = 0; t < PACKET_LANES; t++)
+        for (int j = 0; j < TILE_SIZE; j += PACKET_H)
+            for (int i = 0; i < TILE_SIZE; i += PACKET_W) {
+                int i0 = bx + t % PACKET_W * TILE_SIZE + i, j0 = by + t / PACKET_W * TILE_SIZE + j;
+                if (i0 < width && j0 < min(height, row_end))
+                    scene_packet(params, &f, &view, &ray, i0, j0, -1, &tiles[t]);
+            }
 }

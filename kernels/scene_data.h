@@ -13,9 +13,13 @@
  */
 #ifndef KERNELS_SCENE_DATA_H
 #define KERNELS_SCENE_DATA_H
-#include "compat.h"
+#include "params.h"
 
 #define SCENE_RAY_CANDIDATES 32
+
+/* A work-item of the first pass renders a block of PACKET_W x PACKET_H tiles, SCENE_BLOCK pixels square: the
+ * union's tile pass (kernels/scene_union.h) searches its 16 tiles in SIMD lanes, then its packets are traced. */
+#define SCENE_BLOCK (PACKET_W * TILE_SIZE)
 
 /* A solid's state over a part of a ray, decided on the enclosure F of its function over the part's box: OUT
  * where F > 0, IN where F < 0, BOUNDARY where 0 is in F on a leaf of the bisection (width <= eps): the solid

@@ -14,7 +14,7 @@
 #include "packet.h"
 #include "tile_rays.h"
 
-#if IA_DEVICE && defined(IA_VW)
+#if IA_DEVICE && defined(IA_VW) && !defined(IACSG_SCALAR_CODE) /* (as packet.h) */
 /* Searches the frame's tree (frame_root) for the first coarse leaf of IA_VW tiles at once, one per lane (as
  * packet.h walks rays): a node where 0 may be in F over the tile's box, no longer than the tile is wide there
  * (splitting t further would not shrink the box much), or eps. Returns the lanes of `searching` whose tile may

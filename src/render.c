@@ -321,8 +321,8 @@ fail:
 
 /* The view's rows, [row_first, row_first + row_count) or all of them, in bands of `band_units` units of `unit_rows`
  * rows, one launch each over `groups_x` x (the band's units) work-items, kernel argument 4 the band's first unit.
- * With a progress or cancel callback, waits for each band. Both paths: units of blocks here, of packets in
- * render_scene.c, each a divisor of IACSG_ROW_ALIGN so that a band starts on a whole unit. */
+ * With a progress or cancel callback, waits for each band. Both paths: units of blocks (here and in
+ * render_scene.c), each a divisor of IACSG_ROW_ALIGN so that a band starts on a whole unit. */
 iacsg_status render_launch_bands(iacsg_renderer *r, const iacsg_view *view, size_t groups_x, int unit_rows,
                                  int band_units, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;

@@ -24,7 +24,7 @@ extern const char iacsg_cl_prim[];          /* the primitives' inclusion functio
 
 /* The per-ray buffers of all work-items of one launch together stay below this; bands are cut to fit. */
 #define SCENE_SCRATCH_BUDGET (64.0 * 1024 * 1024)
-_Static_assert(IACSG_ROW_ALIGN % PACKET_H == 0, "iacsg_view.row_first is aligned to whole packets");
+_Static_assert(IACSG_ROW_ALIGN % SCENE_BLOCK == 0, "iacsg_view.row_first is aligned to whole blocks");
 
 struct render_scene {
     scene_tables t;
@@ -305,15 +305,15 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* The first pass: the view's rows (render_launch_bands) in bands of packet rows, each cut so that its work-items'
- * per-ray buffers fit the budget. Rays that overflow are listed in list[0]. */
+/* The first pass: the view's rows (render_launch_bands) in bands of blocks (SCENE_BLOCK rows), each cut so that
+ * its work-items' per-ray buffers fit the budget. Rays that overflow are listed in list[0]. */
 static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_buffers *b, iacsg_error *err) {
-    size_t groups_x = ((size_t)view->width + PACKET_W - 1) / PACKET_W;
+    size_t groups_x = ((size_t)view->width + SCENE_BLOCK - 1) / SCENE_BLOCK;
     int rows = view->row_count ? view->row_count : view->height;
-    size_t packet_rows = ((size_t)rows + PACKET_H - 1) / PACKET_H;
+    size_t block_rows = ((size_t)rows + SCENE_BLOCK - 1) / SCENE_BLOCK;
     double per_row = (double)groups_x * (double)slot_bytes(r, b->cand_cap);
-    size_t band = (size_t)fmax(1, fmin((double)(view->progress ? 2 : 16), SCENE_SCRATCH_BUDGET / per_row));
-    band = band < packet_rows ? band : packet_rows;
+    size_t band = (size_t)fmax(1, fmin((double)(view->progress ? 1 : 2), SCENE_SCRATCH_BUDGET / per_row));
+    band = band < block_rows ? band : block_rows;
     iacsg_status st = scratch_buffers(r, b, groups_x * band, b->cand_cap, err);
     if (st == IACSG_OK)
         st = zero_count(r, b->nlist[0], err);
@@ -322,7 +322,7 @@ static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_
     cl_mem none = NULL;
     if (st == IACSG_OK)
         st = set_launch_args(r, 0, &none, 0, &b->list[0], &b->nlist[0], err);
-    return st == IACSG_OK ? render_launch_bands(r, view, groups_x, PACKET_H, (int)band, err) : st;
+    return st == IACSG_OK ? render_launch_bands(r, view, groups_x, SCENE_BLOCK, (int)band, err) : st;
 }
 
 /* Traces the listed rays again with four times the room until none overflows. */

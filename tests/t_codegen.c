@@ -92,18 +92,24 @@ TEST(codegen_scene_fd_only_in_small_scenes) {
 
 /* The union of the regions as one expression, for the segment path's pre-pass in lanes (kernels/scene_union.h), is
  * emitted only where its sign argument holds and it pays: some region, at most 8 solids and regions, every solid
- * defined everywhere (no sqrt here, whose domain edge may be met). */
+ * defined everywhere (no sqrt here, whose domain edge may be met). The regions are taken as disjoint (claimed at the
+ * union's leaf) only where no two can be in at one point whatever the solids: a \ b and a & b, a \ b and b \ a,
+ * a \ b and b; not a and a & b, nor b \ a and a | b. */
 TEST(codegen_scene_regions_union) {
     static const struct {
         const char *text;
-        int expected;
+        int expected, disjoint;
     } cases[] = {
-        {"solid a = sphere(1.2)\nsolid b = box(1.5, 0.4, 0.4)\nregion r = a \\ b\nregion s = a & b", 1},
-        {"solid a = sphere(1.2)\nsolid b = sqrt(x^2 + y^2) - 0.5\nregion r = a \\ b", 0},
-        {"solid a = sphere(1.2)\nsurface s = x where a < 0", 0},
+        {"solid a = sphere(1.2)\nsolid b = box(1.5, 0.4, 0.4)\nregion r = a \\ b\nregion s = a & b", 1, 1},
+        {"solid a = sphere(1.2)\nsolid b = box(1.5, 0.4, 0.4)\nregion r = a\nregion s = a & b", 1, 0},
+        {"solid a = sphere(1.2)\nsolid b = box(1.5, 0.4, 0.4)\nregion r = a \\ b\nregion s = b \\ a", 1, 1},
+        {"solid a = sphere(1.2)\nsolid b = box(1.5, 0.4, 0.4)\nregion r = a \\ b\nregion s = b", 1, 1},
+        {"solid a = sphere(1.2)\nsolid b = box(1.5, 0.4, 0.4)\nregion r = b \\ a\nregion s = a | b", 1, 0},
+        {"solid a = sphere(1.2)\nsolid b = sqrt(x^2 + y^2) - 0.5\nregion r = a \\ b", 0, 0},
+        {"solid a = sphere(1.2)\nsurface s = x where a < 0", 0, 0},
         {"solid a = sphere(1)\nregion r1 = a\nregion r2 = a\nregion r3 = a\nregion r4 = a\nregion r5 = a\n"
          "region r6 = a\nregion r7 = a\nregion r8 = a\nregion r9 = a",
-         0},
+         0, 0},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         iacsg_scene *s = NULL;
@@ -111,12 +117,14 @@ TEST(codegen_scene_regions_union) {
         CHECK(iacsg_scene_parse(cases[c].text, "<test>", &s, &err) == IACSG_OK, "case %zu: %s", c, err.message);
         char *src = NULL;
         CHECK(scene_emit_cl(s, &src, &err) == IACSG_OK, "case %zu: %s", c, err.message);
-        int with_union = strstr(src, "#define SCENE_REGIONS_UNION") && strstr(src, "iacsg_Fv(") &&
-                         strstr(src, "return scene_union_F(");
-        int any_union = strstr(src, "SCENE_REGIONS_UNION") || strstr(src, "scene_union_F");
+        int with_union = strstr(src, "#define SCENE_REGIONS_UNION") && strstr(src, "iacsg_Fv(");
+        int any_union = strstr(src, "SCENE_REGIONS_UNION") != NULL;
+        int disjoint = strstr(src, "#define SCENE_REGIONS_DISJOINT") != NULL;
         free(src);
         iacsg_scene_destroy(s);
         CHECK(cases[c].expected ? with_union : !any_union, "case %zu: the regions' union %s", c,
               cases[c].expected ? "missing" : "emitted");
+        CHECK(disjoint == cases[c].disjoint, "case %zu: the regions %s as disjoint", c,
+              disjoint ? "taken" : "not taken");
     }
 }

@@ -1,7 +1,8 @@
 /* tests/t_render_scene_ref_fp.c -- scenes of regions rendered by the segment path, compared for EVERY pixel with
  * the exact host reference of tests/t_scene_ref.h (closed-form insides of spheres, boxes and half-spaces in long
  * double, woven and classified on the host): unions, intersections, differences, nested differences, touching
- * and overlapping regions, a region thinner than eps, rays grazing spheres, and 216 solids.
+ * and overlapping regions, disjoint regions (claimed at the union's leaf), a region thinner than eps, rays grazing
+ * spheres, and 216 solids.
  *
  * The checks per pixel are ref_check_scene's (tests/t_scene_ref.h). */
 #include "t_scene_check.h"
@@ -35,6 +36,28 @@ TEST_FP(render_scene_ref_differences) {
     ref_add_region(&rs, "d i <3 <1 <2");                   /* the rod inside the ball, outside the inner one */
     ref_add_region(&rs, "d <3 u <0 <1");                   /* the rod's ends */
     ref_check_scene("differences", &rs, &view_front, NULL);
+}
+
+/* Regions no two of which can be in at one point whatever the shapes (implicits/scene_emit.c: regions_disjoint),
+ * which the union's pre-pass claims at its leaf without weaving (kernels/scene_union.h: scene_union_claim): the
+ * box's corners outside a ball, the ball's shell cut by a half-space (above the cut the corners' inner, spherical
+ * boundary is in view), the inner ball, and a sheet thinner than eps in front. */
+TEST_FP(render_scene_ref_disjoint) {
+    static ref_scene rs;
+    ref_scene_init(&rs);
+    ref_add_solid(&rs, ref_box(0, 0, 0, 1, 1, 1));                          /* 0 */
+    ref_add_solid(&rs, ref_sphere(0, 0, 0, 1.25));                          /* 1 */
+    ref_add_solid(&rs, ref_sphere(0, 0, 0, 0.75));                          /* 2 */
+    ref_add_solid(&rs, ref_box(1, -1.5, 0.5, 0.5, 0.000244140625, 0.5));   /* 3: a sheet 2^-11 thick */
+    ref_add_solid(&rs, ref_halfspace(0, 0, 1, -0.25));                      /* 4: z < -0.25 */
+    ref_add_region(&rs, "d <0 <1");         /* the box's corners */
+    ref_add_region(&rs, "i d <1 <2 <4");    /* the shell below z = -0.25 */
+    ref_add_region(&rs, "i <2 <1");         /* the inner ball, above the cut too */
+    ref_add_region(&rs, "d <3 u <0 <1");    /* the sheet outside both */
+    long seen[4] = {0};
+    ref_check_scene("disjoint", &rs, &view_front, seen);
+    test_note("pixels checked on each region: %ld, %ld, %ld, the sheet %ld", seen[0], seen[1], seen[2], seen[3]);
+    CHECK(seen[1] > 200 && seen[2] > 50 && seen[3] > 200, "regions checked on too few pixels");
 }
 
 TEST_FP(render_scene_ref_touching_thin) {
