@@ -6,7 +6,8 @@
  * tile may hold surface, the first root by stackless bisection (packet.h) from the tile's first coarse leaf on
  * (tile.h); then the normal and the colour at the leaf's midpoint (shade.h). Outputs,
  * indexed by pixel of the whole image: rgb (3 floats, display-encoded), depth (the leaf's start t, +inf on a
- * miss), normal (3 floats, 0 on a miss), and with KERNEL_STATS the evaluation counts.
+ * miss), normal (3 floats, 0 on a miss), and with KERNEL_STATS the evaluation counts (per tile, and per packet
+ * their sum and maximum).
  */
 #include "camera.h"
 #include "tile.h"
