@@ -164,6 +164,19 @@ IA_FN iav iav_mul(iav a, iav b) {
     return iav_make(iav_lo(fmin(fmin(p1, p2), fmin(p3, p4))), iav_hi(fmax(fmax(p1, p2), fmax(p3, p4))));
 }
 
+/* The derivative code's products (implicits/emit.c: the derivative along a ray, whose leaves move at the rates
+ * of the ray's direction, one point per lane). a * [p, p]: iav_mul's result (the same two products, the same
+ * rounding) without the two products and four comparisons a point makes redundant. 2a: exact but where it
+ * overflows, and there rounded towards the finite range as iav_lo and iav_hi round, not by a pad. */
+IA_FN iav iav_mul_pv(iav a, ia_realv p) {
+    ia_realv q1 = iav__mul0(a.lo, p), q2 = iav__mul0(a.hi, p);
+    ia_maskv negative = p < 0;
+    return iav_make(iav_lo(select(q1, q2, negative)), iav_hi(select(q2, q1, negative)));
+}
+IA_FN iav iav_twice(iav a) {
+    return iav_make(fmin(a.lo + a.lo, IAV_R(IA_REAL_MAX)), fmax(a.hi + a.hi, IAV_R(-IA_REAL_MAX)));
+}
+
 /* mig = the smallest |x|, mag = the largest; [0, ...] when a straddles 0. */
 IA_FN iav iav_sqr(iav a) {
     ia_realv mig = fmax(fmax(a.lo, -a.hi), IAV_R(0)), mag = fmax(-a.lo, a.hi);
@@ -261,7 +274,7 @@ IA_FN iav iav__recip_by_lane(iav a) {
     iav b = a;
     IAV_LANEWISE(ia_recip(A));
 }
-IA_FN iav iav__div_by_lane(iav a, iav b) { IAV_LANEWISE(ia_div(A, B)); }
+__attribute__((noinline)) static iav iav__div_by_lane(iav a, iav b) { IAV_LANEWISE(ia_div(A, B)); }
 IAV_UNARY_BY_LANE(exp)
 IAV_UNARY_BY_LANE(atan)
 IAV_UNARY_BY_LANE(sin)
@@ -287,7 +300,7 @@ IA_FN ia_realv iav__quot0(ia_realv x, ia_realv y) {
     ia_realv q = x / y;
     return select(q, IAV_R(0), isnan(q));
 }
-IA_FN iav iav_div(iav a, iav b) {
+IAV_INLINE iav iav_div(iav a, iav b) {
     if (iav_any(iav__has_pole(b)))
         return iav__div_by_lane(a, b);
     ia_realv q1 = iav__quot0(a.lo, b.lo), q2 = iav__quot0(a.lo, b.hi);

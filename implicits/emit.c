@@ -19,6 +19,7 @@
 #include "strbuf.h"
 #include <math.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
 
 static const char *const var_names[4] = {"x", "y", "z", "t"};
@@ -239,6 +240,38 @@ static int valid_prefix(const char *p) {
     return 1;
 }
 
+/* Node i's derivative along a ray over lanes (AS_VTDERIV): ops.def's tderiv column, except where the lanes' code
+ * has a cheaper enclosure of the same value. The leaves x, y, z move at the rates dx, dy, dz, points (the ray's
+ * direction), so a product with one is iav_mul_pv of its .lo; 2a is exact (iav_twice, not iav_mul_r's rounding);
+ * and a sum or product with an operand whose derivative is identically 0 is the other term alone (not a rounded
+ * addition of [0, 0]). Returns the template, in ops.def's placeholders; `buf` holds composed ones. */
+static const char *vector_tderiv(const emitter *em, const dag_node *n, char *buf, size_t size) {
+    int leaf_a = n->a >= 0 && em->d->nodes[n->a].op <= OP_Z, leaf_b = n->b >= 0 && em->d->nodes[n->b].op <= OP_Z;
+    int zero_a = n->a >= 0 && !em->axes[n->a], zero_b = n->b >= 0 && !em->axes[n->b];
+    switch (n->op) {
+    case OP_SQR:
+        return leaf_a ? "ia_mul_pv(ia_twice(A), DA.lo)" : "ia_mul(ia_twice(A), DA)";
+    case OP_POWN:
+        return leaf_a ? "ia_mul_pv(ia_mul_r(ia_pown(A, N - 1), N), DA.lo)" : dag_ops[n->op].tderiv;
+    case OP_SQRT:
+        return "ia_div(DA, ia_twice(R))";
+    case OP_ADD:
+        return zero_a ? "DB" : zero_b ? "DA" : dag_ops[n->op].tderiv;
+    case OP_SUB:
+        return zero_a ? "ia_neg(DB)" : zero_b ? "DA" : dag_ops[n->op].tderiv;
+    case OP_MUL: { /* DA B + A DB */
+        const char *first = leaf_a ? "ia_mul_pv(B, DA.lo)" : "ia_mul(DA, B)";
+        const char *second = leaf_b ? "ia_mul_pv(A, DB.lo)" : "ia_mul(A, DB)";
+        if (zero_a || zero_b)
+            return zero_a ? second : first;
+        snprintf(buf, size, "ia_add(%s, %s)", first, second);
+        return buf;
+    }
+    default:
+        return dag_ops[n->op].tderiv;
+    }
+}
+
 /* Node i's flag of a kind, 'u' or 'e' (see op_may_be_undefined): its own condition (the undefined or empty
  * column), or its operands' flags (both, for a union). */
 static void flag_statement(strbuf *b, const emitter *em, int i, role value, char kind) {
@@ -299,8 +332,12 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
             strbuf_printf(b, "    iacsg_grad v%d_d = ", i);
             expand(b, em, i, dag_ops[n->op].derivative, AS_DERIV);
         } else {
+            char composed[64];
             strbuf_printf(b, "    %s v%d_t = ", type, i);
-            expand(b, em, i, dag_ops[n->op].tderiv, r == AS_VECTOR_DT ? AS_VTDERIV : AS_TDERIV);
+            if (r == AS_VECTOR_DT)
+                expand(b, em, i, vector_tderiv(em, n, composed, sizeof composed), AS_VTDERIV);
+            else
+                expand(b, em, i, dag_ops[n->op].tderiv, AS_TDERIV);
         }
         strbuf_printf(b, ";\n");
     }
@@ -323,8 +360,10 @@ static void emit_tderiv_function(strbuf *b, const emitter *em, const int *order,
                                  const char *prefix, role r) {
     int vector = is_vector(r);
     const char *type = vector ? "iav" : "ia_interval";
-    strbuf_printf(b, "IA_FN %s %s_Fd%s(%s x, %s y, %s z, %s t, %s dx, %s dy, %s dz, %s *dt) {\n", type, prefix,
-                  vector ? "v" : "", type, type, type, type, type, type, type, type);
+    /* over lanes inlined: called, its 7 interval vectors went through memory */
+    strbuf_printf(b, "%s %s %s_Fd%s(%s x, %s y, %s z, %s t, %s dx, %s dy, %s dz, %s *dt) {\n",
+                  vector ? "IAV_INLINE" : "IA_FN", type, prefix, vector ? "v" : "", type, type, type, type, type, type,
+                  type, type);
     int partial = any_partial(em, order, count);
     if (partial)
         strbuf_printf(b, vector ? "    ia_maskv undefined = 0;\n" : "    int undefined = 0;\n");

@@ -6,7 +6,8 @@
  * tile may hold surface, the first root by stackless bisection (packet.h) from the tile's first coarse leaf on
  * (tile.h); then the normal and the colour at the leaf's midpoint (shade.h). Outputs,
  * indexed by pixel of the whole image: rgb (3 floats, display-encoded), depth (the leaf's start t, +inf on a
- * miss), normal (3 floats, 0 on a miss), and with KERNEL_STATS the evaluation counts.
+ * miss), normal (3 floats, 0 on a miss), and with KERNEL_STATS the evaluation counts (per tile, and per packet
+ * their sum and maximum).
  */
 #include "camera.h"
 #include "tile.h"
@@ -82,6 +83,7 @@ static void block_tiles(PACKET_TAPE_PARAM __constant ia_real *params, int flags,
     tile_groups(PACKET_TAPE_ARG base_v, dir_v,
                 iav_make(select(root.lo, packet_node_bound(t0, w, level, leaf), found), root.hi), time, any_tile,
                 groups);
+#ifdef IACSG_GROUPS /* (else no group masks are read: packet_groups is all ones) */
     /* then per segment of the tree (params.h), among the tile's own */
     ulong in_tiles = in_image(groups, valid);
     for (int s = 0; s < SEGMENTS; s++) {
@@ -110,6 +112,7 @@ static void block_tiles(PACKET_TAPE_PARAM __constant ia_real *params, int flags,
 #endif
         }
     }
+#endif
     ia_real level_r[IA_VW], leaf_r[IA_VW];
     bisect_index count[IA_VW];
     IAV_STORE(select((ia_realv)-1, packet_to_real(level), found), level_r);
@@ -178,11 +181,37 @@ static void packet_gradients(PACKET_TAPE_PARAM const __global ulong *segment_gro
 #endif
 }
 
-/* Writes the outputs of the lanes' pixels (col, row) that are in the image: the colours, and where the host
- * asked for them (non-NULL) the depths (the leaf's start, +inf on a miss) and the normals (0 on a miss). */
-static void put_pixels(packet_int col, packet_int row, int width, int height, ia_maskv hit, const shade_colorv rgb[3],
-                       ia_realv t_start, const ia_realv n[3], __global float *rgb_out, __global float *depth,
-                       __global float *normal) {
+/* The colours of a packet wholly in the image whose first pixel is `first`, row by row: a row's PACKET_W pixels
+ * are 3 PACKET_W consecutive floats, interleaved from the three colour vectors by two shuffles and stored as
+ * 8 + 4 (a store per float, lane by lane, was a sixth of an empty frame's kernel time). */
+#if PACKET_W != 4 || PACKET_LANES != 16
+#error "put_rgb_rows interleaves rows of 4 pixels of a 16-lane packet"
+#endif
+static void put_rgb_rows(const shade_colorv rgb[3], size_t first, int width, __global float *out) {
+    for (uint r = 0; r < PACKET_H; r++) {
+        uint16 first_lane = (uint16)(4 * r); /* the row's lanes, 4r .. 4r + 3 */
+        uint16 rg = (uint16)(0, 16, 0, 1, 17, 0, 2, 18, 0, 3, 19, 0, 0, 0, 0, 0) +
+                    first_lane * (uint16)(1, 1, 0, 1, 1, 0, 1, 1, 0, 1, 1, 0, 0, 0, 0, 0);
+        uint16 b = (uint16)(0, 1, 16, 3, 4, 17, 6, 7, 18, 9, 10, 19, 12, 13, 14, 15) +
+                   first_lane * (uint16)(0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0);
+        float16 row = shuffle2(shuffle2(rgb[0], rgb[1], rg), rgb[2], b);
+        __global float *at = out + 3 * (first + (size_t)r * (size_t)width);
+        vstore8(row.lo, 0, at);
+        vstore4(row.s89ab, 0, at + 8);
+    }
+}
+
+/* Writes the outputs of the lanes' pixels (col, row) that are in the image (the packet's first is (i0, j0)): the
+ * colours, and where the host asked for them (non-NULL) the depths (the leaf's start, +inf on a miss) and the
+ * normals (0 on a miss). */
+static void put_pixels(int i0, int j0, packet_int col, packet_int row, int width, int height, ia_maskv hit,
+                       const shade_colorv rgb[3], ia_realv t_start, const ia_realv n[3], __global float *rgb_out,
+                       __global float *depth, __global float *normal) {
+    int whole = i0 + PACKET_W <= width && j0 + PACKET_H <= height;
+    if (whole)
+        put_rgb_rows(rgb, (size_t)j0 * (size_t)width + (size_t)i0, width, rgb_out);
+    if (whole && !depth && !normal)
+        return;
     int i[IA_VW], j[IA_VW];
     float color[3][IA_VW], normal_k[3][IA_VW];
     ia_real on[IA_VW], start[IA_VW];
@@ -201,7 +230,8 @@ static void put_pixels(packet_int col, packet_int row, int width, int height, ia
         if (depth)
             depth[pixel] = on[k] != 0 ? camera_depth_round_down(start[k]) : INFINITY;
         for (int c = 0; c < 3; c++) {
-            rgb_out[3 * pixel + c] = color[c][k];
+            if (!whole)
+                rgb_out[3 * pixel + c] = color[c][k];
             if (normal)
                 normal[3 * pixel + c] = normal_k[c][k];
         }
@@ -248,13 +278,19 @@ static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags
     }
     shade_colorv color[3];
     shade_pixels(params, hit, n, d, row, height, color);
-    put_pixels(col, row, width, height, hit, color, hit_lo, n, rgb, depth, normal);
+    put_pixels(i0, j0, col, row, width, height, hit, color, hit_lo, n, rgb, depth, normal);
 #ifdef KERNEL_STATS
-    bisect_index count[IA_VW];
-    IAV_STORE(counts, count);
-    for (int k = 0; k < IA_VW; k++)
-        if (i0 + k % PACKET_W < width && j0 + k / PACKET_W < height)
-            evals[(size_t)(j0 + k / PACKET_W) * (size_t)width + (size_t)(i0 + k % PACKET_W)] = (uint)count[k];
+    /* the packet's sum and maximum, all the host reads (a store per pixel was a fifth of an empty -stats frame's
+     * kernel time, and 4 MB of fresh pages a 1024x1024 frame); lanes past the image counted nothing */
+    uint count[IA_VW], sum = 0, most = 0;
+    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_uint, IA_VW)(counts), 0, count);
+    for (int k = 0; k < IA_VW; k++) {
+        sum += count[k];
+        most = max(most, count[k]);
+    }
+    size_t packet = (size_t)(j0 / PACKET_H) * (size_t)((width + PACKET_W - 1) / PACKET_W) + (size_t)(i0 / PACKET_W);
+    evals[2 * packet] = sum;
+    evals[2 * packet + 1] = most;
 #else
     (void)counts;
     (void)evals;

@@ -39,11 +39,17 @@ IA_FN void shade_gradients_by_differences(PACKET_TAPE_PARAM packet_parts groups,
     }
 }
 
-/* The colours of the first-root path: the lighting of light.h with one albedo for the whole surface. */
+/* The colours of the first-root path: the lighting of light.h with one albedo for the whole surface; a packet
+ * with no hit only its background (the lights' set-up and the lanes' lighting were two thirds of an empty
+ * frame's kernel time). */
 IA_FN void shade_pixels(const KERNEL_CONSTANT ia_real *p, ia_maskv surface, const ia_realv n[3], const ia_realv d[3],
                         packet_int j, int height, shade_colorv rgb[3]) {
     const shade_colorv albedo[3] = {(shade_colorv)0.80f, (shade_colorv)0.52f, (shade_colorv)0.28f};
-    shade_lit_pixels(p, surface, n, d, IAV_CAT(convert_float, IA_VW)(j), height, albedo, rgb);
+    shade_colorv rows = IAV_CAT(convert_float, IA_VW)(j);
+    if (iav_any(surface))
+        shade_lit_pixels(p, surface, n, d, rows, height, albedo, rgb);
+    else
+        shade_combine(surface, rows, height, albedo, IAV_R(0), IAV_R(0), IAV_R(0), IAV_R(0), rgb);
 }
 
 #endif

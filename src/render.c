@@ -197,18 +197,19 @@ iacsg_status render_check_view(const iacsg_view *v, iacsg_error *err) {
     return IACSG_OK;
 }
 
-/* The mean counts the tiles' evaluations too, shared among the rays; the max is a ray's own. */
-static void summarize_evals(const cl_uint *evals, size_t n, const cl_uint *tile_evals, size_t tiles_n,
-                            iacsg_frame *f) {
+/* The mean over `rays` rays counts the tiles' evaluations too, shared among the rays; the max is a ray's own.
+ * packets: each packet's sum and maximum of its rays' counts (kernels/render.cl), `npackets` of them. */
+static void summarize_evals(const cl_uint *packets, size_t npackets, size_t rays, const cl_uint *tile_evals,
+                            size_t tiles_n, iacsg_frame *f) {
     double sum = 0;
-    for (size_t k = 0; k < n; k++) {
-        sum += evals[k];
-        if (evals[k] > f->evals_max)
-            f->evals_max = evals[k];
+    for (size_t k = 0; k < npackets; k++) {
+        sum += packets[2 * k];
+        if (packets[2 * k + 1] > f->evals_max)
+            f->evals_max = packets[2 * k + 1];
     }
     for (size_t k = 0; k < tiles_n; k++)
         sum += tile_evals[k];
-    f->evals_mean = n ? sum / (double)n : 0;
+    f->evals_mean = rays ? sum / (double)rays : 0;
 }
 
 /* The device buffers of one frame. */
@@ -240,9 +241,11 @@ iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_vie
 }
 
 /* The images are device buffers over the frame's own host arrays (CL_MEM_USE_HOST_PTR): on a CPU device the
- * kernel writes them in place, where a copy would cost as much as a third of an empty frame. */
+ * kernel writes them in place, where a copy would cost as much as a third of an empty frame. So are the counts
+ * of -stats (evals, tile_evals; NULL without). */
 static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t n, size_t tiles_n,
-                                   iacsg_frame *f, frame_buffers *b, iacsg_error *err) {
+                                   size_t packets_n, iacsg_frame *f, cl_uint *evals, cl_uint *tile_evals,
+                                   frame_buffers *b, iacsg_error *err) {
     cl_context ctx = r->rt.context;
     size_t real_size = r->config.fp64 ? sizeof(double) : sizeof(float);
     cl_int rc = CL_SUCCESS;
@@ -266,10 +269,10 @@ static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t
     size_t tile_words = SEGMENTS * (r->tape ? 1 + TAPE_TILE_WORDS : 1); /* kernels/render.cl: TILE_GROUPS_WORDS */
     b->groups = clCreateBuffer(ctx, CL_MEM_READ_WRITE, tiles_n * tile_words * sizeof(cl_ulong), NULL, &rc);
     CLRT_CHECK(err, rc);
-    if (r->config.stats) {
-        b->evals = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint), NULL, &rc);
+    if (evals) { /* in place too: a read-back copied them into pages faulted in for it */
+        b->evals = clCreateBuffer(ctx, image, 2 * packets_n * sizeof(cl_uint), evals, &rc);
         CLRT_CHECK(err, rc);
-        b->tile_evals = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, tiles_n * sizeof(cl_uint), NULL, &rc);
+        b->tile_evals = clCreateBuffer(ctx, image, tiles_n * sizeof(cl_uint), tile_evals, &rc);
         CLRT_CHECK(err, rc);
     }
     return IACSG_OK;
@@ -356,12 +359,13 @@ static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacs
 
 /* Brings the images (and the counts, with stats) to the host and waits for them. */
 static iacsg_status read_back(iacsg_renderer *r, const frame_buffers *b, size_t n, size_t tiles_n,
-                              cl_uint *evals, cl_uint *tile_evals, iacsg_error *err) {
+                              size_t packets_n, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
     /* Mapping a USE_HOST_PTR buffer makes its host array current (a no-op on a CPU device). */
-    cl_mem images[3] = {b->rgb, b->depth, b->normal};
-    size_t sizes[3] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float)};
-    for (int k = 0; k < 3; k++) {
+    cl_mem images[5] = {b->rgb, b->depth, b->normal, b->evals, b->tile_evals};
+    size_t sizes[5] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float),
+                       2 * packets_n * sizeof(cl_uint), tiles_n * sizeof(cl_uint)};
+    for (int k = 0; k < 5; k++) {
         if (!images[k])
             continue;
         cl_int rc = CL_SUCCESS;
@@ -369,22 +373,20 @@ static iacsg_status read_back(iacsg_renderer *r, const frame_buffers *b, size_t 
         CLRT_CHECK(err, rc);
         CLRT_CHECK(err, clEnqueueUnmapMemObject(q, images[k], p, 0, NULL, NULL));
     }
-    if (evals) {
-        CLRT_CHECK(err, clEnqueueReadBuffer(q, b->evals, CL_FALSE, 0, n * sizeof(cl_uint), evals, 0, NULL, NULL));
-        CLRT_CHECK(err, clEnqueueReadBuffer(q, b->tile_evals, CL_FALSE, 0, tiles_n * sizeof(cl_uint), tile_evals, 0,
-                                            NULL, NULL));
-    }
     CLRT_CHECK(err, clFinish(q));
     return IACSG_OK;
 fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* A frame's image of `count` floats, page-aligned as devices prefer host arrays they use in place. */
-float *render_image_alloc(size_t count) {
+/* A host array of `bytes` that a device uses in place, page-aligned as devices prefer them. */
+static void *in_place_alloc(size_t bytes) {
     void *p = NULL;
-    return posix_memalign(&p, 4096, count * sizeof(float)) == 0 ? p : NULL;
+    return posix_memalign(&p, 4096, bytes) == 0 ? p : NULL;
 }
+
+/* A frame's image of `count` floats (in_place_alloc). */
+float *render_image_alloc(size_t count) { return in_place_alloc(count * sizeof(float)); }
 
 /* An expression's ids from its depth: 0 where the ray hits, -1 where it misses. */
 static void ids_from_depth(const float *depth, size_t n, float *ids) {
@@ -409,6 +411,8 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     size_t n = (size_t)view->width * (size_t)view->height;
     size_t tiles_n = (((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE) *
                      (((size_t)view->height + TILE_SIZE - 1) / TILE_SIZE);
+    size_t packets_n = (((size_t)view->width + PACKET_W - 1) / PACKET_W) *
+                       (((size_t)view->height + PACKET_H - 1) / PACKET_H);
     frame_buffers buffers = {0};
     cl_uint *evals = NULL, *tile_evals = NULL;
     frame->width = view->width;
@@ -420,8 +424,8 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     frame->normal = view->no_normals && !fx ? NULL : render_image_alloc(3 * n);
     frame->ids = view->no_ids ? NULL : render_image_alloc(n);
     if (r->config.stats) {
-        evals = malloc(n * sizeof(cl_uint));
-        tile_evals = malloc(tiles_n * sizeof(cl_uint));
+        evals = in_place_alloc(2 * packets_n * sizeof(cl_uint));
+        tile_evals = in_place_alloc(tiles_n * sizeof(cl_uint));
     }
     if (!frame->rgb || (!frame->depth && need_depth) || (!frame->normal && (!view->no_normals || fx)) ||
         (!frame->ids && !view->no_ids) || (r->config.stats && (!evals || !tile_evals)))
@@ -430,23 +434,25 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     if (st == IACSG_OK)
         st = render_check_device_memory(r, view, n, r->config.stats ? 8 : 7, err);
     if (st == IACSG_OK)
-        st = create_buffers(r, params, n, tiles_n, frame, &buffers, err);
+        st = create_buffers(r, params, n, tiles_n, packets_n, frame, evals, tile_evals, &buffers, err);
     if (st == IACSG_OK)
         st = set_args(r, view, &buffers, err);
     double t0 = render_now_seconds();
     if (st == IACSG_OK)
         st = launch_bands(r, view, err);
     if (st == IACSG_OK)
-        st = read_back(r, &buffers, n, tiles_n, evals, tile_evals, err);
+        st = read_back(r, &buffers, n, tiles_n, packets_n, err);
     if (st == IACSG_OK) {
         frame->render_seconds = render_now_seconds() - t0;
         /* the rays of the rows traced, and their tiles' counts (a band's rows start on whole tiles) */
         size_t first = (size_t)view->row_first, rows = view->row_count ? (size_t)view->row_count : (size_t)view->height;
         size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
         frame->rays = (long long)(rows * (size_t)view->width);
+        size_t packets_x = ((size_t)view->width + PACKET_W - 1) / PACKET_W;
         if (evals)
-            summarize_evals(evals + first * (size_t)view->width, rows * (size_t)view->width,
-                            tile_evals + first / TILE_SIZE * tiles_x, (rows + TILE_SIZE - 1) / TILE_SIZE * tiles_x,
+            summarize_evals(evals + 2 * (first / PACKET_H * packets_x), (rows + PACKET_H - 1) / PACKET_H * packets_x,
+                            rows * (size_t)view->width, tile_evals + first / TILE_SIZE * tiles_x,
+                            (rows + TILE_SIZE - 1) / TILE_SIZE * tiles_x,
                             frame);
         if (frame->ids)
             ids_from_depth(frame->depth, n, frame->ids);

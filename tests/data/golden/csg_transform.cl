@@ -56,17 +56,17 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     return v44;
 }
 #define IACSG_FDV 1
-IA_FN iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt) {
+IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt) {
     iav v9 = iav_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));
     iav v9_t = dx;
     iav v10 = iav_sqr(v9);
-    iav v10_t = iav_mul(iav_mul_r(v9, 2), v9_t);
+    iav v10_t = iav_mul(iav_twice(v9), v9_t);
     iav v11 = iav_sqr(y);
-    iav v11_t = iav_mul(iav_mul_r(y, 2), dy);
+    iav v11_t = iav_mul_pv(iav_twice(y), dy.lo);
     iav v12 = iav_add(v10, v11);
     iav v12_t = iav_add(v10_t, v11_t);
     iav v13 = iav_sqr(z);
-    iav v13_t = iav_mul(iav_mul_r(z, 2), dz);
+    iav v13_t = iav_mul_pv(iav_twice(z), dz.lo);
     iav v14 = iav_add(v12, v13);
     iav v14_t = iav_add(v12_t, v13_t);
     iav v16 = iav_add_r(v14, IACSG_K(-0x1p-2f, -0x1p-2));
@@ -88,21 +88,21 @@ IA_FN iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt)
     iav v24 = iav_max(v22, v23);
     iav v24_t = iav_dmax(v22, v23, v22_t, v23_t);
     iav v30 = iav_mul(x, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
-    iav v30_t = iav_add(iav_mul(dx, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1))), iav_mul(x, iav_point(0)));
+    iav v30_t = iav_mul_pv(iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)), dx.lo);
     iav v32 = iav_mul(y, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
-    iav v32_t = iav_add(iav_mul(dy, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1))), iav_mul(y, iav_point(0)));
+    iav v32_t = iav_mul_pv(iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)), dy.lo);
     iav v33 = iav_add(v30, v32);
     iav v33_t = iav_add(v30_t, v32_t);
     iav v34 = iav_mul(y, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)));
-    iav v34_t = iav_add(iav_mul(dy, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1))), iav_mul(y, iav_point(0)));
+    iav v34_t = iav_mul_pv(iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc8p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bdp-1)), dy.lo);
     iav v35 = iav_mul(x, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)));
-    iav v35_t = iav_add(iav_mul(dx, iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1))), iav_mul(x, iav_point(0)));
+    iav v35_t = iav_mul_pv(iav_const(IACSG_K(0x1.6a09dep-1f, 0x1.6a09e667f3bc9p-1), IACSG_K(0x1.6a09eep-1f, 0x1.6a09e667f3bd1p-1)), dx.lo);
     iav v36 = iav_sub(v34, v35);
     iav v36_t = iav_sub(v34_t, v35_t);
     iav v37 = iav_sqr(v33);
-    iav v37_t = iav_mul(iav_mul_r(v33, 2), v33_t);
+    iav v37_t = iav_mul(iav_twice(v33), v33_t);
     iav v38 = iav_sqr(v36);
-    iav v38_t = iav_mul(iav_mul_r(v36, 2), v36_t);
+    iav v38_t = iav_mul(iav_twice(v36), v36_t);
     iav v39 = iav_add(v37, v38);
     iav v39_t = iav_add(v37_t, v38_t);
     iav v41 = iav_add_r(v39, IACSG_K(-0x1p-4f, -0x1p-4));

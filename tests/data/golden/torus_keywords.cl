@@ -47,29 +47,29 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     return iav_or_outside(v16, v16_u, v16_e);
 }
 #define IACSG_FDV 1
-IA_FN iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt) {
+IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt) {
     ia_maskv undefined = 0;
     iav v4 = iav_sqr(x);
-    iav v4_t = iav_mul(iav_mul_r(x, 2), dx);
+    iav v4_t = iav_mul_pv(iav_twice(x), dx.lo);
     iav v6 = iav_sqr(y);
-    iav v6_t = iav_mul(iav_mul_r(y, 2), dy);
+    iav v6_t = iav_mul_pv(iav_twice(y), dy.lo);
     iav v7 = iav_add(v4, v6);
     iav v7_t = iav_add(v4_t, v6_t);
     iav v8 = iav_sqrt(v7);
     ia_maskv v8_u = (v7.lo < 0);
     ia_maskv v8_e = (v7.hi < 0);
     undefined |= v8_u;
-    iav v8_t = iav_div(v7_t, iav_mul_r(v8, 2));
+    iav v8_t = iav_div(v7_t, iav_twice(v8));
     iav v10 = iav_sqr(z);
-    iav v10_t = iav_mul(iav_mul_r(z, 2), dz);
+    iav v10_t = iav_mul_pv(iav_twice(z), dz.lo);
     iav v11 = iav_sub(iav_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
     ia_maskv v11_u = v8_u;
     ia_maskv v11_e = v8_e;
-    iav v11_t = iav_sub(iav_point(0), v8_t);
+    iav v11_t = iav_neg(v8_t);
     iav v12 = iav_sqr(v11);
     ia_maskv v12_u = v11_u;
     ia_maskv v12_e = v11_e;
-    iav v12_t = iav_mul(iav_mul_r(v11, 2), v11_t);
+    iav v12_t = iav_mul(iav_twice(v11), v11_t);
     iav v13 = iav_add(v10, v12);
     ia_maskv v13_u = v12_u;
     ia_maskv v13_e = v12_e;
