@@ -460,11 +460,11 @@ static int clip(const double box[6], const test_ray *ray, ia_real *ta, ia_real *
 static void run_type(int type, int variants, const char *name) {
     test_rng_t *rng = test_rng();
     tally tl = {0};
-    long prims = test_iters(40), per_prim = 30, closable = 0, closed_of_closable = 0;
+    long prims = test_iters(40), per_prim = 30, closable_rays = 0, closed_of_closable = 0;
     for (long it = 0; it < prims; it++) {
-        /* the types and variants with a closed form (a tgc's variants 0-2: rec, rcc or trc, cone) */
-        int quadric = type == SCENE_PRIM_HALF || type == SCENE_PRIM_ARB8 || type == SCENE_PRIM_ELL ||
-                      type == SCENE_PRIM_EHY || (type == SCENE_PRIM_TGC && it % variants < 3);
+        /* the types with a closed form: all but the pipe (a tgc's variants 0-2, rec, rcc or trc and cone, are
+         * quadrics, the others and the torus quartics, kernels/prim_segments.h) */
+        int closable = type != SCENE_PRIM_PIPE;
         double q[64], mat[16], scale;
         int n = random_prim(rng, type, (int)(it % variants), q);
         int affine = it % 3 == 2 && (type == SCENE_PRIM_ELL || type == SCENE_PRIM_TGC || type == SCENE_PRIM_ARB8);
@@ -507,8 +507,8 @@ static void run_type(int type, int variants, const char *name) {
             if (!clip(box, &ray, &ta, &w))
                 continue;
             check_ray(&sp, scale, &ray, ta, w, eps, &tl);
-            closable += quadric;
-            closed_of_closable += quadric && tl.closed > closed;
+            closable_rays += closable;
+            closed_of_closable += closable && tl.closed > closed;
         }
         free(host_params);
         prim_placed_free(&pl);
@@ -519,9 +519,10 @@ static void run_type(int type, int variants, const char *name) {
               tl.grazing_leaves, tl.vertex_leaves);
     CHECK(tl.rays > prims * per_prim / 3, "%s: too few rays met the box (%ld)", name, tl.rays);
 #ifdef SCENE_SOLID_PRIMS /* the closed forms take every ray they can decide, and only those types' */
-    test_note("%s: %ld of %ld rays walked in closed form", name, tl.closed, closable);
-    CHECK(tl.closed == closed_of_closable && closed_of_closable >= closable * 97 / 100,
-          "%s: %ld rays in closed form, %ld of the %ld that have one", name, tl.closed, closed_of_closable, closable);
+    test_note("%s: %ld of %ld rays walked in closed form", name, tl.closed, closable_rays);
+    CHECK(tl.closed == closed_of_closable && closed_of_closable >= closable_rays * 97 / 100,
+          "%s: %ld rays in closed form, %ld of the %ld that have one", name, tl.closed, closed_of_closable,
+          closable_rays);
     CHECK(tl.closed_worst <= 0.05, "%s: a closed form's BOUNDARY %.3g eps from its crossing", name, tl.closed_worst);
 #else
     CHECK(tl.closed == 0, "%s: %ld rays in closed form without SCENE_SOLID_PRIMS", name, tl.closed);
