@@ -20,8 +20,10 @@
 #include "prim_place.h"
 #include "strbuf.h"
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define SCENE_EMIT_GROUP 32
 #define SCENE_EMIT_FD_MAX_SOLIDS 64
@@ -77,6 +79,41 @@ static void emit_parameters_dispatcher(strbuf *b, const iacsg_scene *s) {
     strbuf_printf(b, "    }\n    return -1;\n}\n");
 }
 
+/* See scene_emit.h (printf's %a took 106 ms of havoc's command: some 200,000 literals). */
+int scene_emit_hex(double x, char out[32]) {
+    static const char digits[] = "0123456789abcdef";
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int n = 0, biased = (int)(bits >> 52 & 0x7ff), e = biased ? biased - 1023 : -1022;
+    uint64_t mantissa = bits & ((UINT64_C(1) << 52) - 1);
+    if (bits >> 63)
+        out[n++] = '-';
+    out[n++] = '0';
+    out[n++] = 'x';
+    out[n++] = biased ? '1' : '0';
+    if (mantissa) {
+        out[n++] = '.';
+        for (int shift = 48; shift >= 0; shift -= 4)
+            out[n++] = digits[mantissa >> shift & 15];
+        while (out[n - 1] == '0')
+            n--;
+    } else if (!biased) {
+        e = 0;
+    }
+    out[n++] = 'p';
+    out[n++] = e < 0 ? '-' : '+';
+    e = e < 0 ? -e : e;
+    char rev[4];
+    int k = 0;
+    do {
+        rev[k++] = (char)('0' + e % 10);
+        e /= 10;
+    } while (e);
+    while (k)
+        out[n++] = rev[--k];
+    return n;
+}
+
 /* A bound as a literal of either precision: the double itself, and its float rounded outward (down for a lower
  * bound), for kernels/prim.h's PRIM_R. */
 static void emit_bound(strbuf *b, double x, int upper) {
@@ -85,7 +122,14 @@ static void emit_bound(strbuf *b, double x, int upper) {
         strbuf_printf(b, "PRIM_R(%sINFINITY, %sINFINITY)", x < 0 ? "-" : "", f < 0 ? "-" : "");
         return;
     }
-    strbuf_printf(b, "PRIM_R(%a, %af)", x, (double)f);
+    char text[80];
+    memcpy(text, "PRIM_R(", 7);
+    int n = 7 + scene_emit_hex(x, text + 7);
+    text[n++] = ',';
+    text[n++] = ' ';
+    n += scene_emit_hex((double)f, text + n);
+    memcpy(text + n, "f)", 2);
+    strbuf_append(b, text, (size_t)n + 2);
 }
 
 /* A primitive: its placed parameters as stores into p (in `params`, the case k of its group's scene_gG_P, which
