@@ -327,28 +327,38 @@ IA_FN void prim_quartic_walk(prim_quartet *q, const ia_interval c[5], ia_real ta
     }
 }
 
-/* A sphere in the frame around the solid (centre (0, 0, z0), squared radius k, widened by a tenth), so that the
- * range to solve is finite when the walk solves again from some point to the end (prim_segments with tend +inf). */
+/* A sphere in the frame around the solid (centre (0, 0, z0), squared radius k), into the span of the solid's
+ * bounds: it makes the range to solve finite when the walk solves again from some point to the end (prim_segments
+ * with tend +inf). */
 IA_FN int prim_quartic_sphere(prim_segments_span *s, const ia_interval a[3], const ia_interval b[3], ia_real z0,
                               ia_interval k, ia_real ta, ia_real width) {
     ia_interval az = ia_add_r(a[2], -z0);
     ia_interval aa = ia_add(ia_add(ia_sqr(a[0]), ia_sqr(a[1])), ia_sqr(az));
     ia_interval ab = ia_add(ia_add(ia_mul(a[0], b[0]), ia_mul(a[1], b[1])), ia_mul(az, b[2]));
     ia_interval bb = ia_add(ia_add(ia_sqr(b[0]), ia_sqr(b[1])), ia_sqr(b[2]));
-    return prim_segments_quadric(s, bb, ab, ia_sub(aa, ia_mul_r(k, (ia_real)1.1)), 0, ta, width);
+    return prim_segments_quadric(s, bb, ab, ia_sub(aa, k), 0, ta, width);
 }
 
-/* The quartic of a torus or a general tgc from s = a + u b along the ray (a at ta, b = G d), its bounding sphere and
- * for a tgc its slab into s; 0 where it has none (a torus whose tube reaches its axis: its quartic is negative in a
- * spindle too). */
+/* The quartic of a torus or a general tgc from s = a + u b along the ray (a at ta, b = G d): the tgc's slab into s,
+ * bounds (a sphere around the solid, a torus's slab) into `bound` (they clip the range, and nothing is in outside
+ * them), then where the ray may meet the solid within [ta, ta + width], the coefficients. 1 with them, 2 where the
+ * bounds leave nothing to solve, 0 where there is no closed form (a torus whose tube reaches its axis: its quartic
+ * is negative in a spindle too). */
 IA_FN int prim_quartic_of(int type, const ia_real *p, const ia_interval a[3], const ia_interval b[3],
-                          prim_segments_span *s, ia_real ta, ia_real width, ia_interval c[5]) {
-    ia_interval x[3], y[3], z[3];
+                          prim_segments_span *s, prim_segments_span *bound, ia_real ta, ia_real width,
+                          ia_interval c[5]) {
+    ia_interval x[3], y[3], z[3], range = ia_make(0, width);
     if (type == PRIM_TOR) { /* (|s|^2 + R^2 - r^2)^2 - 4 R^2 (s0^2 + s1^2): negative inside where r < R */
         ia_interval r2 = ia_sqr(prim_iv(p, 12)), rh2 = prim_iv(p, 13), sum[3];
-        if (!(r2.lo > rh2.hi) || !(rh2.lo >= 0) ||
-            !prim_quartic_sphere(s, a, b, 0, ia_sqr(ia_add(prim_iv(p, 12), ia_sqrt(rh2))), ta, width))
+        if (!(r2.lo > rh2.hi) || !(rh2.lo >= 0))
             return 0;
+        ia_interval rh = ia_sqrt(rh2);
+        prim_segments_plane(bound, ia_sub(a[2], rh), b[2], ta, range);
+        prim_segments_plane(bound, ia_neg(ia_add(a[2], rh)), ia_neg(b[2]), ta, range);
+        if (!prim_quartic_sphere(bound, a, b, 0, ia_sqr(ia_add(prim_iv(p, 12), rh)), ta, width))
+            return 0;
+        if (!(fmax(fmax(s->plo, bound->plo), ta) < fmin(fmin(s->phi, bound->phi), ta + width)))
+            return 2;
         prim_quadratic_sqr(a[0], b[0], x);
         prim_quadratic_sqr(a[1], b[1], y);
         prim_quadratic_sqr(a[2], b[2], z);
@@ -366,10 +376,12 @@ IA_FN int prim_quartic_of(int type, const ia_real *p, const ia_interval a[3], co
      * where u^2 / ra^2 + v^2 / rb^2 < 1 (it depends on ra and rb through their squares) */
     ia_interval alpha = prim_iv(p, 12), beta = prim_iv(p, 13), ra[3], rb[3], t[5];
     ia_interval reach = ia_add(ia_sqr(ia_add_r(ia_max(alpha, ia_point(0)), 1)), ia_sqr(ia_add_r(ia_max(beta, ia_point(0)), 1)));
-    if (!prim_quartic_sphere(s, a, b, (ia_real)0.5, ia_add_r(reach, (ia_real)0.25), ta, width))
+    prim_segments_plane(s, ia_neg(a[2]), ia_neg(b[2]), ta, range);
+    prim_segments_plane(s, ia_add_r(a[2], -1), b[2], ta, range);
+    if (!prim_quartic_sphere(bound, a, b, (ia_real)0.5, ia_add_r(reach, (ia_real)0.25), ta, width))
         return 0;
-    prim_segments_plane(s, ia_neg(a[2]), ia_neg(b[2]), ta, ia_make(0, width));
-    prim_segments_plane(s, ia_add_r(a[2], -1), b[2], ta, ia_make(0, width));
+    if (!(fmax(fmax(s->plo, bound->plo), ta) < fmin(fmin(s->phi, bound->phi), ta + width)))
+        return 2;
     prim_quadratic_sqr(ia_add_r(ia_mul(alpha, a[2]), 1), ia_mul(alpha, b[2]), ra);
     prim_quadratic_sqr(ia_add_r(ia_mul(beta, a[2]), 1), ia_mul(beta, b[2]), rb);
     prim_quadratic_sqr(a[0], b[0], x);
@@ -388,7 +400,7 @@ IA_FN int prim_quartic_of(int type, const ia_real *p, const ia_interval a[3], co
  * second run: solve again from e3), or 0 where the walk must bisect. */
 IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia_real d[3], ia_real ta, ia_real tend,
                         ia_real eps, ia_real e[4], ia_real *resume, kernel_u32 *evals) {
-    prim_segments_span s = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0};
+    prim_segments_span s = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0}, bound = s;
     ia_interval c[5];
     int quartic = 0;
     if (type == PRIM_HALF || type == PRIM_ARB8) { /* n.o - d + t n.d: from the ray's origin, an exact point */
@@ -403,17 +415,24 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
         ia_real width = ia_hi(tend - ta);
         ia_interval gamma = type == PRIM_TGC ? ia_hull(prim_iv(p, 12), prim_iv(p, 13)) : ia_point(0);
         quartic = type == PRIM_TOR || !(gamma.hi - gamma.lo <= PRIM_SEGMENTS_SKEW);
-        if (quartic ? !prim_quartic_of(type, p, a, b, &s, ta, width, c) : !prim_segments_frame(type, p, a, b, &s, ta, width))
+        int of = quartic ? prim_quartic_of(type, p, a, b, &s, &bound, ta, width, c)
+                         : prim_segments_frame(type, p, a, b, &s, ta, width);
+        if (of == 0)
             return 0;
+        if (quartic && of == 2) { /* the bounds say out all along */
+            *evals += 1;
+            e[0] = e[1] = e[2] = e[3] = ta;
+            return 1;
+        }
         for (int k = 0; quartic && k < 5; k++)
             if (!isfinite(c[k].lo) || !isfinite(c[k].hi))
                 return 0;
     } else {
         return 0;
     }
-    if (s.nan)
+    if (s.nan || bound.nan)
         return 0;
-    ia_real plo = fmax(s.plo, ta), phi = fmin(s.phi, tend);
+    ia_real plo = fmax(fmax(s.plo, bound.plo), ta), phi = fmin(fmin(s.phi, bound.phi), tend);
     if (!(plo < phi)) { /* out all along */
         *evals += 1;
         e[0] = e[1] = e[2] = e[3] = ta;
