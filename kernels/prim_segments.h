@@ -1,9 +1,11 @@
-/* kernels/prim_segments.h -- closed-form segments of the convex primitives along a ray: where librt solves each
- * primitive once per ray, the bisection walk (segments.h) evaluates its implicit some 30 times. The solid's states
- * come out as the walk's accepted nodes would: OUT, BOUNDARY over an enclosure of the entry, IN, BOUNDARY over an
- * enclosure of the exit, OUT; every enclosure outward, so a boundary the ray crosses is never missed nor late.
+/* kernels/prim_segments.h -- closed-form segments of the primitives along a ray (all but the pipe): where librt
+ * solves each primitive once per ray, the bisection walk (segments.h) evaluates its implicit some 30 to 60 times.
+ * The solid's states come out as the walk's accepted nodes would: OUT, BOUNDARY over an enclosure of the entry, IN,
+ * BOUNDARY over an enclosure of the exit, OUT; every enclosure outward, so a boundary the ray crosses is never
+ * missed nor late. A torus or a general tgc may have a second run: prim_segments gives the first and the point to
+ * solve again from (see "the quartics" below).
  *
- *   prim_segments(type, p, o, d, ta, tend, e):
+ *   prim_segments(type, p, o, d, ta, tend, eps, e, resume, evals):
  *     1. the ray's origin o and direction d (exact), its point at ta enclosed (traverse.h's ray_extent);
  *     2. each piece of the solid along the ray: a plane's c + b t from o (c and b each with 2 products of an
  *        interval by a real: as precise as from ta, both a few ulps of t), a quadric's A u^2 + 2 B u + C in
@@ -12,9 +14,10 @@
  *     3. each piece's t span where it may be in (outside it certainly out) and where it is certainly in
  *        (prim_segments_plane, prim_segments_quadric);
  *     4. the solid, the intersection of its pieces (convex: one span each), clipped to [ta, tend]: its four
- *        changes e[0..3] (OUT before e0, BOUNDARY to e1, IN to e2, BOUNDARY to e3, OUT after).
+ *        changes e[0..3] (OUT before e0, BOUNDARY to e1, IN to e2, BOUNDARY to e3, OUT after); a quartic's first run
+ *        by prim_quartic_walk (eps: its leaves where the quartic is not monotone, at a double root).
  *   Returns 0 where a piece cannot be decided (a quadric whose A may be 0, along a ray that meets its surface: a
- *   ray on a cone's side line), and for the other types: the walk then bisects.
+ *   ray on a cone's side line), and for the pipe: the walk then bisects.
  *
  * The pieces. HALF: its plane. ARB8: its six planes (the solid is their intersection, prim.h). ELL: |s|^2 - 1 (s
  * = G (x - P)). TGC where alpha and beta are within PRIM_SEGMENTS_SKEW (rcc, rec, trc, tec): the slab 0 <= w <= 1

@@ -13,9 +13,10 @@
  * stored or sorted, and the walks stop at the first claimed partition: a ray that hits the front of a solid never
  * bisects its back, nor the solids behind.
  *
- * A BRL-CAD primitive with a closed form (prim_segments.h: half, arb8, ell, ehy, and tgc where it is a quadric)
- * walks by it instead: its first step solves it along the ray, and the walk then moves through its four changes
- * (segments_closed_step); where the closed form cannot decide (a ray along a cone's side line) it bisects.
+ * A BRL-CAD primitive with a closed form (prim_segments.h: all but the pipe) walks by it instead: its first step
+ * solves it along the ray, and the walk then moves through its four changes (segments_closed_step), solving again
+ * after them where a torus or a general tgc may be in again; where the closed form cannot decide (a ray along a
+ * cone's side line) it bisects.
  *
  * Needs scene_solid_F (src/render_scene.c's program, or the host tests' own), and with SCENE_SOLID_PRIMS (a scene
  * with primitives) scene_solid_P: a solid's primitive type and parameters (implicits/scene_emit.c).
