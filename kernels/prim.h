@@ -60,12 +60,6 @@
 #define PRIM_EHY 5
 #define PRIM_PIPE 6
 
-/* A literal of the working precision: the double, or its float rounded the same way (outward, prim_place.c). */
-#ifdef IA_FP64
-#define PRIM_R(d, f) (d)
-#else
-#define PRIM_R(d, f) (f)
-#endif
 #if IA_DEVICE /* the scene program stores parameters 8 at a time */
 #ifdef IA_FP64
 typedef double8 prim_real8;
