@@ -8,10 +8,11 @@
  * enclosures are everything, which rejects nothing (and stops Newton: its derivative is unbounded).
  *
  * A BRL-CAD primitive (scene_solid.prim) is no compiled expression: its parameters, placed in the world as
- * intervals (prim_place.c), are stored into a private array by its group's scene_gG_P, and its functions call
- * kernels/prim.h's, which the program holds once (src/render_scene.c puts them before the solids). That costs
- * about 2.5-3 ms of build per solid here (1000 arbs or ells, medians of 3 on a loaded machine), against ~30 ms
- * for an expression; with Fd too (a scene of primitives only) the build took 25 % longer for 19 % fewer
+ * intervals (prim_place.c), are stored into a private array by its group's scene_gG_P (as double and as float
+ * literals, under #ifdef IA_FP64), and its group's dispatchers call kernels/prim.h's with them, which the program
+ * holds once (src/render_scene.c puts them before the solids): a primitive has no functions of its own. That cost
+ * about 2.5-3 ms of build per solid here when each had its three functions (1000 arbs or ells, medians of 3 on a
+ * loaded machine; dispatching by group cut havoc's first build from 19 to 13 s), against ~30 ms for an expression; with Fd too (a scene of primitives only) the build took 25 % longer for 19 % fewer
  * evaluations and no faster frame, so the limit counts all solids. scene_solid_P hands a primitive's type and
  * parameters to the walks' closed forms (kernels/prim_segments.h). */
 #include "scene_emit.h"
@@ -30,32 +31,40 @@
 
 /* The functions each solid has, as the dispatchers call them; Fd, last, only with SCENE_SOLID_FD. */
 static const struct {
-    const char *name, *type, *params, *args, *otherwise;
+    const char *name, *type, *params, *args, *otherwise, *prim_call;
 } dispatched[] = {
     {"F", "ia_interval", "ia_interval x, ia_interval y, ia_interval z, ia_interval t", "x, y, z, t",
-     "return ia_make(-IA_INF, IA_INF);"},
+     "return ia_make(-IA_INF, IA_INF);", "prim_F(type, p, x, y, z)"},
     {"f_grad", "ia_real", "ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz",
-     "x, y, z, t, gx, gy, gz", "*gx = *gy = *gz = 0;\n    return 0;"},
+     "x, y, z, t, gx, gy, gz", "*gx = *gy = *gz = 0;\n    return 0;", "prim_f_grad(type, p, x, y, z, gx, gy, gz)"},
     {"Fd", "ia_interval",
      "ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, "
      "ia_interval *dt",
-     "x, y, z, t, dx, dy, dz, dt", "*dt = ia_entire();\n    return ia_entire();"},
+     "x, y, z, t, dx, dy, dz, dt", "*dt = ia_entire();\n    return ia_entire();",
+     "prim_Fd(type, p, x, y, z, dx, dy, dz, dt)"},
 };
 
 /* with_union: F of solid nsolids is the union of the regions (scene_union_F, for kernels/scene_union.h's block
- * pass), in group 0 (nsolids <= SCENE_EMIT_UNION_MAX). */
-static void emit_dispatcher(strbuf *b, int nsolids, int which, int with_union) {
+ * pass), in group 0 (nsolids <= SCENE_EMIT_UNION_MAX). A group's primitives have no functions of their own: after
+ * the cases of its expressions, the group function fetches solid k's parameters (scene_gG_P: -1 for a solid that is
+ * no primitive) into room for the group's largest (prim_reals[g] reals, 0 when it has none) and calls prim.h's. */
+static void emit_dispatcher(strbuf *b, const iacsg_scene *s, int which, int with_union, const int *prim_reals) {
     const char *name = dispatched[which].name, *type = dispatched[which].type, *params = dispatched[which].params;
     const char *args = dispatched[which].args, *otherwise = dispatched[which].otherwise;
-    int groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP;
+    int nsolids = s->nsolids, groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP;
     for (int g = 0; g < groups; g++) {
         strbuf_printf(b, "__attribute__((noinline)) %s scene_g%d_%s(int k, %s) {\n    switch (k) {\n", type, g, name,
                       params);
         for (int k = g * SCENE_EMIT_GROUP; k < nsolids && k < (g + 1) * SCENE_EMIT_GROUP; k++)
-            strbuf_printf(b, "    case %d: return scene_s%d_%s(%s);\n", k, k, name, args);
+            if (!s->solids[k].prim)
+                strbuf_printf(b, "    case %d: return scene_s%d_%s(%s);\n", k, k, name, args);
         if (g == 0 && with_union && which == 0)
             strbuf_printf(b, "    case %d: return scene_union_F(%s);\n", nsolids, args);
-        strbuf_printf(b, "    }\n    %s\n}\n", otherwise);
+        strbuf_printf(b, "    }\n");
+        if (prim_reals[g] > 0)
+            strbuf_printf(b, "    ia_real p[%d];\n    int type = scene_g%d_P(k, p, %d);\n    if (type >= 0)\n"
+                             "        return %s;\n", prim_reals[g], g, prim_reals[g], dispatched[which].prim_call);
+        strbuf_printf(b, "    %s\n}\n", otherwise);
     }
     strbuf_printf(b, "IA_FN %s scene_solid_%s(int k, %s) {\n    switch (k / %d) {\n", type, name, params,
                   SCENE_EMIT_GROUP);
@@ -135,16 +144,14 @@ static void emit_both(strbuf p[2], const char *text) {
         strbuf_append(&p[fp64], text, strlen(text));
 }
 
-/* A primitive: its placed parameters as stores into p (in `params`, the case k of its group's scene_gG_P, which
- * returns its type: one copy for its three functions, and stores, not an initialised array, which compilers put in
- * __constant memory, 64 KB on some GPUs), and its functions (in `code`), calls of kernels/prim.h's out-of-line
- * functions with them. */
-static iacsg_status emit_primitive(strbuf params[2], strbuf *code, const scene_solid *solid, int k, iacsg_error *err) {
+/* A primitive: its placed parameters as stores into p, the case k of its group's scene_gG_P, which returns its
+ * type (stores, not an initialised array, which compilers put in __constant memory, 64 KB on some GPUs); the
+ * dispatchers call kernels/prim.h's out-of-line functions with them. *reals: the room they need. */
+static iacsg_status emit_primitive(strbuf params[2], const scene_solid *solid, int k, int *reals, iacsg_error *err) {
     prim_placed placed;
     iacsg_status st = prim_place(solid->prim, solid->name, &placed, err);
     if (st != IACSG_OK)
         return st;
-    int g = k / SCENE_EMIT_GROUP;
     int nreal = 2 * placed.n, padded = (nreal + 7) / 8 * 8;
     char text[96];
     snprintf(text, sizeof text, "    case %d:\n        if (cap < %d)\n            return -1;\n", k, padded);
@@ -161,18 +168,7 @@ static iacsg_status emit_primitive(strbuf params[2], strbuf *code, const scene_s
     }
     snprintf(text, sizeof text, "        return %d;\n", placed.type);
     emit_both(params, text);
-    const char *fill = "    ia_real p[%d];\n    int type = scene_g%d_P(%d, p, %d);\n    (void)t;\n";
-    strbuf_printf(code, "IA_FN ia_interval scene_s%d_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n", k);
-    strbuf_printf(code, fill, padded, g, k, padded);
-    strbuf_printf(code, "    return prim_F(type, p, x, y, z);\n}\n");
-    strbuf_printf(code, "IA_FN ia_real scene_s%d_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, "
-                        "ia_real *gy, ia_real *gz) {\n", k);
-    strbuf_printf(code, fill, padded, g, k, padded);
-    strbuf_printf(code, "    return prim_f_grad(type, p, x, y, z, gx, gy, gz);\n}\n");
-    strbuf_printf(code, "#ifdef IACSG_SCALAR_FD\nIA_FN ia_interval scene_s%d_Fd(ia_interval x, ia_interval y, ia_interval z, "
-                        "ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {\n", k);
-    strbuf_printf(code, fill, padded, g, k, padded);
-    strbuf_printf(code, "    return prim_Fd(type, p, x, y, z, dx, dy, dz, dt);\n}\n#endif\n");
+    *reals = padded;
     prim_placed_free(&placed);
     return IACSG_OK;
 }
@@ -240,7 +236,8 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
     int with_fd = s->nsolids <= SCENE_EMIT_FD_MAX_SOLIDS, open_group = -1;
     strbuf_printf(&b, "/* generated by iacsg: the %d solids of a scene */\n#define IACSG_SCALAR_CODE 1\n%s", s->nsolids,
                   with_fd ? "#define IACSG_SCALAR_FD 1\n#define SCENE_SOLID_FD 1\n" : "");
-    iacsg_status st = IACSG_OK;
+    int *prim_reals = calloc((size_t)(s->nsolids / SCENE_EMIT_GROUP + 1), sizeof(int));
+    iacsg_status st = prim_reals ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory generating code");
     for (int k = 0; st == IACSG_OK && k < s->nsolids; k++) {
         char prefix[32], *text = NULL;
         snprintf(prefix, sizeof prefix, "scene_s%d", k);
@@ -254,8 +251,11 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
                      open_group);
             emit_both(params, head);
         }
-        st = s->solids[k].prim ? emit_primitive(params, &code, &s->solids[k], k, err)
+        int reals = 0;
+        st = s->solids[k].prim ? emit_primitive(params, &s->solids[k], k, &reals, err)
                                : iacsg_expr_emit_cl(s->solids[k].expr, prefix, &text, err);
+        if (reals > prim_reals[k / SCENE_EMIT_GROUP])
+            prim_reals[k / SCENE_EMIT_GROUP] = reals;
         if (text)
             strbuf_printf(&code, "%s", text);
         free(text);
@@ -274,11 +274,12 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
                           dispatch_text ? dispatch_text : "");
         strbuf_printf(&b, "%s%s", code_text ? code_text : "", scalar ? scalar : "");
         for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0] - !with_fd; which++)
-            emit_dispatcher(&b, s->nsolids, (int)which, scalar != NULL);
+            emit_dispatcher(&b, s, (int)which, scalar != NULL, prim_reals);
         /* last: without IACSG_SCALAR_CODE the program holds kernels/packet.h and tile.h */
         if (vector)
             strbuf_printf(&b, "#undef IACSG_SCALAR_CODE\n#define SCENE_REGIONS_UNION %d\n%s", s->nsolids, vector);
     }
+    free(prim_reals);
     free(params32);
     free(params64);
     free(dispatch_text);
