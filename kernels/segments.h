@@ -48,7 +48,7 @@ typedef struct {
 #define SEGMENTS_CLOSED (-2)
 
 #ifdef SCENE_SOLID_PRIMS
-/* A real kept in a closed-form walk's node index (which it does not use): the end of the range it solves again. */
+/* A real kept in a closed-form walk's node index (which it does not use): the point it solves again from. */
 IA_FN bisect_index segments_bits_of(ia_real x) {
 #if IA_DEVICE && defined(IA_FP64)
     return as_ulong(x);
@@ -113,7 +113,7 @@ IA_FN int segments_closed_step(const segments_walks *w, int c, const ia_real o[3
             if (pass == 0 && segments_closed_solve(w, c, o, d, resume, IA_INF, eps, evals))
                 continue; /* a solve moves on by one state at least */
             w->newton[c] = 0;
-            w->newton_t[2 * c + 1] = IA_INF;
+            w->pos[c] = IA_INF;
             return SCENE_BOUNDARY;
         }
         w->pos[c] = j < 4 ? e[j] : IA_INF;
