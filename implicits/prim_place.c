@@ -473,16 +473,22 @@ static iv distance3(const iv a[3], const iv b[3]) {
     return norm3(d);
 }
 
-/* One part: its flags, cell planes, frame (origin and the rows of axis_frame(axis)) and radii. */
+/* One part: its flags, cell planes, frame (origin and the rows of axis_frame(axis)), radii and box (added to the
+ * pipe's). */
 static int pipe_part(pipe_builder *pb, int flags, const pipe_plane *start, const pipe_plane *end, const iv origin[3],
-                     const iv axis[3], const iv radii[4]) {
+                     const iv axis[3], const iv radii[4], const double box[6]) {
     iv frame[9];
     if (!axis_frame(axis, frame))
         return -1;
     writer *w = pb->w;
     pb->parts++;
+    for (int c = 0; c < 3; c++) {
+        pb->box[c] = fmin(pb->box[c], box[c]);
+        pb->box[c + 3] = fmax(pb->box[c + 3], box[c + 3]);
+    }
     return put(w, pt(flags)) && put_n(w, start->a, 3) && put_n(w, start->t, 3) && put_n(w, end->a, 3) &&
-           put_n(w, end->t, 3) && put_n(w, origin, 3) && put_n(w, frame, 9) && put_n(w, radii, 4);
+           put_n(w, end->t, 3) && put_n(w, origin, 3) && put_n(w, frame, 9) && put_n(w, radii, 4) &&
+           put(w, ia_make(box[0], box[3])) && put(w, ia_make(box[1], box[4])) && put(w, ia_make(box[2], box[5]));
 }
 
 /* A straight part from a to b, radii (outer, inner) going from r0 to r1, in the cell between the planes. */
@@ -501,11 +507,12 @@ static int pipe_linear(pipe_builder *pb, const pipe_plane *start, int shares, co
     for (int c = 0; c < 3; c++) /* a disk of radius r across h reaches r sqrt(1 - h_c^2) */
         reach[c] = across(h, c);
     iv r[3];
+    double box[6] = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
     scale3(reach, r0[0], r);
-    box_add(pb->box, start->a, r);
+    box_add(box, start->a, r);
     scale3(reach, r1[0], r);
-    box_add(pb->box, end->a, r);
-    return pipe_part(pb, flags, start, end, start->a, h, radii);
+    box_add(box, end->a, r);
+    return pipe_part(pb, flags, start, end, start->a, h, radii, box);
 }
 
 /* A bend: the torus of centre c, axis n, radius bend, tube radii r (outer, inner), between the planes. */
@@ -514,9 +521,10 @@ static int pipe_bend(pipe_builder *pb, const pipe_plane *start, int shares, cons
     iv radii[4] = {bend, r[0], r[1], pt(0)}, reach[3];
     for (int k = 0; k < 3; k++)
         reach[k] = ia_add(ia_mul(bend, across(n, k)), r[0]);
-    box_add(pb->box, c, reach);
+    double box[6] = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    box_add(box, c, reach);
     int flags = PRIM_PIPE_BEND | (shares ? PRIM_PIPE_SHARES_START : 0) | (r[1].hi > 0 ? PRIM_PIPE_INNER : 0);
-    return pipe_part(pb, flags, start, end, c, n, radii);
+    return pipe_part(pb, flags, start, end, c, n, radii, box);
 }
 
 static void unit3(const iv v[3], iv out[3]) {

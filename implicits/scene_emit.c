@@ -8,10 +8,11 @@
  * enclosures are everything, which rejects nothing (and stops Newton: its derivative is unbounded).
  *
  * A BRL-CAD primitive (scene_solid.prim) is no compiled expression: its parameters, placed in the world as
- * intervals (prim_place.c), are stored into a private array by its group's scene_gG_P, and its functions call
- * kernels/prim.h's, which the program holds once (src/render_scene.c puts them before the solids). That costs
- * about 2.5-3 ms of build per solid here (1000 arbs or ells, medians of 3 on a loaded machine), against ~30 ms
- * for an expression; with Fd too (a scene of primitives only) the build took 25 % longer for 19 % fewer
+ * intervals (prim_place.c), are stored into a private array by its group's scene_gG_P (as double and as float
+ * literals, under #ifdef IA_FP64), and its group's dispatchers call kernels/prim.h's with them, which the program
+ * holds once (src/render_scene.c puts them before the solids): a primitive has no functions of its own. That cost
+ * about 2.5-3 ms of build per solid here when each had its three functions (1000 arbs or ells, medians of 3 on a
+ * loaded machine; dispatching by group cut havoc's first build from 19 to 13 s), against ~30 ms for an expression; with Fd too (a scene of primitives only) the build took 25 % longer for 19 % fewer
  * evaluations and no faster frame, so the limit counts all solids. scene_solid_P hands a primitive's type and
  * parameters to the walks' closed forms (kernels/prim_segments.h).
  *
@@ -24,36 +25,47 @@
 #include "prim_place.h"
 #include "strbuf.h"
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define SCENE_EMIT_GROUP 32
 #define SCENE_EMIT_FD_MAX_SOLIDS 64
 
 /* The functions each solid has, as the dispatchers call them; Fd, last, only with SCENE_SOLID_FD. */
 static const struct {
-    const char *name, *type, *params, *args, *otherwise;
+    const char *name, *type, *params, *args, *otherwise, *prim_call;
 } dispatched[] = {
     {"F", "ia_interval", "ia_interval x, ia_interval y, ia_interval z, ia_interval t", "x, y, z, t",
-     "return ia_make(-IA_INF, IA_INF);"},
+     "return ia_make(-IA_INF, IA_INF);", "prim_F(type, p, x, y, z)"},
     {"f_grad", "ia_real", "ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, ia_real *gy, ia_real *gz",
-     "x, y, z, t, gx, gy, gz", "*gx = *gy = *gz = 0;\n    return 0;"},
+     "x, y, z, t, gx, gy, gz", "*gx = *gy = *gz = 0;\n    return 0;", "prim_f_grad(type, p, x, y, z, gx, gy, gz)"},
     {"Fd", "ia_interval",
      "ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, "
      "ia_interval *dt",
-     "x, y, z, t, dx, dy, dz, dt", "*dt = ia_entire();\n    return ia_entire();"},
+     "x, y, z, t, dx, dy, dz, dt", "*dt = ia_entire();\n    return ia_entire();",
+     "prim_Fd(type, p, x, y, z, dx, dy, dz, dt)"},
 };
 
-static void emit_dispatcher(strbuf *b, int nsolids, int which) {
+/* A group's primitives have no functions of their own: after the cases of its expressions, the group function
+ * fetches solid k's parameters (scene_gG_P: -1 for a solid that is no primitive) into room for the group's largest
+ * (prim_reals[g] reals, 0 when it has none) and calls prim.h's. */
+static void emit_dispatcher(strbuf *b, const iacsg_scene *s, int which, const int *prim_reals) {
     const char *name = dispatched[which].name, *type = dispatched[which].type, *params = dispatched[which].params;
     const char *args = dispatched[which].args, *otherwise = dispatched[which].otherwise;
-    int groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP;
+    int nsolids = s->nsolids, groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP;
     for (int g = 0; g < groups; g++) {
         strbuf_printf(b, "__attribute__((noinline)) %s scene_g%d_%s(int k, %s) {\n    switch (k) {\n", type, g, name,
                       params);
         for (int k = g * SCENE_EMIT_GROUP; k < nsolids && k < (g + 1) * SCENE_EMIT_GROUP; k++)
-            strbuf_printf(b, "    case %d: return scene_s%d_%s(%s);\n", k, k, name, args);
-        strbuf_printf(b, "    }\n    %s\n}\n", otherwise);
+            if (!s->solids[k].prim)
+                strbuf_printf(b, "    case %d: return scene_s%d_%s(%s);\n", k, k, name, args);
+        strbuf_printf(b, "    }\n");
+        if (prim_reals[g] > 0)
+            strbuf_printf(b, "    ia_real p[%d];\n    int type = scene_g%d_P(k, p, %d);\n    if (type >= 0)\n"
+                             "        return %s;\n", prim_reals[g], g, prim_reals[g], dispatched[which].prim_call);
+        strbuf_printf(b, "    %s\n}\n", otherwise);
     }
     strbuf_printf(b, "IA_FN %s scene_solid_%s(int k, %s) {\n    switch (k / %d) {\n", type, name, params,
                   SCENE_EMIT_GROUP);
@@ -77,51 +89,87 @@ static void emit_parameters_dispatcher(strbuf *b, const iacsg_scene *s) {
     strbuf_printf(b, "    }\n    return -1;\n}\n");
 }
 
-/* A bound as a literal of either precision: the double itself, and its float rounded outward (down for a lower
- * bound), for kernels/prim.h's PRIM_R. */
-static void emit_bound(strbuf *b, double x, int upper) {
-    float f = prim_float_bound(x, upper);
-    if (isinf(f) || isinf(x)) {
-        strbuf_printf(b, "PRIM_R(%sINFINITY, %sINFINITY)", x < 0 ? "-" : "", f < 0 ? "-" : "");
-        return;
+/* See scene_emit.h (printf's %a took 106 ms of havoc's command: some 200,000 literals). */
+int scene_emit_hex(double x, char out[32]) {
+    static const char digits[] = "0123456789abcdef";
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int n = 0, biased = (int)(bits >> 52 & 0x7ff), e = biased ? biased - 1023 : -1022;
+    uint64_t mantissa = bits & ((UINT64_C(1) << 52) - 1);
+    if (bits >> 63)
+        out[n++] = '-';
+    out[n++] = '0';
+    out[n++] = 'x';
+    out[n++] = biased ? '1' : '0';
+    if (mantissa) {
+        out[n++] = '.';
+        for (int shift = 48; shift >= 0; shift -= 4)
+            out[n++] = digits[mantissa >> shift & 15];
+        while (out[n - 1] == '0')
+            n--;
+    } else if (!biased) {
+        e = 0;
     }
-    strbuf_printf(b, "PRIM_R(%a, %af)", x, (double)f);
+    out[n++] = 'p';
+    out[n++] = e < 0 ? '-' : '+';
+    e = e < 0 ? -e : e;
+    char rev[4];
+    int k = 0;
+    do {
+        rev[k++] = (char)('0' + e % 10);
+        e /= 10;
+    } while (e);
+    while (k)
+        out[n++] = rev[--k];
+    return n;
 }
 
-/* A primitive: its placed parameters as stores into p (in `params`, the case k of its group's scene_gG_P, which
- * returns its type: one copy for its three functions, and stores, not an initialised array, which compilers put in
- * __constant memory, 64 KB on some GPUs), and its functions (in `code`), calls of kernels/prim.h's out-of-line
- * functions with them. */
-static iacsg_status emit_primitive(strbuf *params, strbuf *code, const scene_solid *solid, int k, iacsg_error *err) {
+/* A bound as a literal of each precision, the program's float and double variants of the parameters (in p[0] and
+ * p[1], under #ifdef IA_FP64, so that the preprocessor skips the other instead of expanding a macro per literal):
+ * the double itself, and its float rounded outward (down for a lower bound). */
+static void emit_bound(strbuf p[2], double x, int upper) {
+    float f = prim_float_bound(x, upper);
+    for (int fp64 = 0; fp64 < 2; fp64++) {
+        double v = fp64 ? x : (double)f;
+        char text[32];
+        int n = isinf(v) ? snprintf(text, sizeof text, "%sINFINITY", v < 0 ? "-" : "") : scene_emit_hex(v, text);
+        if (!fp64 && !isinf(v))
+            text[n++] = 'f';
+        strbuf_append(&p[fp64], text, (size_t)n);
+    }
+}
+
+/* Text for both variants of the parameters. */
+static void emit_both(strbuf p[2], const char *text) {
+    for (int fp64 = 0; fp64 < 2; fp64++)
+        strbuf_append(&p[fp64], text, strlen(text));
+}
+
+/* A primitive: its placed parameters as stores into p, the case k of its group's scene_gG_P, which returns its
+ * type (stores, not an initialised array, which compilers put in __constant memory, 64 KB on some GPUs); the
+ * dispatchers call kernels/prim.h's out-of-line functions with them. *reals: the room they need. */
+static iacsg_status emit_primitive(strbuf params[2], const scene_solid *solid, int k, int *reals, iacsg_error *err) {
     prim_placed placed;
     iacsg_status st = prim_place(solid->prim, solid->name, &placed, err);
     if (st != IACSG_OK)
         return st;
-    int g = k / SCENE_EMIT_GROUP;
     int nreal = 2 * placed.n, padded = (nreal + 7) / 8 * 8;
-    strbuf_printf(params, "    case %d:\n        if (cap < %d)\n            return -1;\n", k, padded);
+    char text[96];
+    snprintf(text, sizeof text, "    case %d:\n        if (cap < %d)\n            return -1;\n", k, padded);
+    emit_both(params, text);
     for (int i = 0; i < padded; i++) {
         if (i % 8 == 0)
-            strbuf_printf(params, "        vstore8((prim_real8)(");
+            emit_both(params, "        vstore8((prim_real8)(");
         if (i < nreal)
             emit_bound(params, i % 2 ? placed.hi[i / 2] : placed.lo[i / 2], i % 2);
         else
-            strbuf_printf(params, "0");
-        strbuf_printf(params, i % 8 == 7 ? "), %d, p);\n" : ", ", i / 8);
+            emit_both(params, "0");
+        snprintf(text, sizeof text, i % 8 == 7 ? "), %d, p);\n" : ", ", i / 8);
+        emit_both(params, text);
     }
-    strbuf_printf(params, "        return %d;\n", placed.type);
-    const char *fill = "    ia_real p[%d];\n    int type = scene_g%d_P(%d, p, %d);\n    (void)t;\n";
-    strbuf_printf(code, "IA_FN ia_interval scene_s%d_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n", k);
-    strbuf_printf(code, fill, padded, g, k, padded);
-    strbuf_printf(code, "    return prim_F(type, p, x, y, z);\n}\n");
-    strbuf_printf(code, "IA_FN ia_real scene_s%d_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *gx, "
-                        "ia_real *gy, ia_real *gz) {\n", k);
-    strbuf_printf(code, fill, padded, g, k, padded);
-    strbuf_printf(code, "    return prim_f_grad(type, p, x, y, z, gx, gy, gz);\n}\n");
-    strbuf_printf(code, "#ifdef IACSG_SCALAR_FD\nIA_FN ia_interval scene_s%d_Fd(ia_interval x, ia_interval y, ia_interval z, "
-                        "ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {\n", k);
-    strbuf_printf(code, fill, padded, g, k, padded);
-    strbuf_printf(code, "    return prim_Fd(type, p, x, y, z, dx, dy, dz, dt);\n}\n#endif\n");
+    snprintf(text, sizeof text, "        return %d;\n", placed.type);
+    emit_both(params, text);
+    *reals = padded;
     prim_placed_free(&placed);
     return IACSG_OK;
 }
@@ -230,39 +278,49 @@ static iacsg_status emit_solids_in_lanes(strbuf *b, const iacsg_scene *s, iacsg_
 
 iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err) {
     *source = NULL;
-    strbuf b = {0}, params = {0}, code = {0};
+    strbuf b = {0}, params[2] = {{0}, {0}}, code = {0}, dispatch = {0};
     int with_fd = s->nsolids <= SCENE_EMIT_FD_MAX_SOLIDS, open_group = -1;
     strbuf_printf(&b, "/* generated by iacsg: the %d solids of a scene */\n#define IACSG_SCALAR_CODE 1\n%s", s->nsolids,
                   with_fd ? "#define IACSG_SCALAR_FD 1\n#define SCENE_SOLID_FD 1\n" : "");
-    iacsg_status st = IACSG_OK;
+    int *prim_reals = calloc((size_t)(s->nsolids / SCENE_EMIT_GROUP + 1), sizeof(int));
+    iacsg_status st = prim_reals ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory generating code");
     for (int k = 0; st == IACSG_OK && k < s->nsolids; k++) {
         char prefix[32], *text = NULL;
         snprintf(prefix, sizeof prefix, "scene_s%d", k);
         if (s->solids[k].prim && open_group != k / SCENE_EMIT_GROUP) { /* the group's parameter function */
             if (open_group >= 0)
-                strbuf_printf(&params, "    }\n    return -1;\n}\n");
+                emit_both(params, "    }\n    return -1;\n}\n");
             open_group = k / SCENE_EMIT_GROUP;
-            strbuf_printf(&params,
-                          "__attribute__((noinline)) int scene_g%d_P(int k, ia_real *p, int cap) {\n    switch (k) {\n",
-                          open_group);
+            char head[128];
+            snprintf(head, sizeof head,
+                     "__attribute__((noinline)) int scene_g%d_P(int k, ia_real *p, int cap) {\n    switch (k) {\n",
+                     open_group);
+            emit_both(params, head);
         }
-        st = s->solids[k].prim ? emit_primitive(&params, &code, &s->solids[k], k, err)
+        int reals = 0;
+        st = s->solids[k].prim ? emit_primitive(params, &s->solids[k], k, &reals, err)
                                : iacsg_expr_emit_cl(s->solids[k].expr, prefix, &text, err);
+        if (reals > prim_reals[k / SCENE_EMIT_GROUP])
+            prim_reals[k / SCENE_EMIT_GROUP] = reals;
         if (text)
             strbuf_printf(&code, "%s", text);
         free(text);
     }
     if (open_group >= 0) {
-        strbuf_printf(&params, "    }\n    return -1;\n}\n");
-        emit_parameters_dispatcher(&params, s);
+        emit_both(params, "    }\n    return -1;\n}\n");
+        emit_parameters_dispatcher(&dispatch, s);
     }
-    char *params_text = strbuf_finish(&params), *code_text = strbuf_finish(&code), *vector = NULL;
+    char *params32 = strbuf_finish(&params[0]), *params64 = strbuf_finish(&params[1]);
+    char *dispatch_text = strbuf_finish(&dispatch), *code_text = strbuf_finish(&code), *vector = NULL;
     if (st == IACSG_OK)
         st = emit_regions_union(s, &vector, err);
     if (st == IACSG_OK) {
-        strbuf_printf(&b, "%s%s", params_text ? params_text : "", code_text ? code_text : "");
+        if (params64 && params32)
+            strbuf_printf(&b, "#ifdef IA_FP64\n%s#else\n%s#endif\n%s", params64, params32,
+                          dispatch_text ? dispatch_text : "");
+        strbuf_printf(&b, "%s", code_text ? code_text : "");
         for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0] - !with_fd; which++)
-            emit_dispatcher(&b, s->nsolids, (int)which);
+            emit_dispatcher(&b, s, (int)which, prim_reals);
         /* last: without IACSG_SCALAR_CODE the program holds kernels/packet.h and tile.h */
         int disjoint = vector && regions_disjoint(s);
         if (vector)
@@ -273,7 +331,10 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
         if (vector)
             strbuf_printf(&b, "#undef IACSG_FDV\n%s", vector);
     }
-    free(params_text);
+    free(prim_reals);
+    free(params32);
+    free(params64);
+    free(dispatch_text);
     free(code_text);
     free(vector);
     *source = strbuf_finish(&b);

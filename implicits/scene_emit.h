@@ -18,4 +18,8 @@
 /* The source, malloc'ed (the caller free()s *source). */
 iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err);
 
+/* A finite double as the exact C hexadecimal literal that printf's "%a" writes (glibc's form: 0x1.8p+1, 0x0p+0,
+ * subnormals as 0x0.xp-1022), without printf. Returns its length (at most 24). */
+int scene_emit_hex(double x, char out[32]);
+
 #endif

@@ -36,7 +36,8 @@
  *         the base to -1 at the tip), k1 = 2 c' + 1, k2 = c' + 1, c' = c / |H| (ehy.c's quadric, rearranged so that
  *         z occurs once; 15 intervals). Over -1 <= z <= 0 it is 0 only on the sheet.
  *   PIPE  librt's parts (pipe.c): straight frusta between the points and torus bends at them, each in its cell
- *         between two planes (PRIM_PIPE_PART_N intervals a part). f is the tube of a part whose cell holds x (a
+ *         between two planes (PRIM_PIPE_PART_N intervals a part, the last three its box, which prim_pipe_F tests
+ *         first: a pipe of many parts costs its walk little away from them). f is the tube of a part whose cell holds x (a
  *         frustum's max(rho - ro(w), ri(w) - rho), a bend's max(d - ro, ri - d), d the distance from its core
  *         circle), +inf where none does. A union of closed parts that abut would be 0 all over the faces where
  *         they meet, inside the wall; here a box across a plane two consecutive parts share is in their union and
@@ -59,12 +60,6 @@
 #define PRIM_EHY 5
 #define PRIM_PIPE 6
 
-/* A literal of the working precision: the double, or its float rounded the same way (outward, prim_place.c). */
-#ifdef IA_FP64
-#define PRIM_R(d, f) (d)
-#else
-#define PRIM_R(d, f) (f)
-#endif
 #if IA_DEVICE /* the scene program stores parameters 8 at a time */
 #ifdef IA_FP64
 typedef double8 prim_real8;
@@ -82,18 +77,26 @@ typedef float8 prim_real8;
 #define PRIM_TOR_N 14
 #define PRIM_EHY_N 15
 /* A pipe: its number of parts, then per part PRIM_PIPE_PART_N intervals (see prim_pipe_F). */
-#define PRIM_PIPE_PART_N 29
+#define PRIM_PIPE_PART_N 32
 #define PRIM_PIPE_LINEAR 0
 #define PRIM_PIPE_BEND 1
 #define PRIM_PIPE_SHARES_START 2 /* its start plane is the previous part's end plane */
 #define PRIM_PIPE_INNER 4        /* it has a bore */
 
+/* The small helpers below are inlined on the device, where LLVM left prim_dot3 a call (its interval result through
+ * memory) inside the large prim_F: 14 % of goliath's render went to the call (its pipes' bisection). */
+#if IA_DEVICE
+#define PRIM_INLINE IA_FN __attribute__((always_inline))
+#else
+#define PRIM_INLINE IA_FN
+#endif
+
 /* The k-th interval of p, and its midpoint (the point code's parameter). */
-IA_FN ia_interval prim_iv(const ia_real *p, int k) { return ia_make(p[2 * k], p[2 * k + 1]); }
+PRIM_INLINE ia_interval prim_iv(const ia_real *p, int k) { return ia_make(p[2 * k], p[2 * k + 1]); }
 IA_FN ia_real prim_mid(const ia_real *p, int k) { return p[2 * k] * (ia_real)0.5 + p[2 * k + 1] * (ia_real)0.5; }
 
 /* a.b + c (three terms of a dot product, the third given). */
-IA_FN ia_interval prim_dot3(const ia_real *p, int k, ia_interval x, ia_interval y, ia_interval z) {
+PRIM_INLINE ia_interval prim_dot3(const ia_real *p, int k, ia_interval x, ia_interval y, ia_interval z) {
     return ia_add(ia_add(ia_mul(prim_iv(p, k), x), ia_mul(prim_iv(p, k + 1), y)), ia_mul(prim_iv(p, k + 2), z));
 }
 
@@ -213,6 +216,13 @@ IA_FN ia_interval prim_pipe_tube(const ia_real *q, int flags, ia_interval x, ia_
     return flags & PRIM_PIPE_INNER ? ia_max(outer, inner) : outer;
 }
 
+/* Whether the box (x, y, z) misses the part's box (intervals 29-31). A part whose box it misses is left out of the
+ * min: its tube is positive all over the box, so where only its cell holds x, f becomes +inf instead of a positive
+ * value (the same sign), and where another part holds x too, the min keeps its sign. */
+PRIM_INLINE int prim_pipe_apart(const ia_real *q, ia_interval x, ia_interval y, ia_interval z) {
+    return x.hi < q[58] || x.lo > q[59] || y.hi < q[60] || y.lo > q[61] || z.hi < q[62] || z.lo > q[63];
+}
+
 /* The pipe: f = min over its parts of the tube where x is in the part's (closed) cell, +inf in none. A box that
  * is partly in a cell gives [F.lo, +inf] (f may be +inf there); one that lies across the plane that two
  * consecutive parts share and is otherwise in both cells is all in their union, where f is within the hull of
@@ -225,6 +235,10 @@ IA_FN ia_interval prim_pipe_F(const ia_real *p, ia_interval x, ia_interval y, ia
     for (int k = 0; k < parts; k++) {
         const ia_real *q = p + 2 + 2 * PRIM_PIPE_PART_N * k;
         int flags = (int)q[0];
+        if (prim_pipe_apart(q, x, y, z)) { /* outside the part's box: outside it, and f > 0 there (see above) */
+            before = ia_empty();
+            continue;
+        }
         ia_interval a = prim_pipe_plane(q, 1, x, y, z), b = prim_pipe_plane(q, 7, x, y, z);
         if (a.hi < 0 || b.lo > 0) {
             before = ia_empty();

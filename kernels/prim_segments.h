@@ -1,9 +1,11 @@
-/* kernels/prim_segments.h -- closed-form segments of the convex primitives along a ray: where librt solves each
- * primitive once per ray, the bisection walk (segments.h) evaluates its implicit some 30 times. The solid's states
- * come out as the walk's accepted nodes would: OUT, BOUNDARY over an enclosure of the entry, IN, BOUNDARY over an
- * enclosure of the exit, OUT; every enclosure outward, so a boundary the ray crosses is never missed nor late.
+/* kernels/prim_segments.h -- closed-form segments of the primitives along a ray (all but the pipe): where librt
+ * solves each primitive once per ray, the bisection walk (segments.h) evaluates its implicit some 30 to 60 times.
+ * The solid's states come out as the walk's accepted nodes would: OUT, BOUNDARY over an enclosure of the entry, IN,
+ * BOUNDARY over an enclosure of the exit, OUT; every enclosure outward, so a boundary the ray crosses is never
+ * missed nor late. A torus or a general tgc may have a second run: prim_segments gives the first and the point to
+ * solve again from (see "the quartics" below).
  *
- *   prim_segments(type, p, o, d, ta, tend, e):
+ *   prim_segments(type, p, o, d, ta, tend, eps, e, resume, evals):
  *     1. the ray's origin o and direction d (exact), its point at ta enclosed (traverse.h's ray_extent);
  *     2. each piece of the solid along the ray: a plane's c + b t from o (c and b each with 2 products of an
  *        interval by a real: as precise as from ta, both a few ulps of t), a quadric's A u^2 + 2 B u + C in
@@ -12,9 +14,10 @@
  *     3. each piece's t span where it may be in (outside it certainly out) and where it is certainly in
  *        (prim_segments_plane, prim_segments_quadric);
  *     4. the solid, the intersection of its pieces (convex: one span each), clipped to [ta, tend]: its four
- *        changes e[0..3] (OUT before e0, BOUNDARY to e1, IN to e2, BOUNDARY to e3, OUT after).
+ *        changes e[0..3] (OUT before e0, BOUNDARY to e1, IN to e2, BOUNDARY to e3, OUT after); a quartic's first run
+ *        by prim_quartic_walk (eps: its leaves where the quartic is not monotone, at a double root).
  *   Returns 0 where a piece cannot be decided (a quadric whose A may be 0, along a ray that meets its surface: a
- *   ray on a cone's side line), and for the other types: the walk then bisects.
+ *   ray on a cone's side line), and for the pipe: the walk then bisects.
  *
  * The pieces. HALF: its plane. ARB8: its six planes (the solid is their intersection, prim.h). ELL: |s|^2 - 1 (s
  * = G (x - P)). TGC where alpha and beta are within PRIM_SEGMENTS_SKEW (rcc, rec, trc, tec): the slab 0 <= w <= 1
@@ -165,32 +168,288 @@ IA_FN int prim_segments_frame(int type, const ia_real *p, const ia_interval a[3]
                                  r1.lo > 0 ? 1 : r1.hi < 0 ? -1 : 0, ta, width);
 }
 
-/* The solid's changes along o + t d over [ta, tend] (see the top): 1 with e[0..3], or 0 where the walk must
- * bisect. */
+/* ---- the quartics: a torus and a general tgc. Along the ray each is a polynomial of degree 4 in u = t - ta,
+ * q(u) = sum c_k u^k, with intervals c_k holding the exact coefficients, negative inside. The solver walks the
+ * nodes of [lo, hi] (traverse.h's tree) in ray order: over a node q's Taylor form at its midpoint decides IN or OUT;
+ * where it holds 0 and q' excludes 0 (q monotone), interval Newton narrows the one root to a BOUNDARY of a few ulps
+ * and the node's parts before and after it get their signs without being split (the mean value theorem: a point
+ * before every Newton image N = m - q(m) / D has q's sign before the root, as in segments.h's segments_newton);
+ * elsewhere the node is split, down to BOUNDARY leaves of eps (a double root: a grazing ray). The states go into a
+ * quartet, the four changes of a convex solid's run (OUT, BOUNDARY, IN, BOUNDARY, OUT); the walk stops at the
+ * first state that does not fit it, and the segment walk solves again from there (prim_segments returns 2). */
+#define PRIM_QUARTIC_NEWTON 8
+
+typedef struct {
+    ia_real e[4];
+    int stage; /* the pattern's part that holds the last state: 0 OUT, 1 BOUNDARY, 2 IN, 3 BOUNDARY, 4 OUT after
+                * the run, 5 done: the solid may be in again from `resume` on */
+    ia_real resume;
+    ia_real ilo, ihi; /* where the other pieces (a tgc's slab) are certainly in: IN outside it is BOUNDARY */
+} prim_quartet;
+
+IA_FN void prim_quartet_state(prim_quartet *q, ia_real at, int st) {
+    int k = q->stage, next = k;
+    if (k == 4) {
+        q->stage = st == SCENE_OUT ? 4 : 5;
+        q->resume = at;
+        return;
+    }
+    while (next < 4 && (next == 0 ? SCENE_OUT : next == 2 ? SCENE_IN : SCENE_BOUNDARY) != st)
+        next += 1;
+    for (int j = k; j < next; j++)
+        q->e[j] = at;
+    if (next == 4) { /* OUT after the run, or IN again right after its end's BOUNDARY */
+        q->e[3] = at;
+        q->resume = at;
+        next = st == SCENE_OUT ? 4 : 5;
+    }
+    q->stage = next;
+}
+
+/* The piece [lo, hi) of the quartic's state st; its parts outside the slab's certain span are at most BOUNDARY. */
+IA_FN void prim_quartet_add(prim_quartet *q, ia_real lo, ia_real hi, int st) {
+    ia_real cut[4] = {lo, fmax(lo, fmin(hi, q->ilo)), fmin(hi, fmax(lo, q->ihi)), hi};
+    for (int z = 0; z < 3 && q->stage < 5; z++)
+        if (cut[z] < cut[z + 1])
+            prim_quartet_state(q, cut[z], z != 1 && st == SCENE_IN ? SCENE_BOUNDARY : st);
+}
+
+/* The coefficients of the product of two quadratics x, y (c0 first), or of a square when x == y. */
+IA_FN void prim_quartic_mul(const ia_interval x[3], const ia_interval y[3], ia_interval c[5]) {
+    c[0] = ia_mul(x[0], y[0]);
+    c[1] = ia_add(ia_mul(x[0], y[1]), ia_mul(x[1], y[0]));
+    c[2] = ia_add(ia_add(ia_mul(x[0], y[2]), ia_mul(x[1], y[1])), ia_mul(x[2], y[0]));
+    c[3] = ia_add(ia_mul(x[1], y[2]), ia_mul(x[2], y[1]));
+    c[4] = ia_mul(x[2], y[2]);
+}
+IA_FN void prim_quartic_sqr(const ia_interval x[3], ia_interval c[5]) {
+    c[0] = ia_sqr(x[0]);
+    c[1] = ia_mul_r(ia_mul(x[0], x[1]), 2);
+    c[2] = ia_add(ia_sqr(x[1]), ia_mul_r(ia_mul(x[0], x[2]), 2));
+    c[3] = ia_mul_r(ia_mul(x[1], x[2]), 2);
+    c[4] = ia_sqr(x[2]);
+}
+/* (a + u b)^2 */
+IA_FN void prim_quadratic_sqr(ia_interval a, ia_interval b, ia_interval x[3]) {
+    x[0] = ia_sqr(a);
+    x[1] = ia_mul_r(ia_mul(a, b), 2);
+    x[2] = ia_sqr(b);
+}
+
+/* The Taylor coefficients of q at the point m: q(m + h) = sum d_k h^k (repeated synthetic division). */
+IA_FN void prim_quartic_shift(const ia_interval c[5], ia_real m, ia_interval d[5]) {
+    for (int k = 0; k < 5; k++)
+        d[k] = c[k];
+    for (int k = 0; k < 4; k++)
+        for (int j = 3; j >= k; j--)
+            d[j] = ia_add(d[j], ia_mul_r(d[j + 1], m));
+}
+IA_FN ia_interval prim_quartic_at(const ia_interval c[5], ia_real m) {
+    ia_interval v = c[4];
+    for (int j = 3; j >= 0; j--)
+        v = ia_add(c[j], ia_mul_r(v, m));
+    return v;
+}
+
+/* q's enclosure over m + h (h in [h.lo, h.hi]) from its Taylor coefficients d at m, and in *dq q' there. */
+IA_FN ia_interval prim_quartic_taylor(const ia_interval d[5], ia_interval h, ia_interval *dq) {
+    ia_interval h2 = ia_sqr(h);
+    *dq = ia_add(ia_add(d[1], ia_mul(h2, ia_mul_r(d[3], 3))),
+                 ia_mul(h, ia_add(ia_mul_r(d[2], 2), ia_mul(h2, ia_mul_r(d[4], 4)))));
+    return ia_add(ia_add(d[0], ia_mul(h2, ia_add(d[2], ia_mul(h2, d[4])))), ia_mul(h, ia_add(d[1], ia_mul(h2, d[3]))));
+}
+
+/* A node [tlo, thi] (u range [r0, r1]) over which q' is dq, excluding 0: Newton narrows the root, each step with
+ * q' over the narrowed range where that excludes 0, and the node goes to the quartet as the part before the root,
+ * the root's BOUNDARY and the part after it. */
+IA_FN void prim_quartic_newton(prim_quartet *q, const ia_interval c[5], ia_interval dq, ia_real ta, ia_real tlo,
+                               ia_real thi, ia_real r0, ia_real r1, kernel_u32 *evals) {
+    int before = dq.lo > 0 ? SCENE_IN : SCENE_OUT;
+    ia_real u0 = r0, u1 = r1;
+    int none = 0;
+    for (int it = 0; it < PRIM_QUARTIC_NEWTON; it++) {
+        ia_real m = r0 * (ia_real)0.5 + r1 * (ia_real)0.5;
+        ia_interval d[5], slope;
+        prim_quartic_shift(c, m, d);
+        prim_quartic_taylor(d, ia_sub(ia_make(r0, r1), ia_point(m)), &slope);
+        if ((slope.lo > 0 || slope.hi < 0) && isfinite(slope.lo) && isfinite(slope.hi))
+            dq = slope;
+        ia_interval n = ia_sub(ia_point(m), ia_div(d[0], dq));
+        *evals += 1;
+        ia_real n0 = fmax(r0, n.lo), n1 = fmin(r1, n.hi);
+        if (!(n0 <= n1)) { /* none left: [r0, r1] is all before N or all after it */
+            r0 = r1 = n.lo > r1 ? r1 : r0;
+            none = 1;
+            break;
+        }
+        int slow = n1 - n0 > (r1 - r0) * (ia_real)0.5;
+        r0 = n0;
+        r1 = n1;
+        if (slow)
+            break;
+    }
+    /* the root's BOUNDARY, in t; none where the node is all before or all after (its sign does not change) */
+    ia_interval root = ia_add(ia_point(ta), ia_make(r0, r1));
+    ia_real a = none && r1 >= u1 ? thi : none && r0 <= u0 ? tlo : fmin(fmax(root.lo, tlo), thi);
+    ia_real b = none && r1 >= u1 ? thi : none && r0 <= u0 ? tlo : fmin(fmax(root.hi, tlo), thi);
+    prim_quartet_add(q, tlo, a, before);
+    prim_quartet_add(q, a, b, SCENE_BOUNDARY);
+    prim_quartet_add(q, b, thi, SCENE_IN + SCENE_OUT - before);
+}
+
+/* Walks q (coefficients in u = t - ta) over [lo, hi] into the quartet, until its pattern is complete. */
+IA_FN void prim_quartic_walk(prim_quartet *q, const ia_interval c[5], ia_real ta, ia_real lo, ia_real hi, ia_real eps,
+                             kernel_u32 *evals) {
+    ia_real w = ia_hi(hi - lo);
+    int level = 0;
+    bisect_index i = 0;
+    for (;;) {
+        ia_real tlo = node_bound(lo, w, level, i), thi = fmin(node_bound(lo, w, level, i + 1), hi);
+        if (!(tlo < hi))
+            return;
+        ia_interval u = ia_sub(ia_make(tlo, thi), ia_point(ta)), d[5];
+        ia_real m = u.lo * (ia_real)0.5 + u.hi * (ia_real)0.5;
+        prim_quartic_shift(c, m, d);
+        ia_interval dq, f = prim_quartic_taylor(d, ia_sub(u, ia_point(m)), &dq);
+        *evals += 1;
+        if (f.lo > 0 || f.hi < 0) {
+            prim_quartet_add(q, tlo, thi, f.lo > 0 ? SCENE_OUT : SCENE_IN);
+        } else {
+            if ((dq.lo > 0 || dq.hi < 0) && isfinite(dq.lo) && isfinite(dq.hi)) {
+                prim_quartic_newton(q, c, dq, ta, tlo, thi, u.lo, u.hi, evals);
+            } else if (thi - tlo > eps && level < BISECT_MAX_LEVEL) {
+                level += 1;
+                i *= 2;
+                continue;
+            } else {
+                prim_quartet_add(q, tlo, thi, SCENE_BOUNDARY);
+            }
+        }
+        if (q->stage == 5 || !node_next(&level, &i))
+            return;
+    }
+}
+
+/* A sphere in the frame around the solid (centre (0, 0, z0), squared radius k), into the span of the solid's
+ * bounds: it makes the range to solve finite when the walk solves again from some point to the end (prim_segments
+ * with tend +inf). */
+IA_FN int prim_quartic_sphere(prim_segments_span *s, const ia_interval a[3], const ia_interval b[3], ia_real z0,
+                              ia_interval k, ia_real ta, ia_real width) {
+    ia_interval az = ia_add_r(a[2], -z0);
+    ia_interval aa = ia_add(ia_add(ia_sqr(a[0]), ia_sqr(a[1])), ia_sqr(az));
+    ia_interval ab = ia_add(ia_add(ia_mul(a[0], b[0]), ia_mul(a[1], b[1])), ia_mul(az, b[2]));
+    ia_interval bb = ia_add(ia_add(ia_sqr(b[0]), ia_sqr(b[1])), ia_sqr(b[2]));
+    return prim_segments_quadric(s, bb, ab, ia_sub(aa, k), 0, ta, width);
+}
+
+/* The quartic of a torus or a general tgc from s = a + u b along the ray (a at ta, b = G d): the tgc's slab into s,
+ * bounds (a sphere around the solid, a torus's slab) into `bound` (they clip the range, and nothing is in outside
+ * them), then where the ray may meet the solid within [ta, ta + width], the coefficients. 1 with them, 2 where the
+ * bounds leave nothing to solve, 0 where there is no closed form (a torus whose tube reaches its axis: its quartic
+ * is negative in a spindle too). */
+IA_FN int prim_quartic_of(int type, const ia_real *p, const ia_interval a[3], const ia_interval b[3],
+                          prim_segments_span *s, prim_segments_span *bound, ia_real ta, ia_real width,
+                          ia_interval c[5]) {
+    ia_interval x[3], y[3], z[3], range = ia_make(0, width);
+    if (type == PRIM_TOR) { /* (|s|^2 + R^2 - r^2)^2 - 4 R^2 (s0^2 + s1^2): negative inside where r < R */
+        ia_interval r2 = ia_sqr(prim_iv(p, 12)), rh2 = prim_iv(p, 13), sum[3];
+        if (!(r2.lo > rh2.hi) || !(rh2.lo >= 0))
+            return 0;
+        ia_interval rh = ia_sqrt(rh2);
+        prim_segments_plane(bound, ia_sub(a[2], rh), b[2], ta, range);
+        prim_segments_plane(bound, ia_neg(ia_add(a[2], rh)), ia_neg(b[2]), ta, range);
+        if (!prim_quartic_sphere(bound, a, b, 0, ia_sqr(ia_add(prim_iv(p, 12), rh)), ta, width))
+            return 0;
+        if (!(fmax(fmax(s->plo, bound->plo), ta) < fmin(fmin(s->phi, bound->phi), ta + width)))
+            return 2;
+        prim_quadratic_sqr(a[0], b[0], x);
+        prim_quadratic_sqr(a[1], b[1], y);
+        prim_quadratic_sqr(a[2], b[2], z);
+        for (int k = 0; k < 3; k++) {
+            x[k] = ia_add(x[k], y[k]); /* s0^2 + s1^2 */
+            sum[k] = ia_add(x[k], z[k]);
+        }
+        sum[0] = ia_add(sum[0], ia_sub(r2, rh2));
+        prim_quartic_sqr(sum, c);
+        for (int k = 0; k < 3; k++)
+            c[k] = ia_sub(c[k], ia_mul(ia_mul_r(r2, 4), x[k]));
+        return 1;
+    }
+    /* u^2 rb^2 + v^2 ra^2 - ra^2 rb^2 (ra = 1 + alpha w, rb = 1 + beta w) on the slab 0 <= w <= 1: negative exactly
+     * where u^2 / ra^2 + v^2 / rb^2 < 1 (it depends on ra and rb through their squares) */
+    ia_interval alpha = prim_iv(p, 12), beta = prim_iv(p, 13), ra[3], rb[3], t[5];
+    ia_interval reach = ia_add(ia_sqr(ia_add_r(ia_max(alpha, ia_point(0)), 1)), ia_sqr(ia_add_r(ia_max(beta, ia_point(0)), 1)));
+    prim_segments_plane(s, ia_neg(a[2]), ia_neg(b[2]), ta, range);
+    prim_segments_plane(s, ia_add_r(a[2], -1), b[2], ta, range);
+    if (!prim_quartic_sphere(bound, a, b, (ia_real)0.5, ia_add_r(reach, (ia_real)0.25), ta, width))
+        return 0;
+    if (!(fmax(fmax(s->plo, bound->plo), ta) < fmin(fmin(s->phi, bound->phi), ta + width)))
+        return 2;
+    prim_quadratic_sqr(ia_add_r(ia_mul(alpha, a[2]), 1), ia_mul(alpha, b[2]), ra);
+    prim_quadratic_sqr(ia_add_r(ia_mul(beta, a[2]), 1), ia_mul(beta, b[2]), rb);
+    prim_quadratic_sqr(a[0], b[0], x);
+    prim_quadratic_sqr(a[1], b[1], y);
+    for (int k = 0; k < 3; k++)
+        y[k] = ia_sub(y[k], rb[k]);
+    prim_quartic_mul(x, rb, c);
+    prim_quartic_mul(ra, y, t);
+    for (int k = 0; k < 5; k++)
+        c[k] = ia_add(c[k], t[k]);
+    return 1;
+}
+
+/* The solid's changes along o + t d over [ta, tend] (see the top), adding its evaluations to *evals: 1 with
+ * e[0..3] (OUT after e3), 2 with e[0..3] where the solid may be in again after e3 (a torus's or a general tgc's
+ * second run: solve again from e3), or 0 where the walk must bisect. */
 IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia_real d[3], ia_real ta, ia_real tend,
-                        ia_real e[4]) {
-    prim_segments_span s = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0};
+                        ia_real eps, ia_real e[4], ia_real *resume, kernel_u32 *evals) {
+    prim_segments_span s = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0}, bound = s;
+    ia_interval c[5];
+    int quartic = 0;
     if (type == PRIM_HALF || type == PRIM_ARB8) { /* n.o - d + t n.d: from the ray's origin, an exact point */
         for (int j = 0; j < (type == PRIM_HALF ? 1 : PRIM_ARB_PLANES); j++)
             prim_segments_plane(&s, ia_sub(prim_segments_dot(p + 8 * j, 0, o), prim_iv(p + 8 * j, 3)),
                                 prim_segments_dot(p + 8 * j, 0, d), 0, ia_make(ta, tend));
-    } else if (type == PRIM_ELL || type == PRIM_TGC || type == PRIM_EHY) {
+    } else if (type == PRIM_ELL || type == PRIM_TGC || type == PRIM_EHY || type == PRIM_TOR) {
         ia_interval at = ia_point(ta), a[3], b[3];
         prim_frame(p, 0, ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at), ray_extent(o[2], d[2], at), a);
         for (int r = 0; r < 3; r++)
             b[r] = prim_segments_dot(p, 3 + 3 * r, d);
-        if (!prim_segments_frame(type, p, a, b, &s, ta, ia_hi(tend - ta)))
+        ia_real width = ia_hi(tend - ta);
+        ia_interval gamma = type == PRIM_TGC ? ia_hull(prim_iv(p, 12), prim_iv(p, 13)) : ia_point(0);
+        quartic = type == PRIM_TOR || !(gamma.hi - gamma.lo <= PRIM_SEGMENTS_SKEW);
+        int of = quartic ? prim_quartic_of(type, p, a, b, &s, &bound, ta, width, c)
+                         : prim_segments_frame(type, p, a, b, &s, ta, width);
+        if (of == 0)
             return 0;
+        if (quartic && of == 2) { /* the bounds say out all along */
+            *evals += 1;
+            e[0] = e[1] = e[2] = e[3] = ta;
+            return 1;
+        }
+        for (int k = 0; quartic && k < 5; k++)
+            if (!isfinite(c[k].lo) || !isfinite(c[k].hi))
+                return 0;
     } else {
         return 0;
     }
-    if (s.nan)
+    if (s.nan || bound.nan)
         return 0;
-    ia_real plo = fmax(s.plo, ta), phi = fmin(s.phi, tend);
+    ia_real plo = fmax(fmax(s.plo, bound.plo), ta), phi = fmin(fmin(s.phi, bound.phi), tend);
     if (!(plo < phi)) { /* out all along */
+        *evals += 1;
         e[0] = e[1] = e[2] = e[3] = ta;
         return 1;
     }
+    if (quartic) {
+        prim_quartet q = {{phi, phi, phi, phi}, 0, phi, s.ilo, s.ihi};
+        prim_quartic_walk(&q, c, ta, plo, phi, eps, evals);
+        for (int k = 0; k < 4; k++)
+            e[k] = q.e[k];
+        *resume = q.resume;
+        return q.stage == 5 ? 2 : 1;
+    }
+    *evals += 1;
     ia_real ilo = fmax(s.ilo, plo), ihi = fmin(s.ihi, phi);
     e[0] = plo;
     e[1] = ilo < ihi ? ilo : phi;

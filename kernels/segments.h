@@ -13,9 +13,10 @@
  * stored or sorted, and the walks stop at the first claimed partition: a ray that hits the front of a solid never
  * bisects its back, nor the solids behind.
  *
- * A BRL-CAD primitive with a closed form (prim_segments.h: half, arb8, ell, ehy, and tgc where it is a quadric)
- * walks by it instead: its first step solves it along the ray, and the walk then moves through its four changes
- * (segments_closed_step); where the closed form cannot decide (a ray along a cone's side line) it bisects.
+ * A BRL-CAD primitive with a closed form (prim_segments.h: all but the pipe) walks by it instead: its first step
+ * solves it along the ray, and the walk then moves through its four changes (segments_closed_step), solving again
+ * after them where a torus or a general tgc may be in again; where the closed form cannot decide (a ray along a
+ * cone's side line) it bisects.
  *
  * Needs scene_solid_F (src/render_scene.c's program, or the host tests' own), and with SCENE_SOLID_PRIMS (a scene
  * with primitives) scene_solid_P: a solid's primitive type and parameters (implicits/scene_emit.c).
@@ -25,6 +26,9 @@
 #include "traverse.h"
 #include "scene_data.h"
 #include "prim_segments.h"
+#if !IA_DEVICE
+#include <string.h>
+#endif
 
 /* A candidate's walk: node (level[c], index[c]) of the tree over [range[2c], range[2c] + range[2c + 1]], whose
  * start is pos[c]; level SEGMENTS_CLOSING when the walk has covered the range and the solid's final OUT at its
@@ -44,16 +48,43 @@ typedef struct {
 #define SEGMENTS_CLOSED (-2)
 
 #ifdef SCENE_SOLID_PRIMS
-/* At a walk's first step: solves candidate c's solid in closed form where it has one (counted as one
- * evaluation), keeping the changes; 0 when it must bisect. */
-IA_FN int segments_closed_start(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3],
-                                kernel_u32 *evals) {
-    ia_real p[PRIM_SEGMENTS_REALS], e[4], ta = w->range[2 * c];
+/* A real kept in a closed-form walk's node index (which it does not use): the point it solves again from. */
+IA_FN bisect_index segments_bits_of(ia_real x) {
+#if IA_DEVICE && defined(IA_FP64)
+    return as_ulong(x);
+#elif IA_DEVICE
+    return as_uint(x);
+#else
+    bisect_index b;
+    memcpy(&b, &x, sizeof b);
+    return b;
+#endif
+}
+IA_FN ia_real segments_real_of(bisect_index b) {
+#if IA_DEVICE && defined(IA_FP64)
+    return as_double(b);
+#elif IA_DEVICE
+    return as_float(b);
+#else
+    ia_real x;
+    memcpy(&x, &b, sizeof x);
+    return x;
+#endif
+}
+
+/* Solves candidate c's solid in closed form over [ta, tend] where it has one, keeping the changes (and where it may
+ * be in again after them, newton[c] = 1 and in index[c] the point to solve again from, to the end); 0 when it must
+ * bisect. */
+IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real ta,
+                                ia_real tend, ia_real eps, kernel_u32 *evals) {
+    ia_real p[PRIM_SEGMENTS_REALS], e[4], resume = tend;
     int type = scene_solid_P(w->solid[c], p, PRIM_SEGMENTS_REALS);
-    if (type < 0 || !prim_segments(type, p, o, d, ta, node_bound(ta, w->range[2 * c + 1], 0, 1), e))
+    int r = type < 0 ? 0 : prim_segments(type, p, o, d, ta, tend, eps, e, &resume, evals);
+    if (r == 0)
         return 0;
-    *evals += 1;
     w->level[c] = SEGMENTS_CLOSED;
+    w->newton[c] = r == 2;
+    w->index[c] = segments_bits_of(resume);
     w->range[2 * c] = e[0];
     w->range[2 * c + 1] = e[1];
     w->newton_t[2 * c] = e[2];
@@ -62,14 +93,32 @@ IA_FN int segments_closed_start(const segments_walks *w, int c, const ia_real o[
 }
 
 /* A closed-form walk's step: the state from pos[c] on, after the changes at or before it (OUT, BOUNDARY, IN,
- * BOUNDARY, OUT), and pos[c] on to the next change. */
-IA_FN int segments_closed_step(const segments_walks *w, int c) {
-    ia_real e[4] = {w->range[2 * c], w->range[2 * c + 1], w->newton_t[2 * c], w->newton_t[2 * c + 1]};
-    int j = 0;
-    while (j < 4 && e[j] <= w->pos[c])
-        j++;
-    w->pos[c] = j < 4 ? e[j] : IA_INF;
-    return j == 2 ? SCENE_IN : j & 1 ? SCENE_BOUNDARY : SCENE_OUT;
+ * BOUNDARY, OUT), and pos[c] on to the next change. Past the last change of a solid that may be in again, OUT up
+ * to the point to solve again from, and there it solves again, to the end of the solid's own bounding sphere
+ * (beyond the BVH's range: the solid is OUT there, and the closed form says so); where that fails, which finite
+ * coefficients never do, the rest is BOUNDARY. */
+IA_FN int segments_closed_step(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real eps,
+                               kernel_u32 *evals) {
+    for (int pass = 0;; pass++) {
+        ia_real e[4] = {w->range[2 * c], w->range[2 * c + 1], w->newton_t[2 * c], w->newton_t[2 * c + 1]};
+        int j = 0;
+        while (j < 4 && e[j] <= w->pos[c])
+            j++;
+        if (j == 4 && w->newton[c] == 1) {
+            ia_real resume = segments_real_of(w->index[c]);
+            if (w->pos[c] < resume) {
+                w->pos[c] = resume;
+                return SCENE_OUT;
+            }
+            if (pass == 0 && segments_closed_solve(w, c, o, d, resume, IA_INF, eps, evals))
+                continue; /* a solve moves on by one state at least */
+            w->newton[c] = 0;
+            w->pos[c] = IA_INF;
+            return SCENE_BOUNDARY;
+        }
+        w->pos[c] = j < 4 ? e[j] : IA_INF;
+        return j == 2 ? SCENE_IN : j & 1 ? SCENE_BOUNDARY : SCENE_OUT;
+    }
 }
 #endif
 
@@ -153,8 +202,9 @@ IA_FN int segments_step(const segments_walks *w, int c, const ia_real o[3], cons
         return SCENE_OUT;
     }
 #ifdef SCENE_SOLID_PRIMS
-    if (level == SEGMENTS_CLOSED || (level == 0 && w->index[c] == 0 && segments_closed_start(w, c, o, d, evals)))
-        return segments_closed_step(w, c);
+    if (level == SEGMENTS_CLOSED ||
+        (level == 0 && w->index[c] == 0 && segments_closed_solve(w, c, o, d, ta, node_bound(ta, width, 0, 1), eps, evals)))
+        return segments_closed_step(w, c, o, d, eps, evals);
 #endif
     bisect_index i = w->index[c];
     int s;

@@ -2,7 +2,8 @@
  * host once per renderer:
  *   boxes     each region solid's proven box (iacsg_expr_bounds), or an infinite one where the solid has none or
  *             its inside reaches beyond it (the sign of f at a point outside the box says which)
- *   BVH       over those boxes, median splits on the longest axis, flattened in preorder with skip links
+ *   BVH       over those boxes, split along the centres' longest axis by the surface area heuristic, flattened
+ *             in preorder with skip links
  *   trees     every tree and condition as the scene has them, then each region's tree again, relinearised so
  *             that its evaluation's stack stays within SCENE_TREE_STACK (kernels/classify.h)
  *   lists     per solid the regions that use it; the surfaces; each item's albedo (material, or the palette)

@@ -1,5 +1,6 @@
 /* tests/t_prim_segments_fp.c -- each primitive type through the segment path's walk as scenes of more than 64 solids
- * run it: the closed forms of kernels/prim_segments.h (half, arb8, ell, ehy, the quadric tgcs), bisection for the rest
+ * run it: the closed forms of kernels/prim_segments.h (every type but the pipe: the quadrics solved, tori and general
+ * tgcs walked as quartics), bisection for the pipe
  * and for the rays the closed forms leave to it; against the exact reference: tests/t_prim_walk.h says what is
  * checked. */
 #define SCENE_SOLID_PRIMS 1
