@@ -208,7 +208,8 @@ static double towards(const fx_light *L, const double p[3], double l[3]) {
 static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx_ray *ray) {
     double p[3], l[3], n[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
     hit_point(q, p);
-    towards(L, p, l);
+    for (int k = 0; k < 3; k++) /* towards the light, unnormalised: only its side of the surface counts here */
+        l[k] = L->point ? L->v[k] - p[k] : L->v[k];
     if (dot3(n, l) <= 0)
         return 0;
     double off = offset_of(f, p, q->hit.t);
