@@ -130,7 +130,9 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
         if (mem[b])
             st = fx_sync_to_host(r->rt.queue, mem[b], bytes[b], err);
     size_t samples = mode == EFFECTS_MODE_AA ? (size_t)aa * aa : 1;
-    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
+    /* centre rays that list no reflected ray and count nothing left all in the frame: no pass over them */
+    int per_path = mode != EFFECTS_MODE_CENTRE || mem[5] || x->kid_slots;
+    for (size_t i = 0; st == IACSG_OK && per_path && i < n; i++) {
         int pixel = pixels[i / samples];
         for (int c = 0; mode != EFFECTS_MODE_CENTRE && c < 3; c++) /* a centre ray's is in the frame already */
             x->accum[3 * (size_t)pixel + c] += x->color[3 * i + c];
