@@ -176,8 +176,35 @@ int emit_is_ident_char(char c) {
     "    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {\n        if (m & 1)\n            r *= p;\n"         \
     "        p *= p;\n    }\n    return n < 0 ? 1 / r : r;\n}\n"
 
-/* Writes an ops.def template for node i, replacing the placeholders A, B, N, KB, DA, DB and R. In the point
- * code, the bounds .lo and .hi of the `undefined` column are the point itself. */
+/* The outward enclosure [RD(1/hi), RU(1/lo)] of the reciprocals of a constant c = [lo, hi] with 0 < lo <= hi, in
+ * double (d) and float (f): 1 when c is such a constant with finite reciprocals, else 0. A quotient by c is then a
+ * product by it: every x/c' (c' in c) is x times a point of it, and a product is rounded once, outward, where the
+ * device's division is rounded within IA_ULP_DIV (2.5 ulp in OpenCL's float) and costs more; icos.csg's
+ * scale(ic, 0.4) divides x, y, z and their derivatives by 0.4 at every evaluation. The residual of q c - 1, exact
+ * by fma, says on which side of 1/c the rounded q lies. */
+static int reciprocal_enclosure(const dag_node *c, double d[2], float f[2]) {
+    if (c->op != OP_CONST || !(c->lo > 0 && c->flo > 0 && isfinite(c->hi) && isfinite(c->fhi)))
+        return 0;
+    d[0] = 1 / c->hi;
+    d[1] = 1 / c->lo;
+    f[0] = 1 / c->fhi;
+    f[1] = 1 / c->flo;
+    if (!isfinite(d[1]) || !isfinite(f[1]))
+        return 0;
+    if (fma(d[0], c->hi, -1.0) > 0)
+        d[0] = nextafter(d[0], 0.0);
+    if (fma(d[1], c->lo, -1.0) < 0)
+        d[1] = nextafter(d[1], (double)INFINITY);
+    if (fmaf(f[0], c->fhi, -1.0f) > 0)
+        f[0] = nextafterf(f[0], 0.0f);
+    if (fmaf(f[1], c->flo, -1.0f) < 0)
+        f[1] = nextafterf(f[1], INFINITY);
+    return 1;
+}
+
+/* Writes an ops.def template for node i, replacing the placeholders A, B, N, KB, DA, DB, R and RB (the
+ * reciprocals of a constant B, see reciprocal_enclosure). In the point code, the bounds .lo and .hi of the
+ * `undefined` column are the point itself. */
 static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r) {
     const dag *d = em->d;
     const dag_node *n = &d->nodes[i];
@@ -187,6 +214,12 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
         put_union(b, em, i, r);
         return;
     }
+    double recip[2] = {0, 0};
+    float frecip[2] = {0, 0};
+    if (n->op == OP_DIV && is_interval(r) && reciprocal_enclosure(&d->nodes[n->b], recip, frecip))
+        tpl = tpl == dag_ops[OP_DIV].interval ? "ia_mul(A, RB)"
+              : tpl == dag_ops[OP_DIV].tderiv ? "ia_mul(DA, RB)" /* B's derivative is 0: (DA - R 0) / B */
+                                              : tpl;
     for (const char *p = tpl; *p;) {
         if (r == AS_POINT && (strncmp(p, ".lo", 3) == 0 || strncmp(p, ".hi", 3) == 0) && !emit_is_ident_char(p[3])) {
             p += 3;
@@ -214,6 +247,13 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
             put_operand(b, em, n->b, deriv_role);
         else if (IS("R"))
             strbuf_printf(b, "v%d", i);
+        else if (IS("RB")) {
+            strbuf_printf(b, is_vector(r) ? "iav_const(" : "ia_make(");
+            put_real(b, recip[0], frecip[0]);
+            strbuf_printf(b, ", ");
+            put_real(b, recip[1], frecip[1]);
+            strbuf_printf(b, ")");
+        }
         else if (is_vector(r) && len > 3 && strncmp(p, "ia_", 3) == 0)
             strbuf_printf(b, "iav_%.*s", (int)len - 3, p + 3);
         else if (!is_interval(r) && IS("pown"))
