@@ -359,6 +359,23 @@ static int sin_cos_statement(strbuf *b, const emitter *em, int i, role r, char *
     return 1;
 }
 
+/* Node i's derivative along a ray one box at a time (AS_TDERIV): ops.def's tderiv column, but a sum or product with
+ * an operand whose derivative is identically 0 is the other term alone, as over lanes (vector_tderiv): not a
+ * product by [0, 0] and a rounded addition of it (icos.csg's tau y, tau z, tau x). */
+static const char *scalar_tderiv(const emitter *em, const dag_node *n) {
+    int zero_a = n->a >= 0 && !em->axes[n->a], zero_b = n->b >= 0 && !em->axes[n->b];
+    switch (n->op) {
+    case OP_ADD:
+        return zero_a ? "DB" : zero_b ? "DA" : dag_ops[n->op].tderiv;
+    case OP_SUB:
+        return zero_a ? "ia_neg(DB)" : zero_b ? "DA" : dag_ops[n->op].tderiv;
+    case OP_MUL:
+        return zero_a ? "ia_mul(A, DB)" : zero_b ? "ia_mul(DA, B)" : dag_ops[n->op].tderiv;
+    default:
+        return dag_ops[n->op].tderiv;
+    }
+}
+
 static void body(strbuf *b, const emitter *em, const int *order, int count, role r) {
     role value = r == AS_VECTOR_DT ? AS_VECTOR : r == AS_INTERVAL_DT ? AS_INTERVAL : r == AS_DERIV ? AS_POINT : r;
     for (int k = 0; k < count; k++) {
@@ -397,7 +414,7 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
             if (r == AS_VECTOR_DT)
                 expand(b, em, i, vector_tderiv(em, n, composed, sizeof composed), AS_VTDERIV);
             else
-                expand(b, em, i, sin_cos ? paired : dag_ops[n->op].tderiv, AS_TDERIV);
+                expand(b, em, i, sin_cos ? paired : scalar_tderiv(em, n), AS_TDERIV);
         }
         strbuf_printf(b, ";\n");
     }

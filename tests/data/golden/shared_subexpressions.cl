@@ -47,7 +47,7 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
     ia_interval v3 = ia_mul(v1, y);
     ia_interval v3_t = ia_add(ia_mul(v1_t, y), ia_mul(v1, dy));
     ia_interval v5 = ia_add(v1, ia_make(IACSG_K(0x1.999998p-4f, 0x1.9999999999999p-4), IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4)));
-    ia_interval v5_t = ia_add(v1_t, ia_point(0));
+    ia_interval v5_t = v1_t;
     ia_interval v6 = ia_min(v3, v5);
     ia_interval v6_t = ia_dmin(v3, v5, v3_t, v5_t);
     *dt = v6_t;
