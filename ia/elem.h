@@ -204,7 +204,8 @@ IA__INLINE ia_interval ia__sincos_mid_of(ia__reduced c, double d, int shift) {
     double z = d * d;
     int k = c.k;
     double v = ia__quadrant_cos(k - shift, c.sin_r, c.cos_r), low = v * (1 - 0.5 * z);
-    double slope = fabs(ia__quadrant_cos(k - shift + 1, c.sin_r, c.cos_r)) * (d * (1 - z * (1.0 / 6 - z * (1.0 / 120))));
+    double slope =
+        fabs(ia__quadrant_cos(k - shift + 1, c.sin_r, c.cos_r)) * (d * (1 - z * (1.0 / 6 - z * (1.0 / 120))));
     double lo = (v < low ? v : low) - slope, hi = (v < low ? low : v) + slope, size = fabs(v) + slope;
     if (fmin(fabs(lo), fabs(hi)) < size * 0x1p-10)
         return ia_make(-2, -2);

@@ -182,7 +182,7 @@ int emit_is_ident_char(char c) {
  * device's division is rounded within IA_ULP_DIV (2.5 ulp in OpenCL's float) and costs more; icos.csg's
  * scale(ic, 0.4) divides x, y, z and their derivatives by 0.4 at every evaluation. The residual of q c - 1, exact
  * by fma, says on which side of 1/c the rounded q lies. */
-static int reciprocal_enclosure(const dag_node *c, double d[2], float f[2]) {
+int emit_reciprocal_enclosure(const dag_node *c, double d[2], float f[2]) {
     if (c->op != OP_CONST || !(c->lo > 0 && c->flo > 0 && isfinite(c->hi) && isfinite(c->fhi)))
         return 0;
     d[0] = 1 / c->hi;
@@ -203,7 +203,7 @@ static int reciprocal_enclosure(const dag_node *c, double d[2], float f[2]) {
 }
 
 /* Writes an ops.def template for node i, replacing the placeholders A, B, N, KB, DA, DB, R and RB (the
- * reciprocals of a constant B, see reciprocal_enclosure). In the point code, the bounds .lo and .hi of the
+ * reciprocals of a constant B, see emit_reciprocal_enclosure). In the point code, the bounds .lo and .hi of the
  * `undefined` column are the point itself. */
 static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r) {
     const dag *d = em->d;
@@ -216,7 +216,7 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
     }
     double recip[2] = {0, 0};
     float frecip[2] = {0, 0};
-    if (n->op == OP_DIV && is_interval(r) && reciprocal_enclosure(&d->nodes[n->b], recip, frecip))
+    if (n->op == OP_DIV && is_interval(r) && emit_reciprocal_enclosure(&d->nodes[n->b], recip, frecip))
         tpl = tpl == dag_ops[OP_DIV].interval ? "ia_mul(A, RB)"
               : tpl == dag_ops[OP_DIV].tderiv ? "ia_mul(DA, RB)" /* B's derivative is 0: (DA - R 0) / B */
                                               : tpl;

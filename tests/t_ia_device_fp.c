@@ -363,7 +363,8 @@ TEST_FP(ia_device_sin_cos) {
     for (long i = 0; i < count; i++) {
         double centre = (test_rand_unit(r) * 2 - 1) * (i % 5 == 4 ? 0x1p21 : i % 5 == 3 ? 20 : 1e3);
         if (i % 7 == 0) /* near a multiple of pi/2: a zero of sin or cos */
-            centre = (double)(long)(centre / 1.5707963267948966) * 1.5707963267948966 + (test_rand_unit(r) - 0.5) * 1e-5;
+            centre = (double)(long)(centre / 1.5707963267948966) * 1.5707963267948966 +
+                     (test_rand_unit(r) - 0.5) * 1e-5;
         double half = i % 3 == 0 ? 0 : pow(2, -30 + 34 * test_rand_unit(r)); /* 2^-30 .. 16 */
         k[i].a = ia_make((ia_real)(centre - half), (ia_real)(centre + half));
     }
