@@ -154,21 +154,38 @@ IA_FN int ia__quadrant_extrema(int first, int last, int shift) {
     return hits;
 }
 
+/* The parts below, inlined where they are used: called, the reduced points went through memory. */
+#define IA__INLINE IA_FN __attribute__((always_inline))
+
+/* x reduced (ia__reduce) with sin r and cos r: what cos and sin at x are both made of. */
+typedef struct {
+    int k;
+    double r, sin_r, cos_r;
+} ia__reduced;
+IA__INLINE ia__reduced ia__reduced_at(double x) {
+    ia__reduced p;
+    p.k = ia__reduce(x, &p.r);
+    ia__sincos_kernels(p.r, &p.sin_r, &p.cos_r);
+    return p;
+}
+
 /* cos (shift 0) or sin (shift 1) of a, both ends within IA__REDUCED_MAX, from its ends' values. The extrema lie
  * where x / (pi/2) is an integer m: a maximum where m - shift = 0 mod 4, a minimum where it is 2 mod 4.
  * a.lo / (pi/2) = k + r 2/pi, so the first such integer in a is k, or k + 1 where r > 0; the last likewise; an end
  * whose r is within r's error of 0 counts its k (an extremum that is merely possible: the bound it sets is within
  * rounding of the end's). */
-IA_FN ia_interval ia__sincos_ends(ia_interval a, int shift) {
-    double r0, r1;
-    int k0 = ia__reduce(a.lo, &r0), k1 = ia__reduce(a.hi, &r1);
-    int hits = ia__quadrant_extrema(k0 + (r0 > 0x1p-60 ? 1 : 0), k1 - (r1 < -0x1p-60 ? 1 : 0), shift);
-    double v0 = ia__sincos_value(k0, r0, shift), v1 = ia__sincos_value(k1, r1, shift);
+IA__INLINE ia_interval ia__sincos_ends_of(ia__reduced e0, ia__reduced e1, int shift) {
+    int k0 = e0.k, k1 = e1.k;
+    int hits = ia__quadrant_extrema(k0 + (e0.r > 0x1p-60 ? 1 : 0), k1 - (e1.r < -0x1p-60 ? 1 : 0), shift);
+    double v0 = ia__quadrant_cos(k0 - shift, e0.sin_r, e0.cos_r), v1 = ia__quadrant_cos(k1 - shift, e1.sin_r, e1.cos_r);
     int first_low = v0 <= v1;
     double lo = first_low ? v0 : v1, hi = first_low ? v1 : v0;
     ia_interval b =
         ia__sincos_bounds(lo, hi, ia__sincos_pad(lo, first_low ? k0 : k1), ia__sincos_pad(hi, first_low ? k1 : k0));
     return ia_make(hits & 2 ? (ia_real)-1 : b.lo, hits & 1 ? (ia_real)1 : b.hi);
+}
+IA_FN ia_interval ia__sincos_ends(ia_interval a, int shift) {
+    return ia__sincos_ends_of(ia__reduced_at(a.lo), ia__reduced_at(a.hi), shift);
 }
 
 /* The same for a narrow a (half-width at most IA__NARROW), from one reduction at its midpoint m: with f = cos or
@@ -179,17 +196,24 @@ IA_FN ia_interval ia__sincos_ends(ia_interval a, int shift) {
  * roundings then count, and the end points are taken instead (returns lo = -2). S's rounding is in the pad. Half the
  * cost of the end points: icos.csg's narrow nodes and Newton's point evaluations. */
 #define IA__NARROW 0x1p-12
-IA_FN ia_interval ia__sincos_mid(ia_interval a, int shift) {
-    double m = 0.5 * ((double)a.lo + (double)a.hi), r, sin_r, cos_r; /* any point of a would do */
-    double d = fmax((double)a.hi - m, m - (double)a.lo) * (1 + 0x1p-50), z = d * d;
-    int k = ia__reduce(m, &r);
-    ia__sincos_kernels(r, &sin_r, &cos_r);
-    double v = ia__quadrant_cos(k - shift, sin_r, cos_r), low = v * (1 - 0.5 * z);
-    double slope = fabs(ia__quadrant_cos(k - shift + 1, sin_r, cos_r)) * (d * (1 - z * (1.0 / 6 - z * (1.0 / 120))));
+IA_FN double ia__sincos_mid_point(ia_interval a) { return 0.5 * ((double)a.lo + (double)a.hi); } /* any point */
+IA_FN double ia__sincos_mid_half(ia_interval a, double m) {
+    return fmax((double)a.hi - m, m - (double)a.lo) * (1 + 0x1p-50);
+}
+IA__INLINE ia_interval ia__sincos_mid_of(ia__reduced c, double d, int shift) {
+    double z = d * d;
+    int k = c.k;
+    double v = ia__quadrant_cos(k - shift, c.sin_r, c.cos_r), low = v * (1 - 0.5 * z);
+    double slope =
+        fabs(ia__quadrant_cos(k - shift + 1, c.sin_r, c.cos_r)) * (d * (1 - z * (1.0 / 6 - z * (1.0 / 120))));
     double lo = (v < low ? v : low) - slope, hi = (v < low ? low : v) + slope, size = fabs(v) + slope;
     if (fmin(fabs(lo), fabs(hi)) < size * 0x1p-10)
         return ia_make(-2, -2);
     return ia__sincos_bounds(lo, hi, ia__sincos_pad(size, k), ia__sincos_pad(size, k));
+}
+IA_FN ia_interval ia__sincos_mid(ia_interval a, int shift) {
+    double m = ia__sincos_mid_point(a);
+    return ia__sincos_mid_of(ia__reduced_at(m), ia__sincos_mid_half(a, m), shift);
 }
 
 /* cos (shift 0) or sin (shift 1) at a point, by the same reduction and kernels rounded to nearest: the emitted
@@ -211,6 +235,28 @@ IA_FN ia_interval ia__sincos_reduced(ia_interval a, int shift) {
             return c;
     }
     return ia__sincos_ends(a, shift);
+}
+
+/* sin (*s) and cos (*c) of a as ia__sincos_reduced computes each, from one reduction for both: the derivative of
+ * one is the other. 0 where neither way applies. */
+IA_FN int ia__sin_cos_reduced(ia_interval a, ia_interval *s, ia_interval *c) {
+    if (!(fabs(a.lo) <= IA__REDUCED_MAX && fabs(a.hi) <= IA__REDUCED_MAX))
+        return 0;
+    *s = *c = ia_make(-2, -2); /* not yet */
+    if ((double)a.hi - (double)a.lo <= 2 * IA__NARROW) {
+        double m = ia__sincos_mid_point(a), d = ia__sincos_mid_half(a, m);
+        ia__reduced p = ia__reduced_at(m);
+        *s = ia__sincos_mid_of(p, d, 1);
+        *c = ia__sincos_mid_of(p, d, 0);
+        if (s->lo != -2 && c->lo != -2)
+            return 1;
+    }
+    ia__reduced e0 = ia__reduced_at(a.lo), e1 = ia__reduced_at(a.hi);
+    if (s->lo == -2)
+        *s = ia__sincos_ends_of(e0, e1, 1);
+    if (c->lo == -2)
+        *c = ia__sincos_ends_of(e0, e1, 0);
+    return 1;
 }
 #define IA_SINCOS_REDUCED 1
 #endif
@@ -257,6 +303,17 @@ IA_FN ia_interval ia_sin(ia_interval a) {
         return c;
 #endif
     return ia__sincos(a, sin(a.lo), sin(a.hi), (ia_real)0.5);
+}
+
+/* sin(a) into *s and cos(a) into *c, each as ia_sin and ia_cos return it, from one argument reduction where they
+ * reduce in double: the emitted derivative along a ray needs sin beside cos of the same argument (implicits/emit.c). */
+IA_FN void ia_sin_cos(ia_interval a, ia_interval *s, ia_interval *c) {
+#ifdef IA_SINCOS_REDUCED
+    if (!ia_is_empty(a) && a.lo != -IA_INF && a.hi != IA_INF && ia__sin_cos_reduced(a, s, c))
+        return;
+#endif
+    *s = ia_sin(a);
+    *c = ia_cos(a);
 }
 
 /* tan(a): increasing between poles; an interval that may contain a pole (pi/2 + k pi) gives entire, the hull of

@@ -54,7 +54,7 @@
  *   Fast mode (IA_FAST) drops the widening: the Hijazi seed's arithmetic, for measuring the cost of rigor.
  *
  * Files: compat.h (host/device differences), round.h (widening, error table), interval.h (type, exact ops, the
- * union under the rule for undefined operands), arith.h (+ - * / recip sqr pown sqrt), elem.h (exp log sin cos
+ * union under the rule for undefined operands), arith.h (+ - * / recip sqr pown sqrt), elem.h (exp log sin cos sin_cos
  * tan atan pow). Host only: decimal.h. Device only: vec.h, the operations over IA_VW lanes (for lanes with
  * nonempty operands, bit-identical to these).
  */

@@ -176,8 +176,35 @@ int emit_is_ident_char(char c) {
     "    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {\n        if (m & 1)\n            r *= p;\n"         \
     "        p *= p;\n    }\n    return n < 0 ? 1 / r : r;\n}\n"
 
-/* Writes an ops.def template for node i, replacing the placeholders A, B, N, KB, DA, DB and R. In the point
- * code, the bounds .lo and .hi of the `undefined` column are the point itself. */
+/* The outward enclosure [RD(1/hi), RU(1/lo)] of the reciprocals of a constant c = [lo, hi] with 0 < lo <= hi, in
+ * double (d) and float (f): 1 when c is such a constant with finite reciprocals, else 0. A quotient by c is then a
+ * product by it: every x/c' (c' in c) is x times a point of it, and a product is rounded once, outward, where the
+ * device's division is rounded within IA_ULP_DIV (2.5 ulp in OpenCL's float) and costs more; icos.csg's
+ * scale(ic, 0.4) divides x, y, z and their derivatives by 0.4 at every evaluation. The residual of q c - 1, exact
+ * by fma, says on which side of 1/c the rounded q lies. */
+int emit_reciprocal_enclosure(const dag_node *c, double d[2], float f[2]) {
+    if (c->op != OP_CONST || !(c->lo > 0 && c->flo > 0 && isfinite(c->hi) && isfinite(c->fhi)))
+        return 0;
+    d[0] = 1 / c->hi;
+    d[1] = 1 / c->lo;
+    f[0] = 1 / c->fhi;
+    f[1] = 1 / c->flo;
+    if (!isfinite(d[1]) || !isfinite(f[1]))
+        return 0;
+    if (fma(d[0], c->hi, -1.0) > 0)
+        d[0] = nextafter(d[0], 0.0);
+    if (fma(d[1], c->lo, -1.0) < 0)
+        d[1] = nextafter(d[1], (double)INFINITY);
+    if (fmaf(f[0], c->fhi, -1.0f) > 0)
+        f[0] = nextafterf(f[0], 0.0f);
+    if (fmaf(f[1], c->flo, -1.0f) < 0)
+        f[1] = nextafterf(f[1], INFINITY);
+    return 1;
+}
+
+/* Writes an ops.def template for node i, replacing the placeholders A, B, N, KB, DA, DB, R and RB (the
+ * reciprocals of a constant B, see emit_reciprocal_enclosure). In the point code, the bounds .lo and .hi of the
+ * `undefined` column are the point itself. */
 static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r) {
     const dag *d = em->d;
     const dag_node *n = &d->nodes[i];
@@ -187,6 +214,12 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
         put_union(b, em, i, r);
         return;
     }
+    double recip[2] = {0, 0};
+    float frecip[2] = {0, 0};
+    if (n->op == OP_DIV && is_interval(r) && emit_reciprocal_enclosure(&d->nodes[n->b], recip, frecip))
+        tpl = tpl == dag_ops[OP_DIV].interval ? "ia_mul(A, RB)"
+              : tpl == dag_ops[OP_DIV].tderiv ? "ia_mul(DA, RB)" /* B's derivative is 0: (DA - R 0) / B */
+                                              : tpl;
     for (const char *p = tpl; *p;) {
         if (r == AS_POINT && (strncmp(p, ".lo", 3) == 0 || strncmp(p, ".hi", 3) == 0) && !emit_is_ident_char(p[3])) {
             p += 3;
@@ -214,6 +247,13 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
             put_operand(b, em, n->b, deriv_role);
         else if (IS("R"))
             strbuf_printf(b, "v%d", i);
+        else if (IS("RB")) {
+            strbuf_printf(b, is_vector(r) ? "iav_const(" : "ia_make(");
+            put_real(b, recip[0], frecip[0]);
+            strbuf_printf(b, ", ");
+            put_real(b, recip[1], frecip[1]);
+            strbuf_printf(b, ")");
+        }
         else if (is_vector(r) && len > 3 && strncmp(p, "ia_", 3) == 0)
             strbuf_printf(b, "iav_%.*s", (int)len - 3, p + 3);
         else if (!is_interval(r) && IS("pown"))
@@ -303,6 +343,39 @@ static void flag_statement(strbuf *b, const emitter *em, int i, role value, char
  * interval code computes its flag, the point code makes it NaN where its own operation is undefined (NaN then
  * spreads through the arithmetic; at a point, tan's poles are never met, so its condition on R is left out),
  * and the derivative along a ray gathers the flags of such operations in `undefined`. */
+/* Along a ray, one box at a time, sin's derivative needs cos of the same argument and cos's sin: node i's value
+ * statement computes both from one argument reduction (ia/elem.h's ia_sin_cos) into v<i> and v<i>_cos or
+ * v<i>_sin, and its derivative is made of the other (the template in buf). Returns 0 for other nodes and roles.
+ * icos.csg's Newton steps took 12 reductions for its 6 cosines. */
+static int sin_cos_statement(strbuf *b, const emitter *em, int i, role r, char *buf, size_t size) {
+    const dag_node *n = &em->d->nodes[i];
+    if (r != AS_INTERVAL_DT || !em->axes[i] || (n->op != OP_SIN && n->op != OP_COS))
+        return 0;
+    int is_sin = n->op == OP_SIN;
+    strbuf_printf(b, "    ia_interval v%d, v%d_%s;\n    ia_sin_cos(", i, i, is_sin ? "cos" : "sin");
+    put_operand(b, em, n->a, AS_INTERVAL);
+    strbuf_printf(b, is_sin ? ", &v%d, &v%d_cos);\n" : ", &v%d_sin, &v%d);\n", i, i);
+    snprintf(buf, size, is_sin ? "ia_mul(v%d_cos, DA)" : "ia_neg(ia_mul(v%d_sin, DA))", i);
+    return 1;
+}
+
+/* Node i's derivative along a ray one box at a time (AS_TDERIV): ops.def's tderiv column, but a sum or product with
+ * an operand whose derivative is identically 0 is the other term alone, as over lanes (vector_tderiv): not a
+ * product by [0, 0] and a rounded addition of it (icos.csg's tau y, tau z, tau x). */
+static const char *scalar_tderiv(const emitter *em, const dag_node *n) {
+    int zero_a = n->a >= 0 && !em->axes[n->a], zero_b = n->b >= 0 && !em->axes[n->b];
+    switch (n->op) {
+    case OP_ADD:
+        return zero_a ? "DB" : zero_b ? "DA" : dag_ops[n->op].tderiv;
+    case OP_SUB:
+        return zero_a ? "ia_neg(DB)" : zero_b ? "DA" : dag_ops[n->op].tderiv;
+    case OP_MUL:
+        return zero_a ? "ia_mul(A, DB)" : zero_b ? "ia_mul(DA, B)" : dag_ops[n->op].tderiv;
+    default:
+        return dag_ops[n->op].tderiv;
+    }
+}
+
 static void body(strbuf *b, const emitter *em, const int *order, int count, role r) {
     role value = r == AS_VECTOR_DT ? AS_VECTOR : r == AS_INTERVAL_DT ? AS_INTERVAL : r == AS_DERIV ? AS_POINT : r;
     for (int k = 0; k < count; k++) {
@@ -311,9 +384,13 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
         if (n->op < OP_NEG)
             continue; /* leaves are written in place */
         const char *type = !is_interval(r) ? "ia_real" : is_vector(r) ? "iav" : "ia_interval";
-        strbuf_printf(b, "    %s v%d = ", type, i);
-        expand(b, em, i, is_interval(r) ? dag_ops[n->op].interval : dag_ops[n->op].point, value);
-        strbuf_printf(b, ";\n");
+        char paired[64];
+        int sin_cos = sin_cos_statement(b, em, i, r, paired, sizeof paired);
+        if (!sin_cos) {
+            strbuf_printf(b, "    %s v%d = ", type, i);
+            expand(b, em, i, is_interval(r) ? dag_ops[n->op].interval : dag_ops[n->op].point, value);
+            strbuf_printf(b, ";\n");
+        }
         int own = op_may_be_undefined(n);
         if (em->undefined[i] && is_interval(r))
             flag_statement(b, em, i, value, 'u');
@@ -337,7 +414,7 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
             if (r == AS_VECTOR_DT)
                 expand(b, em, i, vector_tderiv(em, n, composed, sizeof composed), AS_VTDERIV);
             else
-                expand(b, em, i, dag_ops[n->op].tderiv, AS_TDERIV);
+                expand(b, em, i, sin_cos ? paired : scalar_tderiv(em, n), AS_TDERIV);
         }
         strbuf_printf(b, ";\n");
     }

@@ -16,5 +16,9 @@ int emit_is_ident_char(char c);
 
 /* 1 when some node reachable from root may be undefined somewhere (a pole, a domain edge, an empty constant). */
 int emit_may_be_undefined(const dag *d, int root);
+/* The outward enclosure of the reciprocals of constant node c in double (d) and float (f), where c is a positive
+ * constant with finite reciprocals (returns 1; else 0): a quotient by c is emitted as a product by it, and the
+ * tape interpreter (tape.c) does the same, to stay bit for bit the compiled code. */
+int emit_reciprocal_enclosure(const dag_node *c, double d[2], float f[2]);
 
 #endif

@@ -135,6 +135,15 @@ static int const_reals(builder *b, const dag_node *n) {
     return index;
 }
 
+/* The reals (lo, hi, near) of the reciprocals of a positive constant (emit_reciprocal_enclosure), appended. */
+static int reciprocal_reals(builder *b, const double d[2], const float f[2]) {
+    int index = b->nreals;
+    for (int k = 0; k < 3; k++)
+        put_real(&b->reals, b->fp64, b->fp64 ? d[k % 2] : f[k % 2], k == 0 ? -1 : k == 1 ? 1 : 0);
+    b->nreals += 3;
+    return index;
+}
+
 /* One part's instructions, its nodes in index order. Returns the number of instructions, or -1 when it needs
  * more than TAPE_SLOTS slots. */
 /* Which operand of node n is a (nonempty) constant that its instruction reads from the reals itself
@@ -200,14 +209,21 @@ static int lower_part(builder *b, const int *order, int count, int *result_slot)
                          (n->op == OP_MIN && (b->undefined[n->a] || b->undefined[n->b]) ? TAPE_UNION : 0);
         b->flagged |= flags != 0;
         flags |= inlined;
+        /* a quotient by a positive constant: a product by its reciprocals, as the compiled code (emit.c) */
+        double recip[2];
+        float frecip[2];
+        int by_reciprocal = n->op == OP_DIV && inlined == TAPE_B_REAL &&
+                            emit_reciprocal_enclosure(&d->nodes[n->b], recip, frecip);
         int real = 0;
         if (n->op == OP_CONST)
             real = const_reals(b, n);
+        else if (by_reciprocal)
+            real = reciprocal_reals(b, recip, frecip);
         else if (inlined)
             real = const_reals(b, &d->nodes[inlined == TAPE_A_REAL ? n->a : n->b]);
         else if (n->b >= 0 && d->nodes[n->b].op == OP_CONST && !reads_b_interval(n->op))
             real = const_reals(b, &d->nodes[n->b]) + 2; /* KB: the nearest real */
-        words_put(&b->code, (unsigned)n->op | flags << 8 | (unsigned)dst << 16);
+        words_put(&b->code, (unsigned)(by_reciprocal ? OP_MUL : n->op) | flags << 8 | (unsigned)dst << 16);
         /* an operand without a slot (a constant read from the reals, or as KB only) reads slot 0 and ignores it */
         int sa = n->op != OP_CONST && b->slot[n->a] >= 0 ? b->slot[n->a] : 0;
         int sb = n->op != OP_CONST && n->b >= 0 && b->slot[n->b] >= 0 ? b->slot[n->b] : 0;

@@ -86,12 +86,13 @@ IA_FN int surface_condition(const KERNEL_GLOBAL kernel_u32 *nodes, int root, int
     return (int)(stack & 3);
 }
 
-/* A surface's verdict on a node over its box: whether it may hold a kept point (0 in F of the solid, and the
- * condition may hold), and, through *proven, whether the condition is certain on it (see surface_walk). */
-IA_FN int surface_keeps(const ia_interval box[3], int level, int *proven, int solid, int condition, int last,
+/* A surface's verdict on a node over its box, given f, F of the solid over it: whether it may hold a kept point (0
+ * in f, and the condition may hold), and, through *proven, whether the condition is certain on it (see
+ * surface_walk). */
+IA_FN int surface_keeps(ia_interval f, const ia_interval box[3], int level, int *proven, int condition, int last,
                         const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time, kernel_u32 *evals) {
     *evals += 1;
-    if (!ia_contains_zero(scene_solid_F(solid, box[0], box[1], box[2], time)))
+    if (!ia_contains_zero(f))
         return 0;
     int holds = level > *proven ? SURFACE_CERTAIN : surface_condition(nodes, condition, last, box, time, evals);
     if (holds == SURFACE_CERTAIN && level < *proven)
@@ -122,13 +123,12 @@ typedef struct {
 } surface_newton;
 
 #ifdef SURFACE_NEWTON
-/* One Newton step on the node [lo, hi] at `level` with the ray's box over it: 0 when it holds no root, else 1,
- * with N stored where D excludes 0 (intersected with an enclosing node's N: both hold). */
+/* One Newton step on the node [lo, hi] at `level`, given D (`slope`, from scene_solid_Fd over the ray's box there,
+ * which also gave the node's F: surface_node): 0 when it holds no root, else 1, with N stored where D excludes 0
+ * (intersected with an enclosing node's N: both hold). */
 IA_FN int surface_newton_step(surface_newton *n, int level, const ia_real o[3], const ia_real d[3], ia_real lo,
-                              ia_real hi, const ia_interval box[3], int solid, ia_interval time, kernel_u32 *evals) {
-    ia_interval slope;
-    *evals += 2;
-    scene_solid_Fd(solid, box[0], box[1], box[2], time, ia_point(d[0]), ia_point(d[1]), ia_point(d[2]), &slope);
+                              ia_real hi, ia_interval slope, int solid, ia_interval time, kernel_u32 *evals) {
+    *evals += 1;
     ia_real m = lo * (ia_real)0.5 + hi * (ia_real)0.5;
     ia_interval at = ia_point(m);
     ia_interval fm = !newton_slope_usable(slope)
@@ -168,12 +168,20 @@ IA_FN int surface_node(const ia_real o[3], const ia_real d[3], ia_real lo, ia_re
     ia_interval t = ia_make(lo, hi), box[3];
     for (int k = 0; k < 3; k++)
         box[k] = ray_extent(o[k], d[k], t);
-    int keep = surface_keeps(box, level, proven, solid, condition, last, nodes, time, evals);
 #ifdef SURFACE_NEWTON
-    if (keep && wide && hi - lo <= SURFACE_NEWTON_LEAVES * eps)
-        keep = surface_newton_step(n, level, o, d, lo, hi, box, solid, time, evals);
+    /* where a kept node would take a Newton step, F comes with D from one call (sharing its sines' and cosines'
+     * reductions: implicits/emit.c), not from two */
+    int newton = wide && hi - lo <= SURFACE_NEWTON_LEAVES * eps;
+    ia_interval slope, f = newton ? scene_solid_Fd(solid, box[0], box[1], box[2], time, ia_point(d[0]), ia_point(d[1]),
+                                                   ia_point(d[2]), &slope)
+                                  : scene_solid_F(solid, box[0], box[1], box[2], time);
+    int keep = surface_keeps(f, box, level, proven, condition, last, nodes, time, evals);
+    if (keep && newton)
+        keep = surface_newton_step(n, level, o, d, lo, hi, slope, solid, time, evals);
 #else
     (void)n, (void)wide;
+    int keep = surface_keeps(scene_solid_F(solid, box[0], box[1], box[2], time), box, level, proven, condition, last,
+                             nodes, time, evals);
 #endif
     return keep;
 }
@@ -245,7 +253,8 @@ IA_FN int surface_block_start(const tile_rays *r, ia_real spread, int ortho, ia_
         ia_real lo = node_bound(t0, w, *level, *i), hi = node_bound(t0, w, *level, *i + 1);
         ia_interval box[3];
         tile_box(r, ia_make(lo, hi), box);
-        if (surface_keeps(box, *level, &proven, solid, condition, last, nodes, time, evals)) {
+        if (surface_keeps(scene_solid_F(solid, box[0], box[1], box[2], time), box, *level, &proven, condition, last,
+                          nodes, time, evals)) {
             if (hi - lo <= fmax(ortho ? spread : spread * hi, eps) || *level == BISECT_MAX_LEVEL)
                 return 1;
             *level += 1;

@@ -32,6 +32,12 @@ IA_FN ia_interval ia_test_apply(int op, ia_interval a, ia_interval b, int n, ia_
     case IA_OP_INTERSECT: return ia_intersect(a, b);
     case IA_OP_ADD_R: return ia_add_r(a, c);
     case IA_OP_MUL_R: return ia_mul_r(a, c);
+    case IA_TEST_SIN_COS_SIN:
+    case IA_TEST_SIN_COS_COS: { /* ia_sin_cos's results (tests/t_ia_device_fp.c compares them with ia_sin, ia_cos) */
+        ia_interval s, co;
+        ia_sin_cos(a, &s, &co);
+        return op == IA_TEST_SIN_COS_SIN ? s : co;
+    }
     }
     *is_scalar = 1;
     switch (op) {

@@ -28,6 +28,9 @@ static struct {
     char err[1024];
 } dev;
 
+/* ia_test_ops's codes for the sin and the cos of ia_sin_cos (after the ops of tests/oracle.h). */
+enum { IA_TEST_SIN_COS_SIN = 1000, IA_TEST_SIN_COS_COS };
+
 /* "#define IA_OP_ADD 0" ... from the op list of tests/oracle.h, so host and device number the ops alike. */
 static const char *prelude(void) {
     static char s[4096];
@@ -38,6 +41,8 @@ static const char *prelude(void) {
     len += (size_t)snprintf(s + len, sizeof s - len, "#define IA_OP_" #NAME " %d\n", ORACLE_##NAME);
     ORACLE_OPS(X)
 #undef X
+    len += (size_t)snprintf(s + len, sizeof s - len, "#define IA_TEST_SIN_COS_SIN %d\n#define IA_TEST_SIN_COS_COS %d\n",
+                            IA_TEST_SIN_COS_SIN, IA_TEST_SIN_COS_COS);
     static const char *fns[] = {"DIV", "SQRT", "EXP", "LOG", "SIN", "COS", "TAN", "ATAN", "POW"};
     for (int i = 0; i < ORACLE_NFNS; i++)
         len += (size_t)snprintf(s + len, sizeof s - len, "#define IA_FN_%s %d\n", fns[i], i);
@@ -339,6 +344,51 @@ TEST_FP(ia_device_ulps) {
     }
     free(x), free(y), free(res);
     ULP_REPORT_FINISH(rep, "device");
+}
+
+/* ---- ia_sin_cos: one argument reduction for both, the same bounds as ia_sin and ia_cos (checked against MPFR by
+ * ia_op_sin and ia_op_cos), bit for bit: narrow intervals (ia/elem.h's midpoint way), wide ones, ones near a zero
+ * of either (where the midpoint way gives way to the end points), past the double reduction's range, points, empty
+ * and unbounded ones. */
+
+TEST_FP(ia_device_sin_cos) {
+    char err[1024];
+    long count = test_iters(20000);
+    ia_case *k = calloc((size_t)count, sizeof *k);
+    ia_real *out[4];
+    for (int j = 0; j < 4; j++)
+        out[j] = malloc(sizeof *out[j] * 2 * (size_t)count);
+    CHECK(k && out[0] && out[1] && out[2] && out[3], "out of memory");
+    test_rng_t *r = test_rng();
+    for (long i = 0; i < count; i++) {
+        double centre = (test_rand_unit(r) * 2 - 1) * (i % 5 == 4 ? 0x1p21 : i % 5 == 3 ? 20 : 1e3);
+        if (i % 7 == 0) /* near a multiple of pi/2: a zero of sin or cos */
+            centre = (double)(long)(centre / 1.5707963267948966) * 1.5707963267948966 +
+                     (test_rand_unit(r) - 0.5) * 1e-5;
+        double half = i % 3 == 0 ? 0 : pow(2, -30 + 34 * test_rand_unit(r)); /* 2^-30 .. 16 */
+        k[i].a = ia_make((ia_real)(centre - half), (ia_real)(centre + half));
+    }
+    k[0].a = ia_empty();
+    k[1].a = ia_make(-IA_INF, 1);
+    k[2].a = ia_entire();
+    int ops[4] = {ORACLE_SIN, ORACLE_COS, IA_TEST_SIN_COS_SIN, IA_TEST_SIN_COS_COS};
+    for (int j = 0; j < 4; j++)
+        if (FP_NAME(ia_dev_ops)(0, ops[j], k, count, out[j], err, sizeof err)) {
+            free(k), free(out[0]), free(out[1]), free(out[2]), free(out[3]);
+            CHECK(0, "%s", err);
+        }
+    long differ = 0, first = -1;
+    for (long i = 0; i < 2 * count; i++)
+        for (int j = 0; j < 2; j++) {
+            ia_real want = out[j][i], got = out[j + 2][i];
+            if (!(want == got || (isnan(want) && isnan(got))) && differ++ == 0)
+                first = i;
+        }
+    ia_interval a = first >= 0 ? k[first / 2].a : ia_empty();
+    free(k), free(out[0]), free(out[1]), free(out[2]), free(out[3]);
+    CHECK(differ == 0, "%ld bounds of ia_sin_cos differ from ia_sin's or ia_cos's, first for [%a, %a]", differ,
+          (double)a.lo, (double)a.hi);
+    test_note("%ld intervals, sin and cos alike", count);
 }
 
 /* ---- the checker catches the fast mode */

@@ -85,9 +85,9 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
     ia_interval v9 = ia_add(v6, v8);
     ia_interval v9_t = ia_add(v6_t, v8_t);
     ia_interval v11 = ia_sub(v9, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
-    ia_interval v11_t = ia_sub(v9_t, ia_point(0));
+    ia_interval v11_t = v9_t;
     ia_interval v14 = ia_sub(v6, ia_make(IACSG_K(0x1.70a3d2p-4f, 0x1.70a3d70a3d709p-4), IACSG_K(0x1.70a3dap-4f, 0x1.70a3d70a3d70dp-4)));
-    ia_interval v14_t = ia_sub(v6_t, ia_point(0));
+    ia_interval v14_t = v6_t;
     ia_interval v15 = ia_neg(v14);
     ia_interval v15_t = ia_neg(v14_t);
     ia_interval v16 = ia_max(v11, v15);

@@ -41,12 +41,13 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
 }
 #ifdef IACSG_SCALAR_FD
 IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
-    ia_interval v1 = ia_sin(x);
-    ia_interval v1_t = ia_mul(ia_cos(x), dx);
+    ia_interval v1, v1_cos;
+    ia_sin_cos(x, &v1, &v1_cos);
+    ia_interval v1_t = ia_mul(v1_cos, dx);
     ia_interval v3 = ia_mul(v1, y);
     ia_interval v3_t = ia_add(ia_mul(v1_t, y), ia_mul(v1, dy));
     ia_interval v5 = ia_add(v1, ia_make(IACSG_K(0x1.999998p-4f, 0x1.9999999999999p-4), IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4)));
-    ia_interval v5_t = ia_add(v1_t, ia_point(0));
+    ia_interval v5_t = v1_t;
     ia_interval v6 = ia_min(v3, v5);
     ia_interval v6_t = ia_dmin(v3, v5, v3_t, v5_t);
     *dt = v6_t;

@@ -207,7 +207,7 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
     ia_interval v5 = ia_add(v2, v4);
     ia_interval v5_t = ia_add(v2_t, v4_t);
     ia_interval v8 = ia_sub(v5, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
-    ia_interval v8_t = ia_sub(v5_t, ia_point(0));
+    ia_interval v8_t = v5_t;
     ia_interval v9 = ia_sqr(v8);
     ia_interval v9_t = ia_mul(ia_mul_r(v8, 2), v8_t);
     ia_interval v11 = ia_sqr(z);
@@ -221,7 +221,7 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
     ia_interval v17 = ia_add(v4, v11);
     ia_interval v17_t = ia_add(v4_t, v11_t);
     ia_interval v18 = ia_sub(v17, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
-    ia_interval v18_t = ia_sub(v17_t, ia_point(0));
+    ia_interval v18_t = v17_t;
     ia_interval v19 = ia_sqr(v18);
     ia_interval v19_t = ia_mul(ia_mul_r(v18, 2), v18_t);
     ia_interval v20 = ia_add_r(v2, IACSG_K(-0x1p+0f, -0x1p+0));
@@ -235,7 +235,7 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
     ia_interval v24 = ia_add(v2, v11);
     ia_interval v24_t = ia_add(v2_t, v11_t);
     ia_interval v25 = ia_sub(v24, ia_make(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
-    ia_interval v25_t = ia_sub(v24_t, ia_point(0));
+    ia_interval v25_t = v24_t;
     ia_interval v26 = ia_sqr(v25);
     ia_interval v26_t = ia_mul(ia_mul_r(v25, 2), v25_t);
     ia_interval v27 = ia_add_r(v4, IACSG_K(-0x1p+0f, -0x1p+0));
@@ -247,7 +247,7 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
     ia_interval v30 = ia_mul(v23, v29);
     ia_interval v30_t = ia_add(ia_mul(v23_t, v29), ia_mul(v23, v29_t));
     ia_interval v32 = ia_sub(v30, ia_make(IACSG_K(0x1.47ae14p-6f, 0x1.47ae147ae147ap-6), IACSG_K(0x1.47ae16p-6f, 0x1.47ae147ae147bp-6)));
-    ia_interval v32_t = ia_sub(v30_t, ia_point(0));
+    ia_interval v32_t = v30_t;
     ia_interval v33 = ia_add(v5, v11);
     ia_interval v33_t = ia_add(v5_t, v11_t);
     ia_interval v34 = ia_add_r(v33, IACSG_K(-0x1p+0f, -0x1p+0));
@@ -263,10 +263,10 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
     int v45_u = v44_u;
     ia_interval v46 = ia_mul(v32, v45);
     int v46_u = v45_u;
-    ia_interval v46_t = ia_add(ia_mul(v32_t, v45), ia_mul(v32, ia_point(0)));
+    ia_interval v46_t = ia_mul(v32_t, v45);
     ia_interval v47 = ia_mul(v34, v44);
     int v47_u = v44_u;
-    ia_interval v47_t = ia_add(ia_mul(v34_t, v44), ia_mul(v34, ia_point(0)));
+    ia_interval v47_t = ia_mul(v34_t, v44);
     ia_interval v48 = ia_add(v46, v47);
     int v48_u = v46_u || v47_u;
     ia_interval v48_t = ia_add(v46_t, v47_t);

@@ -116,7 +116,7 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
     ia_interval v10_t = ia_mul(ia_mul_r(z, 2), dz);
     ia_interval v11 = ia_sub(ia_point(IACSG_K(0x1p+0f, 0x1p+0)), v8);
     int v11_u = v8_u;
-    ia_interval v11_t = ia_sub(ia_point(0), v8_t);
+    ia_interval v11_t = ia_neg(v8_t);
     ia_interval v12 = ia_sqr(v11);
     int v12_u = v11_u;
     ia_interval v12_t = ia_mul(ia_mul_r(v11, 2), v11_t);
