@@ -39,32 +39,11 @@ static inline ulong in_image(const ulong groups[IA_VW], const ia_real valid[IA_V
  * on segment s of the frame's tree. */
 static void block_tiles(PACKET_TAPE_PARAM __constant ia_real *params, int flags, int width, int height, int tx0,
                         int ty0, __global ia_real *tiles, __global uint *evals, __global ulong *tile_groups_of) {
-    int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
-    int ortho = flags & RENDER_ORTHO;
-    ia_real base[2][3][IA_VW], dir[2][3][IA_VW], spread[IA_VW], valid[IA_VW];
-    for (int k = 0; k < IA_VW; k++) {
-        int tx = tx0 + k % PACKET_W, ty = ty0 + k / PACKET_W;
-        valid[k] = tx < tiles_x && ty < tiles_y;
-        tx = min(tx, tiles_x - 1); /* a lane past the edge searches nothing, but gets a finite box */
-        ty = min(ty, tiles_y - 1);
-        int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
-        int i1 = min(i0 + TILE_SIZE, width) - 1, j1 = min(j0 + TILE_SIZE, height) - 1;
-        tile_rays rays;
-        tile_rays_of(params, ortho, i0, i1, j0, j1, width, height, &rays);
-        for (int c = 0; c < 3; c++) {
-            base[0][c][k] = rays.base[c].lo;
-            base[1][c][k] = rays.base[c].hi;
-            dir[0][c][k] = rays.dir[c].lo;
-            dir[1][c][k] = rays.dir[c].hi;
-        }
-        spread[k] = fmax(camera_s(params, i1, width) - camera_s(params, i0, width),
-                         camera_v(params, j0, height) - camera_v(params, j1, height));
-    }
+    int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, ortho = flags & RENDER_ORTHO;
     iav base_v[3], dir_v[3];
-    for (int c = 0; c < 3; c++) {
-        base_v[c] = iav_make(IAV_LOAD(base[0][c]), IAV_LOAD(base[1][c]));
-        dir_v[c] = iav_make(IAV_LOAD(dir[0][c]), IAV_LOAD(dir[1][c]));
-    }
+    ia_real valid[IA_VW];
+    ia_realv spread;
+    tile_block_lanes(params, ortho, width, height, tx0, ty0, base_v, dir_v, &spread, valid);
     ia_real t0, w;
     frame_root(params, &t0, &w);
     ia_maskv searching = IAV_LOAD(valid) != 0;
@@ -78,7 +57,7 @@ static void block_tiles(PACKET_TAPE_PARAM __constant ia_real *params, int flags,
     ulong any_tile = in_image(groups, valid);
     packet_int level = (packet_int)0;
     packet_index leaf = (packet_index)0, counts = (packet_index)0;
-    ia_maskv found = tile_first_leaves(PACKET_TAPE_ARG any_tile, base_v, dir_v, IAV_LOAD(spread), ortho, t0, w,
+    ia_maskv found = tile_first_leaves(PACKET_TAPE_ARG any_tile, base_v, dir_v, spread, ortho, t0, w,
                                        params[PARAM_EPS], searching, time, &level, &leaf, &counts);
     tile_groups(PACKET_TAPE_ARG base_v, dir_v,
                 iav_make(select(root.lo, packet_node_bound(t0, w, level, leaf), found), root.hi), time, any_tile,

@@ -45,38 +45,17 @@ typedef struct {
  * without a leaf, all along its rays). */
 static void scene_union_tiles(__constant ia_real *params, int flags, int width, int height, int tx0, int ty0,
                               scene_tile tiles[PACKET_LANES]) {
-    int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
     int ortho = flags & RENDER_ORTHO;
-    ia_real base[2][3][IA_VW], dir[2][3][IA_VW], spread[IA_VW], valid[IA_VW];
-    for (int k = 0; k < IA_VW; k++) {
-        int tx = tx0 + k % PACKET_W, ty = ty0 + k / PACKET_W;
-        valid[k] = tx < tiles_x && ty < tiles_y;
-        tx = min(tx, tiles_x - 1); /* a lane past the edge searches nothing, but gets a finite box */
-        ty = min(ty, tiles_y - 1);
-        int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
-        int i1 = min(i0 + TILE_SIZE, width) - 1, j1 = min(j0 + TILE_SIZE, height) - 1;
-        tile_rays rays;
-        tile_rays_of(params, ortho, i0, i1, j0, j1, width, height, &rays);
-        for (int c = 0; c < 3; c++) {
-            base[0][c][k] = rays.base[c].lo;
-            base[1][c][k] = rays.base[c].hi;
-            dir[0][c][k] = rays.dir[c].lo;
-            dir[1][c][k] = rays.dir[c].hi;
-        }
-        spread[k] = fmax(camera_s(params, i1, width) - camera_s(params, i0, width),
-                         camera_v(params, j0, height) - camera_v(params, j1, height));
-    }
     iav base_v[3], dir_v[3];
-    for (int c = 0; c < 3; c++) {
-        base_v[c] = iav_make(IAV_LOAD(base[0][c]), IAV_LOAD(base[1][c]));
-        dir_v[c] = iav_make(IAV_LOAD(dir[0][c]), IAV_LOAD(dir[1][c]));
-    }
+    ia_real valid[IA_VW];
+    ia_realv spread;
+    tile_block_lanes(params, ortho, width, height, tx0, ty0, base_v, dir_v, &spread, valid);
     ia_real t0, w;
     frame_root(params, &t0, &w);
     packet_int level = (packet_int)0;
     packet_index leaf = (packet_index)0, counts = (packet_index)0;
     iav time = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
-    ia_maskv found = tile_first_leaves(~(ulong)0, base_v, dir_v, IAV_LOAD(spread), ortho, t0, w, params[PARAM_EPS],
+    ia_maskv found = tile_first_leaves(~(ulong)0, base_v, dir_v, spread, ortho, t0, w, params[PARAM_EPS],
                                        IAV_LOAD(valid) != 0, time, &level, &leaf, &counts);
     iav at = iav_make(IAV_R(t0), IAV_R(t0)), box[3];
     for (int c = 0; c < 3; c++)

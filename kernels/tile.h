@@ -15,6 +15,38 @@
 #include "tile_rays.h"
 
 #if IA_DEVICE && defined(IA_VW) && !defined(IACSG_SCALAR_CODE) /* (as packet.h) */
+/* The PACKET_W x PACKET_H tiles from (tx0, ty0) in SIMD lanes, a tile a lane: their rays as boxes (tile_rays_of)
+ * in base and dir, and their angular (perspective) or linear (orthographic) sizes in *spread; valid[k] is 1 where
+ * lane k's tile is in the frame, else 0 (such a lane gets its edge tile's finite box, and should search nothing). */
+IA_FN void tile_block_lanes(__constant ia_real *params, int ortho, int width, int height, int tx0, int ty0,
+                            iav base[3], iav dir[3], ia_realv *spread, ia_real valid[IA_VW]) {
+    int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
+    ia_real lo[2][3][IA_VW], hi[2][3][IA_VW], size[IA_VW];
+    for (int k = 0; k < IA_VW; k++) {
+        int tx = tx0 + k % PACKET_W, ty = ty0 + k / PACKET_W;
+        valid[k] = tx < tiles_x && ty < tiles_y;
+        tx = min(tx, tiles_x - 1);
+        ty = min(ty, tiles_y - 1);
+        int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
+        int i1 = min(i0 + TILE_SIZE, width) - 1, j1 = min(j0 + TILE_SIZE, height) - 1;
+        tile_rays rays;
+        tile_rays_of(params, ortho, i0, i1, j0, j1, width, height, &rays);
+        for (int c = 0; c < 3; c++) {
+            lo[0][c][k] = rays.base[c].lo;
+            hi[0][c][k] = rays.base[c].hi;
+            lo[1][c][k] = rays.dir[c].lo;
+            hi[1][c][k] = rays.dir[c].hi;
+        }
+        size[k] = fmax(camera_s(params, i1, width) - camera_s(params, i0, width),
+                       camera_v(params, j0, height) - camera_v(params, j1, height));
+    }
+    for (int c = 0; c < 3; c++) {
+        base[c] = iav_make(IAV_LOAD(lo[0][c]), IAV_LOAD(hi[0][c]));
+        dir[c] = iav_make(IAV_LOAD(lo[1][c]), IAV_LOAD(hi[1][c]));
+    }
+    *spread = IAV_LOAD(size);
+}
+
 /* Searches the frame's tree (frame_root) for the first coarse leaf of IA_VW tiles at once, one per lane (as
  * packet.h walks rays): a node where 0 may be in F over the tile's box, no longer than the tile is wide there
  * (splitting t further would not shrink the box much), or eps. Returns the lanes of `searching` whose tile may
