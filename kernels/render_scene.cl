@@ -172,10 +172,17 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         d_v[c] = IAV_LOAD(dk[c]);
         albedo_v[c] = IAV_CAT(vload, IA_VW)(0, color[c]);
     }
-    shade_normals(g, d_v, n);
     ia_maskv hit_v = IAV_LOAD(on) != 0;
-    shade_lit_materials(params, hit_v, n, d_v, IAV_CAT(vload, IA_VW)(0, rows), height, albedo_v,
-                        IAV_LOAD(specular), IAV_LOAD(shininess), rgb_v);
+    shade_colorv row_v = IAV_CAT(vload, IA_VW)(0, rows);
+    if (iav_any(hit_v)) {
+        shade_normals(g, d_v, n);
+        shade_lit_materials(params, hit_v, n, d_v, row_v, height, albedo_v, IAV_LOAD(specular), IAV_LOAD(shininess),
+                            rgb_v);
+    } else { /* a packet with no hit: its background only, no normals nor lighting */
+        for (int c = 0; c < 3; c++)
+            n[c] = IAV_R(0);
+        shade_combine(hit_v, row_v, height, albedo_v, IAV_R(0), IAV_R(0), IAV_R(0), IAV_R(0), rgb_v);
+    }
     ia_real nk[3][PACKET_LANES];
     for (int c = 0; c < 3; c++) {
         IAV_STORE(select(IAV_R(0), n[c], hit_v), nk[c]);
