@@ -102,7 +102,8 @@ static const char usage_more[] =
     "  IACSG_WRITER_IDLE=S  the image writer (a process that has loaded OpenImageIO) stays for S seconds without\n"
     "                     a command, for the next commands of this user and build [30]; 0: a writer per command\n"
     "  IACSG_CACHE_DIR=DIR  where built OpenCL programs are kept (DIR/programs, at most 256 MB)\n"
-    "                     [$XDG_CACHE_HOME/iacsg, else ~/.cache/iacsg]; IACSG_KERNEL_CACHE=0: not kept\n";
+    "                     [$XDG_CACHE_HOME/iacsg, else ~/.cache/iacsg]; IACSG_KERNEL_CACHE=0: not kept;\n"
+    "                     IACSG_CACHE_SAVE=wait: a program is saved before the command ends, not after it\n";
 
 int main(int argc, char **argv) {
     if (argc < 2) {

@@ -34,7 +34,8 @@ void clrt_cache_store(const clrt_cache_entry *entry, cl_program program);
  * process of their own, detached and at the lowest priority, so that no command waits for PoCL's compile of the
  * binary (~4 s for the reference view's program, ~17 s for havoc's); it returns at once. That process is forked
  * after OpenCL's threads started: at the command's end, when no OpenCL call is under way, the saving thread needs
- * none of them; alarm() ends it should it ever block. */
+ * none of them; alarm() ends it should it ever block. With IACSG_CACHE_SAVE=wait the command saves them itself
+ * before it ends (for scripts that time the runs that follow, which a saver at work would slow). */
 void clrt_cache_defer_saves(void);
 void clrt_cache_save_deferred(void);
 
