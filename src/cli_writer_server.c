@@ -17,10 +17,11 @@
  * memfd and a descriptor of its working directory (SCM_RIGHTS); then cli_writer_lib.h's requests, each answered
  * in order. The server serves one request at a time, in the command's directory (fchdir) with its umask, so that
  * files land where and as they would from the command itself, and error messages name the same paths. */
-#define _GNU_SOURCE /* memfd, close_range, accept4, SO_PEERCRED, MSG_CMSG_CLOEXEC */
+#define _GNU_SOURCE /* memfd, accept4, SO_PEERCRED, MSG_CMSG_CLOEXEC */
 #include "cli_writer_server.h"
 #include "cli_library.h"
 #include "cli_writer_lib.h"
+#include "detach.h"
 #include "digest.h"
 #include <errno.h>
 #include <fcntl.h>
@@ -35,7 +36,6 @@
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -253,23 +253,8 @@ _Noreturn void cli_writer_serve_child(int sock, const void *shared, size_t size)
     _exit(0); /* no atexit handlers, no flush of the command's stdio buffers */
 }
 
-/* The started server: its own session, no terminal, stdio on /dev/null, no descriptor but the listener. */
+/* The started server (detach_process: its own session, stdio on /dev/null, no descriptor but the listener). */
 static _Noreturn void server_main(int listener, int idle) {
-    if (listener < 3) { /* stdio was closed: keep it clear of 0-2 */
-        int moved = fcntl(listener, F_DUPFD_CLOEXEC, 3);
-        if (moved < 0)
-            _exit(1);
-        listener = moved;
-    }
-    int null = open("/dev/null", O_RDWR | O_CLOEXEC);
-    for (int fd = 0; fd < 3; fd++)
-        if (null < 0 || dup2(null, fd) < 0)
-            close(fd);
-    if ((listener > 3 && close_range(3, (unsigned)listener - 1, 0) != 0) ||
-        close_range((unsigned)listener + 1, ~0u, 0) != 0)
-        for (int fd = 3; fd < 65536; fd++)
-            if (fd != listener)
-                close(fd);
     if (chdir("/") != 0)
         _exit(1);
     prctl(PR_SET_NAME, "iacsg-writer"); /* in ps and top, where it shows the first command's arguments */
@@ -294,19 +279,11 @@ static int start_server(const struct sockaddr_un *a, socklen_t len, int idle) {
         close(listener);
         return taken ? 0 : -1;
     }
-    fflush(NULL); /* or the server's copy of the buffers could be written twice */
-    pid_t pid = fork();
-    if (pid == 0) { /* the server's parent, which ends at once so that the server is no child of the command */
-        pid_t server = setsid() < 0 ? -1 : fork();
-        if (server == 0)
-            server_main(listener, idle);
-        _exit(server < 0);
-    }
+    int started = detach_process(&listener);
+    if (started == 1)
+        server_main(listener, idle);
     close(listener);
-    int status = 0;
-    while (pid > 0 && waitpid(pid, &status, 0) < 0 && errno == EINTR)
-        ;
-    return pid > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 1 : -1;
+    return started == 0 ? 1 : -1;
 }
 
 static int send_hello(int sock, int memfd) {

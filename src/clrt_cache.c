@@ -4,6 +4,7 @@
 #define _GNU_SOURCE /* mkostemp, utimensat, nice */
 #include "clrt_cache.h"
 #include "iacsg.h"
+#include "detach.h"
 #include "digest.h"
 #include <dirent.h>
 #include <errno.h>
@@ -12,7 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #define CACHE_MAGIC "iacsg program binary 1\n"
@@ -288,29 +288,14 @@ void clrt_cache_save_deferred(void) {
             save(&deferred.entries[k], deferred.programs[k]);
         return;
     }
-    fflush(NULL); /* or the saver's copy of the buffers could be written twice */
-    pid_t pid = fork();
-    if (pid == 0) { /* the saver's parent, which ends at once: the saver is no child of the command */
-        pid_t saver = setsid() < 0 ? -1 : fork();
-        if (saver == 0) {
-            int null = open("/dev/null", O_RDWR);
-            for (int fd = 0; fd < 3; fd++) /* holds no end of a caller's pipe, nor any inherited descriptor */
-                if (null < 0 || dup2(null, fd) < 0)
-                    close(fd);
-            if (close_range(3, ~0u, 0) != 0)
-                for (int fd = 3; fd < 65536; fd++)
-                    close(fd);
-            int niced = nice(19); /* it yields the CPUs to the commands that follow */
-            (void)niced;
-            alarm(600); /* a saver stuck in the driver after the fork ends anyway */
-            for (int k = 0; k < deferred.count; k++)
-                save(&deferred.entries[k], deferred.programs[k]);
-        }
+    if (detach_process(NULL) == 1) { /* the saver: no child of the command, holding none of its descriptors */
+        int niced = nice(19); /* it yields the CPUs to the commands that follow */
+        (void)niced;
+        alarm(600); /* a saver stuck in the driver after the fork ends anyway */
+        for (int k = 0; k < deferred.count; k++)
+            save(&deferred.entries[k], deferred.programs[k]);
         _exit(0);
     }
-    if (pid > 0)
-        while (waitpid(pid, NULL, 0) < 0 && errno == EINTR)
-            ;
     for (int k = 0; k < deferred.count; k++)
         clReleaseProgram(deferred.programs[k]);
     deferred.count = 0;
