@@ -493,6 +493,7 @@ int cli_render(int argc, char **argv) {
         free(text);
         return 1;
     }
+    clrt_warm_start(); /* after the writer's and the job's forks; while the input is read, parsed and compiled */
     if (!o.have_device)
         o.config.device = cli_job_device(job);
     for (int k = 0; k < CLI_MPI_IMAGES && st == IACSG_OK; k++)
@@ -556,6 +557,7 @@ int cli_render(int argc, char **argv) {
         st = write_frame(writer, &o, whole, 0, &err);
     if (st != IACSG_OK)
         report_error(job, item.frame, &err, name);
+    clrt_warm_join(); /* a command that failed before it needed OpenCL */
     rc = cli_job_end(job);
     cli_writer_stop(writer);
     iacsg_renderer_destroy(r);

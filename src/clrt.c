@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "clrt.h"
 #include "clrt_cache.h"
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,10 +51,37 @@ iacsg_status clrt_record(iacsg_error *err, cl_int rc, const char *call, const ch
 #define MAX_PLATFORMS 16
 #define MAX_DEVICES 64
 
+static pthread_t warm_thread;
+static int warm_running;
+
+static void *warm_platforms(void *unused) {
+    (void)unused;
+    cl_platform_id p[MAX_PLATFORMS];
+    cl_uint np = 0;
+    if (clGetPlatformIDs(MAX_PLATFORMS, p, &np) == CL_SUCCESS)
+        for (cl_uint i = 0; i < np && i < MAX_PLATFORMS; i++) {
+            cl_uint nd = 0;
+            clGetDeviceIDs(p[i], CL_DEVICE_TYPE_ALL, 0, NULL, &nd);
+        }
+    return NULL;
+}
+
+void clrt_warm_start(void) {
+    if (!warm_running) /* without a thread, the platforms load when first needed, as before */
+        warm_running = pthread_create(&warm_thread, NULL, warm_platforms, NULL) == 0;
+}
+
+void clrt_warm_join(void) {
+    if (warm_running)
+        pthread_join(warm_thread, NULL);
+    warm_running = 0;
+}
+
 /* All (platform, device) pairs in index order. Returns the count, or -1 with err set. */
 static int enumerate(cl_platform_id *plats, cl_device_id *devs, int max, iacsg_error *err) {
     cl_platform_id p[MAX_PLATFORMS];
     cl_uint np = 0;
+    clrt_warm_join(); /* the ICD loader's first call is not meant to race another */
     cl_int rc = clGetPlatformIDs(MAX_PLATFORMS, p, &np);
     if (rc != CL_SUCCESS || np == 0) {
         const char *vendors = getenv("OCL_ICD_VENDORS");

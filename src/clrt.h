@@ -42,6 +42,14 @@ iacsg_status clrt_record(iacsg_error *err, cl_int rc, const char *call, const ch
 /* "CL_OUT_OF_RESOURCES" and so on; "CL_UNKNOWN_ERROR(-n)" for codes it does not know (static buffer). */
 const char *clrt_error_name(cl_int rc);
 
+/* Starts loading the OpenCL platforms (the ICD loader, PoCL and its LLVM: ~20 ms of dynamic linking on a CPU
+ * device) on a thread of its own, so that a command reads and compiles its input meanwhile. The first clrt call
+ * that needs a platform waits for it; clrt_warm_join waits too (call it before the process exits, forks or
+ * returns from a command). Start it only after any fork whose child goes on without exec: a child forked while
+ * the thread holds the dynamic loader's lock would deadlock on its next dlopen. */
+void clrt_warm_start(void);
+void clrt_warm_join(void);
+
 /* Calls fn(index, platform name, device name, ctx) for each device of each platform, in the order that
  * `device_index` counts them. Returns the number of devices (0 with err set when there is no platform). */
 int clrt_list_devices(void (*fn)(int index, const char *platform, const char *device, void *ctx), void *ctx,

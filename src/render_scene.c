@@ -208,20 +208,24 @@ iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_rende
     if (s->nitems == 0)
         return s->expr ? iacsg_renderer_create_expr(s->expr, config, out, err)
                        : iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the scene has nothing to render");
-    iacsg_renderer *r;
-    iacsg_status st = render_open(config, &r, err);
-    if (st != IACSG_OK)
-        return st;
+    /* the tables and the source first: OpenCL may still be loading (clrt_warm_start) */
     char *solids_cl = NULL;
-    r->scene = calloc(1, sizeof *r->scene);
-    st = r->scene ? scene_tables_build(s, &r->scene->t, err)
-                  : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
+    render_scene *tables = calloc(1, sizeof *tables);
+    iacsg_status st = tables ? scene_tables_build(s, &tables->t, err)
+                             : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     if (st == IACSG_OK)
         st = scene_emit_cl(s, &solids_cl, err);
-    if (st == IACSG_OK) {
-        const char *sources[] = {iacsg_cl_ia, iacsg_cl_prim, solids_cl, iacsg_cl_scene_kernels};
-        st = render_build(r, sources, 4, "iacsg_render_scene", err);
+    iacsg_renderer *r = NULL;
+    if (st == IACSG_OK)
+        st = render_open(config, &r, err);
+    if (st != IACSG_OK) {
+        render_scene_free(tables);
+        free(solids_cl);
+        return st;
     }
+    r->scene = tables;
+    const char *sources[] = {iacsg_cl_ia, iacsg_cl_prim, solids_cl, iacsg_cl_scene_kernels};
+    st = render_build(r, sources, 4, "iacsg_render_scene", err);
     free(solids_cl);
     if (st == IACSG_OK)
         st = upload_tables(r, r->scene, err);
