@@ -466,9 +466,9 @@ static void run_type(int type, int variants, const char *name) {
     tally tl = {0};
     long prims = test_iters(40), per_prim = 30, closable_rays = 0, closed_of_closable = 0;
     for (long it = 0; it < prims; it++) {
-        /* the types with a closed form: all but a pipe with a bore (a tgc's variants 0-2, rec, rcc or trc and
-         * cone, are quadrics, the others and the torus quartics, kernels/prim_segments.h; a pipe's bends too) */
-        int closable = type != SCENE_PRIM_PIPE || (it % variants) % 2 == 1;
+        /* every type has a closed form (a tgc's variants 0-2, rec, rcc or trc and cone, are quadrics, the others
+         * and the torus quartics, kernels/prim_segments.h; a pipe's bends too) */
+        int closable = 1;
         tl.quartic = type == SCENE_PRIM_TOR || type == SCENE_PRIM_PIPE || (type == SCENE_PRIM_TGC && it % variants >= 3);
         double q[64], mat[16], scale;
         int n = random_prim(rng, type, (int)(it % variants), q);
