@@ -45,7 +45,7 @@ KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/tra
 TAPE_KERNEL_SOURCES = kernels/tape_eval.h $(filter-out kernels/effects.cl,$(KERNEL_SOURCES))
 # The segment path's program (src/render_scene.c): the same ia/ headers, the scene's solids, then these.
 SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/traverse.h kernels/csg_node.h \
-                       kernels/scene_data.h kernels/bvh.h kernels/prim_segments.h kernels/segments.h \
+                       kernels/scene_data.h kernels/bvh.h kernels/prim_segments.h kernels/prim_pipe_segments.h kernels/segments.h \
                        kernels/classify.h kernels/weave.h kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h \
                        kernels/effects.h kernels/light.h kernels/packet.h kernels/tile.h kernels/scene_union.h kernels/render_scene.cl \
                        kernels/scene_effects.cl

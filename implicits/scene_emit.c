@@ -14,7 +14,8 @@
  * about 2.5-3 ms of build per solid here when each had its three functions (1000 arbs or ells, medians of 3 on a
  * loaded machine; dispatching by group cut havoc's first build from 19 to 13 s), against ~30 ms for an expression; with Fd too (a scene of primitives only) the build took 25 % longer for 19 % fewer
  * evaluations and no faster frame, so the limit counts all solids. scene_solid_P hands a primitive's type and
- * parameters to the walks' closed forms (kernels/prim_segments.h).
+ * parameters to the walks' closed forms (kernels/prim_segments.h), with SCENE_SOLID_PIPES where a pipe's need more
+ * room.
  *
  * Small scenes of regions also get the regions' union in SIMD lanes (SCENE_REGIONS_UNION, kernels/scene_union.h's
  * pre-pass), and SCENE_REGIONS_DISJOINT where no two regions can be in at one point (regions_disjoint), with the
@@ -77,6 +78,11 @@ static void emit_dispatcher(strbuf *b, const iacsg_scene *s, int which, const in
 /* scene_solid_P(k, p, cap): solid k's primitive type, its parameters stored into p, or -1 when it is no primitive
  * or they need more than cap reals (kernels/segments.h's closed forms; SCENE_SOLID_PRIMS says it is there). */
 static void emit_parameters_dispatcher(strbuf *b, const iacsg_scene *s) {
+    int pipes = 0;
+    for (int k = 0; k < s->nsolids; k++)
+        pipes |= s->solids[k].prim && s->solids[k].prim->type == SCENE_PRIM_PIPE;
+    if (pipes) /* the walks' room for a pipe's parameters (kernels/segments.h) */
+        strbuf_printf(b, "#define SCENE_SOLID_PIPES 1\n");
     strbuf_printf(b, "#define SCENE_SOLID_PRIMS 1\nIA_FN int scene_solid_P(int k, ia_real *p, int cap) {\n"
                      "    switch (k / %d) {\n", SCENE_EMIT_GROUP);
     for (int g = 0; g * SCENE_EMIT_GROUP < s->nsolids; g++) {

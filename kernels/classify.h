@@ -64,4 +64,14 @@ IA_FN int classify_tree(const KERNEL_GLOBAL kernel_u32 *nodes, int root, int siz
     return (int)(may_in & 1) | (int)(may_out & 1) << 1;
 }
 
+/* Whether solid k is a leaf of the tree nodes[root .. root + size). */
+IA_FN int classify_tree_holds(const KERNEL_GLOBAL kernel_u32 *nodes, int root, int size, int k) {
+    for (int j = root; j < root + size; j++) {
+        int op = CSG_NODE_OP(nodes[j]);
+        if ((op == CSG_INSIDE || op == CSG_OUTSIDE) && (int)CSG_NODE_ARG(nodes[j]) == k)
+            return 1;
+    }
+    return 0;
+}
+
 #endif

@@ -1,4 +1,4 @@
-/* kernels/prim_segments.h -- closed-form segments of the primitives along a ray (all but the pipe): where librt
+/* kernels/prim_segments.h -- closed-form segments of the primitives along a ray (the pipe's: prim_pipe_segments.h): where librt
  * solves each primitive once per ray, the bisection walk (segments.h) evaluates its implicit some 30 to 60 times.
  * The solid's states come out as the walk's accepted nodes would: OUT, BOUNDARY over an enclosure of the entry, IN,
  * BOUNDARY over an enclosure of the exit, OUT; every enclosure outward, so a boundary the ray crosses is never
@@ -17,7 +17,7 @@
  *        changes e[0..3] (OUT before e0, BOUNDARY to e1, IN to e2, BOUNDARY to e3, OUT after); a quartic's first run
  *        by prim_quartic_walk (eps: its leaves where the quartic is not monotone, at a double root).
  *   Returns 0 where a piece cannot be decided (a quadric whose A may be 0, along a ray that meets its surface: a
- *   ray on a cone's side line), and for the pipe: the walk then bisects.
+ *   ray on a cone's side line): the walk then bisects. A pipe, the union of its parts: prim_pipe_segments.h.
  *
  * The pieces. HALF: its plane. ARB8: its six planes (the solid is their intersection, prim.h). ELL: |s|^2 - 1 (s
  * = G (x - P)). TGC where alpha and beta are within PRIM_SEGMENTS_SKEW (rcc, rec, trc, tec): the slab 0 <= w <= 1
@@ -398,6 +398,10 @@ IA_FN int prim_quartic_of(int type, const ia_real *p, const ia_interval a[3], co
     return 1;
 }
 
+/* A pipe's (prim_pipe_segments.h, after this file: it solves its parts with the forms above). */
+IA_FN int prim_pipe_segments(const ia_real *p, const ia_real o[3], const ia_real d[3], ia_real ta, ia_real tend,
+                             ia_real eps, ia_real e[4], ia_real *resume, kernel_u32 *evals);
+
 /* The solid's changes along o + t d over [ta, tend] (see the top), adding its evaluations to *evals: 1 with
  * e[0..3] (OUT after e3), 2 with e[0..3] where the solid may be in again after e3 (a torus's or a general tgc's
  * second run: solve again from e3), or 0 where the walk must bisect. */
@@ -406,6 +410,8 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
     prim_segments_span s = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0}, bound = s;
     ia_interval c[5];
     int quartic = 0;
+    if (type == PRIM_PIPE)
+        return prim_pipe_segments(p, o, d, ta, tend, eps, e, resume, evals);
     if (type == PRIM_HALF || type == PRIM_ARB8) { /* n.o - d + t n.d: from the ray's origin, an exact point */
         for (int j = 0; j < (type == PRIM_HALF ? 1 : PRIM_ARB_PLANES); j++)
             prim_segments_plane(&s, ia_sub(prim_segments_dot(p + 8 * j, 0, o), prim_iv(p + 8 * j, 3)),
@@ -457,5 +463,7 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
     e[3] = phi;
     return 1;
 }
+
+#include "prim_pipe_segments.h"
 
 #endif

@@ -36,9 +36,13 @@
 #define SCENE_BVH_SOLID 1
 
 /* An item (region or surface): SCENE_ITEM_INTS ints. Its tree (or condition) is nodes[root .. root + size),
- * kernels/csg_node.h, relinearised so that its evaluation needs at most SCENE_TREE_STACK values at once
- * (kernels/classify.h). */
+ * kernels/csg_node.h, as the scene has it; the weave classifies a region by its terms (below), each relinearised so
+ * that its evaluation needs at most SCENE_TREE_STACK values at once (kernels/classify.h). */
 enum { SCENE_ITEM_KIND = 0, SCENE_ITEM_ROOT = 1, SCENE_ITEM_SIZE = 2, SCENE_ITEM_SOLID = 3, SCENE_ITEM_INTS = 4 };
+/* An entry of a solid's list (src/scene_terms.h): a term of a region, one of whose trigger solids it is: the
+ * region, and the term's tree nodes[root .. root + size), relinearised like a region's. A solid's entries are in
+ * the regions' order. */
+enum { SCENE_TERM_ITEM = 0, SCENE_TERM_ROOT = 1, SCENE_TERM_SIZE = 2, SCENE_TERM_INTS = 3 };
 /* An item's material: SCENE_MATERIAL_FLOATS floats, its linear albedo, highlight weight and exponent. */
 enum { SCENE_MATERIAL_RGB = 0, SCENE_MATERIAL_SPECULAR = 3, SCENE_MATERIAL_SHININESS = 4, SCENE_MATERIAL_FLOATS = 5 };
 #define SCENE_KIND_REGION 0

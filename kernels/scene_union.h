@@ -119,10 +119,9 @@ IA_FN int scene_union_claim(scene_ray *r, const int states[SCENE_REGIONS_UNION][
     }
     int item = WEAVE_NONE, found = weave_first_region(r, 0, -1, &item), solid = -1, rank = 2;
     for (int c = 0; c < r->nstarted; c++) {
-        int k = r->walks.solid[c], uses = 0;
-        for (int j = r->solid_items_start[k]; j < r->solid_items_start[k + 1]; j++)
-            uses |= r->solid_items[j] == item;
-        if (uses && (r->state[k] == SCENE_BOUNDARY ? 0 : 1) < rank) {
+        int k = r->walks.solid[c];
+        const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * (found ? item : 0);
+        if (found && classify_tree_holds(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], k) && (r->state[k] == SCENE_BOUNDARY ? 0 : 1) < rank) {
             solid = k;
             rank = r->state[k] == SCENE_BOUNDARY ? 0 : 1;
         }

@@ -13,7 +13,8 @@
  * stored or sorted, and the walks stop at the first claimed partition: a ray that hits the front of a solid never
  * bisects its back, nor the solids behind.
  *
- * A BRL-CAD primitive with a closed form (prim_segments.h: all but the pipe) walks by it instead: its first step
+ * A BRL-CAD primitive with a closed form (prim_segments.h; a pipe's in a scene with SCENE_SOLID_PIPES, without a
+ * bore) walks by it instead: its first step
  * solves it along the ray, and the walk then moves through its four changes (segments_closed_step), solving again
  * after them where a torus or a general tgc may be in again; where the closed form cannot decide (a ray along a
  * cone's side line) it bisects.
@@ -72,13 +73,21 @@ IA_FN ia_real segments_real_of(bisect_index b) {
 #endif
 }
 
+/* Room for a solid's parameters: a pipe's where the scene has pipes (SCENE_SOLID_PIPES, up to
+ * PRIM_PIPE_SEGMENTS_PARTS parts; a longer one bisects), else an arb8's. */
+#ifdef SCENE_SOLID_PIPES
+#define SEGMENTS_PARAM_REALS PRIM_PIPE_SEGMENTS_REALS
+#else
+#define SEGMENTS_PARAM_REALS PRIM_SEGMENTS_REALS
+#endif
+
 /* Solves candidate c's solid in closed form over [ta, tend] where it has one, keeping the changes (and where it may
  * be in again after them, newton[c] = 1 and in index[c] the point to solve again from, to the end); 0 when it must
  * bisect. */
 IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real ta,
                                 ia_real tend, ia_real eps, kernel_u32 *evals) {
-    ia_real p[PRIM_SEGMENTS_REALS], e[4], resume = tend;
-    int type = scene_solid_P(w->solid[c], p, PRIM_SEGMENTS_REALS);
+    ia_real p[SEGMENTS_PARAM_REALS], e[4], resume = tend;
+    int type = scene_solid_P(w->solid[c], p, SEGMENTS_PARAM_REALS);
     int r = type < 0 ? 0 : prim_segments(type, p, o, d, ta, tend, eps, e, &resume, evals);
     if (r == 0)
         return 0;

@@ -1,7 +1,7 @@
 /* kernels/weave.h -- partitions and their claims. The candidates' walks (segments.h) are stepped in t order;
  * between two consecutive points where some solid's state changes lies a partition where each solid has one
  * state, and each partition is classified (classify.h) once no walk can change a state before its end: against
- * the regions that use a solid which is not OUT there (the per-solid lists of src/render_scene.c). The first
+ * the regions' terms that a solid not OUT there triggers (the per-solid lists of src/scene_terms.h). The first
  * partition that some region may be in is the hit; the region declared first among those that may be in claims
  * it. At the first partition from there on where the winner is certainly in, another region certainly in makes
  * an overlap (weave_ray).
@@ -21,8 +21,8 @@
 typedef struct {
     const KERNEL_GLOBAL kernel_u32 *nodes;
     const KERNEL_GLOBAL int *items;             /* SCENE_ITEM_INTS per item */
-    const KERNEL_GLOBAL int *solid_items_start; /* solid k's regions: solid_items[start[k] .. start[k + 1]) */
-    const KERNEL_GLOBAL int *solid_items;
+    const KERNEL_GLOBAL int *solid_items_start; /* solid k's terms: solid_items[start[k] .. start[k + 1]) */
+    const KERNEL_GLOBAL int *solid_items;       /* SCENE_TERM_INTS per term (scene_data.h) */
     segments_walks walks; /* the candidates (bvh.h) and their walks */
     int cand_cap, ncand, nstarted; /* the walks started are the first nstarted */
     KERNEL_GLOBAL unsigned char *state; /* per solid of the scene, all OUT between rays */
@@ -42,26 +42,46 @@ typedef struct {
 
 #define WEAVE_NONE 0x7fffffff
 
-/* The value (classify.h) of item's tree over the current partition. */
+/* The value (classify.h) of region `item` over the current partition: the union of its terms triggered by the
+ * solids not OUT there (src/scene_terms.h: an untriggered term is certainly out). */
 IA_FN int weave_value(const scene_ray *r, int item) {
-    const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * item;
-    return classify_tree(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], r->state);
+    int in = 0, out = 1;
+    for (int c = 0; c < r->nstarted; c++) {
+        int k = r->walks.solid[c];
+        if (r->state[k] == SCENE_OUT)
+            continue;
+        for (int j = r->solid_items_start[k]; j < r->solid_items_start[k + 1]; j += SCENE_TERM_INTS) {
+            const KERNEL_GLOBAL int *e = r->solid_items + j;
+            if (e[SCENE_TERM_ITEM] > item)
+                break;
+            if (e[SCENE_TERM_ITEM] < item)
+                continue;
+            int v = classify_tree(r->nodes, e[SCENE_TERM_ROOT], e[SCENE_TERM_SIZE], r->state);
+            in |= v & CLASSIFY_MAY_IN;
+            out &= v >> 1;
+        }
+    }
+    return in | out << 1;
 }
 
 /* The first declared region that may be in over the current partition (returns 0 when none may be), among the
- * regions of the solids that are not OUT there; with `certain`, the first that is certainly in, other than
- * `except`. */
+ * regions of the terms that its solids not OUT trigger; with `certain`, the first that is certainly in, other
+ * than `except`. A region may be in where one of its terms may be, and is certainly in where one is (a union is
+ * certainly out only where all its sides are). */
 IA_FN int weave_first_region(const scene_ray *r, int certain, int except, int *first) {
     int best = WEAVE_NONE;
     for (int c = 0; c < r->nstarted; c++) {
         int k = r->walks.solid[c];
         if (r->state[k] == SCENE_OUT)
             continue;
-        for (int j = r->solid_items_start[k]; j < r->solid_items_start[k + 1]; j++) {
-            int item = r->solid_items[j];
-            if (item >= best || item == except)
+        for (int j = r->solid_items_start[k]; j < r->solid_items_start[k + 1]; j += SCENE_TERM_INTS) {
+            const KERNEL_GLOBAL int *e = r->solid_items + j;
+            int item = e[SCENE_TERM_ITEM];
+            if (item >= best) /* the entries are in the regions' order */
+                break;
+            if (item == except)
                 continue;
-            int v = weave_value(r, item);
+            int v = classify_tree(r->nodes, e[SCENE_TERM_ROOT], e[SCENE_TERM_SIZE], r->state);
             if (certain ? v == CLASSIFY_MAY_IN : (v & CLASSIFY_MAY_IN) != 0)
                 best = item;
         }

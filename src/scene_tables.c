@@ -1,5 +1,6 @@
 /* src/scene_tables.c -- see scene_tables.h. */
 #include "scene_tables.h"
+#include "scene_terms.h"
 #include "render.h"
 #include "implicits/prim_place.h"
 #include "kernels/scene_data.h"
@@ -268,76 +269,6 @@ static int bvh_of(const iacsg_scene *s, const unsigned char *used, scene_tables 
 
 /* ---- region trees for the device */
 
-/* Appends region tree `root` of s->nodes to t->nodes (room for its size), children ordered so that the deeper
- * is evaluated first (kernels/classify.h: from the last node back, the second child first); a difference whose
- * left side is deeper becomes an intersection with the negated right side first. Returns the stack depth its
- * evaluation needs, or -1 when out of memory. */
-static int relinearise(const iacsg_scene *s, int root, scene_tables *t) {
-    int size = scene_tree_size(s, root);
-    int *need = malloc(sizeof(int) * (size_t)size), *task = malloc(2 * sizeof(int) * (size_t)(2 * size + 1));
-    if (!need || !task) {
-        free(need);
-        free(task);
-        return -1;
-    }
-    for (int k = root + size - 1; k >= root; k--) {
-        int op = CSG_NODE_OP(s->nodes[k]);
-        if (op == CSG_INSIDE || op == CSG_OUTSIDE) {
-            need[k - root] = 1;
-        } else if (op == CSG_NOT) {
-            need[k - root] = need[k + 1 - root];
-        } else {
-            int a = need[k + 1 - root], b = need[(int)CSG_NODE_ARG(s->nodes[k]) - root];
-            int deep = a > b ? a : b, shallow = a > b ? b : a;
-            need[k - root] = deep > shallow + 1 ? deep : shallow + 1;
-        }
-    }
-    int result = need[0], top = 0;
-    enum { EMIT, EMIT_NOT, PATCH };
-    task[top++] = EMIT, task[top++] = root;
-    while (top > 0) {
-        int arg = task[--top], kind = task[--top];
-        if (kind == PATCH) {
-            t->nodes[arg] = CSG_NODE(CSG_NODE_OP(t->nodes[arg]), (uint32_t)t->nnodes);
-            continue;
-        }
-        if (kind == EMIT_NOT) {
-            t->nodes[t->nnodes++] = CSG_NODE(CSG_NOT, 0);
-            task[top++] = EMIT, task[top++] = arg;
-            continue;
-        }
-        uint32_t node = s->nodes[arg];
-        int op = CSG_NODE_OP(node);
-        if (op == CSG_INSIDE || op == CSG_OUTSIDE) {
-            t->nodes[t->nnodes++] = node;
-            continue;
-        }
-        if (op == CSG_NOT) {
-            t->nodes[t->nnodes++] = node;
-            task[top++] = EMIT, task[top++] = arg + 1;
-            continue;
-        }
-        int left = arg + 1, right = (int)CSG_NODE_ARG(node);
-        int first = left, second = right, first_kind = EMIT;
-        if (need[left - root] > need[right - root]) { /* the deeper one second: evaluated first */
-            first = right;
-            second = left;
-            if (op == CSG_DIFFERENCE) {
-                op = CSG_INTERSECT;
-                first_kind = EMIT_NOT;
-            }
-        }
-        int here = t->nnodes++;
-        t->nodes[here] = CSG_NODE(op, 0);
-        task[top++] = EMIT, task[top++] = second; /* pushed first: done last */
-        task[top++] = PATCH, task[top++] = here;
-        task[top++] = first_kind, task[top++] = first;
-    }
-    free(need);
-    free(task);
-    return result;
-}
-
 /* Marks the solids of the tree at `root`. */
 static void mark_solids(const iacsg_scene *s, int root, unsigned char *mark) {
     int last = root + scene_tree_size(s, root) - 1;
@@ -348,56 +279,13 @@ static void mark_solids(const iacsg_scene *s, int root, unsigned char *mark) {
     }
 }
 
-static iacsg_status lists_of(const iacsg_scene *s, scene_tables *t, unsigned char *used, iacsg_error *err) {
-    int n = s->nsolids, total = 0;
-    unsigned char *mark = calloc((size_t)n + 1, 1);
-    t->solid_items_start = calloc((size_t)n + 2, sizeof(int));
-    if (!mark || !t->solid_items_start)
-        goto nomem;
-    for (int pass = 0; pass < 2; pass++) { /* count, then fill */
-        for (int item = 0; item < s->nitems; item++) {
-            if (s->items[item].kind != SCENE_REGION)
-                continue;
-            memset(mark, 0, (size_t)n);
-            mark_solids(s, s->items[item].tree, mark);
-            for (int k = 0; k < n; k++) {
-                if (!mark[k])
-                    continue;
-                used[k] = 1;
-                if (pass == 0)
-                    t->solid_items_start[k + 1] += 1;
-                else
-                    t->solid_items[t->solid_items_start[k]++] = item;
-            }
-        }
-        if (pass == 0) {
-            for (int k = 0; k < n; k++)
-                t->solid_items_start[k + 1] += t->solid_items_start[k];
-            total = t->solid_items_start[n];
-            t->solid_items = malloc(sizeof(int) * (size_t)(total + 1));
-            if (!t->solid_items)
-                goto nomem;
-        }
-    }
-    for (int k = n; k > 0; k--) /* the fill moved each start to the next one's */
-        t->solid_items_start[k] = t->solid_items_start[k - 1];
-    t->solid_items_start[0] = 0;
-    free(mark);
-    return IACSG_OK;
-nomem:
-    free(mark);
-    return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
-}
-
 iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_error *err) {
     memset(t, 0, sizeof *t);
     t->nsolids = s->nsolids;
     t->nitems = s->nitems;
-    size_t region_nodes = 0;
-    for (int i = 0; i < s->nitems; i++)
-        region_nodes += s->items[i].kind == SCENE_REGION ? 2 * (size_t)scene_tree_size(s, s->items[i].tree) : 0;
+    int cap = s->nnodes + 1;
     unsigned char *used = calloc((size_t)s->nsolids + 1, 1);
-    t->nodes = malloc(sizeof(uint32_t) * ((size_t)s->nnodes + region_nodes + 1));
+    t->nodes = malloc(sizeof(uint32_t) * (size_t)cap);
     t->items = malloc(sizeof(int) * SCENE_ITEM_INTS * (size_t)(s->nitems + 1));
     t->surfaces = malloc(sizeof(int) * (size_t)(s->nitems + 1));
     t->albedo = malloc(SCENE_MATERIAL_FLOATS * sizeof(float) * (size_t)(s->nitems + 1));
@@ -422,24 +310,13 @@ iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_err
         const scene_material *mat = it->material >= 0 ? &s->materials[it->material] : NULL;
         m[SCENE_MATERIAL_SPECULAR] = mat ? mat->specular : SCENE_DEFAULT_SPECULAR;
         m[SCENE_MATERIAL_SHININESS] = mat ? mat->shininess : SCENE_DEFAULT_SHININESS;
-        if (it->kind == SCENE_SURFACE) {
+        if (it->kind == SCENE_SURFACE)
             t->surfaces[t->nsurfaces++] = i;
-            continue;
-        }
-        out[SCENE_ITEM_ROOT] = t->nnodes;
-        int need = relinearise(s, it->tree, t);
-        out[SCENE_ITEM_SIZE] = t->nnodes - out[SCENE_ITEM_ROOT];
-        if (need < 0)
-            st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
-        else if (need > SCENE_TREE_STACK)
-            st = iacsg_error_set(err, IACSG_ERR_LIMIT, it->line, it->column,
-                                 "region '%s' is too large to evaluate (a stack of %d, at most %d)",
-                                 it->name ? it->name : "", need, SCENE_TREE_STACK);
     }
     for (int k = 0; k < s->nsolids; k++)
         t->uses_time |= s->solids[k].expr && iacsg_expr_uses_time(s->solids[k].expr);
     if (st == IACSG_OK)
-        st = lists_of(s, t, used, err);
+        st = scene_terms_build(s, t, &cap, used, err);
     if (st == IACSG_OK && !bvh_of(s, used, t))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
     free(used);

@@ -4,9 +4,10 @@
  *             its inside reaches beyond it (the sign of f at a point outside the box says which)
  *   BVH       over those boxes, split along the centres' longest axis by the surface area heuristic, flattened
  *             in preorder with skip links
- *   trees     every tree and condition as the scene has them, then each region's tree again, relinearised so
- *             that its evaluation's stack stays within SCENE_TREE_STACK (kernels/classify.h)
- *   lists     per solid the regions that use it; the surfaces; each item's albedo (material, or the palette)
+ *   trees     every tree and condition as the scene has them, then the regions' terms (scene_terms.h), each
+ *             relinearised so that its evaluation's stack stays within SCENE_TREE_STACK (kernels/classify.h)
+ *   lists     per solid the terms it triggers (scene_terms.h); the surfaces; each item's albedo (material, or the
+ *             palette)
  */
 #ifndef IACSG_SCENE_TABLES_H
 #define IACSG_SCENE_TABLES_H
@@ -22,7 +23,7 @@ typedef struct {
     int nnodes;
     int *items; /* SCENE_ITEM_INTS per item */
     int nitems;
-    int *solid_items_start, *solid_items; /* nsolids + 1, and the regions */
+    int *solid_items_start, *solid_items; /* nsolids + 1 starts, and the terms (SCENE_TERM_INTS ints each) */
     int *surfaces, nsurfaces;
     float *albedo; /* the item's material: SCENE_MATERIAL_FLOATS per item (kernels/scene_data.h) */
     int uses_time; /* some solid depends on t (the boxes hold for t in [0, 1]) */

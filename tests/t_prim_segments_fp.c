@@ -1,9 +1,9 @@
 /* tests/t_prim_segments_fp.c -- each primitive type through the segment path's walk as scenes of more than 64 solids
- * run it: the closed forms of kernels/prim_segments.h (every type but the pipe: the quadrics solved, tori and general
- * tgcs walked as quartics), bisection for the pipe
- * and for the rays the closed forms leave to it; against the exact reference: tests/t_prim_walk.h says what is
- * checked. */
+ * run it: the closed forms of kernels/prim_segments.h (the quadrics solved, tori and general tgcs walked as quartics,
+ * a pipe as the union of its parts: prim_pipe_segments.h), bisection for the rays the closed forms leave to it;
+ * against the exact reference: tests/t_prim_walk.h says what is checked. */
 #define SCENE_SOLID_PRIMS 1
+#define SCENE_SOLID_PIPES 1
 #include "t_prim_walk.h"
 
 TEST_FP(prim_segments_half) { run_type(SCENE_PRIM_HALF, 1, "half"); }

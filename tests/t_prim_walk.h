@@ -466,10 +466,10 @@ static void run_type(int type, int variants, const char *name) {
     tally tl = {0};
     long prims = test_iters(40), per_prim = 30, closable_rays = 0, closed_of_closable = 0;
     for (long it = 0; it < prims; it++) {
-        /* the types with a closed form: all but the pipe (a tgc's variants 0-2, rec, rcc or trc and cone, are
-         * quadrics, the others and the torus quartics, kernels/prim_segments.h) */
-        int closable = type != SCENE_PRIM_PIPE;
-        tl.quartic = type == SCENE_PRIM_TOR || (type == SCENE_PRIM_TGC && it % variants >= 3);
+        /* every type has a closed form (a tgc's variants 0-2, rec, rcc or trc and cone, are quadrics, the others
+         * and the torus quartics, kernels/prim_segments.h; a pipe's bends too) */
+        int closable = 1;
+        tl.quartic = type == SCENE_PRIM_TOR || type == SCENE_PRIM_PIPE || (type == SCENE_PRIM_TGC && it % variants >= 3);
         double q[64], mat[16], scale;
         int n = random_prim(rng, type, (int)(it % variants), q);
         int affine = it % 3 == 2 && (type == SCENE_PRIM_ELL || type == SCENE_PRIM_TGC || type == SCENE_PRIM_ARB8);

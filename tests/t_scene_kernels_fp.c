@@ -2,9 +2,10 @@
  * them), with the host evaluator (iacsg_expr_eval_box, the same ia/ code) as the solids' inclusion function:
  *
  * - classify_tree in three-valued logic against every in/out assignment of the undecided solids (scene_tree_eval),
- *   on random trees, as the scene has them and relinearised for the device (src/scene_tables.c): sound, and exact
- *   where no undecided solid occurs twice;
- * - the relinearised trees' stack need, for chains of 1000 differences and unions either way round;
+ *   on random trees: sound, and exact where no undecided solid occurs twice; the weave's value of a region from its
+ *   terms (src/scene_terms.h) the same, and its first region among two;
+ * - the terms' stack need, for chains of 1000 differences and unions either way round; the split of a difference
+ *   over unions, distributed and (past the copies' bound) not;
  * - scene_trace_ray (BVH, walks, weave) on random rays through random spheres, against their exact entry points
  *   in long double: never after the first point of a region, never a miss.
  */
@@ -67,59 +68,101 @@ static int repeats(const uint32_t *nodes, int n, const unsigned char *state) {
     return 0;
 }
 
+/* A scene_ray over the tables where the first n solids are started candidates with the given states (the weave's
+ * view of a partition). */
+static scene_ray partition_of(const scene_tables *t, int *solid, int n, unsigned char *state) {
+    for (int k = 0; k < n; k++)
+        solid[k] = k;
+    scene_ray r = {t->nodes, t->items, t->solid_items_start, t->solid_items, {solid, 0, 0, 0, 0, 0, 0},
+                   n, n, n, state, 0, 0, 0, 0, 0, 0, 0};
+    return r;
+}
+
 /* For random trees and states: classify_tree's two bits hold "in for some assignment of the BOUNDARY solids" and
- * "out for some" (exactly so where no BOUNDARY solid repeats), the same on the scene's nodes and the device's. */
+ * "out for some" (exactly so where no BOUNDARY solid repeats); the weave's value of the region, from the terms
+ * that its solids not OUT trigger (src/scene_terms.h), is the same two bits; and weave_first_region names the
+ * first of two such regions that may be in (or is certainly in). */
 TEST_FP(scene_classify_three_valued) {
     enum { SOLIDS = 5 };
     test_rng_t *rng = test_rng();
     iacsg_error err = {0};
-    long trees = test_iters(200), checked = 0, exact = 0;
+    long trees = test_iters(200), checked = 0, exact = 0, terms = 0;
     for (long it = 0; it < trees; it++) {
         iacsg_scene *s = scene_create();
         for (int k = 0; k < SOLIDS; k++)
             scene_add_solid(s, NULL, parse("sphere"), &err);
-        uint32_t nodes[64];
-        int n = random_tree(rng, 1 + (int)(test_rand_u64(rng) % 12), SOLIDS, nodes, 0);
-        int root = scene_add_tree(s, nodes, n, &err);
-        CHECK(root >= 0 && scene_add_region(s, NULL, root, -1, &err) == 0, "%s", err.message);
+        uint32_t nodes[2][64];
+        int n[2], root[2];
+        for (int j = 0; j < 2; j++) {
+            n[j] = random_tree(rng, 1 + (int)(test_rand_u64(rng) % 12), SOLIDS, nodes[j], 0);
+            root[j] = scene_add_tree(s, nodes[j], n[j], &err);
+            CHECK(root[j] >= 0 && scene_add_region(s, NULL, root[j], -1, &err) == j, "%s", err.message);
+        }
         scene_tables t;
         CHECK(scene_tables_build(s, &t, &err) == IACSG_OK, "%s", err.message);
+        terms += t.solid_items_start[SOLIDS] / SCENE_TERM_INTS;
         for (int code = 0; code < 243; code++) { /* every state of 5 solids */
             unsigned char state[SOLIDS];
-            int c = code, boundary[SOLIDS], nb = 0;
+            int c = code, boundary[SOLIDS], nb = 0, got[2];
             for (int k = 0; k < SOLIDS; k++, c /= 3) {
                 state[k] = (unsigned char)(c % 3);
                 if (state[k] == SCENE_BOUNDARY)
                     boundary[nb++] = k;
             }
-            int may_in = 0, may_out = 0;
-            for (int a = 0; a < 1 << nb; a++) {
-                signed char sign[SOLIDS];
-                for (int k = 0; k < SOLIDS; k++)
-                    sign[k] = state[k] == SCENE_IN ? -1 : 1;
-                for (int b = 0; b < nb; b++)
-                    sign[boundary[b]] = a >> b & 1 ? -1 : 1;
-                int v = scene_tree_eval(s, root, sign);
-                may_in |= v;
-                may_out |= !v;
+            int solid[SOLIDS];
+            scene_ray r = partition_of(&t, solid, SOLIDS, state);
+            for (int j = 0; j < 2; j++) {
+                int may_in = 0, may_out = 0;
+                for (int a = 0; a < 1 << nb; a++) {
+                    signed char sign[SOLIDS];
+                    for (int k = 0; k < SOLIDS; k++)
+                        sign[k] = state[k] == SCENE_IN ? -1 : 1;
+                    for (int b = 0; b < nb; b++)
+                        sign[boundary[b]] = a >> b & 1 ? -1 : 1;
+                    int v = scene_tree_eval(s, root[j], sign);
+                    may_in |= v;
+                    may_out |= !v;
+                }
+                int expect = (may_in ? CLASSIFY_MAY_IN : 0) | (may_out ? CLASSIFY_MAY_OUT : 0);
+                got[j] = classify_tree(s->nodes, root[j], n[j], state);
+                int device = weave_value(&r, j);
+                /* sound always; exact unless an undecided solid occurs twice (a \ a may be in, say the bits) */
+                CHECK((got[j] & expect) == expect && device == got[j] && (got[j] == expect || repeats(nodes[j], n[j], state)),
+                      "tree %ld.%d, states %d: %d, by the terms %d, exact %d", it, j, code, got[j], device, expect);
+                exact += got[j] == expect;
+                checked++;
             }
-            int expect = (may_in ? CLASSIFY_MAY_IN : 0) | (may_out ? CLASSIFY_MAY_OUT : 0);
-            int got = classify_tree(s->nodes, root, n, state);
-            int device = classify_tree(t.nodes, t.items[SCENE_ITEM_ROOT], t.items[SCENE_ITEM_SIZE], state);
-            /* sound always; exact unless an undecided solid occurs twice (a \ a may be in, say the bits) */
-            CHECK((got & expect) == expect && device == got && (got == expect || repeats(nodes, n, state)),
-                  "tree %ld, states %d: %d and %d on the device's nodes, exact %d", it, code, got, device, expect);
-            exact += got == expect;
-            checked++;
+            int first = -1, certain = -1;
+            int found = weave_first_region(&r, 0, -1, &first), found_certain = weave_first_region(&r, 1, -1, &certain);
+            int want = got[0] & CLASSIFY_MAY_IN ? 0 : got[1] & CLASSIFY_MAY_IN ? 1 : -1;
+            int want_certain = got[0] == CLASSIFY_MAY_IN ? 0 : got[1] == CLASSIFY_MAY_IN ? 1 : -1;
+            CHECK((found ? first : -1) == want && (found_certain ? certain : -1) == want_certain,
+                  "trees %ld, states %d: first %d (%d), certainly %d (%d)", it, code, found ? first : -1, want,
+                  found_certain ? certain : -1, want_certain);
         }
         scene_tables_free(&t);
         iacsg_scene_destroy(s);
     }
-    test_note("%ld trees, %ld states, %ld of them exact", trees, checked, exact);
+    test_note("%ld trees in %ld terms, %ld states, %ld of them exact", 2 * trees, terms, checked, exact);
+}
+
+/* The largest stack that a solid's terms need (kernels/classify.h: from the last node back). */
+static int terms_stack_need(const scene_tables *t, int solid) {
+    int need = 0;
+    for (int j = t->solid_items_start[solid]; j < t->solid_items_start[solid + 1]; j += SCENE_TERM_INTS) {
+        int depth = 0, first = t->solid_items[j + SCENE_TERM_ROOT], size = t->solid_items[j + SCENE_TERM_SIZE];
+        for (int k = first + size - 1; k >= first; k--) {
+            int o = CSG_NODE_OP(t->nodes[k]);
+            depth += o == CSG_INSIDE ? 1 : o == CSG_NOT ? 0 : -1;
+            need = depth > need ? depth : need;
+        }
+    }
+    return need;
 }
 
 /* Left-deep chains of 1000 differences and of 1000 unions, which a plain evaluation from the last node would
- * stack 1000 deep: the device's order needs 2. */
+ * stack 1000 deep: the difference chain is one term that the device's order evaluates with 2, the union chain
+ * 1001 terms of one leaf. */
 TEST_FP(scene_classify_stack_bound) {
     enum { CHAIN = 1000 };
     iacsg_error err = {0};
@@ -135,15 +178,77 @@ TEST_FP(scene_classify_stack_bound) {
         CHECK(root >= 0 && scene_add_region(s, NULL, root, -1, &err) == 0, "%s", err.message);
         scene_tables t;
         CHECK(scene_tables_build(s, &t, &err) == IACSG_OK, "%s", err.message);
-        int depth = 0, need = 0, size = t.items[SCENE_ITEM_SIZE], first = t.items[SCENE_ITEM_ROOT];
-        for (int k = first + size - 1; k >= first; k--) {
-            int o = CSG_NODE_OP(t.nodes[k]);
-            depth += o == CSG_INSIDE ? 1 : o == CSG_NOT ? 0 : -1;
-            need = depth > need ? depth : need;
-        }
-        CHECK(need <= 2, "%s chain: stack %d", op ? "union" : "difference", need);
+        int need = terms_stack_need(&t, 0), nterms = t.solid_items_start[1] / SCENE_TERM_INTS;
+        CHECK(need <= 2 && nterms == (op ? CHAIN + 1 : 1), "%s chain: stack %d, %d terms", op ? "union" : "difference",
+              need, nterms);
+        int solid[1];
         unsigned char in[1] = {SCENE_IN};
-        CHECK(classify_tree(t.nodes, first, size, in) == (op ? CLASSIFY_MAY_IN : CLASSIFY_MAY_OUT), "value");
+        scene_ray r = partition_of(&t, solid, 1, in);
+        CHECK(weave_value(&r, 0) == (op ? CLASSIFY_MAY_IN : CLASSIFY_MAY_OUT), "value");
+        scene_tables_free(&t);
+        iacsg_scene_destroy(s);
+    }
+}
+
+/* The three-valued value of tree node k, recursively (classify_tree's stack holds 64 values: not this tree's). */
+static int tree_value(const uint32_t *nodes, int k, const unsigned char *state) {
+    int op = CSG_NODE_OP(nodes[k]);
+    if (op == CSG_INSIDE)
+        return classify_leaf(state[CSG_NODE_ARG(nodes[k])]);
+    int a = tree_value(nodes, k + 1, state), b = tree_value(nodes, (int)CSG_NODE_ARG(nodes[k]), state);
+    int in = op == CSG_UNION ? (a | b) & 1 : op == CSG_INTERSECT ? a & b & 1 : a & b >> 1 & 1;
+    int out = op == CSG_UNION ? a & b & 2 : op == CSG_INTERSECT ? (a | b) & 2 : (a | b << 1) & 2;
+    return in | out;
+}
+
+/* (a1 u ... u a100) - (x1 u ... u x100): distributed, the difference would be copied 100 times; the region is cut at
+ * its unions only, one term that each a triggers and no x. And (a u b) - x distributed: a and b each trigger a
+ * term of three nodes, x none. The weave's value is the tree's for random states either way. */
+TEST_FP(scene_terms_split) {
+    enum { N = 100 };
+    test_rng_t *rng = test_rng();
+    iacsg_error err = {0};
+    for (int big = 0; big < 2; big++) {
+        int n = big ? N : 2, nsolids = big ? 2 * N : 3;
+        iacsg_scene *s = scene_create();
+        for (int k = 0; k < nsolids; k++)
+            scene_add_solid(s, NULL, parse("sphere"), &err);
+        static uint32_t nodes[4 * N];
+        int size = 0;
+        nodes[size++] = 0; /* the difference, its right side patched below */
+        for (int side = 0; side < 2; side++) { /* a chain of unions over a's, then over x's (one x when small) */
+            int leaves = side && !big ? 1 : n, first = side ? n : 0;
+            for (int k = 0; k < leaves - 1; k++)
+                nodes[size + k] = CSG_NODE(CSG_UNION, size + 2 * (leaves - 1) - k);
+            for (int k = 0; k < leaves; k++)
+                nodes[size + leaves - 1 + k] = CSG_NODE(CSG_INSIDE, first + k);
+            if (side == 0)
+                nodes[0] = CSG_NODE(CSG_DIFFERENCE, size + 2 * leaves - 1);
+            size += 2 * leaves - 1;
+        }
+        int root = scene_add_tree(s, nodes, size, &err);
+        CHECK(root >= 0 && scene_add_region(s, NULL, root, -1, &err) == 0, "%s", err.message);
+        scene_tables t;
+        CHECK(scene_tables_build(s, &t, &err) == IACSG_OK, "%s", err.message);
+        for (int k = 0; k < nsolids; k++) {
+            int entries = (t.solid_items_start[k + 1] - t.solid_items_start[k]) / SCENE_TERM_INTS;
+            const int *e = t.solid_items + t.solid_items_start[k];
+            CHECK(entries == (k < n), "solid %d triggers %d terms", k, entries);
+            if (entries) /* one term, the whole region, when big */
+                CHECK(e[SCENE_TERM_SIZE] == (big ? size : 3) && (!big || e[SCENE_TERM_ROOT] == t.solid_items[1]),
+                      "solid %d's term at %d, %d nodes", k, e[SCENE_TERM_ROOT], e[SCENE_TERM_SIZE]);
+        }
+        unsigned char *state = calloc((size_t)nsolids, 1);
+        int *solid = malloc(sizeof(int) * (size_t)nsolids);
+        for (int it = 0; it < 200; it++) {
+            for (int k = 0; k < nsolids; k++) /* mostly OUT, as along a ray */
+                state[k] = test_rand_u64(rng) % 8 < 6 ? SCENE_OUT : (unsigned char)(1 + test_rand_u64(rng) % 2);
+            scene_ray r = partition_of(&t, solid, nsolids, state);
+            int want = tree_value(s->nodes, root, state), got = weave_value(&r, 0);
+            CHECK(got == want, "states %d: %d by the terms, %d by the tree", it, got, want);
+        }
+        free(state);
+        free(solid);
         scene_tables_free(&t);
         iacsg_scene_destroy(s);
     }
