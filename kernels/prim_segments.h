@@ -73,7 +73,7 @@ IA_FN ia_interval prim_segments_dot(const ia_real *p, int k, const ia_real v[3])
  * where b < 0; where b may be 0, in, out or undecided over the whole range by its enclosure there. */
 IA_FN void prim_segments_plane(prim_segments_span *s, ia_interval c, ia_interval b, ia_real t0, ia_interval range) {
     if (b.lo > 0 || b.hi < 0) {
-        ia_interval u = ia_div(ia_neg(c), b), t = t0 == 0 ? u : ia_add(ia_point(t0), u);
+        ia_interval u = ia_div_one_signed(ia_neg(c), b), t = t0 == 0 ? u : ia_add(ia_point(t0), u);
         if (b.lo > 0)
             prim_segments_keep(s, -IA_INF, t.hi, -IA_INF, t.lo);
         else
@@ -118,16 +118,16 @@ IA_FN int prim_segments_quadric(prim_segments_span *s, ia_interval a, ia_interva
         ia_interval root = ia_sqrt(disc);
         if (b.lo > 0 || b.hi < 0) {
             ia_interval q = b.lo > 0 ? ia_neg(ia_add(b, root)) : ia_sub(root, b);
-            ia_interval big = ia_div(q, a), small = ia_div(c, q); /* q / A is the root of B's other sign */
+            ia_interval big = ia_div_one_signed(q, a), small = ia_div_one_signed(c, q); /* q / A is the root of B's other sign */
             r1 = b.lo > 0 ? big : small;
             r2 = b.lo > 0 ? small : big;
         } else {
-            r1 = ia_div(ia_sub(ia_neg(b), root), a);
-            r2 = ia_div(ia_add(ia_neg(b), root), a);
+            r1 = ia_div_one_signed(ia_sub(ia_neg(b), root), a);
+            r2 = ia_div_one_signed(ia_add(ia_neg(b), root), a);
         }
     } else {
         ia_real h = ia_sqrt(ia_make(0, disc.hi)).hi;
-        r1 = r2 = ia_div(ia_add(ia_neg(b), ia_make(-h, h)), a);
+        r1 = r2 = ia_div_one_signed(ia_add(ia_neg(b), ia_make(-h, h)), a);
     }
     r1 = ia_add(ia_point(ta), r1);
     r2 = ia_add(ia_point(ta), r2);

@@ -15,6 +15,7 @@
  * +inf on a miss), normal, ids (the item, -1 on a miss), overlap (another region certainly in the claimed
  * partition, or -1), and with KERNEL_STATS the evaluations, segments and partitions of each ray.
  */
+#include "packet_camera.h"
 #include "scene_trace.h"
 #include "light.h"
 #include "scene_union.h"
@@ -56,13 +57,13 @@ typedef struct {
 } scene_frame;
 
 /* The rays of the packet of pixels from (i0, j0) (camera_ray), and where they meet the bounds (meets[k] 1, over
- * [tn[k], tf[k]]: camera_clip); a pixel outside the image or the band's rows meets nothing. In SIMD lanes where
- * the program has packet.h (the union's pre-pass searches the same rays), else one by one. */
+ * [tn[k], tf[k]]: camera_clip); a pixel outside the image or the band's rows meets nothing. In SIMD lanes
+ * (packet_camera.h, bit for bit the scalar functions' results) where the program has them, else one by one. */
 static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, int i0, int j0,
                               ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real tn[PACKET_LANES],
                               ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES]) {
     int ortho = f->flags & RENDER_ORTHO, width = f->width, height = f->height;
-#ifdef SCENE_UNION_PREPASS
+#ifdef PACKET_CAMERA_LANES
     packet_int lanes = packet_lane_numbers();
     packet_int col = i0 + lanes % PACKET_W, row = j0 + lanes / PACKET_W;
     ia_realv o[3], d[3], t_near, t_far;

@@ -129,3 +129,26 @@ TEST_FP(ia_op_contains_zero) { run_op(ORACLE_CZERO); }
 TEST_FP(ia_op_is_empty) { run_op(ORACLE_ISEMPTY); }
 TEST_FP(ia_op_is_entire) { run_op(ORACLE_ISENTIRE); }
 TEST_FP(ia_op_contains) { run_op(ORACLE_CONTAINS); }
+
+/* ia_div_one_signed (the closed-form segments' divisions) is ia_div, bit for bit, wherever its divisor is one-signed
+ * away from 0 and no corner is inf / inf: random and pinned dividends (empties aside) over random such divisors,
+ * finite and infinite, of both signs; ia_div is the MPFR-checked one (ia_op_div). */
+TEST_FP(ia_div_one_signed_is_ia_div) {
+    test_rng_t *r = test_rng();
+    long count = test_iters(1000000), compared = 0;
+    for (long i = 0; i < count; i++) {
+        ia_interval a = i < PINNED ? pinned_interval((int)i) : gen_interval(r, 0), b = gen_interval(r, 0);
+        if (i % 2)
+            b = ia_neg(b);
+        if (ia_is_empty(a) || ia_is_empty(b) || !(b.lo > 0 || b.hi < 0) ||
+            ((isinf(a.lo) || isinf(a.hi)) && (isinf(b.lo) || isinf(b.hi))))
+            continue;
+        ia_interval want = ia_div(a, b), got = ia_div_one_signed(a, b);
+        CHECK(memcmp(&want, &got, sizeof want) == 0,
+              "[%a, %a] / [%a, %a]: ia_div [%a, %a], ia_div_one_signed [%a, %a]", (double)a.lo, (double)a.hi,
+              (double)b.lo, (double)b.hi, (double)want.lo, (double)want.hi, (double)got.lo, (double)got.hi);
+        compared++;
+    }
+    CHECK(compared > count / 4, "only %ld of %ld cases had a one-signed divisor", compared, count);
+    test_note(FMT_NAME ": %ld divisions identical", compared);
+}
