@@ -384,7 +384,7 @@ fail:
 /* A host array of `bytes` that a device uses in place, page-aligned as devices prefer them. An image is written
  * once into fresh pages: from 2 MB on it is aligned to and asks for huge pages (where transparent huge pages
  * are on or on request, as Debian's default), one fault per 2 MB instead of 512. */
-static void *in_place_alloc(size_t bytes) {
+void *render_in_place_alloc(size_t bytes) {
     enum { HUGE_PAGE = 2 << 20 };
     void *p = NULL;
     if (posix_memalign(&p, bytes >= HUGE_PAGE ? HUGE_PAGE : 4096, bytes) != 0)
@@ -396,8 +396,8 @@ static void *in_place_alloc(size_t bytes) {
     return p;
 }
 
-/* A frame's image of `count` floats (in_place_alloc). */
-float *render_image_alloc(size_t count) { return in_place_alloc(count * sizeof(float)); }
+/* A frame's image of `count` floats (render_in_place_alloc). */
+float *render_image_alloc(size_t count) { return render_in_place_alloc(count * sizeof(float)); }
 
 /* An expression's ids from its depth: 0 where the ray hits, -1 where it misses. */
 static void ids_from_depth(const float *depth, size_t n, float *ids) {
@@ -435,8 +435,8 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     frame->normal = view->no_normals && !fx ? NULL : render_image_alloc(3 * n);
     frame->ids = view->no_ids ? NULL : render_image_alloc(n);
     if (r->config.stats) {
-        evals = in_place_alloc(2 * packets_n * sizeof(cl_uint));
-        tile_evals = in_place_alloc(tiles_n * sizeof(cl_uint));
+        evals = render_in_place_alloc(2 * packets_n * sizeof(cl_uint));
+        tile_evals = render_in_place_alloc(tiles_n * sizeof(cl_uint));
     }
     if (!frame->rgb || (!frame->depth && need_depth) || (!frame->normal && (!view->no_normals || fx)) ||
         (!frame->ids && !view->no_ids) || (r->config.stats && (!evals || !tile_evals)))

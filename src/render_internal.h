@@ -51,7 +51,9 @@ iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_vie
 /* Launches r->kernel over the view's rows in bands (render.c). */
 iacsg_status render_launch_bands(iacsg_renderer *r, const iacsg_view *view, size_t groups_x, int unit_rows,
                                  int band_units, iacsg_error *err);
-/* A frame's image of `count` floats, page-aligned. */
+/* A host array of `bytes` that a device uses in place (CL_MEM_USE_HOST_PTR), page-aligned, in huge pages from
+ * 2 MB on; and a frame's image of `count` floats in one. Both are freed with free(). */
+void *render_in_place_alloc(size_t bytes);
 float *render_image_alloc(size_t count);
 
 void render_scene_free(render_scene *s);

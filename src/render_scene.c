@@ -265,8 +265,11 @@ static iacsg_status box_buffer(iacsg_renderer *r, const iacsg_view *view, scene_
     return b->box ? IACSG_OK : IACSG_ERR_OPENCL;
 }
 
+/* The frame's images, the overlaps and the counts are device buffers over host arrays (CL_MEM_USE_HOST_PTR): on a
+ * CPU device the kernel writes them in place, with no copy back (the counts are 12 bytes a pixel). */
 static iacsg_status frame_buffers_of(iacsg_renderer *r, const iacsg_view *view, const void *params, size_t n,
-                                     iacsg_frame *f, scene_buffers *b, iacsg_error *err) {
+                                     iacsg_frame *f, cl_int *overlap, cl_uint *counts, scene_buffers *b,
+                                     iacsg_error *err) {
     cl_context ctx = r->rt.context;
     cl_int rc = CL_SUCCESS;
     b->params = clCreateBuffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, PARAM_COUNT * real_size(r),
@@ -282,10 +285,10 @@ static iacsg_status frame_buffers_of(iacsg_renderer *r, const iacsg_view *view, 
         *dst[k] = clCreateBuffer(ctx, image, floats[k] * n * sizeof(float), images[k], &rc);
         CLRT_CHECK(err, rc);
     }
-    b->overlap = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, n * sizeof(cl_int), NULL, &rc);
+    b->overlap = clCreateBuffer(ctx, image, n * sizeof(cl_int), overlap, &rc);
     CLRT_CHECK(err, rc);
-    if (r->config.stats) {
-        b->counts = clCreateBuffer(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(cl_uint), NULL, &rc);
+    if (counts) {
+        b->counts = clCreateBuffer(ctx, image, 3 * n * sizeof(cl_uint), counts, &rc);
         CLRT_CHECK(err, rc);
     }
     for (int k = 0; k < 2; k++) {
@@ -396,12 +399,12 @@ static void summarize(const cl_int *overlap, const cl_uint *counts, const float 
     f->partitions_mean = partitions / (double)n;
 }
 
-static iacsg_status read_scene_back(iacsg_renderer *r, const scene_buffers *b, size_t n, cl_int *overlap,
-                                    cl_uint *counts, iacsg_error *err) {
+static iacsg_status read_scene_back(iacsg_renderer *r, const scene_buffers *b, size_t n, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
-    cl_mem images[4] = {b->rgb, b->depth, b->normal, b->ids};
-    size_t sizes[4] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float), n * sizeof(float)};
-    for (int k = 0; k < 4; k++) { /* mapping a USE_HOST_PTR buffer makes its host array current */
+    cl_mem images[6] = {b->rgb, b->depth, b->normal, b->ids, b->overlap, b->counts};
+    size_t sizes[6] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float), n * sizeof(float),
+                       n * sizeof(cl_int), 3 * n * sizeof(cl_uint)};
+    for (int k = 0; k < 6; k++) { /* mapping a USE_HOST_PTR buffer makes its host array current */
         if (!images[k])
             continue;
         cl_int rc = CL_SUCCESS;
@@ -409,9 +412,6 @@ static iacsg_status read_scene_back(iacsg_renderer *r, const scene_buffers *b, s
         CLRT_CHECK(err, rc);
         CLRT_CHECK(err, clEnqueueUnmapMemObject(q, images[k], p, 0, NULL, NULL));
     }
-    CLRT_CHECK(err, clEnqueueReadBuffer(q, b->overlap, CL_FALSE, 0, n * sizeof(cl_int), overlap, 0, NULL, NULL));
-    if (counts)
-        CLRT_CHECK(err, clEnqueueReadBuffer(q, b->counts, CL_FALSE, 0, 3 * n * sizeof(cl_uint), counts, 0, NULL, NULL));
     CLRT_CHECK(err, clFinish(q));
     return IACSG_OK;
 fail:
@@ -434,8 +434,8 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
     frame->depth = view->no_depth && !fx ? NULL : render_image_alloc(n);
     frame->normal = view->no_normals && !fx ? NULL : render_image_alloc(3 * n);
     frame->ids = render_image_alloc(n); /* the overlaps' statistics need them */
-    cl_int *overlap = malloc(n * sizeof(cl_int));
-    cl_uint *counts = r->config.stats ? malloc(3 * n * sizeof(cl_uint)) : NULL;
+    cl_int *overlap = render_in_place_alloc(n * sizeof(cl_int));
+    cl_uint *counts = r->config.stats ? render_in_place_alloc(3 * n * sizeof(cl_uint)) : NULL;
     if (!frame->rgb || (!frame->depth && (!view->no_depth || fx)) || (!frame->normal && (!view->no_normals || fx)) ||
         !frame->ids || !overlap || (r->config.stats && !counts))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
@@ -446,14 +446,14 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
     if (st == IACSG_OK)
         st = render_check_device_memory(r, view, n, r->config.stats ? 15 : 12, err);
     if (st == IACSG_OK)
-        st = frame_buffers_of(r, view, params, n, frame, &b, err);
+        st = frame_buffers_of(r, view, params, n, frame, overlap, counts, &b, err);
     double t0 = render_now_seconds();
     if (st == IACSG_OK)
         st = first_pass(r, view, &b, err);
     if (st == IACSG_OK)
         st = retrace(r, view, &b, frame, err);
     if (st == IACSG_OK)
-        st = read_scene_back(r, &b, n, overlap, counts, err);
+        st = read_scene_back(r, &b, n, err);
     if (st == IACSG_OK) {
         frame->render_seconds = render_now_seconds() - t0;
         /* the rays of the rows traced */
