@@ -1,8 +1,9 @@
 /* src/clrt.c -- see clrt.h. */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* sigaltstack */
 #include "clrt.h"
 #include "clrt_cache.h"
 #include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -54,8 +55,14 @@ iacsg_status clrt_record(iacsg_error *err, cl_int rc, const char *call, const ch
 static pthread_t warm_thread;
 static int warm_running;
 
+/* The loading thread. LLVM, loaded with PoCL, installs an alternate signal stack of its own on the thread that
+ * loads it when the one there is smaller than it wants; a thread's exit then hands that stack to whoever set the
+ * thread's first one (AddressSanitizer unmaps "its" stack there and aborts: it was LLVM's malloc'd block). The
+ * thread's own alternate stack is put back before it exits; LLVM's is left as LLVM leaves it anywhere. */
 static void *warm_platforms(void *unused) {
     (void)unused;
+    stack_t own;
+    int saved = sigaltstack(NULL, &own) == 0;
     cl_platform_id p[MAX_PLATFORMS];
     cl_uint np = 0;
     if (clGetPlatformIDs(MAX_PLATFORMS, p, &np) == CL_SUCCESS)
@@ -63,6 +70,8 @@ static void *warm_platforms(void *unused) {
             cl_uint nd = 0;
             clGetDeviceIDs(p[i], CL_DEVICE_TYPE_ALL, 0, NULL, &nd);
         }
+    if (saved)
+        sigaltstack(&own, NULL);
     return NULL;
 }
 
