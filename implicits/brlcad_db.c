@@ -2,6 +2,7 @@
  * matrices, the colour table; then resolution of members, refusal of dangling references and cycles, and the
  * list of top objects. */
 #include "brlcad_db.h"
+#include "array_grow.h"
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,21 +10,6 @@
 static int out_of_memory(iacsg_error *err) {
     iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory reading the database");
     return -1;
-}
-
-/* Room for `more` elements in *items (count used, *cap allocated); 0 when out of memory. */
-static int grow(void *items, int count, int *cap, size_t size, int more) {
-    if (count + more <= *cap)
-        return 1;
-    int n = *cap ? *cap : 64;
-    while (n < count + more)
-        n *= 2;
-    void *p = realloc(*(void **)items, (size_t)n * size);
-    if (!p)
-        return 0;
-    *(void **)items = p;
-    *cap = n;
-    return 1;
 }
 
 static char *copy_n(const char *s, size_t n) {
@@ -114,7 +100,7 @@ static int add_object(brlcad_db *db, const char *name, size_t n, int line, iacsg
         return iacsg_error_set(err, IACSG_ERR_NAME, line, 1, "'%s' is already defined (line %d)",
                                db->objects[prev].name, db->objects[prev].line),
                -1;
-    if (!grow(&db->objects, db->nobjects, &db->cap_objects, sizeof *db->objects, 1) || !hash_reserve(db))
+    if (!array_grow(&db->objects, db->nobjects, &db->cap_objects, sizeof *db->objects, 1) || !hash_reserve(db))
         return out_of_memory(err);
     brl_object o = {0};
     o.name = copy_n(name, n);
@@ -129,7 +115,7 @@ static int add_object(brlcad_db *db, const char *name, size_t n, int line, iacsg
 
 int brlcad_db_add_prim(brlcad_db *db, const char *name, size_t n, int line, scene_prim_type type,
                        const double *params, int nparams, iacsg_error *err) {
-    if (!grow(&db->params, db->nparams, &db->cap_params, sizeof *db->params, nparams))
+    if (!array_grow(&db->params, db->nparams, &db->cap_params, sizeof *db->params, nparams))
         return out_of_memory(err);
     int k = add_object(db, name, n, line, err);
     if (k < 0)
@@ -151,8 +137,8 @@ int brlcad_db_add_comb(brlcad_db *db, const char *name, size_t n, int line, iacs
 }
 
 int brlcad_db_leaf(brlcad_db *db, const char *name, size_t n, int line, const double *mat, iacsg_error *err) {
-    if (!grow(&db->nodes, db->nnodes, &db->cap_nodes, sizeof *db->nodes, 1) ||
-        (mat && !grow(&db->mats, 16 * db->nmats, &db->cap_mats, sizeof *db->mats, 16)))
+    if (!array_grow(&db->nodes, db->nnodes, &db->cap_nodes, sizeof *db->nodes, 1) ||
+        (mat && !array_grow(&db->mats, 16 * db->nmats, &db->cap_mats, sizeof *db->mats, 16)))
         return out_of_memory(err);
     brl_node node = {BRL_LEAF, -1, -1, copy_n(name, n), -1, -1, line};
     if (!node.name)
@@ -166,14 +152,14 @@ int brlcad_db_leaf(brlcad_db *db, const char *name, size_t n, int line, const do
 }
 
 int brlcad_db_binary(brlcad_db *db, brl_op op, int left, int right, iacsg_error *err) {
-    if (!grow(&db->nodes, db->nnodes, &db->cap_nodes, sizeof *db->nodes, 1))
+    if (!array_grow(&db->nodes, db->nnodes, &db->cap_nodes, sizeof *db->nodes, 1))
         return out_of_memory(err);
     db->nodes[db->nnodes] = (brl_node){op, left, right, NULL, -1, -1, 0};
     return db->nnodes++;
 }
 
 int brlcad_db_add_colour(brlcad_db *db, int low, int high, const int rgb[3], iacsg_error *err) {
-    if (!grow(&db->colours, db->ncolours, &db->cap_colours, sizeof *db->colours, 1))
+    if (!array_grow(&db->colours, db->ncolours, &db->cap_colours, sizeof *db->colours, 1))
         return out_of_memory(err);
     brl_colour *c = &db->colours[db->ncolours];
     c->low = low;

@@ -15,6 +15,7 @@
  *
  * Matrices compose from the top down: a member's matrix M under an accumulated P gives P M.
  */
+#include "array_grow.h"
 #include "brlcad_db.h"
 #include "prim_place.h"
 #include <math.h>
@@ -67,23 +68,11 @@ static int nomem(builder *b) {
     return -1;
 }
 
-static int grow(void *items, int count, int *cap, size_t size) {
-    if (count < *cap)
-        return 1;
-    int n = *cap ? 2 * *cap : 256;
-    void *p = realloc(*(void **)items, (size_t)n * size);
-    if (!p)
-        return 0;
-    *(void **)items = p;
-    *cap = n;
-    return 1;
-}
-
 static int new_x(builder *b, int op, int left, int right, int ref) {
     if (b->nx >= X_NODES_MAX)
         return iacsg_error_set(b->err, IACSG_ERR_LIMIT, 0, 0, "the booleans above region level expand to more than "
                                "%d nodes", X_NODES_MAX), -1;
-    if (!grow(&b->x, b->nx, &b->cap_x, sizeof *b->x))
+    if (!array_grow(&b->x, b->nx, &b->cap_x, sizeof *b->x, 1))
         return nomem(b);
     b->x[b->nx] = (xnode){op, left, right, ref};
     return b->nx++;
@@ -106,8 +95,8 @@ static void mat_mul(const double *a, const double *c, double *out) {
 /* The state under member `leaf` (a tree node) of the object of state s: matrix composed, path extended. */
 static int member_state(builder *b, int s, int leaf) {
     const brl_node *n = &b->db->nodes[leaf];
-    if (!grow(&b->states, b->nstates, &b->cap_states, sizeof *b->states) ||
-        !grow(&b->paths, b->npaths, &b->cap_paths, sizeof *b->paths))
+    if (!array_grow(&b->states, b->nstates, &b->cap_states, sizeof *b->states, 1) ||
+        !array_grow(&b->paths, b->npaths, &b->cap_paths, sizeof *b->paths, 1))
         return nomem(b);
     walk_state *t = &b->states[b->nstates];
     *t = b->states[s];
@@ -233,7 +222,7 @@ static int list_region_tops(builder *b, int k, int **tops, int *n, int *cap) {
     if (b->x[k].op == X_UNION)
         return list_region_tops(b, b->x[k].left, tops, n, cap) < 0 ? -1
                                                                    : list_region_tops(b, b->x[k].right, tops, n, cap);
-    if (!grow(tops, *n, cap, sizeof **tops))
+    if (!array_grow(tops, *n, cap, sizeof **tops, 1))
         return nomem(b);
     (*tops)[(*n)++] = k;
     return 0;
@@ -263,7 +252,7 @@ static int instance(builder *b, int object, const double *m) {
     for (int k = b->inst_first[object]; k >= 0; k = b->inst_next[k])
         if (same_matrix(sc->solids[k].prim->mat, m))
             return k;
-    if (!grow(&b->inst_next, sc->nsolids, &b->cap_inst, sizeof *b->inst_next))
+    if (!array_grow(&b->inst_next, sc->nsolids, &b->cap_inst, sizeof *b->inst_next, 1))
         return nomem(b);
     const brl_object *o = &b->db->objects[object];
     int k = scene_add_primitive(sc, o->name, o->type, b->db->params + o->params, o->nparams, m, b->err);
@@ -302,7 +291,7 @@ static int expand_region(builder *b, int k, int *first) {
 /* Step 4: the csg_node form of the tree at k appended to out (operands relative to its start). */
 static int emit(builder *b, int k, uint32_t **out, int *n, int *cap, int xor_swap) {
     xnode x = b->x[k];
-    if (!grow(out, *n, cap, sizeof **out))
+    if (!array_grow(out, *n, cap, sizeof **out, 1))
         return nomem(b);
     int at = (*n)++;
     if (x.op == X_SOLID) {
@@ -401,7 +390,7 @@ static iacsg_status add_region(builder *b, int top) {
     free(name);
     if (item < 0)
         return b->err->status;
-    if (!grow(&b->model->region_ids, item, &b->cap_ids, sizeof *b->model->region_ids))
+    if (!array_grow(&b->model->region_ids, item, &b->cap_ids, sizeof *b->model->region_ids, 1))
         return (iacsg_status)(nomem(b), IACSG_ERR_NOMEM);
     b->model->region_ids[item] = id;
     return IACSG_OK;
@@ -430,8 +419,8 @@ static iacsg_status build(builder *b, const char *const *objects, int nobjects) 
         int object = nobjects ? find_top(b, objects[t]) : b->db->tops[t];
         if (object < 0)
             return b->err->status;
-        if (!grow(&b->states, b->nstates, &b->cap_states, sizeof *b->states) ||
-            !grow(&b->paths, b->npaths, &b->cap_paths, sizeof *b->paths))
+        if (!array_grow(&b->states, b->nstates, &b->cap_states, sizeof *b->states, 1) ||
+            !array_grow(&b->paths, b->npaths, &b->cap_paths, sizeof *b->paths, 1))
             return (iacsg_status)(nomem(b), IACSG_ERR_NOMEM);
         walk_state *s = &b->states[b->nstates];
         memset(s, 0, sizeof *s);

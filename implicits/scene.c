@@ -1,6 +1,7 @@
 /* implicits/scene.c -- the scene structure (scene.h): the builder the front ends call, destruction, and the host's
  * evaluation of a tree. Parsing the scene language is in scene_parse.c. */
 #include "scene.h"
+#include "array_grow.h"
 #include "prim_place.h"
 #include <stdlib.h>
 #include <string.h>
@@ -32,21 +33,6 @@ void iacsg_scene_destroy(iacsg_scene *s) {
     free(s);
 }
 
-/* Makes room for one more element of an array (*items, *count, *cap); 0 when out of memory. */
-static int grow(void **items, int count, int *cap, size_t size, int more) {
-    if (count + more <= *cap)
-        return 1;
-    int n = *cap ? *cap : 16;
-    while (n < count + more)
-        n *= 2;
-    void *p = realloc(*items, (size_t)n * size);
-    if (!p)
-        return 0;
-    *items = p;
-    *cap = n;
-    return 1;
-}
-
 static int out_of_memory(iacsg_error *err) {
     iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory building the scene");
     return -1;
@@ -65,14 +51,14 @@ static char *copy_name(const char *name, int *ok) {
 }
 
 int scene_add_light(iacsg_scene *s, const scene_light *light, iacsg_error *err) {
-    if (!grow((void **)&s->lights, s->nlights, &s->cap_lights, sizeof *s->lights, 1))
+    if (!array_grow(&s->lights, s->nlights, &s->cap_lights, sizeof *s->lights, 1))
         return out_of_memory(err);
     s->lights[s->nlights] = *light;
     return s->nlights++;
 }
 
 int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iacsg_error *err) {
-    int ok = grow((void **)&s->materials, s->nmaterials, &s->cap_materials, sizeof *s->materials, 1);
+    int ok = array_grow(&s->materials, s->nmaterials, &s->cap_materials, sizeof *s->materials, 1);
     scene_material m = {copy_name(name, &ok), {rgb[0], rgb[1], rgb[2]}, SCENE_DEFAULT_SPECULAR,
                         SCENE_DEFAULT_SHININESS, 0, 1};
     if (!ok) {
@@ -84,7 +70,7 @@ int scene_add_material(iacsg_scene *s, const char *name, const float rgb[3], iac
 }
 
 int scene_add_solid(iacsg_scene *s, const char *name, iacsg_expr *e, iacsg_error *err) {
-    int ok = grow((void **)&s->solids, s->nsolids, &s->cap_solids, sizeof *s->solids, 1);
+    int ok = array_grow(&s->solids, s->nsolids, &s->cap_solids, sizeof *s->solids, 1);
     scene_solid solid = {.name = copy_name(name, &ok), .expr = e};
     if (!ok) {
         free(solid.name);
@@ -99,7 +85,7 @@ int scene_add_primitive(iacsg_scene *s, const char *name, scene_prim_type type, 
                         const double mat[16], iacsg_error *err) {
     scene_prim *p = malloc(sizeof *p);
     double *copy = malloc((size_t)(nparams > 0 ? nparams : 1) * sizeof *copy);
-    int ok = p && copy && grow((void **)&s->solids, s->nsolids, &s->cap_solids, sizeof *s->solids, 1);
+    int ok = p && copy && array_grow(&s->solids, s->nsolids, &s->cap_solids, sizeof *s->solids, 1);
     char *copied = copy_name(name, &ok);
     if (!ok) {
         free(p);
@@ -122,7 +108,7 @@ int scene_add_tree(iacsg_scene *s, const uint32_t *nodes, int n, iacsg_error *er
         return iacsg_error_set(err, IACSG_ERR_LIMIT, 0, 0, "too many boolean nodes in the scene (at most %u)",
                                (unsigned)CSG_ARG_MAX),
                -1;
-    if (!grow((void **)&s->nodes, s->nnodes, &s->cap_nodes, sizeof *s->nodes, n))
+    if (!array_grow(&s->nodes, s->nnodes, &s->cap_nodes, sizeof *s->nodes, n))
         return out_of_memory(err);
     int root = s->nnodes;
     for (int k = 0; k < n; k++) {
@@ -135,7 +121,7 @@ int scene_add_tree(iacsg_scene *s, const uint32_t *nodes, int n, iacsg_error *er
 }
 
 static int add_item(iacsg_scene *s, scene_item item, const char *name, iacsg_error *err) {
-    int ok = grow((void **)&s->items, s->nitems, &s->cap_items, sizeof *s->items, 1);
+    int ok = array_grow(&s->items, s->nitems, &s->cap_items, sizeof *s->items, 1);
     item.name = copy_name(name, &ok);
     if (!ok) {
         free(item.name);

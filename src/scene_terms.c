@@ -1,5 +1,6 @@
 /* src/scene_terms.c -- see scene_terms.h. */
 #include "scene_terms.h"
+#include "implicits/array_grow.h"
 #include "kernels/csg_node.h"
 #include "kernels/scene_data.h"
 #include <stdlib.h>
@@ -40,21 +41,6 @@ typedef struct {
     int cap_scratch;
 } builder;
 
-/* Room for n more elements of `size` bytes in *p (holding *count of *cap). */
-static int grow(void *p, int *cap, int count, int n, size_t size) {
-    if (count + n <= *cap)
-        return 1;
-    int c = *cap ? *cap : 64;
-    while (c < count + n)
-        c *= 2;
-    void *q = realloc(*(void **)p, (size_t)c * size);
-    if (!q)
-        return 0;
-    *(void **)p = q;
-    *cap = c;
-    return 1;
-}
-
 static int tree_size(const uint32_t *nodes, int root) { return csg_tree_last(nodes, root) + 1 - root; }
 
 /* Copies the subtree at src[root] to b->tree's end (room made); returns its size. */
@@ -81,8 +67,8 @@ static int emit_term(builder *b, int base, int chain, int limit) {
     }
     if (b->ntree + size > limit)
         return -1;
-    if (!grow(&b->tree, &b->cap_tree, b->ntree, size, sizeof *b->tree) ||
-        !grow(&b->term_root, &b->cap_terms, b->nterms, 2, sizeof *b->term_root))
+    if (!array_grow(&b->tree, b->ntree, &b->cap_tree, sizeof *b->tree, size) ||
+        !array_grow(&b->term_root, b->nterms, &b->cap_terms, sizeof *b->term_root, 2))
         return 0;
     int start = b->ntree;
     b->term_root[b->nterms++] = start;
@@ -102,7 +88,7 @@ static int emit_term(builder *b, int base, int chain, int limit) {
 static int split(builder *b, int root, int distribute, int limit) {
     int top = 0;
     b->nmods = b->ntree = b->nterms = 0;
-    if (!grow(&b->stack, &b->cap_stack, 0, 2, sizeof *b->stack))
+    if (!array_grow(&b->stack, 0, &b->cap_stack, sizeof *b->stack, 2))
         return 0;
     b->stack[top++] = root;
     b->stack[top++] = -1;
@@ -111,14 +97,14 @@ static int split(builder *b, int root, int distribute, int limit) {
         uint32_t node = b->nodes[k];
         int op = CSG_NODE_OP(node), right = (int)CSG_NODE_ARG(node);
         if (op == CSG_UNION) {
-            if (!grow(&b->stack, &b->cap_stack, top, 4, sizeof *b->stack))
+            if (!array_grow(&b->stack, top, &b->cap_stack, sizeof *b->stack, 4))
                 return 0;
             b->stack[top++] = right; /* popped last: the terms keep the tree's order */
             b->stack[top++] = chain;
             b->stack[top++] = k + 1;
             b->stack[top++] = chain;
         } else if (distribute && (op == CSG_INTERSECT || op == CSG_DIFFERENCE)) {
-            if (!grow(&b->mods, &b->cap_mods, b->nmods, 1, sizeof *b->mods))
+            if (!array_grow(&b->mods, b->nmods, &b->cap_mods, sizeof *b->mods, 1))
                 return 0;
             b->mods[b->nmods] = (modifier){op, right, chain};
             b->stack[top++] = k + 1;
@@ -157,7 +143,7 @@ static int list_triggers(builder *b, int item, int root, int size, int device_ro
             if (b->stamp[right] == b->stamps)
                 continue;
             b->stamp[right] = b->stamps;
-            if (!grow(&b->triggers, &b->cap_triggers, b->ntriggers, 1, sizeof *b->triggers))
+            if (!array_grow(&b->triggers, b->ntriggers, &b->cap_triggers, sizeof *b->triggers, 1))
                 return 0;
             b->triggers[b->ntriggers++] = (trigger){right, item, device_root, device_size};
         } else if (op == CSG_NOT) { /* each leaf under it */
@@ -248,8 +234,8 @@ static iacsg_status region_terms(builder *b, const iacsg_scene *s, int item, sce
     for (int j = 0; j < b->nterms; j++) {
         int root = b->term_root[j], n = b->term_root[j + 1] - root;
         /* a relinearised term gains at most a NOT per difference */
-        if (!grow(&b->scratch, &b->cap_scratch, 0, n, sizeof *b->scratch) ||
-            !grow(&t->nodes, cap, t->nnodes, 2 * n, sizeof *t->nodes) ||
+        if (!array_grow(&b->scratch, 0, &b->cap_scratch, sizeof *b->scratch, n) ||
+            !array_grow(&t->nodes, t->nnodes, cap, sizeof *t->nodes, 2 * n) ||
             !(b->task = realloc(b->task, sizeof *b->task * (size_t)(4 * n + 2))))
             goto nomem;
         int device_root = t->nnodes, need = relinearise(b, root, n, t);
