@@ -104,14 +104,13 @@ IA_FN ia_interval ia_div(ia_interval a, ia_interval b) {
                    ia_hi_k(fmax(fmax(q1, q2), fmax(q3, q4)), IA_ULP_DIV));
 }
 
-/* a / b for a divisor b one-signed away from 0 (b.lo > 0 or b.hi < 0), neither empty: ia_div's
- * result bit for bit (an infinite b is allowed but for an inf / inf corner, which gives NaN here, a NaN that the
- * segments' code rejects), from the two corner quotients that hold its extremes (which a's and b's signs name: with
- * b > 0 the least is a.lo over b.hi where a.lo >= 0, over b.lo where it is negative, and so on), not all four and
- * their six comparisons. Rounding to nearest is monotone, so the chosen rounded quotients are the least and the
- * greatest of the four rounded ones. The
- * closed-form segments (kernels/prim_segments.h) divide by such divisors: a plane's slope along a ray that is
- * not parallel to it, a quadric's leading coefficient and its root's stable denominator. */
+/* a / b for a divisor b one-signed away from 0 (b.lo > 0 or b.hi < 0), neither empty: ia_div's result bit for bit
+ * (an infinite b is allowed but for an inf / inf corner, which gives NaN here, a NaN that the segments' code
+ * rejects), from the two corner quotients that hold its extremes (which a's and b's signs name: with b > 0 the
+ * least is a.lo over b.hi where a.lo >= 0, over b.lo where it is negative, and so on), not all four and their six
+ * comparisons. Rounding to nearest is monotone, so the chosen rounded quotients are the least and the greatest of
+ * the four rounded ones. The closed-form segments (kernels/prim_segments.h) divide by such divisors: a plane's
+ * slope along a ray that is not parallel to it, a quadric's leading coefficient and its root's stable denominator. */
 IA_FN ia_interval ia_div_one_signed(ia_interval a, ia_interval b) {
     if (a.lo == 0 && a.hi == 0)
         return ia_make(0, 0);

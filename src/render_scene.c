@@ -401,16 +401,16 @@ static void summarize(const cl_int *overlap, const cl_uint *counts, const float 
 
 static iacsg_status read_scene_back(iacsg_renderer *r, const scene_buffers *b, size_t n, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
-    cl_mem images[6] = {b->rgb, b->depth, b->normal, b->ids, b->overlap, b->counts};
+    cl_mem in_place[6] = {b->rgb, b->depth, b->normal, b->ids, b->overlap, b->counts};
     size_t sizes[6] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float), n * sizeof(float),
                        n * sizeof(cl_int), 3 * n * sizeof(cl_uint)};
     for (int k = 0; k < 6; k++) { /* mapping a USE_HOST_PTR buffer makes its host array current */
-        if (!images[k])
+        if (!in_place[k])
             continue;
         cl_int rc = CL_SUCCESS;
-        void *p = clEnqueueMapBuffer(q, images[k], CL_FALSE, CL_MAP_READ, 0, sizes[k], 0, NULL, NULL, &rc);
+        void *p = clEnqueueMapBuffer(q, in_place[k], CL_FALSE, CL_MAP_READ, 0, sizes[k], 0, NULL, NULL, &rc);
         CLRT_CHECK(err, rc);
-        CLRT_CHECK(err, clEnqueueUnmapMemObject(q, images[k], p, 0, NULL, NULL));
+        CLRT_CHECK(err, clEnqueueUnmapMemObject(q, in_place[k], p, 0, NULL, NULL));
     }
     CLRT_CHECK(err, clFinish(q));
     return IACSG_OK;
