@@ -20,32 +20,19 @@
  */
 #ifndef KERNELS_PRIM_PIPE_SEGMENTS_H
 #define KERNELS_PRIM_PIPE_SEGMENTS_H
+#include "camera.h"
 
 /* The most parts met along one solve, and in a pipe whose parameters the walk's array holds (kernels/segments.h,
  * in a scene with pipes: SCENE_SOLID_PIPES). */
 #define PRIM_PIPE_SEGMENTS_PARTS 16
 #define PRIM_PIPE_SEGMENTS_REALS (2 + 2 * PRIM_PIPE_PART_N * PRIM_PIPE_SEGMENTS_PARTS)
 
-/* The t range [*t0, *t1] of the ray in part q's box (intervals 29-31), rounded outward, within [ta, tend]; 0 when
- * it misses. */
+/* The t range [*t0, *t1] of the ray in part q's box (intervals 29-31), rounded outward, within [ta, tend]
+ * (camera_clip_box); 0 when it misses or the range is a point. */
 IA_FN int prim_pipe_box_range(const ia_real *q, const ia_real o[3], const ia_real d[3], ia_real ta, ia_real tend,
                               ia_real *t0, ia_real *t1) {
-    ia_real lo = ta, hi = tend;
-    for (int c = 0; c < 3; c++) {
-        ia_real blo = q[58 + 2 * c], bhi = q[59 + 2 * c];
-        if (d[c] == 0) {
-            if (o[c] < blo || o[c] > bhi)
-                return 0;
-            continue;
-        }
-        ia_interval a = ia_div(ia_sub(ia_point(blo), ia_point(o[c])), ia_point(d[c]));
-        ia_interval b = ia_div(ia_sub(ia_point(bhi), ia_point(o[c])), ia_point(d[c]));
-        lo = fmax(lo, fmin(a.lo, b.lo));
-        hi = fmin(hi, fmax(a.hi, b.hi));
-    }
-    *t0 = lo;
-    *t1 = hi;
-    return lo < hi;
+    ia_real lo[3] = {q[58], q[60], q[62]}, hi[3] = {q[59], q[61], q[63]};
+    return camera_clip_box(lo, hi, o, d, ta, tend, t0, t1) && *t0 < *t1;
 }
 
 /* A plane of the cell, in where n.(x - a) <= 0 (sign 1) or >= 0 (sign -1): n.o - n.a + t n.d from the ray's origin
