@@ -463,10 +463,8 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = render_image_alloc(3 * n);
-    /* the effects' post-pass needs the depths and normals; where the camera kernel applies the effects, only
-     * -aa's edges are left, found from the depths (and ids) */
-    int fx = render_effects_need_aovs(r, view), in_camera = render_effects_in_camera(r, view);
-    int fx_depth = fx && (!in_camera || view->effects->aa > 1), fx_normal = fx && !in_camera;
+    int in_camera = render_effects_in_camera(r, view), fx_depth, fx_normal;
+    render_effects_expr_aovs(r, view, &fx_depth, &fx_normal);
     render_fx_camera fx_camera = {0};
     cl_kernel kernel = r->kernel;
     if (st == IACSG_OK && in_camera)

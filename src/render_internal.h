@@ -89,6 +89,9 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
                                   const render_fx_camera *in_camera, iacsg_error *err);
 /* Whether the effects need the frame's depth and normals (which the frame then computes, and drops after). */
 int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view);
+/* Of those, what the first-root path's effects need after its camera kernel: the depths for the pass over the
+ * centre hits or for -aa's edges, the normals for that pass. */
+void render_effects_expr_aovs(const iacsg_renderer *r, const iacsg_view *view, int *depth, int *normals);
 /* Keeps what the effects need of a scene's materials (its items' reflect). */
 iacsg_status render_effects_keep_scene(iacsg_renderer *r, const struct iacsg_scene *s, iacsg_error *err);
 void render_effects_free(render_fx *fx);
