@@ -351,8 +351,10 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
  * hits (where `hit`: the leaf's start hit_lo, the normal n) lit and their paths followed as iacsg_effects'
  * EFFECTS_MODE_CENTRE follows them from the frame's depth and normals. Those are floats, so t and n are rounded
  * here as they are: a pixel gets the same colour either way. The host gives the camera kernel the block only where
- * no path lists a reflected ray (kid_slots 0). Counts the secondary rays and their evaluations. */
-static void effects_centre(__constant ia_real *params, __constant ia_real *fx, __global const ulong *all_groups,
+ * no path lists a reflected ray (kid_slots 0). Counts the secondary rays and their evaluations. Not inlined into
+ * the camera kernel: there its paths' code crowded the camera rays' (CPU samples of the reference view's kernel
+ * with shadows, means of 3-5 runs: 2,600 inlined, 1,760-2,120 not; plain 1,470). */
+__attribute__((noinline)) static void effects_centre(__constant ia_real *params, __constant ia_real *fx, __global const ulong *all_groups,
                            ia_real footprint, packet_int row, int height, ia_maskv live, ia_maskv hit,
                            const ia_realv o_ray[3], const ia_realv d_ray[3], ia_realv hit_lo, const ia_realv n_hit[3],
                            shade_colorv color[3], packet_index *rays, packet_index *evals) {
