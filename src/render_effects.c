@@ -653,8 +653,8 @@ static iacsg_status frame_open(fx_frame *f, iacsg_renderer *r, const iacsg_view 
 
 void render_effects_expr_aovs(const iacsg_renderer *r, const iacsg_view *view, int *depth, int *normals) {
     const iacsg_effects *e = view->effects;
-    int on = effects_on(r, e), centre_pass = on && !render_effects_in_camera(r, view) &&
-                                             (!kernel_colors_hold(r, e) || e->background);
+    int on = effects_on(r, e);
+    int centre_pass = on && !render_effects_in_camera(r, view) && (!kernel_colors_hold(r, e) || e->background);
     *depth = centre_pass || (on && e->aa > 1);
     *normals = centre_pass;
 }
@@ -662,7 +662,7 @@ void render_effects_expr_aovs(const iacsg_renderer *r, const iacsg_view *view, i
 int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view) {
     const iacsg_effects *e = view->effects;
     return !r->scene && !r->tape && effects_on(r, e) && e->shade != IACSG_SHADE_DEPTH && expr_kid_slots(e) == 0 &&
-           (!kernel_colors_hold(r, e) || e->background);
+           !kernel_colors_hold(r, e);
 }
 
 iacsg_status render_effects_camera_open(iacsg_renderer *r, const iacsg_view *view, size_t packets,

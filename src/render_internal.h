@@ -78,7 +78,8 @@ typedef struct {
 
 /* Whether the camera kernel can shade the frame's pixels with its effects: the first-root path's compiled code,
  * no path that lists a reflected ray (reflections off a transparent surface), no -shade depth (its range needs
- * every hit first), and a centre pass to do (not only -aa). */
+ * every hit first), and hits to shade again (not only -aa or -background, where the kernel's colours stand: the
+ * pass after the frame colours the misses only, and each hit keeps the plain render's colour exactly). */
 int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view);
 iacsg_status render_effects_camera_open(iacsg_renderer *r, const iacsg_view *view, size_t packets,
                                         render_fx_camera *c, iacsg_error *err);
