@@ -116,7 +116,17 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
 #else
     (void)tile;
 #endif
-    int pixel[PACKET_LANES];
+    int pixel[PACKET_LANES], cut[BVH_CUT_MAX];
+    bvh_beam beam;
+    bvh_beam_start(&beam);
+    for (int k = 0; k < PACKET_LANES; k++) {
+        ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
+        bvh_ray r = bvh_ray_of(d);
+        if (i0 + k % PACKET_W < width && j0 + k / PACKET_W < f->row_end && meets[k] != 0)
+            bvh_beam_add(&beam, &r, o, d, tn[k], tf[k]);
+    }
+    view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
+    view->cut = view->ncut >= 0 ? cut : 0;
     ia_real gk[3][PACKET_LANES], on[PACKET_LANES];
     float color[3][PACKET_LANES], rows[PACKET_LANES];
     ia_real specular[PACKET_LANES], shininess[PACKET_LANES];

@@ -22,6 +22,8 @@ typedef struct {
     ia_real eps;
     ia_interval time;            /* encloses the value of t */
     const surface_start *starts; /* the first SURFACE_BLOCK_MAX surfaces' block starts (surface.h), or 0 */
+    const int *cut;              /* the ray's packet's cut of the BVH (bvh.h's bvh_beam_cut), or 0 */
+    int ncut;
 } scene_view;
 
 #define SCENE_TRACE_OVERFLOW (-1)
@@ -64,6 +66,8 @@ IA_FN int scene_trace_ray_from(const scene_view *v, scene_ray *r, const ia_real 
     b.d = d;
     b.tn = from;
     b.tf = tf;
+    b.cut = v->cut;
+    b.ncut = v->ncut;
     r->deep = from > tn;
     r->deep_from = from;
     r->deep_eps = v->eps;
