@@ -22,14 +22,20 @@ typedef struct {
     int divide; /* some 1/d is not finite */
 } bvh_ray;
 
-IA_FN bvh_ray bvh_ray_of(const ia_real d[3]) {
+/* The ray of direction d with the reciprocals inv = 1 / d (computed by the caller, maybe in SIMD lanes). */
+IA_FN bvh_ray bvh_ray_with(const ia_real d[3], const ia_real inv[3]) {
     bvh_ray r;
     r.divide = 0;
     for (int c = 0; c < 3; c++) {
-        r.inv[c] = (ia_real)1 / d[c];
+        r.inv[c] = inv[c];
         r.divide |= d[c] != 0 && !isfinite(r.inv[c]);
     }
     return r;
+}
+
+IA_FN bvh_ray bvh_ray_of(const ia_real d[3]) {
+    ia_real inv[3] = {(ia_real)1 / d[0], (ia_real)1 / d[1], (ia_real)1 / d[2]};
+    return bvh_ray_with(d, inv);
 }
 
 /* Whether the ray meets node k's box on [tn, tf], and where (widened outward, as camera_clip_box). Infinite

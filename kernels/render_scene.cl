@@ -56,12 +56,12 @@ typedef struct {
     __global int *overflow, *noverflow;
 } scene_frame;
 
-/* The rays of the packet of pixels from (i0, j0) (camera_ray), and where they meet the bounds (meets[k] 1, over
- * [tn[k], tf[k]]: camera_clip); a pixel outside the image or the band's rows meets nothing. In SIMD lanes
+/* The rays of the packet of pixels from (i0, j0) (camera_ray), their directions' reciprocals (ik, for the BVH),
+ * and where they meet the bounds (meets[k] 1, over [tn[k], tf[k]]: camera_clip); a pixel outside the image or the band's rows meets nothing. In SIMD lanes
  * (packet_camera.h, bit for bit the scalar functions' results) where the program has them, else one by one. */
 static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, int i0, int j0,
-                              ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real tn[PACKET_LANES],
-                              ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES]) {
+                              ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real ik[3][PACKET_LANES],
+                              ia_real tn[PACKET_LANES], ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES]) {
     int ortho = f->flags & RENDER_ORTHO, width = f->width, height = f->height;
 #ifdef PACKET_CAMERA_LANES
     packet_int lanes = packet_lane_numbers();
@@ -72,6 +72,7 @@ static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, 
     for (int c = 0; c < 3; c++) {
         IAV_STORE(o[c], ok[c]);
         IAV_STORE(d[c], dk[c]);
+        IAV_STORE(IAV_R(1) / d[c], ik[c]);
     }
     IAV_STORE(t_near, tn);
     IAV_STORE(t_far, tf);
@@ -85,6 +86,7 @@ static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, 
         for (int c = 0; c < 3; c++) {
             ok[c][k] = o[c];
             dk[c][k] = d[c];
+            ik[c][k] = (ia_real)1 / d[c];
         }
     }
 #endif
@@ -100,8 +102,9 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     surface_start starts[SURFACE_BLOCK_MAX];
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     kernel_u32 block_evals = scene_block(params, f->flags, i0, j0, width, height, f->items, f->nodes, time, starts, view);
-    ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES], meets[PACKET_LANES];
-    scene_packet_rays(params, f, i0, j0, ok, dk, tn, tf, meets);
+    ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
+    ia_real meets[PACKET_LANES];
+    scene_packet_rays(params, f, i0, j0, ok, dk, ik, tn, tf, meets);
     ia_real from[PACKET_LANES]; /* where each ray's weave starts (scene_union.h), or -inf: its own t_near */
     ia_real leaf_hi[PACKET_LANES]; /* the end of the union's leaf starting at from[k], or -inf */
     kernel_u32 from_evals[PACKET_LANES];
@@ -121,7 +124,8 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     bvh_beam_start(&beam);
     for (int k = 0; k < PACKET_LANES; k++) {
         ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
-        bvh_ray r = bvh_ray_of(d);
+        ia_real inv[3] = {ik[0][k], ik[1][k], ik[2][k]};
+        bvh_ray r = bvh_ray_with(d, inv);
         if (i0 + k % PACKET_W < width && j0 + k / PACKET_W < f->row_end && meets[k] != 0)
             bvh_beam_add(&beam, &r, o, d, tn[k], tf[k]);
     }
@@ -137,6 +141,8 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         weave_hit hit = {0, -1, -1, -1};
         ray->evals = ray->segments = ray->partitions = 0;
         ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
+        ia_real inv[3] = {ik[0][k], ik[1][k], ik[2][k]};
+        bvh_ray br = bvh_ray_with(d, inv);
         int found = 0, claimed = 0; /* claimed: at the union's leaf (scene_union_claim), or overflowing */
         if (pixel[k] >= 0 && meets[k] != 0 && (from[k] < IA_INF || view->nsurfaces > 0)) { /* else no hit */
 #ifdef SCENE_REGIONS_DISJOINT
@@ -145,7 +151,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
 #endif
             found = claimed == SCENE_TRACE_OVERFLOW ? claimed
                     : claimed ? scene_trace_surfaces(view, ray, o, d, tn[k], tf[k], 1, &hit)
-                              : scene_trace_ray_from(view, ray, o, d, tn[k], fmax(tn[k], from[k]), tf[k], &hit);
+                              : scene_trace_ray_from(view, ray, o, d, &br, tn[k], fmax(tn[k], from[k]), tf[k], &hit);
         }
         if (found == SCENE_TRACE_OVERFLOW) {
             f->overflow[atomic_inc(f->noverflow)] = pixel[k];
