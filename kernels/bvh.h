@@ -79,7 +79,7 @@ IA_FN int bvh_node_clip(const KERNEL_GLOBAL ia_real *box, int k, const bvh_ray *
 #define BVH_CUT_MAX 12  /* the most entries of a packet's cut (each ray tests each once) */
 
 typedef struct {
-    ia_real olo[3], ohi[3], ilo[3], ihi[3], tn, tf;
+    ia_real olo[3], ohi[3], dlo[3], dhi[3], ilo[3], ihi[3], tn, tf;
     int kind[3], rays; /* rays: 0 none added yet; -1 no beam (a ray divides, bvh_ray's `divide`) */
 } bvh_beam;
 
@@ -103,14 +103,18 @@ IA_FN void bvh_beam_add(bvh_beam *m, const bvh_ray *r, const ia_real o[3], const
         m->kind[c] = first ? kind : m->kind[c] == kind && same_sign ? kind : BVH_BEAM_FREE;
         m->olo[c] = first ? o[c] : fmin(m->olo[c], o[c]);
         m->ohi[c] = first ? o[c] : fmax(m->ohi[c], o[c]);
+        m->dlo[c] = first ? d[c] : fmin(m->dlo[c], d[c]);
+        m->dhi[c] = first ? d[c] : fmax(m->dhi[c], d[c]);
         m->ilo[c] = first ? r->inv[c] : fmin(m->ilo[c], r->inv[c]);
         m->ihi[c] = first ? r->inv[c] : fmax(m->ihi[c], r->inv[c]);
     }
     m->rays += 1;
 }
 
-/* Whether the beam may meet node k's box: 0 only where no ray of it meets the box (bvh_node_clip). */
-IA_FN int bvh_beam_meets(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, int k) {
+/* Whether the beam may meet node k's box over [*tn, *tf] (the beam's range there): 0 only where no ray of it meets
+ * the box (bvh_node_clip); each ray's range in the box is then within [*tn, *tf]. */
+IA_FN int bvh_beam_range(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, int k, ia_real *t_near,
+                         ia_real *t_far) {
     ia_real tn = m->tn, tf = m->tf;
     for (int c = 0; c < 3; c++) {
         ia_real lo = box[6 * k + c], hi = box[6 * k + 3 + c];
@@ -124,7 +128,7 @@ IA_FN int bvh_beam_meets(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, in
         ia_real x[4] = {lo - m->olo[c], lo - m->ohi[c], hi - m->olo[c], hi - m->ohi[c]};
         ia_real near = IA_INF, far = -IA_INF;
         for (int j = 0; j < 4; j++) {
-            ia_real a = x[j] * m->ilo[c], b = x[j] * m->ihi[c];
+            ia_real a = x[j] * m->ilo[c], b = m->ihi[c] == m->ilo[c] ? a : x[j] * m->ihi[c];
             near = fmin(near, fmin(a, b));
             far = fmax(far, fmax(a, b));
         }
@@ -133,7 +137,14 @@ IA_FN int bvh_beam_meets(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, in
         if (tn > tf)
             return 0;
     }
+    *t_near = tn;
+    *t_far = tf;
     return 1;
+}
+
+IA_FN int bvh_beam_meets(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, int k) {
+    ia_real tn, tf;
+    return bvh_beam_range(m, box, k, &tn, &tf);
 }
 
 /* The beam's cut of the BVH into cut[] (returns how many entries, or -1 where there is none to take: no beam, or

@@ -92,6 +92,31 @@ static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, 
 #endif
 }
 
+/* Drops from the packet's cut the solids proven out along every ray of its beam over the beam's range in their
+ * boxes (segments_beam_out: each ray's range there is within it, and outside its box a solid is out), so that
+ * its rays neither test nor solve them. */
+static void scene_beam_drop_out(const bvh_beam *beam, scene_view *view, int cut[BVH_CUT_MAX]) {
+#ifdef SCENE_SOLID_PRIMS
+    ia_interval o[3], d[3];
+    for (int c = 0; c < 3; c++) {
+        o[c] = ia_make(beam->olo[c], beam->ohi[c]);
+        d[c] = ia_make(beam->dlo[c], beam->dhi[c]);
+    }
+    for (int j = 0; j < view->ncut;) {
+        int solid = view->link[2 * cut[j] + SCENE_BVH_SOLID];
+        ia_real ta, tend;
+        if (solid >= 0 && bvh_beam_range(beam, view->box, cut[j], &ta, &tend) && segments_beam_out(solid, o, d, ta, tend))
+            cut[j] = cut[--view->ncut];
+        else
+            j++;
+    }
+#else
+    (void)beam;
+    (void)view;
+    (void)cut;
+#endif
+}
+
 /* Traces the packet of pixels from (i0, j0): all its rays, or (only >= 0) lane `only` alone, a listed ray traced
  * again exactly as in the first pass. The rays and their parts in the bounds come in SIMD lanes (packet.h), then
  * each is woven alone; `tile` is the union's tile pass for the packet's tile (scene_union.h), with its evaluations
@@ -131,6 +156,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     }
     view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
     view->cut = view->ncut >= 0 ? cut : 0;
+    scene_beam_drop_out(&beam, view, cut);
     ia_real gk[3][PACKET_LANES], on[PACKET_LANES];
     float color[3][PACKET_LANES], rows[PACKET_LANES];
     ia_real specular[PACKET_LANES], shininess[PACKET_LANES];

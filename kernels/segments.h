@@ -101,6 +101,14 @@ IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[
     return 1;
 }
 
+/* Whether solid k is proven out along every ray of a packet's beam (o and d: the hulls of its origins and
+ * directions) over [ta, tend] (prim_segments_beam_out); 0 where not proven. */
+IA_FN int segments_beam_out(int k, const ia_interval o[3], const ia_interval d[3], ia_real ta, ia_real tend) {
+    ia_real p[SEGMENTS_PARAM_REALS];
+    int type = scene_solid_P(k, p, SEGMENTS_PARAM_REALS);
+    return type >= 0 && prim_segments_beam_out(type, p, o, d, ta, tend);
+}
+
 /* A closed-form walk's step: the state from pos[c] on, after the changes at or before it (OUT, BOUNDARY, IN,
  * BOUNDARY, OUT), and pos[c] on to the next change. Past the last change of a solid that may be in again, OUT up
  * to the point to solve again from, and there it solves again, to the end of the solid's own bounding sphere
