@@ -22,20 +22,27 @@ typedef struct {
     int divide; /* some 1/d is not finite */
 } bvh_ray;
 
-/* The ray of direction d with the reciprocals inv = 1 / d (computed by the caller, maybe in SIMD lanes). */
-IA_FN bvh_ray bvh_ray_with(const ia_real d[3], const ia_real inv[3]) {
-    bvh_ray r;
-    r.divide = 0;
-    for (int c = 0; c < 3; c++) {
-        r.inv[c] = inv[c];
-        r.divide |= d[c] != 0 && !isfinite(r.inv[c]);
-    }
-    return r;
+/* Component c of a ray's direction, d, and its reciprocal inv = 1 / d. */
+IA_FN void bvh_ray_set(bvh_ray *r, int c, ia_real d, ia_real inv) {
+    r->inv[c] = inv;
+    r->divide |= d != 0 && !isfinite(inv);
 }
 
 IA_FN bvh_ray bvh_ray_of(const ia_real d[3]) {
-    ia_real inv[3] = {(ia_real)1 / d[0], (ia_real)1 / d[1], (ia_real)1 / d[2]};
-    return bvh_ray_with(d, inv);
+    bvh_ray r;
+    r.divide = 0;
+    for (int c = 0; c < 3; c++)
+        bvh_ray_set(&r, c, d[c], (ia_real)1 / d[c]);
+    return r;
+}
+
+/* Lane k's ray of a packet's directions d and their reciprocals inv (computed in SIMD lanes, render_scene.cl). */
+IA_FN bvh_ray bvh_ray_lane(ia_real d[3][PACKET_LANES], ia_real inv[3][PACKET_LANES], int k) {
+    bvh_ray r;
+    r.divide = 0;
+    for (int c = 0; c < 3; c++)
+        bvh_ray_set(&r, c, d[c][k], inv[c][k]);
+    return r;
 }
 
 /* Whether the ray meets node k's box on [tn, tf], and where (widened outward, as camera_clip_box). Infinite
@@ -85,12 +92,13 @@ typedef struct {
 
 IA_FN void bvh_beam_start(bvh_beam *m) { m->rays = 0; }
 
-/* Adds the ray o + t d over [tn, tf] (with its bvh_ray r) to the beam. */
-IA_FN void bvh_beam_add(bvh_beam *m, const bvh_ray *r, const ia_real o[3], const ia_real d[3], ia_real tn,
-                        ia_real tf) {
+/* Adds lane k's ray of a packet (origins o, directions d, their reciprocals inv) over [tn, tf] to the beam. */
+IA_FN void bvh_beam_add_lane(bvh_beam *m, ia_real o[3][PACKET_LANES], ia_real d[3][PACKET_LANES],
+                             ia_real inv[3][PACKET_LANES], int k, ia_real tn, ia_real tf) {
     if (m->rays < 0)
         return;
-    if (r->divide) {
+    bvh_ray r = bvh_ray_lane(d, inv, k);
+    if (r.divide) {
         m->rays = -1;
         return;
     }
@@ -98,15 +106,16 @@ IA_FN void bvh_beam_add(bvh_beam *m, const bvh_ray *r, const ia_real o[3], const
     m->tn = first ? tn : fmin(m->tn, tn);
     m->tf = first ? tf : fmax(m->tf, tf);
     for (int c = 0; c < 3; c++) {
-        int kind = d[c] == 0 ? BVH_BEAM_FLAT : BVH_BEAM_SLAB;
-        int same_sign = first || d[c] == 0 || (m->ilo[c] > 0) == (r->inv[c] > 0);
+        ia_real oc = o[c][k], dc = d[c][k], ic = inv[c][k];
+        int kind = dc == 0 ? BVH_BEAM_FLAT : BVH_BEAM_SLAB;
+        int same_sign = first || dc == 0 || (m->ilo[c] > 0) == (ic > 0);
         m->kind[c] = first ? kind : m->kind[c] == kind && same_sign ? kind : BVH_BEAM_FREE;
-        m->olo[c] = first ? o[c] : fmin(m->olo[c], o[c]);
-        m->ohi[c] = first ? o[c] : fmax(m->ohi[c], o[c]);
-        m->dlo[c] = first ? d[c] : fmin(m->dlo[c], d[c]);
-        m->dhi[c] = first ? d[c] : fmax(m->dhi[c], d[c]);
-        m->ilo[c] = first ? r->inv[c] : fmin(m->ilo[c], r->inv[c]);
-        m->ihi[c] = first ? r->inv[c] : fmax(m->ihi[c], r->inv[c]);
+        m->olo[c] = first ? oc : fmin(m->olo[c], oc);
+        m->ohi[c] = first ? oc : fmax(m->ohi[c], oc);
+        m->dlo[c] = first ? dc : fmin(m->dlo[c], dc);
+        m->dhi[c] = first ? dc : fmax(m->dhi[c], dc);
+        m->ilo[c] = first ? ic : fmin(m->ilo[c], ic);
+        m->ihi[c] = first ? ic : fmax(m->ihi[c], ic);
     }
     m->rays += 1;
 }
@@ -192,7 +201,7 @@ typedef struct {
     const KERNEL_GLOBAL ia_real *box;
     const KERNEL_GLOBAL int *link;
     int nodes;
-    bvh_ray r;
+    const bvh_ray *r; /* a pointer, not a copy: a copy of what was just stored lane by lane stalls its loads */
     const ia_real *o, *d;
     ia_real tn, tf;
     const int *cut;
@@ -205,7 +214,7 @@ typedef struct {
 IA_FN int bvh_push(const bvh_walk *b, int k, KERNEL_GLOBAL int *solid, KERNEL_GLOBAL ia_real *range, int *count,
                    int cap) {
     ia_real te, tx;
-    if (!bvh_node_clip(b->box, k, &b->r, b->o, b->d, b->tn, b->tf, &te, &tx))
+    if (!bvh_node_clip(b->box, k, b->r, b->o, b->d, b->tn, b->tf, &te, &tx))
         return 1;
     if (*count == cap)
         return 0;

@@ -147,13 +147,9 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     int pixel[PACKET_LANES], cut[BVH_CUT_MAX];
     bvh_beam beam;
     bvh_beam_start(&beam);
-    for (int k = 0; k < PACKET_LANES; k++) {
-        ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
-        ia_real inv[3] = {ik[0][k], ik[1][k], ik[2][k]};
-        bvh_ray r = bvh_ray_with(d, inv);
+    for (int k = 0; k < PACKET_LANES; k++)
         if (i0 + k % PACKET_W < width && j0 + k / PACKET_W < f->row_end && meets[k] != 0)
-            bvh_beam_add(&beam, &r, o, d, tn[k], tf[k]);
-    }
+            bvh_beam_add_lane(&beam, ok, dk, ik, k, tn[k], tf[k]);
     view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
     view->cut = view->ncut >= 0 ? cut : 0;
     scene_beam_drop_out(&beam, view, cut);
@@ -167,8 +163,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         weave_hit hit = {0, -1, -1, -1};
         ray->evals = ray->segments = ray->partitions = 0;
         ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
-        ia_real inv[3] = {ik[0][k], ik[1][k], ik[2][k]};
-        bvh_ray br = bvh_ray_with(d, inv);
+        bvh_ray br = bvh_ray_lane(dk, ik, k);
         int found = 0, claimed = 0; /* claimed: at the union's leaf (scene_union_claim), or overflowing */
         if (pixel[k] >= 0 && meets[k] != 0 && (from[k] < IA_INF || view->nsurfaces > 0)) { /* else no hit */
 #ifdef SCENE_REGIONS_DISJOINT

@@ -61,7 +61,7 @@ IA_FN int scene_trace_ray_from(const scene_view *v, scene_ray *r, const ia_real 
     b.box = v->box;
     b.link = v->link;
     b.nodes = v->nodes;
-    b.r = *br;
+    b.r = br;
     b.o = o;
     b.d = d;
     b.tn = from;

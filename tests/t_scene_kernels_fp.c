@@ -367,7 +367,7 @@ static int same_leaves(const int *sa, const ia_real *ra, int na, const int *sb, 
  * both signs) against the BVH of 64 random spheres and a half-space: every ray meets, from its packet's cut
  * (bvh_beam_cut), exactly the leaves with exactly the ranges it meets from the top-level nodes. */
 TEST_FP(scene_bvh_beam_cut) {
-    enum { N = 64, LANES = 16 };
+    enum { N = 64, LANES = PACKET_LANES };
     test_rng_t *rng = test_rng();
     iacsg_error err = {0};
     iacsg_scene *s = scene_create();
@@ -391,7 +391,7 @@ TEST_FP(scene_bvh_beam_cut) {
         box[k] = (ia_real)t.bvh_box[k];
     long packets = test_iters(2000), cuts = 0, entries = 0, rays = 0, leaves = 0;
     for (long it = 0; it < packets; it++) {
-        ia_real o[LANES][3], d[LANES][3], tn[LANES], tf[LANES], base_o[3], base_d[3], u[3], v[3];
+        ia_real o[3][LANES], d[3][LANES], inv[3][LANES], tn[LANES], tf[LANES], base_o[3], base_d[3], u[3], v[3];
         int ortho = it % 2, zero = test_rand_u64(rng) % 4 == 0 ? (int)(test_rand_u64(rng) % 3) : -1;
         double spread = ldexp(1, -(int)(test_rand_u64(rng) % 12));
         for (int a = 0; a < 3; a++) {
@@ -405,15 +405,15 @@ TEST_FP(scene_bvh_beam_cut) {
         for (int k = 0; k < LANES; k++) {
             ia_real i = (ia_real)(k % 4), j = (ia_real)(k / 4);
             for (int a = 0; a < 3; a++) {
-                o[k][a] = ortho ? base_o[a] + i * u[a] + j * v[a] : base_o[a];
-                d[k][a] = ortho ? base_d[a] : base_d[a] + i * u[a] + j * v[a];
+                o[a][k] = ortho ? base_o[a] + i * u[a] + j * v[a] : base_o[a];
+                d[a][k] = ortho ? base_d[a] : base_d[a] + i * u[a] + j * v[a];
                 if (a == zero)
-                    d[k][a] = 0;
+                    d[a][k] = 0;
+                inv[a][k] = (ia_real)1 / d[a][k];
             }
             tn[k] = (ia_real)test_rand_unit(rng);
             tf[k] = tn[k] + (ia_real)(8 * test_rand_unit(rng));
-            bvh_ray r = bvh_ray_of(d[k]);
-            bvh_beam_add(&m, &r, o[k], d[k], tn[k], tf[k]);
+            bvh_beam_add_lane(&m, o, d, inv, k, tn[k], tf[k]);
         }
         int cut[BVH_CUT_MAX], ncut = bvh_beam_cut(&m, box, t.bvh_link, t.nbvh, cut);
         if (ncut < 0)
@@ -423,7 +423,9 @@ TEST_FP(scene_bvh_beam_cut) {
         for (int k = 0; k < LANES; k++) {
             int sa[2 * N + 2], sb[2 * N + 2];
             ia_real ra[4 * N + 4], rb[4 * N + 4];
-            bvh_walk b = {box, t.bvh_link, t.nbvh, bvh_ray_of(d[k]), o[k], d[k], tn[k], tf[k], 0, 0};
+            bvh_ray r = bvh_ray_lane(d, inv, k);
+            ia_real ok[3] = {o[0][k], o[1][k], o[2][k]}, dk[3] = {d[0][k], d[1][k], d[2][k]};
+            bvh_walk b = {box, t.bvh_link, t.nbvh, &r, ok, dk, tn[k], tf[k], 0, 0};
             int na = bvh_leaves(&b, sa, ra, 2 * N + 2);
             b.cut = cut;
             b.ncut = ncut;
