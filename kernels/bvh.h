@@ -77,7 +77,8 @@ IA_FN int bvh_node_clip(const KERNEL_GLOBAL ia_real *box, int k, const bvh_ray *
  * cross the same way, are tested once a packet, not once a ray (bvh_beam_cut). Per axis the beam holds the hull of
  * the rays' origins and of their reciprocal directions (all of one sign; or all directions 0 there, or no
  * constraint from that axis); a box's slab crossing (plane - o) * inv is monotone in o and in inv separately, so
- * its least and greatest values over the rays come from the hulls' corners, and, widened by two more ulps than a
+ * its least and greatest values over the rays come from the hulls' corners (which the signs name), and, widened
+ * by two more ulps than a
  * ray's (ia_lo_k is monotone to within an ulp), they hold every ray's widened crossings of bvh_node_clip. So a box
  * some ray of the packet meets is met by the beam: a cut of the beam's boxes holds every box the rays meet. */
 #define BVH_BEAM_FREE 0
@@ -134,13 +135,12 @@ IA_FN int bvh_beam_range(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, in
         }
         if (m->kind[c] == BVH_BEAM_FREE)
             continue;
-        ia_real x[4] = {lo - m->olo[c], lo - m->ohi[c], hi - m->olo[c], hi - m->ohi[c]};
-        ia_real near = IA_INF, far = -IA_INF;
-        for (int j = 0; j < 4; j++) {
-            ia_real a = x[j] * m->ilo[c], b = m->ihi[c] == m->ilo[c] ? a : x[j] * m->ihi[c];
-            near = fmin(near, fmin(a, b));
-            far = fmax(far, fmax(a, b));
-        }
+        /* one sign of inv: the entry is the crossing of the entry plane (lo where inv > 0), least where
+         * plane - o is least (inv > 0) or greatest (inv < 0), times the least inv where that is >= 0, else the
+         * greatest; the exit the other way round */
+        int up = m->ilo[c] > 0;
+        ia_real x = up ? lo - m->ohi[c] : hi - m->olo[c], y = up ? hi - m->olo[c] : lo - m->ohi[c];
+        ia_real near = x * (x >= 0 ? m->ilo[c] : m->ihi[c]), far = y * (y >= 0 ? m->ihi[c] : m->ilo[c]);
         tn = fmax(tn, ia_lo_k(near, BVH_SLAB_ULPS + 2));
         tf = fmin(tf, ia_hi_k(far, BVH_SLAB_ULPS + 2));
         if (tn > tf)
