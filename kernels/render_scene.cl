@@ -276,12 +276,15 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, 0};
     size_t first = slot * (size_t)cand_cap;
+    prim_dirs dirs; /* every ray of an orthographic view has the same direction */
+    for (int k = 0; k < PRIM_DIRS_SLOTS; k++)
+        dirs.solid[k] = -1;
     scene_ray ray = {nodes,
                      items,
                      solid_items_start,
                      solid_items,
                      {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first, cand_index + first,
-                      cand_newton + first, cand_newton_t + 2 * first},
+                      cand_newton + first, cand_newton_t + 2 * first, flags & RENDER_ORTHO ? &dirs : 0},
                      cand_cap,
                      0,
                      0,

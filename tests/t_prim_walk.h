@@ -358,7 +358,7 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
     ia_real range[2] = {ta, w}, pos[1], newton_t[2];
     int solid[1] = {0}, level[1], newton[1];
     bisect_index index[1];
-    segments_walks walk = {solid, range, pos, level, index, newton, newton_t};
+    segments_walks walk = {solid, range, pos, level, index, newton, newton_t, 0};
     segments_start(&walk, 0);
     ia_real end = node_bound(ta, w, 0, 1);
     ld cross[REF_MAX_CROSSINGS];
@@ -516,6 +516,24 @@ static void check_beam(test_rng_t *rng, const scene_prim *sp, const double box[6
 }
 #endif
 
+#ifdef SCENE_SOLID_PRIMS
+/* The direction terms kept for later rays (prim_dirs): a solve that fills them and one that takes them give what a
+ * solve without them gives, bit for bit. */
+static void check_dirs(const test_ray *ray, ia_real ta, ia_real w, ia_real eps) {
+    ia_interval dir[PRIM_DIRS_INTERVALS];
+    ia_real e[3][4], resume[3] = {0, 0, 0}, end = node_bound(ta, w, 0, 1);
+    kernel_u32 evals = 0;
+    int r[3];
+    for (int k = 0; k < 3; k++)
+        r[k] = prim_segments(host_type, host_params, ray->o, ray->d, ta, end, eps, e[k], &resume[k], &evals,
+                             k ? dir : 0, k == 2);
+    for (int k = 1; k < 3; k++)
+        CHECK(r[k] == r[0] && (r[0] == 0 || (memcmp(e[k], e[0], sizeof e[0]) == 0 && resume[k] == resume[0])),
+              "type %d: a solve %s the kept direction terms differs from one without them", host_type,
+              k == 1 ? "keeping" : "taking");
+}
+#endif
+
 static void run_type(int type, int variants, const char *name) {
     test_rng_t *rng = test_rng();
     tally tl = {0};
@@ -574,6 +592,8 @@ static void run_type(int type, int variants, const char *name) {
             check_ray(&sp, scale, &ray, ta, w, eps, &tl);
 #ifdef SCENE_SOLID_PRIMS
             check_beam(&beam_rng, &sp, box, scale, &ray, &beams, &beams_out);
+            if (type != SCENE_PRIM_PIPE)
+                check_dirs(&ray, ta, w, eps);
 #endif
             closable_rays += closable;
             closed_of_closable += closable && tl.closed > closed;
