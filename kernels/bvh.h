@@ -22,13 +22,26 @@ typedef struct {
     int divide; /* some 1/d is not finite */
 } bvh_ray;
 
+/* Component c of a ray's direction, d, and its reciprocal inv = 1 / d. */
+IA_FN void bvh_ray_set(bvh_ray *r, int c, ia_real d, ia_real inv) {
+    r->inv[c] = inv;
+    r->divide |= d != 0 && !isfinite(inv);
+}
+
 IA_FN bvh_ray bvh_ray_of(const ia_real d[3]) {
     bvh_ray r;
     r.divide = 0;
-    for (int c = 0; c < 3; c++) {
-        r.inv[c] = (ia_real)1 / d[c];
-        r.divide |= d[c] != 0 && !isfinite(r.inv[c]);
-    }
+    for (int c = 0; c < 3; c++)
+        bvh_ray_set(&r, c, d[c], (ia_real)1 / d[c]);
+    return r;
+}
+
+/* Lane k's ray of a packet's directions d and their reciprocals inv (computed in SIMD lanes, render_scene.cl). */
+IA_FN bvh_ray bvh_ray_lane(ia_real d[3][PACKET_LANES], ia_real inv[3][PACKET_LANES], int k) {
+    bvh_ray r;
+    r.divide = 0;
+    for (int c = 0; c < 3; c++)
+        bvh_ray_set(&r, c, d[c][k], inv[c][k]);
     return r;
 }
 
@@ -60,14 +73,139 @@ IA_FN int bvh_node_clip(const KERNEL_GLOBAL ia_real *box, int k, const bvh_ray *
     return 1;
 }
 
-/* A ray against the BVH: the tables, the ray and its part [tn, tf] in the bounds. */
+/* ---- a packet's beam: the rays of a packet of pixels together, so that the BVH's top levels, which all of them
+ * cross the same way, are tested once a packet, not once a ray (bvh_beam_cut). Per axis the beam holds the hull of
+ * the rays' origins and of their reciprocal directions (all of one sign; or all directions 0 there, or no
+ * constraint from that axis); a box's slab crossing (plane - o) * inv is monotone in o and in inv separately, so
+ * its least and greatest values over the rays come from the hulls' corners (which the signs name), and, widened
+ * by two more ulps than a
+ * ray's (ia_lo_k is monotone to within an ulp), they hold every ray's widened crossings of bvh_node_clip. So a box
+ * some ray of the packet meets is met by the beam: a cut of the beam's boxes holds every box the rays meet. */
+#define BVH_BEAM_FREE 0
+#define BVH_BEAM_FLAT 1 /* every direction's component is 0: the origins' hull against the slab */
+#define BVH_BEAM_SLAB 2
+#define BVH_CUT_MAX 12  /* the most entries of a packet's cut (each ray tests each once) */
+
+typedef struct {
+    ia_real olo[3], ohi[3], dlo[3], dhi[3], ilo[3], ihi[3], tn, tf;
+    int kind[3], rays; /* rays: 0 none added yet; -1 no beam (a ray divides, bvh_ray's `divide`) */
+} bvh_beam;
+
+IA_FN void bvh_beam_start(bvh_beam *m) { m->rays = 0; }
+
+/* Adds lane k's ray of a packet (origins o, directions d, their reciprocals inv) over [tn, tf] to the beam. */
+IA_FN void bvh_beam_add_lane(bvh_beam *m, ia_real o[3][PACKET_LANES], ia_real d[3][PACKET_LANES],
+                             ia_real inv[3][PACKET_LANES], int k, ia_real tn, ia_real tf) {
+    if (m->rays < 0)
+        return;
+    bvh_ray r = bvh_ray_lane(d, inv, k);
+    if (r.divide) {
+        m->rays = -1;
+        return;
+    }
+    int first = m->rays == 0;
+    m->tn = first ? tn : fmin(m->tn, tn);
+    m->tf = first ? tf : fmax(m->tf, tf);
+    for (int c = 0; c < 3; c++) {
+        ia_real oc = o[c][k], dc = d[c][k], ic = inv[c][k];
+        int kind = dc == 0 ? BVH_BEAM_FLAT : BVH_BEAM_SLAB;
+        int same_sign = first || dc == 0 || (m->ilo[c] > 0) == (ic > 0);
+        m->kind[c] = first ? kind : m->kind[c] == kind && same_sign ? kind : BVH_BEAM_FREE;
+        m->olo[c] = first ? oc : fmin(m->olo[c], oc);
+        m->ohi[c] = first ? oc : fmax(m->ohi[c], oc);
+        m->dlo[c] = first ? dc : fmin(m->dlo[c], dc);
+        m->dhi[c] = first ? dc : fmax(m->dhi[c], dc);
+        m->ilo[c] = first ? ic : fmin(m->ilo[c], ic);
+        m->ihi[c] = first ? ic : fmax(m->ihi[c], ic);
+    }
+    m->rays += 1;
+}
+
+/* Whether the beam may meet node k's box over [*tn, *tf] (the beam's range there): 0 only where no ray of it meets
+ * the box (bvh_node_clip); each ray's range in the box is then within [*tn, *tf]. */
+IA_FN int bvh_beam_range(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, int k, ia_real *t_near,
+                         ia_real *t_far) {
+    ia_real tn = m->tn, tf = m->tf;
+    for (int c = 0; c < 3; c++) {
+        ia_real lo = box[6 * k + c], hi = box[6 * k + 3 + c];
+        if (m->kind[c] == BVH_BEAM_FLAT) {
+            if (m->ohi[c] < lo || m->olo[c] > hi)
+                return 0;
+            continue;
+        }
+        if (m->kind[c] == BVH_BEAM_FREE)
+            continue;
+        /* one sign of inv: the entry is the crossing of the entry plane (lo where inv > 0), least where
+         * plane - o is least (inv > 0) or greatest (inv < 0), times the least inv where that is >= 0, else the
+         * greatest; the exit the other way round */
+        int up = m->ilo[c] > 0;
+        ia_real x = up ? lo - m->ohi[c] : hi - m->olo[c], y = up ? hi - m->olo[c] : lo - m->ohi[c];
+        ia_real near = x * (x >= 0 ? m->ilo[c] : m->ihi[c]), far = y * (y >= 0 ? m->ihi[c] : m->ilo[c]);
+        tn = fmax(tn, ia_lo_k(near, BVH_SLAB_ULPS + 2));
+        tf = fmin(tf, ia_hi_k(far, BVH_SLAB_ULPS + 2));
+        if (tn > tf)
+            return 0;
+    }
+    *t_near = tn;
+    *t_far = tf;
+    return 1;
+}
+
+IA_FN int bvh_beam_meets(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, int k) {
+    ia_real tn, tf;
+    return bvh_beam_range(m, box, k, &tn, &tf);
+}
+
+/* The beam's cut of the BVH into cut[] (returns how many entries, or -1 where there is none to take: no beam, or
+ * more top-level nodes than BVH_CUT_MAX): the top-level nodes the beam meets, each inner one replaced by its
+ * children that the beam meets while the cut has room, breadth first. Every box a ray of the beam meets is in an
+ * entry's subtree, and the boxes on its path from there are met too (a parent's box holds its children's). */
+IA_FN int bvh_beam_cut(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, const KERNEL_GLOBAL int *link, int nodes,
+                       int cut[BVH_CUT_MAX]) {
+    if (m->rays <= 0)
+        return m->rays == 0 ? 0 : -1;
+    int n = 0;
+    for (int k = 0; k < nodes; k = link[2 * k + SCENE_BVH_SKIP])
+        if (bvh_beam_meets(m, box, k)) {
+            if (n == BVH_CUT_MAX)
+                return -1;
+            cut[n++] = k;
+        }
+    for (int i = 0; i < n;) {
+        int k = cut[i];
+        if (link[2 * k + SCENE_BVH_SOLID] >= 0) {
+            i++;
+            continue;
+        }
+        int left = k + 1, right = link[2 * left + SCENE_BVH_SKIP];
+        int in_left = bvh_beam_meets(m, box, left), in_right = bvh_beam_meets(m, box, right);
+        if (n - 1 + in_left + in_right > BVH_CUT_MAX) {
+            i++;
+            continue;
+        }
+        if (in_left && in_right) {
+            cut[i] = left;
+            cut[n++] = right;
+        } else if (in_left || in_right) {
+            cut[i] = in_left ? left : right;
+        } else {
+            cut[i] = cut[--n];
+        }
+    }
+    return n;
+}
+
+/* A ray against the BVH: the tables, the ray and its part [tn, tf] in the bounds; where cut is not 0, its packet's
+ * cut (ncut entries, bvh_beam_cut) stands for the top-level nodes. */
 typedef struct {
     const KERNEL_GLOBAL ia_real *box;
     const KERNEL_GLOBAL int *link;
     int nodes;
-    bvh_ray r;
+    const bvh_ray *r; /* a pointer, not a copy: a copy of what was just stored lane by lane stalls its loads */
     const ia_real *o, *d;
     ia_real tn, tf;
+    const int *cut;
+    int ncut;
 } bvh_walk;
 
 /* Adds node k to the ray's pending entries solid[], range[] (*count of them) if the ray meets its box: a leaf as
@@ -76,7 +214,7 @@ typedef struct {
 IA_FN int bvh_push(const bvh_walk *b, int k, KERNEL_GLOBAL int *solid, KERNEL_GLOBAL ia_real *range, int *count,
                    int cap) {
     ia_real te, tx;
-    if (!bvh_node_clip(b->box, k, &b->r, b->o, b->d, b->tn, b->tf, &te, &tx))
+    if (!bvh_node_clip(b->box, k, b->r, b->o, b->d, b->tn, b->tf, &te, &tx))
         return 1;
     if (*count == cap)
         return 0;
@@ -88,8 +226,15 @@ IA_FN int bvh_push(const bvh_walk *b, int k, KERNEL_GLOBAL int *solid, KERNEL_GL
     return 1;
 }
 
-/* The top-level nodes the ray meets (the unbounded solids' leaves, then the root of the bounded ones). */
+/* The top-level nodes the ray meets (the unbounded solids' leaves, then the root of the bounded ones), or its
+ * packet's cut's entries that it meets. */
 IA_FN int bvh_roots(const bvh_walk *b, KERNEL_GLOBAL int *solid, KERNEL_GLOBAL ia_real *range, int *count, int cap) {
+    if (b->cut) {
+        for (int j = 0; j < b->ncut; j++)
+            if (!bvh_push(b, b->cut[j], solid, range, count, cap))
+                return 0;
+        return 1;
+    }
     for (int k = 0; k < b->nodes; k = b->link[2 * k + SCENE_BVH_SKIP])
         if (!bvh_push(b, k, solid, range, count, cap))
             return 0;

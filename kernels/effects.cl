@@ -1,8 +1,10 @@
-/* kernels/effects.cl -- iacsg_effects, the first-root path's ray-tracing effects (src/render_effects.c,
- * src/render_effects_device.c), 16 paths per work-item in SIMD lanes:
+/* kernels/effects.cl -- the first-root path's ray-tracing effects (src/render_effects.c,
+ * src/render_effects_device.c), 16 paths per work-item in SIMD lanes: in the camera kernel (iacsg_render_effects,
+ * its packets' hits shaded by effects_centre), or after the frame (iacsg_effects):
  *
- *   the paths' rays: the frame's centre rays (their hits its depth and normals: nothing traced), -aa's n x n rays
- *   of listed pixels, or the reflected rays a previous launch listed --> their first hits (effects_trace)
+ *   the paths' rays: the centre rays (their hits the camera kernel's, or the frame's depth and normals: nothing
+ *   traced), -aa's n x n rays of listed pixels, or the reflected rays a previous launch listed --> their first
+ *   hits (effects_trace)
  *   --> per hit: the lights, each seen or not by a shadow ray traced in the lanes --> its colour (light.h:
  *       shade_effects) times the path's weight
  *   --> off an opaque hit: the reflected ray goes on in the lane (weight reflect), traced in the same launch
@@ -13,8 +15,8 @@
  *
  * Every secondary ray is traced rigorously (effects_trace: effects_march, then packet.h's bisection) with all
  * groups of a union (no tile pass bounded these rays), so an occluder or a surface a ray crosses inside the bounds
- * is never missed. The rays of a packet come from neighbouring pixels (the host lists them in blocks of 4 x 4),
- * so that they take similar steps. The normals are render.cl's packet_gradients (this file is appended to the
+ * is never missed. The rays of a packet come from neighbouring pixels (a camera packet's, or listed by the host in
+ * blocks of 4 x 4), so that they take similar steps. The normals are render.cl's packet_gradients (this file is appended to the
  * first-root path's program after render.cl).
  */
 
@@ -210,6 +212,178 @@ static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shad
         acc[k] += select((shade_colorv)0, wc * c[k], lanes);
 }
 
+/* The paths of the lanes of `live` from their rays o + t d's first hits (where `hit`: at t, normal n) on, each of
+ * weight `through`, its transparent layers and reflections so far `layers` and `bounces`, its pixel in row `row`:
+ * each hit lit (its shadow rays traced), the reflected ray off an opaque hit and the ray through a transparent one
+ * traced in the lane, a reflected ray off a transparent hit listed in kids (slot first + lane, nk[lane] of
+ * kid_slots so far; none where kid_slots is 0), until every lane is out of weight, bounces or layers or has met the
+ * background. Adds each lane's linear light to acc; counts the rays it traces and their evaluations. */
+static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __global const ulong *all_groups,
+                          ia_real footprint, ia_realv row, int height, ia_realv o[3], ia_realv d[3], ia_maskv live,
+                          ia_maskv hit, ia_realv t, ia_realv n[3], ia_realv through, ia_realv layers,
+                          ia_realv bounces, __global ia_real *kids, int kid_slots, int first, int nk[IA_VW],
+                          shade_colorv acc[3], packet_index *rays, packet_index *evals) {
+    /* the background of the pixels' rows, linear */
+    shade_colorv bg[3];
+    float top[3], bottom[3];
+    for (int c = 0; c < 3; c++) {
+        top[c] = (float)fx[EFFECTS_BG_TOP + c];
+        bottom[c] = (float)fx[EFFECTS_BG_BOTTOM + c];
+    }
+    shade_background(IAV_CAT(convert_float, IA_VW)(row), height, top, bottom, bg);
+    for (int c = 0; c < 3; c++)
+        bg[c] *= bg[c];
+    int shade = (int)fx[EFFECTS_SHADE], nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
+    shade_colorv albedo[3], id_rgb[3];
+    for (int c = 0; c < 3; c++) {
+        albedo[c] = (shade_colorv)(float)fx[EFFECTS_ALBEDO + c];
+        id_rgb[c] = (shade_colorv)(float)fx[EFFECTS_ID_RGB + c];
+    }
+    ia_real a = fx[EFFECTS_OPACITY], max_bounces = fx[EFFECTS_BOUNCES], eps = params[PARAM_EPS];
+    while (1) { /* one transparent layer a turn */
+        effects_add(acc, live & ~hit, through, bg);
+        live &= hit;
+        if (!iav_any(live))
+            break;
+        ia_realv p[3];
+        for (int c = 0; c < 3; c++)
+            p[c] = o[c] + t * d[c];
+        /* the light each hit gets from each light in front of it: all of it, or where shadows are cast what a
+         * shadow ray from off the surface (on the light's side) to the light lets through: each crossing of a
+         * transparent surface on the way keeps 1 - A of it (a layer, as the camera rays see it), an opaque one none */
+        ia_realv off = effects_offset(eps, p, t), vis[EFFECTS_MAX_LIGHTS];
+        for (int l = 0; l < nlights; l++) {
+            __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
+            ia_realv towards[3];
+            shade_towards(params, L, p, towards);
+            ia_maskv ray = live & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
+            vis[l] = select(IAV_R(0), IAV_R(1), ray);
+            ia_realv so[3], sd[3], sp = off, sn[3] = {n[0], n[1], n[2]};
+            for (int c = 0; c < 3; c++)
+                so[c] = p[c];
+            for (int layer = 0; shadows && shade < EFFECTS_SHADE_NORMALS && iav_any(ray); layer++) {
+                for (int c = 0; c < 3; c++) /* off the surface it leaves, on the light's side */
+                    so[c] = select(so[c], so[c] + sp * sn[c], ray);
+                ia_realv dist = shade_towards(params, L, so, sd), st;
+                ia_maskv blocked = effects_trace(params, all_groups, so, sd, IAV_R(0), dist, ray, sp, eps, footprint,
+                                                 a >= 1, &st, a < 1, sn, rays, evals);
+                vis[l] = select(vis[l], vis[l] * (1 - a), blocked);
+                ray = layer + 1 < EFFECTS_MAX_LAYERS ? blocked & (vis[l] >= (ia_real)EFFECTS_MIN_WEIGHT) : (ia_maskv)0;
+                for (int c = 0; c < 3; c++) { /* on from past it: its normal faces the shadow ray */
+                    ia_realv q = so[c] + st * sd[c];
+                    so[c] = select(so[c], q, ray);
+                    sn[c] = -sn[c];
+                }
+                sp = effects_offset(eps, so, st);
+            }
+        }
+        shade_colorv lin[3];
+        shade_effects(params, fx, p, t, n, d, vis, albedo, IAV_R(fx[EFFECTS_SPECULAR]), IAV_R(fx[EFFECTS_SHININESS]),
+                      id_rgb, lin);
+        if (shade >= EFFECTS_SHADE_NORMALS) { /* the previews: unlit, opaque */
+            effects_add(acc, live, through, lin);
+            break;
+        }
+        /* the fraction of the light reflected: the last bounce is lit only */
+        ia_realv k = select(IAV_R(0), IAV_R(fx[EFFECTS_REFLECT]), bounces < max_bounces);
+        effects_add(acc, live, through * (a * (1 - k)), lin);
+        ia_maskv mirror = live & (k > 0) & (through * (a * k) >= (ia_real)EFFECTS_MIN_WEIGHT);
+        ia_realv r[3]; /* the mirror direction */
+        ia_realv dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+        for (int c = 0; c < 3; c++)
+            r[c] = d[c] - 2 * dn * n[c];
+        ia_realv len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+        for (int c = 0; c < 3; c++)
+            r[c] = r[c] / len;
+        if (a >= 1) { /* opaque: the reflected ray goes on in this lane, from off the surface */
+            through = through * k;
+            live = mirror;
+            if (!iav_any(live))
+                break;
+            for (int c = 0; c < 3; c++) {
+                o[c] = select(o[c], p[c] + off * n[c], live);
+                d[c] = select(d[c], r[c], live);
+            }
+            bounces = select(bounces, bounces + 1, live);
+            hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, off, eps, footprint, 0, &t,
+                                1, n, rays, evals);
+            continue;
+        }
+        if (iav_any(mirror)) { /* transparent: the lane goes on through, the reflected ray is listed */
+            ia_realv rec[EFFECTS_PATH_REALS];
+            for (int c = 0; c < 3; c++) {
+                rec[EFFECTS_PATH_O + c] = p[c] + off * n[c];
+                rec[EFFECTS_PATH_D + c] = r[c];
+            }
+            rec[EFFECTS_PATH_WEIGHT] = through * (a * k);
+            rec[EFFECTS_PATH_LAYERS] = layers;
+            rec[EFFECTS_PATH_BOUNCES] = bounces + 1;
+            ia_real on[IA_VW], fields[EFFECTS_PATH_REALS][IA_VW];
+            IAV_STORE(select(IAV_R(0), IAV_R(1), mirror), on);
+            for (int f = 0; f < EFFECTS_PATH_REALS; f++)
+                IAV_STORE(rec[f], fields[f]);
+            for (int q = 0; q < IA_VW; q++) {
+                if (on[q] == 0 || nk[q] >= kid_slots)
+                    continue;
+                __global ia_real *out = kids + EFFECTS_PATH_REALS * ((size_t)(first + q) * kid_slots + nk[q]++);
+                for (int f = 0; f < EFFECTS_PATH_REALS; f++)
+                    out[f] = fields[f][q];
+            }
+        }
+        through *= 1 - a;
+        live &= through > 0;
+        ia_maskv spent = live & ((through < (ia_real)EFFECTS_MIN_WEIGHT) | (layers + 1 >= EFFECTS_MAX_LAYERS));
+        effects_add(acc, spent, through, bg); /* what is left of the path */
+        live &= ~spent;
+        if (!iav_any(live))
+            break;
+        /* on through the surface: from just past it, the same direction */
+        for (int c = 0; c < 3; c++)
+            o[c] = select(o[c], p[c] - off * n[c], live);
+        layers = select(layers, layers + 1, live);
+        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, off, eps, footprint, 0, &t, 1,
+                            n, rays, evals);
+    }
+}
+
+/* The display colours (gamma 2, as light.h encodes) of a camera packet's pixels in `live`, shaded with the effects
+ * by the camera kernel itself (render.cl: trace_packet, given an effects block): the centre rays o + t d, their
+ * hits (where `hit`: the leaf's start hit_lo, the normal n) lit and their paths followed as iacsg_effects'
+ * EFFECTS_MODE_CENTRE follows them from the frame's depth and normals. Those are floats, so t and n are rounded
+ * here as they are: a pixel gets the same colour either way. The host gives the camera kernel the block only where
+ * no path lists a reflected ray (kid_slots 0). Counts the secondary rays and their evaluations. Not inlined into
+ * the camera kernel: there its paths' code crowded the camera rays' (CPU samples of the reference view's kernel
+ * with shadows, means of 3-5 runs: 2,600 inlined, 1,760-2,120 not; plain 1,470). */
+__attribute__((noinline)) static void effects_centre(__constant ia_real *params, __constant ia_real *fx, __global const ulong *all_groups,
+                           ia_real footprint, packet_int row, int height, ia_maskv live, ia_maskv hit,
+                           const ia_realv o_ray[3], const ia_realv d_ray[3], ia_realv hit_lo, const ia_realv n_hit[3],
+                           shade_colorv color[3], packet_index *rays, packet_index *evals) {
+    ia_real start[IA_VW], t_k[IA_VW], n_k[3][IA_VW];
+    float n_f[3][IA_VW];
+    IAV_STORE(hit_lo, start);
+    for (int c = 0; c < 3; c++)
+        IAV_CAT(vstore, IA_VW)(shade_to_color(n_hit[c]), 0, n_f[c]);
+    for (int k = 0; k < IA_VW; k++) {
+        t_k[k] = (ia_real)camera_depth_round_down(start[k]);
+        for (int c = 0; c < 3; c++)
+            n_k[c][k] = (ia_real)n_f[c][k];
+    }
+    ia_realv o[3], d[3], n[3];
+    for (int c = 0; c < 3; c++) {
+        o[c] = o_ray[c];
+        d[c] = d_ray[c];
+        n[c] = IAV_LOAD(n_k[c]);
+    }
+    shade_colorv acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
+    int nk[IA_VW];
+    for (int q = 0; q < IA_VW; q++)
+        nk[q] = 0;
+    effects_paths(params, fx, all_groups, footprint, packet_to_real(row), height, o, d, live, live & hit,
+                  IAV_LOAD(t_k), n, IAV_R(1), IAV_R(0), IAV_R(0), 0, 0, 0, nk, acc, rays, evals);
+    for (int c = 0; c < 3; c++)
+        color[c] = sqrt(fmin(fmax(acc[c], 0.0f), 1.0f));
+}
+
 /* Paths first .. first + 15 of the launch. mode (kernels/effects.h): EFFECTS_MODE_CENTRE, path k the centre ray
  * of pixel pixels[k], its hit the frame's (depth, normal); EFFECTS_MODE_AA, path k the ray (k mod aa^2) of an
  * aa x aa grid in pixel pixels[k / aa^2], weight 1 / aa^2, traced with leaves aa_eps (as camera rays);
@@ -281,130 +455,12 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
                             camera ? IAV_R(0) : effects_offset(eps, o, IAV_R(0)),
                             camera ? aa_eps : eps, footprint, 0, &t, 1, n, &rays, &evals);
     }
-    /* the background of the pixels' rows, linear */
-    shade_colorv bg[3], acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
-    float top[3], bottom[3];
-    for (int c = 0; c < 3; c++) {
-        top[c] = (float)fx[EFFECTS_BG_TOP + c];
-        bottom[c] = (float)fx[EFFECTS_BG_BOTTOM + c];
-    }
-    shade_background(IAV_CAT(convert_float, IA_VW)(IAV_LOAD(row_k)), height, top, bottom, bg);
-    for (int c = 0; c < 3; c++)
-        bg[c] *= bg[c];
-    int shade = (int)fx[EFFECTS_SHADE], nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
-    shade_colorv albedo[3], id_rgb[3];
-    for (int c = 0; c < 3; c++) {
-        albedo[c] = (shade_colorv)(float)fx[EFFECTS_ALBEDO + c];
-        id_rgb[c] = (shade_colorv)(float)fx[EFFECTS_ID_RGB + c];
-    }
-    ia_real a = fx[EFFECTS_OPACITY], max_bounces = fx[EFFECTS_BOUNCES];
+    shade_colorv acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
     int nk[IA_VW];
     for (int q = 0; q < IA_VW; q++)
         nk[q] = 0;
-    while (1) { /* one transparent layer a turn */
-        effects_add(acc, live & ~hit, through, bg);
-        live &= hit;
-        if (!iav_any(live))
-            break;
-        ia_realv p[3];
-        for (int c = 0; c < 3; c++)
-            p[c] = o[c] + t * d[c];
-        /* the light each hit gets from each light in front of it: all of it, or where shadows are cast what a
-         * shadow ray from off the surface (on the light's side) to the light lets through: each crossing of a
-         * transparent surface on the way keeps 1 - A of it (a layer, as the camera rays see it), an opaque one none */
-        ia_realv off = effects_offset(eps, p, t), vis[EFFECTS_MAX_LIGHTS];
-        for (int l = 0; l < nlights; l++) {
-            __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
-            ia_realv towards[3];
-            shade_towards(params, L, p, towards);
-            ia_maskv ray = live & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
-            vis[l] = select(IAV_R(0), IAV_R(1), ray);
-            ia_realv so[3], sd[3], sp = off, sn[3] = {n[0], n[1], n[2]};
-            for (int c = 0; c < 3; c++)
-                so[c] = p[c];
-            for (int layer = 0; shadows && shade < EFFECTS_SHADE_NORMALS && iav_any(ray); layer++) {
-                for (int c = 0; c < 3; c++) /* off the surface it leaves, on the light's side */
-                    so[c] = select(so[c], so[c] + sp * sn[c], ray);
-                ia_realv dist = shade_towards(params, L, so, sd), st;
-                ia_maskv blocked = effects_trace(params, all_groups, so, sd, IAV_R(0), dist, ray, sp, eps, footprint,
-                                                 a >= 1, &st, a < 1, sn, &rays, &evals);
-                vis[l] = select(vis[l], vis[l] * (1 - a), blocked);
-                ray = layer + 1 < EFFECTS_MAX_LAYERS ? blocked & (vis[l] >= (ia_real)EFFECTS_MIN_WEIGHT) : (ia_maskv)0;
-                for (int c = 0; c < 3; c++) { /* on from past it: its normal faces the shadow ray */
-                    ia_realv q = so[c] + st * sd[c];
-                    so[c] = select(so[c], q, ray);
-                    sn[c] = -sn[c];
-                }
-                sp = effects_offset(eps, so, st);
-            }
-        }
-        shade_colorv lin[3];
-        shade_effects(params, fx, p, t, n, d, vis, albedo, IAV_R(fx[EFFECTS_SPECULAR]), IAV_R(fx[EFFECTS_SHININESS]),
-                      id_rgb, lin);
-        if (shade >= EFFECTS_SHADE_NORMALS) { /* the previews: unlit, opaque */
-            effects_add(acc, live, through, lin);
-            break;
-        }
-        /* the fraction of the light reflected: the last bounce is lit only */
-        ia_realv k = select(IAV_R(0), IAV_R(fx[EFFECTS_REFLECT]), bounces < max_bounces);
-        effects_add(acc, live, through * (a * (1 - k)), lin);
-        ia_maskv mirror = live & (k > 0) & (through * (a * k) >= (ia_real)EFFECTS_MIN_WEIGHT);
-        ia_realv r[3]; /* the mirror direction */
-        ia_realv dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-        for (int c = 0; c < 3; c++)
-            r[c] = d[c] - 2 * dn * n[c];
-        ia_realv len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-        for (int c = 0; c < 3; c++)
-            r[c] = r[c] / len;
-        if (a >= 1) { /* opaque: the reflected ray goes on in this lane, from off the surface */
-            through = through * k;
-            live = mirror;
-            if (!iav_any(live))
-                break;
-            for (int c = 0; c < 3; c++) {
-                o[c] = select(o[c], p[c] + off * n[c], live);
-                d[c] = select(d[c], r[c], live);
-            }
-            bounces = select(bounces, bounces + 1, live);
-            hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, off, eps, footprint, 0, &t,
-                                1, n, &rays, &evals);
-            continue;
-        }
-        if (iav_any(mirror)) { /* transparent: the lane goes on through, the reflected ray is listed */
-            ia_realv rec[EFFECTS_PATH_REALS];
-            for (int c = 0; c < 3; c++) {
-                rec[EFFECTS_PATH_O + c] = p[c] + off * n[c];
-                rec[EFFECTS_PATH_D + c] = r[c];
-            }
-            rec[EFFECTS_PATH_WEIGHT] = through * (a * k);
-            rec[EFFECTS_PATH_LAYERS] = layers;
-            rec[EFFECTS_PATH_BOUNCES] = bounces + 1;
-            ia_real on[IA_VW], fields[EFFECTS_PATH_REALS][IA_VW];
-            IAV_STORE(select(IAV_R(0), IAV_R(1), mirror), on);
-            for (int f = 0; f < EFFECTS_PATH_REALS; f++)
-                IAV_STORE(rec[f], fields[f]);
-            for (int q = 0; q < IA_VW; q++) {
-                if (on[q] == 0 || nk[q] >= kid_slots)
-                    continue;
-                __global ia_real *out = kids + EFFECTS_PATH_REALS * ((size_t)(first + q) * kid_slots + nk[q]++);
-                for (int f = 0; f < EFFECTS_PATH_REALS; f++)
-                    out[f] = fields[f][q];
-            }
-        }
-        through *= 1 - a;
-        live &= through > 0;
-        ia_maskv spent = live & ((through < (ia_real)EFFECTS_MIN_WEIGHT) | (layers + 1 >= EFFECTS_MAX_LAYERS));
-        effects_add(acc, spent, through, bg); /* what is left of the path */
-        live &= ~spent;
-        if (!iav_any(live))
-            break;
-        /* on through the surface: from just past it, the same direction */
-        for (int c = 0; c < 3; c++)
-            o[c] = select(o[c], p[c] - off * n[c], live);
-        layers = select(layers, layers + 1, live);
-        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, off, eps, footprint, 0, &t, 1,
-                            n, &rays, &evals);
-    }
+    effects_paths(params, fx, all_groups, footprint, IAV_LOAD(row_k), height, o, d, live, hit, t, n, through, layers,
+                  bounces, kids, kid_slots, first, nk, acc, &rays, &evals);
     float out[3][IA_VW];
     bisect_index ray_count[IA_VW], eval_count[IA_VW];
     for (int c = 0; c < 3; c++)
@@ -425,4 +481,21 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
             stats[2 * (first + q) + 1] = (uint)eval_count[q];
         }
     }
+}
+
+/* iacsg_render (render.cl) with the effects applied by the camera kernel itself (effects_centre), where no path
+ * lists a reflected ray (src/render_effects.c: render_effects_in_camera): fx_block the effects' parameters
+ * (kernels/effects.h), all_groups a union's groups all on, footprint the secondary rays' Newton window (as
+ * iacsg_effects'), fx_counts (with KERNEL_STATS, else NULL) per packet the secondary rays and their evaluations.
+ * Nothing of the frame goes to the host and back between the camera rays and their effects. */
+__kernel void iacsg_render_effects(__constant ia_real *params, int flags, int width, int height, int block_row0,
+                                   __global ia_real *tiles, __global float *rgb, __global float *depth,
+                                   __global float *normal, __global uint *evals, __global uint *tile_evals,
+                                   __global ulong *tile_groups_of, __global const uint *tape,
+                                   __constant ia_real *fx_block, __global const ulong *all_groups, ia_real footprint,
+                                   __global uint *fx_counts) {
+    (void)tape; /* the effects are compiled code's */
+    render_effects fx = {fx_block, all_groups, footprint, fx_counts};
+    render_block(params, flags, width, height, block_row0, tiles, rgb, depth, normal, evals, tile_evals,
+                 tile_groups_of, &fx);
 }

@@ -38,12 +38,18 @@ typedef IAV_CAT(uint, IA_VW) packet_index;
  * order (FP_CONTRACT is off), so each lane's ray, clip and first node are bit for bit what the scalar
  * functions give for its pixel, which the host tests recompute. */
 
-/* 0, 1, ..., IA_VW - 1 (the compiler folds the loop into a constant). */
+/* 0, 1, ..., IA_VW - 1. A vector literal: from a loop over an array PoCL stored the numbers in two halves and
+ * loaded them whole at every packet, a store-forwarding stall that was a ninth of the sphere's kernel time outside
+ * its root search (libfive's view, 1024x1024). */
 IA_FN packet_int packet_lane_numbers(void) {
+#if IA_VW == 16
+    return (packet_int)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+#else
     int k[IA_VW];
     for (int n = 0; n < IA_VW; n++)
         k[n] = n;
     return packet_to_int(IAV_LOAD(k));
+#endif
 }
 
 /* camera_ray through the points of the image whose coordinates, in pixels from its top left corner, are x2 / 2

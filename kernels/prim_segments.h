@@ -5,8 +5,9 @@
  * missed nor late. A torus or a general tgc may have a second run: prim_segments gives the first and the point to
  * solve again from (see "the quartics" below).
  *
- *   prim_segments(type, p, o, d, ta, tend, eps, e, resume, evals):
- *     1. the ray's origin o and direction d (exact), its point at ta enclosed (traverse.h's ray_extent);
+ *   prim_segments(type, p, o, d, ta, tend, eps, e, resume, evals, dir, known):
+ *     1. the ray's origin o and direction d (exact), its point at ta enclosed (traverse.h's ray_extent); the
+ *        direction terms (n.d, G d) from dir where an earlier ray of the same direction left them (prim_dirs);
  *     2. each piece of the solid along the ray: a plane's c + b t from o (c and b each with 2 products of an
  *        interval by a real: as precise as from ta, both a few ulps of t), a quadric's A u^2 + 2 B u + C in
  *        u = t - ta (from the far origin its discriminant would cancel), the coefficients intervals holding the
@@ -48,6 +49,16 @@
 /* A tgc is a quadric here where its alpha and beta are this close (their hull's width). */
 #define PRIM_SEGMENTS_SKEW ((ia_real)1e-6)
 
+/* The direction's part of the closed forms, a plane's n.d (an arb's six) or a frame's G d: the same for every ray
+ * of an orthographic view, so a work-item keeps each solid's once computed (segments.h: segments_closed_solve),
+ * in a table indexed by the solid's number modulo its size (solid[] -1: empty). */
+#define PRIM_DIRS_SLOTS 32
+#define PRIM_DIRS_INTERVALS PRIM_ARB_PLANES
+typedef struct {
+    int solid[PRIM_DIRS_SLOTS];
+    ia_interval v[PRIM_DIRS_SLOTS][PRIM_DIRS_INTERVALS];
+} prim_dirs;
+
 /* A span of the ray: possibly in over [plo, phi] (certainly out elsewhere), certainly in over (ilo, ihi); nan
  * when a bound was NaN (fmax and fmin would drop it). */
 typedef struct {
@@ -67,6 +78,17 @@ IA_FN void prim_segments_keep(prim_segments_span *s, ia_real plo, ia_real phi, i
 IA_FN ia_interval prim_segments_dot(const ia_real *p, int k, const ia_real v[3]) {
     return ia_add(ia_add(ia_mul_r(prim_iv(p, k), v[0]), ia_mul_r(prim_iv(p, k + 1), v[1])),
                   ia_mul_r(prim_iv(p, k + 2), v[2]));
+}
+
+/* The j-th direction term, a.d for a = p's k..k+2: dir[j] where `known`, else computed (and kept in dir[j] where
+ * dir is not 0). */
+IA_FN ia_interval prim_segments_dir(const ia_real *p, int k, const ia_real d[3], ia_interval *dir, int known, int j) {
+    if (known)
+        return dir[j];
+    ia_interval v = prim_segments_dot(p, k, d);
+    if (dir)
+        dir[j] = v;
+    return v;
 }
 
 /* A plane's piece c + b (t - t0), over the range u = t - t0 in `range`: in before its root where b > 0, after it
@@ -404,9 +426,10 @@ IA_FN int prim_pipe_segments(const ia_real *p, const ia_real o[3], const ia_real
 
 /* The solid's changes along o + t d over [ta, tend] (see the top), adding its evaluations to *evals: 1 with
  * e[0..3] (OUT after e3), 2 with e[0..3] where the solid may be in again after e3 (a torus's or a general tgc's
- * second run: solve again from e3), or 0 where the walk must bisect. */
+ * second run: solve again from e3), or 0 where the walk must bisect. dir: the solid's direction terms
+ * (prim_dirs), taken from it where `known`, else written there for every type but a pipe; or 0. */
 IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia_real d[3], ia_real ta, ia_real tend,
-                        ia_real eps, ia_real e[4], ia_real *resume, kernel_u32 *evals) {
+                        ia_real eps, ia_real e[4], ia_real *resume, kernel_u32 *evals, ia_interval *dir, int known) {
     prim_segments_span s = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0}, bound = s;
     ia_interval c[5];
     int quartic = 0;
@@ -415,12 +438,12 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
     if (type == PRIM_HALF || type == PRIM_ARB8) { /* n.o - d + t n.d: from the ray's origin, an exact point */
         for (int j = 0; j < (type == PRIM_HALF ? 1 : PRIM_ARB_PLANES); j++)
             prim_segments_plane(&s, ia_sub(prim_segments_dot(p + 8 * j, 0, o), prim_iv(p + 8 * j, 3)),
-                                prim_segments_dot(p + 8 * j, 0, d), 0, ia_make(ta, tend));
+                                prim_segments_dir(p + 8 * j, 0, d, dir, known, j), 0, ia_make(ta, tend));
     } else if (type == PRIM_ELL || type == PRIM_TGC || type == PRIM_EHY || type == PRIM_TOR) {
         ia_interval at = ia_point(ta), a[3], b[3];
         prim_frame(p, 0, ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at), ray_extent(o[2], d[2], at), a);
         for (int r = 0; r < 3; r++)
-            b[r] = prim_segments_dot(p, 3 + 3 * r, d);
+            b[r] = prim_segments_dir(p, 3 + 3 * r, d, dir, known, r);
         ia_real width = ia_hi(tend - ta);
         ia_interval gamma = type == PRIM_TGC ? ia_hull(prim_iv(p, 12), prim_iv(p, 13)) : ia_point(0);
         quartic = type == PRIM_TOR || !(gamma.hi - gamma.lo <= PRIM_SEGMENTS_SKEW);
@@ -462,6 +485,29 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
     e[2] = ilo < ihi ? ihi : phi;
     e[3] = phi;
     return 1;
+}
+
+/* Whether no ray o + t d with o and d in the boxes `o` and `d` (a packet's beam, bvh.h) meets the solid for t in
+ * [ta, tend]: 1 only where that is proven, by the forms above over intervals of rays (every bound they give holds
+ * the crossings of every ray of the beam: the same inclusion functions, with o and d intervals instead of points).
+ * Ells, the tgcs that are quadrics and ehys; for the others 0 (not proven: an arb's box is mostly tight, so its
+ * planes over a beam paid less than they cost, truck's evaluations a ray 0.51 -> 0.50). */
+IA_FN int prim_segments_beam_out(int type, const ia_real *p, const ia_interval o[3], const ia_interval d[3], ia_real ta,
+                                 ia_real tend) {
+    prim_segments_span s = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0};
+    if (type == PRIM_ELL || type == PRIM_TGC || type == PRIM_EHY) {
+        ia_interval at = ia_point(ta), a[3], b[3], x[3];
+        for (int c = 0; c < 3; c++)
+            x[c] = ia_add(o[c], ia_mul(d[c], at));
+        prim_frame(p, 0, x[0], x[1], x[2], a);
+        for (int r = 0; r < 3; r++)
+            b[r] = prim_dot3(p, 3 + 3 * r, d[0], d[1], d[2]);
+        if (!prim_segments_frame(type, p, a, b, &s, ta, ia_hi(tend - ta)))
+            return 0;
+    } else {
+        return 0;
+    }
+    return !s.nan && !(fmax(s.plo, ta) < fmin(s.phi, tend));
 }
 
 #include "prim_pipe_segments.h"

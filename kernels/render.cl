@@ -4,10 +4,12 @@
  *
  * Per pixel: the camera ray (camera.h), clipped to the bounds (rays that miss the box cost nothing more); if the
  * tile may hold surface, the first root by stackless bisection (packet.h) from the tile's first coarse leaf on
- * (tile.h); then the normal and the colour at the leaf's midpoint (shade.h). Outputs,
- * indexed by pixel of the whole image: rgb (3 floats, display-encoded), depth (the leaf's start t, +inf on a
- * miss), normal (3 floats, 0 on a miss), and with KERNEL_STATS the evaluation counts (per tile, and per packet
- * their sum and maximum).
+ * (tile.h); then the normal and the colour at the leaf's midpoint (shade.h), or where the host gave an effects
+ * block the colour with the effects (kernels/effects.cl: effects_centre traces the hit's shadow rays, reflected
+ * rays and layers in the packet's lanes). Outputs, indexed by pixel of the whole image: rgb (3 floats,
+ * display-encoded), depth (the leaf's start t, +inf on a miss), normal (3 floats, 0 on a miss), and with
+ * KERNEL_STATS the evaluation counts (per tile, and per packet their sum and maximum, and the effects' secondary
+ * rays and their evaluations).
  */
 #include "camera.h"
 #include "tile.h"
@@ -217,11 +219,41 @@ static void put_pixels(int i0, int j0, packet_int col, packet_int row, int width
     }
 }
 
+/* iacsg_render's effects (kernels/effects.cl: effects_centre shades a packet's pixels with them): the effects'
+ * block, NULL for the plain lighting (shade.h); a union's groups all on, for the secondary rays; the secondary
+ * rays' interval Newton window; with KERNEL_STATS, per packet the secondary rays and their evaluations (NULL
+ * without). */
+typedef struct {
+    __constant ia_real *block;
+    __global const ulong *all_groups;
+    ia_real footprint;
+    __global uint *counts;
+} render_effects;
+
+#ifndef IACSG_TAPE /* a tape's program has no effects (the host refuses them there) */
+static void effects_centre(__constant ia_real *params, __constant ia_real *fx, __global const ulong *all_groups,
+                           ia_real footprint, packet_int row, int height, ia_maskv live, ia_maskv hit,
+                           const ia_realv o_ray[3], const ia_realv d_ray[3], ia_realv hit_lo, const ia_realv n_hit[3],
+                           shade_colorv color[3], packet_index *rays, packet_index *evals);
+#endif
+
+#ifdef KERNEL_STATS
+/* The sum of a packet's lanes' counts. */
+static uint lanes_sum(packet_index v) {
+    uint k[IA_VW], sum = 0;
+    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_uint, IA_VW)(v), 0, k);
+    for (int q = 0; q < IA_VW; q++)
+        sum += k[q];
+    return sum;
+}
+#endif
+
 /* The packet of PACKET_W x PACKET_H pixels from (i0, j0) (params.h), its rays traced together in SIMD lanes
  * (packet.h) after the tile pass of its tile, and shaded in lanes (shade.h). */
 static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags, int width, int height, int i0, int j0,
                          __global const ia_real *tiles, __global float *rgb, __global float *depth,
-                         __global float *normal, __global uint *evals, __global const ulong *tile_groups_of) {
+                         __global float *normal, __global uint *evals, __global const ulong *tile_groups_of,
+                         const render_effects *fx) {
     if (i0 >= width || j0 >= height)
         return;
     size_t tile = tile_index(i0 / TILE_SIZE, j0 / TILE_SIZE, (width + TILE_SIZE - 1) / TILE_SIZE);
@@ -231,13 +263,13 @@ static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags
     frame_root(params, &t0, &w);
     packet_int lanes = packet_lane_numbers();
     packet_int col = i0 + lanes % PACKET_W, row = j0 + lanes / PACKET_W;
-    ia_realv d[3] = {IAV_R(0), IAV_R(0), IAV_R(0)}, n[3] = {IAV_R(0), IAV_R(0), IAV_R(0)};
-    ia_realv hit_lo = IAV_R(0), hit_hi = IAV_R(0);
+    ia_realv o[3] = {IAV_R(0), IAV_R(0), IAV_R(0)}, d[3] = {IAV_R(0), IAV_R(0), IAV_R(0)};
+    ia_realv n[3] = {IAV_R(0), IAV_R(0), IAV_R(0)}, hit_lo = IAV_R(0), hit_hi = IAV_R(0);
     ia_maskv hit = (ia_maskv)0;
     packet_index counts = (packet_index)0;
     if (level >= 0) { /* else the tile pass proved the whole tile empty: no ray to set up */
         /* Each lane's ray, its part inside the bounds and its first node. */
-        ia_realv o[3], t_near, t_far;
+        ia_realv t_near, t_far;
         packet_rays(params, flags & RENDER_ORTHO, min(col, width - 1), min(row, height - 1), width, height, o, d);
         ia_maskv searching = (col < width) & (row < height) & packet_clip(params, o, d, &t_near, &t_far);
         bisect_index leaf = (bisect_index)tiles[2 * tile + 1];
@@ -256,40 +288,42 @@ static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags
         }
     }
     shade_colorv color[3];
-    shade_pixels(params, hit, n, d, row, height, color);
+    packet_index fx_rays = (packet_index)0, fx_evals = (packet_index)0; /* the effects' secondary rays */
+#ifndef IACSG_TAPE
+    if (fx->block) /* a miss needs no ray: where the tile pass proved them all misses, o and d are 0 */
+        effects_centre(params, fx->block, fx->all_groups, fx->footprint, row, height, (col < width) & (row < height),
+                       hit, o, d, hit_lo, n, color, &fx_rays, &fx_evals);
+    else
+#endif
+        shade_pixels(params, hit, n, d, row, height, color);
     put_pixels(i0, j0, col, row, width, height, hit, color, hit_lo, n, rgb, depth, normal);
 #ifdef KERNEL_STATS
     /* the packet's sum and maximum, all the host reads (a store per pixel was a fifth of an empty -stats frame's
      * kernel time, and 4 MB of fresh pages a 1024x1024 frame); lanes past the image counted nothing */
-    uint count[IA_VW], sum = 0, most = 0;
+    uint count[IA_VW], sum = lanes_sum(counts), most = 0;
     IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_uint, IA_VW)(counts), 0, count);
-    for (int k = 0; k < IA_VW; k++) {
-        sum += count[k];
+    for (int k = 0; k < IA_VW; k++)
         most = max(most, count[k]);
-    }
     size_t packet = (size_t)(j0 / PACKET_H) * (size_t)((width + PACKET_W - 1) / PACKET_W) + (size_t)(i0 / PACKET_W);
     evals[2 * packet] = sum;
     evals[2 * packet + 1] = most;
+    if (fx->counts) {
+        fx->counts[2 * packet] = lanes_sum(fx_rays);
+        fx->counts[2 * packet + 1] = lanes_sum(fx_evals);
+    }
 #else
-    (void)counts;
-    (void)evals;
+    (void)counts, (void)evals, (void)fx_rays, (void)fx_evals;
 #endif
 }
 
-/* One work-item per block of PACKET_W x PACKET_H tiles (32x32 pixels), run for bands of block rows: the tile pass
- * over its tiles, then their packets. One kernel rather than a tile kernel and a ray kernel: PoCL compiles each
- * kernel of a program separately at its first launch, so the expression was compiled twice (half of the first
- * run's time, ~8 s for 1024 spheres). `tape`: an interpreted expression's (kernels/tape_eval.h, a program with
- * IACSG_TAPE); a compiled one ignores it (NULL). */
-__kernel void iacsg_render(__constant ia_real *params, int flags, int width, int height, int block_row0,
-                           __global ia_real *tiles, __global float *rgb, __global float *depth, __global float *normal,
-                           __global uint *evals, __global uint *tile_evals, __global ulong *tile_groups_of,
-                           __global const uint *tape) {
+/* One work-item's block of PACKET_W x PACKET_H tiles (32x32 pixels): the tile pass over its tiles, then their
+ * packets, shaded with the effects fx (its block NULL: the plain lighting). */
+static void render_block(PACKET_TAPE_PARAM __constant ia_real *params, int flags, int width, int height,
+                         int block_row0, __global ia_real *tiles, __global float *rgb, __global float *depth,
+                         __global float *normal, __global uint *evals, __global uint *tile_evals,
+                         __global ulong *tile_groups_of, const render_effects *fx) {
     int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, tiles_y = (height + TILE_SIZE - 1) / TILE_SIZE;
     int tx0 = (int)get_global_id(0) * PACKET_W, ty0 = (block_row0 + (int)get_global_id(1)) * PACKET_H;
-#ifndef IACSG_TAPE
-    (void)tape;
-#endif
     if (tx0 >= tiles_x || ty0 >= tiles_y)
         return;
     block_tiles(PACKET_TAPE_ARG params, flags, width, height, tx0, ty0, tiles, tile_evals, tile_groups_of);
@@ -298,5 +332,23 @@ __kernel void iacsg_render(__constant ia_real *params, int flags, int width, int
             for (int j = 0; j < TILE_SIZE; j += PACKET_H)
                 for (int i = 0; i < TILE_SIZE; i += PACKET_W)
                     trace_packet(PACKET_TAPE_ARG params, flags, width, height, tx * TILE_SIZE + i, ty * TILE_SIZE + j,
-                                 tiles, rgb, depth, normal, evals, tile_groups_of);
+                                 tiles, rgb, depth, normal, evals, tile_groups_of, fx);
+}
+
+/* One work-item per block of tiles (render_block), run for bands of block rows. One kernel rather than a tile
+ * kernel and a ray kernel: PoCL compiles each kernel of a program separately at its first launch, so the
+ * expression was compiled twice (half of the first run's time, ~8 s for 1024 spheres). The effects have a kernel
+ * of their own (kernels/effects.cl: iacsg_render_effects): in this one the effects' code is not there at all (a
+ * branch on an argument made the plain render's kernel 40 % slower). `tape`: an interpreted expression's
+ * (kernels/tape_eval.h, a program with IACSG_TAPE); a compiled one ignores it (NULL). */
+__kernel void iacsg_render(__constant ia_real *params, int flags, int width, int height, int block_row0,
+                           __global ia_real *tiles, __global float *rgb, __global float *depth, __global float *normal,
+                           __global uint *evals, __global uint *tile_evals, __global ulong *tile_groups_of,
+                           __global const uint *tape) {
+#ifndef IACSG_TAPE
+    (void)tape;
+#endif
+    render_effects none = {0, 0, 0, 0};
+    render_block(PACKET_TAPE_ARG params, flags, width, height, block_row0, tiles, rgb, depth, normal, evals,
+                 tile_evals, tile_groups_of, &none);
 }

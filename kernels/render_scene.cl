@@ -56,12 +56,12 @@ typedef struct {
     __global int *overflow, *noverflow;
 } scene_frame;
 
-/* The rays of the packet of pixels from (i0, j0) (camera_ray), and where they meet the bounds (meets[k] 1, over
- * [tn[k], tf[k]]: camera_clip); a pixel outside the image or the band's rows meets nothing. In SIMD lanes
+/* The rays of the packet of pixels from (i0, j0) (camera_ray), their directions' reciprocals (ik, for the BVH),
+ * and where they meet the bounds (meets[k] 1, over [tn[k], tf[k]]: camera_clip); a pixel outside the image or the band's rows meets nothing. In SIMD lanes
  * (packet_camera.h, bit for bit the scalar functions' results) where the program has them, else one by one. */
 static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, int i0, int j0,
-                              ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real tn[PACKET_LANES],
-                              ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES]) {
+                              ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real ik[3][PACKET_LANES],
+                              ia_real tn[PACKET_LANES], ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES]) {
     int ortho = f->flags & RENDER_ORTHO, width = f->width, height = f->height;
 #ifdef PACKET_CAMERA_LANES
     packet_int lanes = packet_lane_numbers();
@@ -72,6 +72,7 @@ static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, 
     for (int c = 0; c < 3; c++) {
         IAV_STORE(o[c], ok[c]);
         IAV_STORE(d[c], dk[c]);
+        IAV_STORE(IAV_R(1) / d[c], ik[c]);
     }
     IAV_STORE(t_near, tn);
     IAV_STORE(t_far, tf);
@@ -85,8 +86,34 @@ static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, 
         for (int c = 0; c < 3; c++) {
             ok[c][k] = o[c];
             dk[c][k] = d[c];
+            ik[c][k] = (ia_real)1 / d[c];
         }
     }
+#endif
+}
+
+/* Drops from the packet's cut the solids proven out along every ray of its beam over the beam's range in their
+ * boxes (segments_beam_out: each ray's range there is within it, and outside its box a solid is out), so that
+ * its rays neither test nor solve them. */
+static void scene_beam_drop_out(const bvh_beam *beam, scene_view *view, int cut[BVH_CUT_MAX]) {
+#ifdef SCENE_SOLID_PRIMS
+    ia_interval o[3], d[3];
+    for (int c = 0; c < 3; c++) {
+        o[c] = ia_make(beam->olo[c], beam->ohi[c]);
+        d[c] = ia_make(beam->dlo[c], beam->dhi[c]);
+    }
+    for (int j = 0; j < view->ncut;) {
+        int solid = view->link[2 * cut[j] + SCENE_BVH_SOLID];
+        ia_real ta, tend;
+        if (solid >= 0 && bvh_beam_range(beam, view->box, cut[j], &ta, &tend) && segments_beam_out(solid, o, d, ta, tend))
+            cut[j] = cut[--view->ncut];
+        else
+            j++;
+    }
+#else
+    (void)beam;
+    (void)view;
+    (void)cut;
 #endif
 }
 
@@ -100,8 +127,9 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     surface_start starts[SURFACE_BLOCK_MAX];
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     kernel_u32 block_evals = scene_block(params, f->flags, i0, j0, width, height, f->items, f->nodes, time, starts, view);
-    ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES], meets[PACKET_LANES];
-    scene_packet_rays(params, f, i0, j0, ok, dk, tn, tf, meets);
+    ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
+    ia_real meets[PACKET_LANES];
+    scene_packet_rays(params, f, i0, j0, ok, dk, ik, tn, tf, meets);
     ia_real from[PACKET_LANES]; /* where each ray's weave starts (scene_union.h), or -inf: its own t_near */
     ia_real leaf_hi[PACKET_LANES]; /* the end of the union's leaf starting at from[k], or -inf */
     kernel_u32 from_evals[PACKET_LANES];
@@ -116,7 +144,15 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
 #else
     (void)tile;
 #endif
-    int pixel[PACKET_LANES];
+    int pixel[PACKET_LANES], cut[BVH_CUT_MAX];
+    bvh_beam beam;
+    bvh_beam_start(&beam);
+    for (int k = 0; k < PACKET_LANES; k++)
+        if (i0 + k % PACKET_W < width && j0 + k / PACKET_W < f->row_end && meets[k] != 0)
+            bvh_beam_add_lane(&beam, ok, dk, ik, k, tn[k], tf[k]);
+    view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
+    view->cut = view->ncut >= 0 ? cut : 0;
+    scene_beam_drop_out(&beam, view, cut);
     ia_real gk[3][PACKET_LANES], on[PACKET_LANES];
     float color[3][PACKET_LANES], rows[PACKET_LANES];
     ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
@@ -127,6 +163,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         weave_hit hit = {0, -1, -1, -1};
         ray->evals = ray->segments = ray->partitions = 0;
         ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
+        bvh_ray br = bvh_ray_lane(dk, ik, k);
         int found = 0, claimed = 0; /* claimed: at the union's leaf (scene_union_claim), or overflowing */
         if (pixel[k] >= 0 && meets[k] != 0 && (from[k] < IA_INF || view->nsurfaces > 0)) { /* else no hit */
 #ifdef SCENE_REGIONS_DISJOINT
@@ -135,7 +172,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
 #endif
             found = claimed == SCENE_TRACE_OVERFLOW ? claimed
                     : claimed ? scene_trace_surfaces(view, ray, o, d, tn[k], tf[k], 1, &hit)
-                              : scene_trace_ray_from(view, ray, o, d, tn[k], fmax(tn[k], from[k]), tf[k], &hit);
+                              : scene_trace_ray_from(view, ray, o, d, &br, tn[k], fmax(tn[k], from[k]), tf[k], &hit);
         }
         if (found == SCENE_TRACE_OVERFLOW) {
             f->overflow[atomic_inc(f->noverflow)] = pixel[k];
@@ -239,12 +276,15 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, 0};
     size_t first = slot * (size_t)cand_cap;
+    prim_dirs dirs; /* every ray of an orthographic view has the same direction */
+    for (int k = 0; k < PRIM_DIRS_SLOTS; k++)
+        dirs.solid[k] = -1;
     scene_ray ray = {nodes,
                      items,
                      solid_items_start,
                      solid_items,
                      {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first, cand_index + first,
-                      cand_newton + first, cand_newton_t + 2 * first},
+                      cand_newton + first, cand_newton_t + 2 * first, flags & RENDER_ORTHO ? &dirs : 0},
                      cand_cap,
                      0,
                      0,

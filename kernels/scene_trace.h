@@ -22,6 +22,8 @@ typedef struct {
     ia_real eps;
     ia_interval time;            /* encloses the value of t */
     const surface_start *starts; /* the first SURFACE_BLOCK_MAX surfaces' block starts (surface.h), or 0 */
+    const int *cut;              /* the ray's packet's cut of the BVH (bvh.h's bvh_beam_cut), or 0 */
+    int ncut;
 } scene_view;
 
 #define SCENE_TRACE_OVERFLOW (-1)
@@ -49,21 +51,23 @@ IA_FN int scene_trace_surfaces(const scene_view *v, scene_ray *r, const ia_real 
     return found;
 }
 
-/* Traces the ray o + t d over [tn, tf], its regions from `from` on (tn; or where no region can be in before,
- * kernels/scene_union.h, whose walks then start at nodes of eps; +inf where none is in): 1 with *hit, 0 when
- * nothing is hit, SCENE_TRACE_OVERFLOW when the ray meets more boxes than r has room for. Leaves every solid's
- * state OUT. */
-IA_FN int scene_trace_ray_from(const scene_view *v, scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real tn,
-                               ia_real from, ia_real tf, weave_hit *hit) {
+/* Traces the ray o + t d over [tn, tf] (br: its bvh_ray, bvh.h), its regions from `from` on (tn; or where no
+ * region can be in before, kernels/scene_union.h, whose walks then start at nodes of eps; +inf where none is
+ * in): 1 with *hit, 0 when nothing is hit, SCENE_TRACE_OVERFLOW when the ray meets more boxes than r has room
+ * for. Leaves every solid's state OUT. */
+IA_FN int scene_trace_ray_from(const scene_view *v, scene_ray *r, const ia_real o[3], const ia_real d[3],
+                               const bvh_ray *br, ia_real tn, ia_real from, ia_real tf, weave_hit *hit) {
     bvh_walk b;
     b.box = v->box;
     b.link = v->link;
     b.nodes = v->nodes;
-    b.r = bvh_ray_of(d);
+    b.r = br;
     b.o = o;
     b.d = d;
     b.tn = from;
     b.tf = tf;
+    b.cut = v->cut;
+    b.ncut = v->ncut;
     r->deep = from > tn;
     r->deep_from = from;
     r->deep_eps = v->eps;
@@ -76,7 +80,8 @@ IA_FN int scene_trace_ray_from(const scene_view *v, scene_ray *r, const ia_real 
 
 IA_FN int scene_trace_ray(const scene_view *v, scene_ray *r, const ia_real o[3], const ia_real d[3], ia_real tn,
                           ia_real tf, weave_hit *hit) {
-    return scene_trace_ray_from(v, r, o, d, tn, tn, tf, hit);
+    bvh_ray br = bvh_ray_of(d);
+    return scene_trace_ray_from(v, r, o, d, &br, tn, tn, tf, hit);
 }
 
 #endif

@@ -43,6 +43,7 @@ typedef struct {
     KERNEL_GLOBAL bisect_index *index;
     KERNEL_GLOBAL int *newton;       /* -1, or level << 2 | state before the root (see segments_newton) */
     KERNEL_GLOBAL ia_real *newton_t; /* the interval N holding the roots of that node */
+    prim_dirs *dirs; /* the solids' direction terms where every ray has the same direction (prim_segments.h), or 0 */
 } segments_walks;
 
 #define SEGMENTS_CLOSING (-1)
@@ -87,8 +88,15 @@ IA_FN ia_real segments_real_of(bisect_index b) {
 IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real ta,
                                 ia_real tend, ia_real eps, kernel_u32 *evals) {
     ia_real p[SEGMENTS_PARAM_REALS], e[4], resume = tend;
-    int type = scene_solid_P(w->solid[c], p, SEGMENTS_PARAM_REALS);
-    int r = type < 0 ? 0 : prim_segments(type, p, o, d, ta, tend, eps, e, &resume, evals);
+    int k = w->solid[c], type = scene_solid_P(k, p, SEGMENTS_PARAM_REALS), slot = k % PRIM_DIRS_SLOTS;
+    int kept = w->dirs && (type == PRIM_HALF || type == PRIM_ARB8 || type == PRIM_ELL || type == PRIM_TGC ||
+                           type == PRIM_EHY || type == PRIM_TOR); /* the types with direction terms */
+    int known = kept && w->dirs->solid[slot] == k;
+    int r = type < 0 ? 0
+                     : prim_segments(type, p, o, d, ta, tend, eps, e, &resume, evals, kept ? w->dirs->v[slot] : 0,
+                                     known);
+    if (kept)
+        w->dirs->solid[slot] = k;
     if (r == 0)
         return 0;
     w->level[c] = SEGMENTS_CLOSED;
@@ -99,6 +107,14 @@ IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[
     w->newton_t[2 * c] = e[2];
     w->newton_t[2 * c + 1] = e[3];
     return 1;
+}
+
+/* Whether solid k is proven out along every ray of a packet's beam (o and d: the hulls of its origins and
+ * directions) over [ta, tend] (prim_segments_beam_out); 0 where not proven. */
+IA_FN int segments_beam_out(int k, const ia_interval o[3], const ia_interval d[3], ia_real ta, ia_real tend) {
+    ia_real p[SEGMENTS_PARAM_REALS];
+    int type = scene_solid_P(k, p, SEGMENTS_PARAM_REALS);
+    return type >= 0 && prim_segments_beam_out(type, p, o, d, ta, tend);
 }
 
 /* A closed-form walk's step: the state from pos[c] on, after the changes at or before it (OUT, BOUNDARY, IN,

@@ -102,6 +102,8 @@ void iacsg_renderer_destroy(iacsg_renderer *r) {
         return;
     if (r->kernel)
         clReleaseKernel(r->kernel);
+    if (r->effects_kernel)
+        clReleaseKernel(r->effects_kernel);
     if (r->program)
         clReleaseProgram(r->program);
     render_scene_free(r->scene);
@@ -282,11 +284,12 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* The arguments but the band's first row (index 4): both kernels start with params, flags, width, height. */
-static iacsg_status set_args(iacsg_renderer *r, const iacsg_view *view, frame_buffers *b, iacsg_error *err) {
+/* The arguments of kernel k (iacsg_render, or with fx iacsg_render_effects and the effects it applies) but the
+ * band's first row (index 4): the kernels of both paths start with params, flags, width, height. */
+static iacsg_status set_args(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, frame_buffers *b,
+                             const render_fx_camera *fx, iacsg_error *err) {
     cl_int flags = view->camera.ortho_height > 0 ? RENDER_ORTHO : 0;
-    cl_int width = view->width, height = view->height;
-    cl_kernel k = r->kernel; /* argument 4, the band's first block row, is set per launch */
+    cl_int width = view->width, height = view->height; /* argument 4, the band's first block row, is set per launch */
     CLRT_CHECK(err, clSetKernelArg(k, 0, sizeof(cl_mem), &b->params));
     CLRT_CHECK(err, clSetKernelArg(k, 1, sizeof(cl_int), &flags));
     CLRT_CHECK(err, clSetKernelArg(k, 2, sizeof(cl_int), &width));
@@ -299,6 +302,15 @@ static iacsg_status set_args(iacsg_renderer *r, const iacsg_view *view, frame_bu
     CLRT_CHECK(err, clSetKernelArg(k, 10, sizeof(cl_mem), b->tile_evals ? &b->tile_evals : NULL));
     CLRT_CHECK(err, clSetKernelArg(k, 11, sizeof(cl_mem), &b->groups));
     CLRT_CHECK(err, clSetKernelArg(k, 12, sizeof(cl_mem), r->tape ? &r->tape : NULL));
+    if (!fx)
+        return IACSG_OK;
+    CLRT_CHECK(err, clSetKernelArg(k, 13, sizeof(cl_mem), &fx->block));
+    CLRT_CHECK(err, clSetKernelArg(k, 14, sizeof(cl_mem), &fx->all_groups));
+    double footprint = fx->footprint;
+    float footprint_f = (float)footprint;
+    CLRT_CHECK(err, r->config.fp64 ? clSetKernelArg(k, 15, sizeof footprint, &footprint)
+                                   : clSetKernelArg(k, 15, sizeof footprint_f, &footprint_f));
+    CLRT_CHECK(err, clSetKernelArg(k, 16, sizeof(cl_mem), &fx->counts));
     return IACSG_OK;
 fail:
     return IACSG_ERR_OPENCL;
@@ -308,17 +320,39 @@ fail:
  * most of the build. One launch over an empty image (every work-item returns at once, before touching a buffer,
  * all of which are NULL) makes that happen here, where it counts as build time, and not inside the first frame's
  * render time. The launch has the local size of the real ones (launch_bands), which is what PoCL compiles for. */
-static iacsg_status compile_now(iacsg_renderer *r, iacsg_error *err) {
+static iacsg_status compile_kernel_now(iacsg_renderer *r, cl_kernel k, int effects, iacsg_error *err) {
     iacsg_view empty = {0};
     frame_buffers none = {0};
+    render_fx_camera no_effects = {0};
     cl_int first_row = 0;
-    iacsg_status st = set_args(r, &empty, &none, err);
+    iacsg_status st = set_args(r, k, &empty, &none, effects ? &no_effects : NULL, err);
     if (st != IACSG_OK)
         return st;
     size_t one[2] = {1, 1};
-    CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &first_row));
-    CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, r->kernel, 2, NULL, one, one, 0, NULL, NULL));
+    CLRT_CHECK(err, clSetKernelArg(k, 4, sizeof(cl_int), &first_row));
+    CLRT_CHECK(err, clEnqueueNDRangeKernel(r->rt.queue, k, 2, NULL, one, one, 0, NULL, NULL));
     CLRT_CHECK(err, clFinish(r->rt.queue));
+    return IACSG_OK;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+static iacsg_status compile_now(iacsg_renderer *r, iacsg_error *err) { return compile_kernel_now(r, r->kernel, 0, err); }
+
+/* The camera kernel with the effects (kernels/effects.cl: iacsg_render_effects), made and compiled at its first
+ * use (counted as build time). */
+static iacsg_status effects_kernel(iacsg_renderer *r, cl_kernel *out, iacsg_error *err) {
+    if (!r->effects_kernel) {
+        double t0 = render_now_seconds();
+        cl_int rc = CL_SUCCESS;
+        r->effects_kernel = clCreateKernel(r->program, "iacsg_render_effects", &rc);
+        CLRT_CHECK(err, rc);
+        iacsg_status st = compile_kernel_now(r, r->effects_kernel, 1, err);
+        r->build_seconds += render_now_seconds() - t0;
+        if (st != IACSG_OK)
+            return st;
+    }
+    *out = r->effects_kernel;
     return IACSG_OK;
 fail:
     return IACSG_ERR_OPENCL;
@@ -328,8 +362,8 @@ fail:
  * rows, one launch each over `groups_x` x (the band's units) work-items, kernel argument 4 the band's first unit.
  * With a progress or cancel callback, waits for each band. Both paths: units of blocks (here and in
  * render_scene.c), each a divisor of IACSG_ROW_ALIGN so that a band starts on a whole unit. */
-iacsg_status render_launch_bands(iacsg_renderer *r, const iacsg_view *view, size_t groups_x, int unit_rows,
-                                 int band_units, iacsg_error *err) {
+iacsg_status render_launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, size_t groups_x,
+                                 int unit_rows, int band_units, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
     int band = band_units * unit_rows;
     int first = view->row_first, end = view->row_count ? first + view->row_count : view->height;
@@ -337,9 +371,9 @@ iacsg_status render_launch_bands(iacsg_renderer *r, const iacsg_view *view, size
         int rows = end - row0 < band ? end - row0 : band;
         cl_int unit0 = row0 / unit_rows;
         size_t global[2] = {groups_x, (size_t)(rows + unit_rows - 1) / unit_rows};
-        CLRT_CHECK(err, clSetKernelArg(r->kernel, 4, sizeof(cl_int), &unit0));
+        CLRT_CHECK(err, clSetKernelArg(k, 4, sizeof(cl_int), &unit0));
         size_t local[2] = {1, 1}; /* work-items are independent: let the device spread them over all its cores */
-        CLRT_CHECK(err, clEnqueueNDRangeKernel(q, r->kernel, 2, NULL, global, local, 0, NULL, NULL));
+        CLRT_CHECK(err, clEnqueueNDRangeKernel(q, k, 2, NULL, global, local, 0, NULL, NULL));
         if (view->progress || view->cancel)
             CLRT_CHECK(err, clFinish(q));
         if (view->progress)
@@ -353,21 +387,21 @@ fail:
 }
 
 /* Each band of rows, one launch (each block's tiles, then its pixels). */
-static iacsg_status launch_bands(iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
+static iacsg_status launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, iacsg_error *err) {
     size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
     int band = view->progress || view->cancel ? BAND_ROWS_PROGRESS : BAND_ROWS;
-    return render_launch_bands(r, view, (tiles_x + PACKET_W - 1) / PACKET_W, BLOCK_ROWS, band / BLOCK_ROWS, err);
+    return render_launch_bands(r, k, view, (tiles_x + PACKET_W - 1) / PACKET_W, BLOCK_ROWS, band / BLOCK_ROWS, err);
 }
 
 /* Brings the images (and the counts, with stats) to the host and waits for them. */
-static iacsg_status read_back(iacsg_renderer *r, const frame_buffers *b, size_t n, size_t tiles_n,
-                              size_t packets_n, iacsg_error *err) {
+static iacsg_status read_back(iacsg_renderer *r, const frame_buffers *b, const render_fx_camera *fx, size_t n,
+                              size_t tiles_n, size_t packets_n, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
     /* Mapping a USE_HOST_PTR buffer makes its host array current (a no-op on a CPU device). */
-    cl_mem images[5] = {b->rgb, b->depth, b->normal, b->evals, b->tile_evals};
-    size_t sizes[5] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float),
-                       2 * packets_n * sizeof(cl_uint), tiles_n * sizeof(cl_uint)};
-    for (int k = 0; k < 5; k++) {
+    cl_mem images[6] = {b->rgb, b->depth, b->normal, b->evals, b->tile_evals, fx->counts};
+    size_t sizes[6] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float),
+                       2 * packets_n * sizeof(cl_uint), tiles_n * sizeof(cl_uint), 2 * packets_n * sizeof(cl_uint)};
+    for (int k = 0; k < 6; k++) {
         if (!images[k])
             continue;
         cl_int rc = CL_SUCCESS;
@@ -429,30 +463,37 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = render_image_alloc(3 * n);
-    int fx = render_effects_need_aovs(r, view);
-    int need_depth = !view->no_depth || !view->no_ids || fx; /* the ids come from the depth */
+    int in_camera = render_effects_in_camera(r, view), fx_depth, fx_normal;
+    render_effects_expr_aovs(r, view, &fx_depth, &fx_normal);
+    render_fx_camera fx_camera = {0};
+    cl_kernel kernel = r->kernel;
+    if (st == IACSG_OK && in_camera)
+        st = render_effects_camera_open(r, view, packets_n, &fx_camera, err);
+    if (st == IACSG_OK && in_camera)
+        st = effects_kernel(r, &kernel, err);
+    int need_depth = !view->no_depth || !view->no_ids || fx_depth; /* the ids come from the depth */
     frame->depth = need_depth ? render_image_alloc(n) : NULL;
-    frame->normal = view->no_normals && !fx ? NULL : render_image_alloc(3 * n);
+    frame->normal = view->no_normals && !fx_normal ? NULL : render_image_alloc(3 * n);
     frame->ids = view->no_ids ? NULL : render_image_alloc(n);
     if (r->config.stats) {
         evals = render_in_place_alloc(2 * packets_n * sizeof(cl_uint));
         tile_evals = render_in_place_alloc(tiles_n * sizeof(cl_uint));
     }
-    if (!frame->rgb || (!frame->depth && need_depth) || (!frame->normal && (!view->no_normals || fx)) ||
+    if (!frame->rgb || (!frame->depth && need_depth) || (!frame->normal && (!view->no_normals || fx_normal)) ||
         (!frame->ids && !view->no_ids) || (r->config.stats && (!evals || !tile_evals)))
-        st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
+        st = st != IACSG_OK ? st : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
     if (st == IACSG_OK)
         st = render_check_device_memory(r, view, n, r->config.stats ? 8 : 7, err);
     if (st == IACSG_OK)
         st = create_buffers(r, params, n, tiles_n, packets_n, frame, evals, tile_evals, &buffers, err);
     if (st == IACSG_OK)
-        st = set_args(r, view, &buffers, err);
+        st = set_args(r, kernel, view, &buffers, in_camera ? &fx_camera : NULL, err);
     double t0 = render_now_seconds();
     if (st == IACSG_OK)
-        st = launch_bands(r, view, err);
+        st = launch_bands(r, kernel, view, err);
     if (st == IACSG_OK)
-        st = read_back(r, &buffers, n, tiles_n, packets_n, err);
+        st = read_back(r, &buffers, &fx_camera, n, tiles_n, packets_n, err);
     if (st == IACSG_OK) {
         frame->render_seconds = render_now_seconds() - t0;
         /* the rays of the rows traced, and their tiles' counts (a band's rows start on whole tiles) */
@@ -467,7 +508,7 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
                             frame);
         if (frame->ids)
             ids_from_depth(frame->depth, n, frame->ids);
-        st = render_effects_apply(r, view, frame, err);
+        st = render_effects_apply(r, view, frame, in_camera ? &fx_camera : NULL, err);
         if (view->no_normals && frame->normal) {
             free(frame->normal);
             frame->normal = NULL;
@@ -478,6 +519,7 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
         }
     }
     release_buffers(&buffers);
+    render_effects_camera_close(&fx_camera);
     free(evals);
     free(tile_evals);
     if (st != IACSG_OK)

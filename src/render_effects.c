@@ -8,7 +8,9 @@
  *   --> rgb (linear light summed, then gamma 2 as kernels/light.h encodes).
  *
  * Everything per ray runs on the device, shaded by light.h (shade_effects): an expression's paths wholly in
- * kernels/effects.cl (render_effects_device.c launches it: this file lists the pixels); a scene's secondary rays
+ * kernels/effects.cl, most often inside the camera kernel (render_effects_in_camera: render.c launches it with
+ * this file's block), else after the frame (render_effects_device.c launches them: this file lists the pixels),
+ * as are -aa's edges; a scene's secondary rays
  * traced by kernels/scene_effects.cl and their hits shaded there (render_effects_trace.c), while this file keeps
  * the paths, their shadow rays and children. So an occluder or a reflected surface that a ray crosses inside the
  * bounds is never missed, and with the default rig and no effect but -aa or -background a pixel gets the colour
@@ -395,10 +397,15 @@ static void traced_rows(const iacsg_view *v, int *row0, int *row1) {
 
 /* Whether the host would light each centre hit exactly as the kernel did (kernels/light.h: the default rig, no
  * shadow, no reflection, no transparency), so that the kernel's colours stand. */
-static int kernel_colors_hold(const fx_frame *f) {
-    const iacsg_effects *e = f->e;
-    return e->shade == IACSG_SHADE_LIT && e->nlights == 0 && !e->shadows && !(e->bounces > 0 && reflects(f->r, e)) &&
-           !transparent(f->r, e);
+static int kernel_colors_hold(const iacsg_renderer *r, const iacsg_effects *e) {
+    return e->shade == IACSG_SHADE_LIT && e->nlights == 0 && !e->shadows && !(e->bounces > 0 && reflects(r, e)) &&
+           !transparent(r, e);
+}
+
+/* The reflected rays a first-root path's path may list for a next launch: only off a transparent surface (off an
+ * opaque one the path goes on in its lane), one per layer at most. */
+static int expr_kid_slots(const iacsg_effects *e) {
+    return e->bounces > 0 && e->reflect > 0 && e->transparency > 0 ? EFFECTS_MAX_LAYERS : 0;
 }
 
 /* The traced pixels in blocks of 4x4 that are `edge` (or, edge NULL, that get a path: a miss where -background
@@ -408,7 +415,7 @@ static int kernel_colors_hold(const fx_frame *f) {
  * megapixel's 4 MB (its page faults) and a pass more, all on one CPU. */
 static size_t block_select(const fx_frame *f, const iacsg_frame *fr, const unsigned char *edge, int *out) {
     const iacsg_view *v = f->view;
-    int row0, row1, keep = kernel_colors_hold(f), background = f->e->background;
+    int row0, row1, keep = kernel_colors_hold(f->r, f->e), background = f->e->background;
     traced_rows(v, &row0, &row1);
     size_t n = 0;
     for (int bj = row0; bj < row1; bj += PACKET_H)
@@ -574,20 +581,21 @@ static void effects_block(const fx_frame *f, double b[EFFECTS_COUNT]) {
 }
 
 /* The first-root path: the centre rays' colours (the hits', and the misses' where the background is not the
- * kernel's; none where the kernel's colours stand), then -aa's edges, all shaded on the device
- * (render_effects_device.c). */
-static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, iacsg_error *err) {
+ * kernel's; none where the kernel's colours stand, nor where the camera kernel applied the effects: in_camera),
+ * then -aa's edges, all shaded on the device (render_effects_device.c). */
+static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, int in_camera, iacsg_error *err) {
     const iacsg_effects *e = f->e;
-    /* reflected rays are listed for a next launch only off a transparent surface (off an opaque one the path goes
-     * on in its lane), one per layer at most */
-    int kid_slots = e->bounces > 0 && e->reflect > 0 && e->transparency > 0 ? EFFECTS_MAX_LAYERS : 0;
+    int kid_slots = expr_kid_slots(e);
     int *listed = pixel_list(f);
     if (!listed)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-    size_t n = block_select(f, frame, NULL, listed);
-    double centre[2] = {0, f->tracer.footprint}; /* Newton's window for the walks of the secondary rays */
-    iacsg_status st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, centre, frame,
-                                    err);
+    iacsg_status st = IACSG_OK;
+    size_t n;
+    if (!in_camera) {
+        n = block_select(f, frame, NULL, listed);
+        double centre[2] = {0, f->tracer.footprint}; /* Newton's window for the walks of the secondary rays */
+        st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, centre, frame, err);
+    }
     if (st == IACSG_OK && e->aa > 1) {
         double aa[2] = {aa_eps(f), f->tracer.footprint};
         long edges = edge_pixels(f, frame, listed);
@@ -631,21 +639,85 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
     return st;
 }
 
-iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err) {
+/* What a frame's effects need before its pixels: the camera, the lights, the effects' block. */
+static iacsg_status frame_open(fx_frame *f, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
+    memset(f, 0, sizeof *f);
+    f->r = r;
+    f->view = view;
+    f->e = view->effects;
+    iacsg_status st = iacsg_camera_params(&view->camera, view->width, view->height, f->cam, err);
+    resolve_lights(f);
+    effects_block(f, f->block);
+    return st;
+}
+
+void render_effects_expr_aovs(const iacsg_renderer *r, const iacsg_view *view, int *depth, int *normals) {
+    const iacsg_effects *e = view->effects;
+    int on = effects_on(r, e);
+    int centre_pass = on && !render_effects_in_camera(r, view) && (!kernel_colors_hold(r, e) || e->background);
+    *depth = centre_pass || (on && e->aa > 1);
+    *normals = centre_pass;
+}
+
+int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view) {
+    const iacsg_effects *e = view->effects;
+    return !r->scene && !r->tape && effects_on(r, e) && e->shade != IACSG_SHADE_DEPTH && expr_kid_slots(e) == 0 &&
+           !kernel_colors_hold(r, e);
+}
+
+iacsg_status render_effects_camera_open(iacsg_renderer *r, const iacsg_view *view, size_t packets,
+                                        render_fx_camera *c, iacsg_error *err) {
+    memset(c, 0, sizeof *c);
+    fx_frame f;
+    iacsg_status st = frame_open(&f, r, view, err);
+    if (st == IACSG_OK)
+        st = fx_block_buffer(r, f.block, &c->block, err);
+    if (st == IACSG_OK)
+        st = fx_all_groups(r, &c->all_groups, err);
+    if (st == IACSG_OK)
+        st = fx_footprint(view, &c->footprint, err);
+    if (st == IACSG_OK && r->config.stats) {
+        c->packets = packets;
+        if (!(c->counts_host = calloc(2 * packets, sizeof(cl_uint)))) /* 0 for the packets of rows not traced */
+            return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects' counts");
+        cl_int rc = CL_SUCCESS;
+        c->counts = clCreateBuffer(r->rt.context, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR,
+                                   2 * packets * sizeof(cl_uint), c->counts_host, &rc);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clCreateBuffer(effects' counts)", __func__, __LINE__);
+    }
+    return st;
+}
+
+void render_effects_camera_close(render_fx_camera *c) {
+    cl_mem all[3] = {c->block, c->all_groups, c->counts};
+    for (int k = 0; k < 3; k++)
+        if (all[k])
+            clReleaseMemObject(all[k]);
+    free(c->counts_host);
+    memset(c, 0, sizeof *c);
+}
+
+iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame,
+                                  const render_fx_camera *in_camera, iacsg_error *err) {
     if (!effects_on(r, view->effects))
         return IACSG_OK;
     double t0 = render_now_seconds();
-    fx_frame f = {0};
-    f.r = r;
-    f.view = view;
-    f.e = view->effects;
-    iacsg_status st = iacsg_camera_params(&view->camera, view->width, view->height, f.cam, err);
-    if (st == IACSG_OK)
+    long long camera_rays = 0; /* the camera kernel's secondary rays and their evaluations */
+    double camera_evals = 0;
+    for (size_t k = 0; in_camera && k < in_camera->packets; k++) {
+        camera_rays += in_camera->counts_host[2 * k];
+        camera_evals += in_camera->counts_host[2 * k + 1];
+    }
+    fx_frame f;
+    iacsg_status st = frame_open(&f, r, view, err);
+    int left = !in_camera || view->effects->aa > 1; /* anything the camera kernel did not do */
+    if (st == IACSG_OK && left)
         st = fx_tracer_open(&f.tracer, r, view, err);
     f.accum = frame->rgb;
     depth_range(&f, frame);
-    resolve_lights(&f);
-    effects_block(&f, f.block);
+    f.block[EFFECTS_DEPTH_LO] = f.depth_lo;
+    f.block[EFFECTS_DEPTH_HI] = f.depth_hi;
     if (st == IACSG_OK && r->scene) { /* -shade ids: each item's palette colour */
         int nitems = r->fx && r->fx->nitems > 0 ? r->fx->nitems : 1;
         if (!(f.palette = malloc(3 * (size_t)nitems * sizeof *f.palette)))
@@ -653,15 +725,15 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
         for (int i = 0; st == IACSG_OK && i < nitems; i++)
             scene_palette(i, f.palette + 3 * i);
     }
-    if (st == IACSG_OK)
-        st = r->scene ? apply_scene(&f, frame, err) : apply_expr(&f, frame, err);
+    if (st == IACSG_OK && left)
+        st = r->scene ? apply_scene(&f, frame, err) : apply_expr(&f, frame, in_camera != NULL, err);
     free(f.palette);
     fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1],
                       &f.rays,        &f.hits,        &f.rows,      &f.vis,     &f.colors};
     for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
         free(bufs[k]->p);
-    frame->secondary_rays = f.tracer.rays;
-    frame->secondary_evals_mean = f.tracer.rays ? f.tracer.evals / (double)f.tracer.rays : 0;
+    frame->secondary_rays = f.tracer.rays + camera_rays;
+    frame->secondary_evals_mean = frame->secondary_rays ? (f.tracer.evals + camera_evals) / frame->secondary_rays : 0;
     fx_tracer_close(&f.tracer);
     frame->render_seconds += render_now_seconds() - t0;
     return st;

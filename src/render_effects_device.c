@@ -182,9 +182,6 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
     fx_device x = {.t = t, .k = r->fx->trace, .view = t->view, .kid_slots = kid_slots, .accum = frame->rgb,
                    .aa_eps_footprint = aa_eps_footprint};
     fx_generation gen[2] = {{0}};
-    char reals[EFFECTS_COUNT * sizeof(double)];
-    for (int k = 0; k < EFFECTS_COUNT; k++)
-        fx_put_real(r, reals, (size_t)k, block[k]);
     size_t slots = FX_DEVICE_SLOTS, paths = launch_paths(kid_slots) + PACKET_LANES;
     x.color = malloc(3 * paths * sizeof(float));
     x.nkids = malloc(paths * sizeof(int));
@@ -196,14 +193,16 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
     x.summed = malloc((npixels + 1) * sizeof *x.summed);
     if (!x.color || !x.nkids || (r->config.stats && !x.stats) || (kid_slots && !x.kids) || !x.summed)
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-    if (st == IACSG_OK) {
-        x.fx = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, EFFECTS_COUNT * rb, reals, &rc);
-        if (rc == CL_SUCCESS)
-            x.depth = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, npix * sizeof(float),
-                                     frame->depth, &rc);
+    if (st == IACSG_OK)
+        st = fx_block_buffer(r, block, &x.fx, err);
+    if (st == IACSG_OK && mode == EFFECTS_MODE_CENTRE) { /* the centre hits (other modes trace their rays) */
+        x.depth = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, npix * sizeof(float),
+                                 frame->depth, &rc);
         if (rc == CL_SUCCESS)
             x.normal = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
                                       3 * npix * sizeof(float), frame->normal, &rc);
+    }
+    if (st == IACSG_OK) {
         if (rc == CL_SUCCESS)
             x.rgb = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, 3 * npix * sizeof(float),
                                    frame->rgb, &rc);

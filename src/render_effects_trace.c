@@ -77,21 +77,42 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
         if (st != IACSG_OK)
             return st;
     }
+    st = fx_all_groups(r, &t->all_groups, err);
+    if (st == IACSG_OK)
+        st = fx_footprint(view, &t->footprint, err);
+    return st;
+fail:
+    return IACSG_ERR_OPENCL;
+}
+
+iacsg_status fx_all_groups(iacsg_renderer *r, cl_mem *out, iacsg_error *err) {
     cl_ulong ones[SEGMENTS];
     for (int k = 0; k < SEGMENTS; k++)
         ones[k] = ~(cl_ulong)0;
-    t->all_groups = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof ones, ones, &rc);
-    CLRT_CHECK(err, rc);
+    cl_int rc = CL_SUCCESS;
+    *out = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof ones, ones, &rc);
+    return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clCreateBuffer(all groups)", __func__, __LINE__);
+}
+
+iacsg_status fx_footprint(const iacsg_view *view, double *footprint, iacsg_error *err) {
     double p[PARAM_COUNT], far2 = 0;
-    st = iacsg_camera_params(&view->camera, view->width, view->height, p, err);
+    iacsg_status st = iacsg_camera_params(&view->camera, view->width, view->height, p, err);
     for (int k = 0; k < 3; k++) {
         double e = view->camera.eye[k], lo = view->bounds[k], hi = view->bounds[k + 3];
         far2 += fmax((e - lo) * (e - lo), (e - hi) * (e - hi));
     }
-    t->footprint = 2 * p[PARAM_SCALE_V] / view->height * (view->camera.ortho_height > 0 ? 1 : sqrt(far2));
+    *footprint = 2 * p[PARAM_SCALE_V] / view->height * (view->camera.ortho_height > 0 ? 1 : sqrt(far2));
     return st;
-fail:
-    return IACSG_ERR_OPENCL;
+}
+
+iacsg_status fx_block_buffer(iacsg_renderer *r, const double *block, cl_mem *out, iacsg_error *err) {
+    char reals[EFFECTS_COUNT * sizeof(double)];
+    for (int k = 0; k < EFFECTS_COUNT; k++)
+        fx_put_real(r, reals, (size_t)k, block[k]);
+    cl_int rc = CL_SUCCESS;
+    *out = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, EFFECTS_COUNT * fx_real_bytes(r),
+                          reals, &rc);
+    return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clCreateBuffer(effects)", __func__, __LINE__);
 }
 
 void fx_tracer_close(fx_tracer *t) {

@@ -56,6 +56,12 @@ typedef struct {
 } fx_tracer;
 
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err);
+/* A buffer of SEGMENTS masks all on: the secondary rays search every group of a union. */
+iacsg_status fx_all_groups(iacsg_renderer *r, cl_mem *out, iacsg_error *err);
+/* A pixel's footprint at the bounds' farthest corner: the secondary rays' Newton window. */
+iacsg_status fx_footprint(const iacsg_view *view, double *footprint, iacsg_error *err);
+/* The effects' block (EFFECTS_COUNT, kernels/effects.h) in a device buffer, in the working precision. */
+iacsg_status fx_block_buffer(iacsg_renderer *r, const double *block, cl_mem *out, iacsg_error *err);
 void fx_tracer_close(fx_tracer *t);
 
 /* The first-root path's effects on the device (src/render_effects_device.c, kernels/effects.cl): the paths of

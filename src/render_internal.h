@@ -14,6 +14,7 @@ struct iacsg_renderer {
     clrt rt;
     cl_program program;
     cl_kernel kernel;
+    cl_kernel effects_kernel; /* the first-root path's camera kernel with the effects, made at its first use */
     iacsg_render_config config;
     double build_seconds;
     render_scene *scene; /* NULL on the first-root path */
@@ -48,9 +49,9 @@ iacsg_status render_fill_params(const iacsg_view *v, int fp64, void *block, iacs
 /* An error naming -size when a frame's buffers, `per_pixel` 4-byte values a pixel, cannot fit the device. */
 iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n, double per_pixel,
                                         iacsg_error *err);
-/* Launches r->kernel over the view's rows in bands (render.c). */
-iacsg_status render_launch_bands(iacsg_renderer *r, const iacsg_view *view, size_t groups_x, int unit_rows,
-                                 int band_units, iacsg_error *err);
+/* Launches kernel k (r->kernel, or the effects' camera kernel) over the view's rows in bands (render.c). */
+iacsg_status render_launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, size_t groups_x,
+                                 int unit_rows, int band_units, iacsg_error *err);
 /* A host array of `bytes` that a device uses in place (CL_MEM_USE_HOST_PTR), page-aligned, in huge pages from
  * 2 MB on; and a frame's image of `count` floats in one. Both are freed with free(). */
 void *render_in_place_alloc(size_t bytes);
@@ -65,10 +66,33 @@ iacsg_status render_scene_trace_args(iacsg_renderer *r, const iacsg_view *view, 
 void render_scene_trace_release(void *held);
 const float *render_scene_materials(const iacsg_renderer *r); /* SCENE_MATERIAL_FLOATS per item */
 
-/* The effects of a frame, after its camera rays (render_effects.c): a no-op without view->effects. */
-iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame, iacsg_error *err);
+/* The effects that the first-root path's camera kernel applies itself (kernels/render.cl: render_effects), where
+ * render_effects_in_camera says it can: the effects' block, a union's groups all on, the secondary rays' Newton
+ * window, and with stats per packet the secondary rays and their evaluations (counts, over counts_host). */
+typedef struct {
+    cl_mem block, all_groups, counts;
+    double footprint;
+    cl_uint *counts_host;
+    size_t packets;
+} render_fx_camera;
+
+/* Whether the camera kernel can shade the frame's pixels with its effects: the first-root path's compiled code,
+ * no path that lists a reflected ray (reflections off a transparent surface), no -shade depth (its range needs
+ * every hit first), and hits to shade again (not only -aa or -background, where the kernel's colours stand: the
+ * pass after the frame colours the misses only, and each hit keeps the plain render's colour exactly). */
+int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view);
+iacsg_status render_effects_camera_open(iacsg_renderer *r, const iacsg_view *view, size_t packets,
+                                        render_fx_camera *c, iacsg_error *err);
+void render_effects_camera_close(render_fx_camera *c);
+/* The effects of a frame, after its camera rays (render_effects.c): a no-op without view->effects. in_camera:
+ * the camera kernel's (then only -aa's edges are left), or NULL. */
+iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame,
+                                  const render_fx_camera *in_camera, iacsg_error *err);
 /* Whether the effects need the frame's depth and normals (which the frame then computes, and drops after). */
 int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view);
+/* Of those, what the first-root path's effects need after its camera kernel: the depths for the pass over the
+ * centre hits or for -aa's edges, the normals for that pass. */
+void render_effects_expr_aovs(const iacsg_renderer *r, const iacsg_view *view, int *depth, int *normals);
 /* Keeps what the effects need of a scene's materials (its items' reflect). */
 iacsg_status render_effects_keep_scene(iacsg_renderer *r, const struct iacsg_scene *s, iacsg_error *err);
 void render_effects_free(render_fx *fx);

@@ -329,7 +329,7 @@ static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_
     cl_mem none = NULL;
     if (st == IACSG_OK)
         st = set_launch_args(r, 0, &none, 0, &b->list[0], &b->nlist[0], err);
-    return st == IACSG_OK ? render_launch_bands(r, view, groups_x, SCENE_BLOCK, (int)band, err) : st;
+    return st == IACSG_OK ? render_launch_bands(r, r->kernel, view, groups_x, SCENE_BLOCK, (int)band, err) : st;
 }
 
 /* Traces the listed rays again with four times the room until none overflows. */
@@ -462,7 +462,7 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
         frame->rays = (long long)traced;
         frame->ray_buffer_bytes = (long long)slot_bytes(r, b.cand_cap);
         summarize(overlap + at, counts ? counts + 3 * at : NULL, frame->ids + at, traced, frame);
-        st = render_effects_apply(r, view, frame, err);
+        st = render_effects_apply(r, view, frame, NULL, err);
         float **unasked[] = {view->no_depth ? &frame->depth : NULL, view->no_normals ? &frame->normal : NULL};
         for (int k = 0; k < 2; k++)
             if (unasked[k]) {

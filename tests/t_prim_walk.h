@@ -358,7 +358,7 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
     ia_real range[2] = {ta, w}, pos[1], newton_t[2];
     int solid[1] = {0}, level[1], newton[1];
     bisect_index index[1];
-    segments_walks walk = {solid, range, pos, level, index, newton, newton_t};
+    segments_walks walk = {solid, range, pos, level, index, newton, newton_t, 0};
     segments_start(&walk, 0);
     ia_real end = node_bound(ta, w, 0, 1);
     ld cross[REF_MAX_CROSSINGS];
@@ -461,10 +461,88 @@ static int clip(const double box[6], const test_ray *ray, ia_real *ta, ia_real *
     return 1;
 }
 
+#ifdef SCENE_SOLID_PRIMS
+/* A packet's beam around the ray (kernels/prim_segments.h's prim_segments_beam_out): 16 rays on a 4 x 4 grid of
+ * spacing h, of one direction and origins apart (an orthographic camera's) or one origin and directions apart (a
+ * perspective one's), and 16 more at random within their hulls. Where the beam is proven out over [ta, tend] (the
+ * hull of the grid rays' ranges in the box), no ray with its origin and direction in the hulls may cross the
+ * primitive there, nor start inside it. Counts the beams tried and proven out. */
+static void check_beam(test_rng_t *rng, const scene_prim *sp, const double box[6], double scale, const test_ray *ray,
+                       long *beams, long *out) {
+    enum { GRID = 16, RAYS = 32 };
+    int ortho = test_rand_u64(rng) % 2;
+    double h = scale * ldexp(1, -(int)(test_rand_u64(rng) % 12)) * (ortho ? 0.3 : 0.01), u[3], v[3];
+    for (int c = 0; c < 3; c++) {
+        u[c] = rnd(rng, -h, h);
+        v[c] = rnd(rng, -h, h);
+    }
+    test_ray rays[RAYS];
+    ia_interval o[3], d[3];
+    ia_real ta = IA_INF, tend = -IA_INF;
+    for (int k = 0; k < GRID; k++) {
+        double i = k % 4, j = k / 4;
+        for (int c = 0; c < 3; c++) {
+            rays[k].o[c] = ortho ? (ia_real)(ray->o[c] + i * u[c] + j * v[c]) : ray->o[c];
+            rays[k].d[c] = ortho ? ray->d[c] : (ia_real)(ray->d[c] + i * u[c] + j * v[c]);
+            o[c] = k ? ia_hull(o[c], ia_point(rays[k].o[c])) : ia_point(rays[k].o[c]);
+            d[c] = k ? ia_hull(d[c], ia_point(rays[k].d[c])) : ia_point(rays[k].d[c]);
+        }
+        ia_real a, w;
+        if (clip(box, &rays[k], &a, &w)) {
+            ta = fmin(ta, a);
+            tend = fmax(tend, node_bound(a, w, 0, 1));
+        }
+    }
+    if (!(ta < tend))
+        return;
+    for (int k = GRID; k < RAYS; k++)
+        for (int c = 0; c < 3; c++) {
+            rays[k].o[c] = (ia_real)rnd(rng, o[c].lo, o[c].hi);
+            rays[k].d[c] = (ia_real)rnd(rng, d[c].lo, d[c].hi);
+        }
+    *beams += 1;
+    if (!prim_segments_beam_out(host_type, host_params, o, d, ta, tend))
+        return;
+    *out += 1;
+    for (int k = 0; k < RAYS; k++) {
+        ld lo[3], ld_[3], cross[REF_MAX_CROSSINGS];
+        for (int c = 0; c < 3; c++)
+            lo[c] = rays[k].o[c], ld_[c] = rays[k].d[c];
+        ref_line line = ref_local_line(sp->mat, lo, ld_);
+        int inside0, n = prim_ref_crossings(sp, &line, (ld)ta, (ld)tend, cross, &inside0);
+        CHECK(n == 0 && !inside0, "type %d: a beam proven out, but its ray %d %s over [%.9g, %.9g]", sp->type, k,
+              n ? "crosses the primitive" : "starts inside", (double)ta, (double)tend);
+    }
+}
+#endif
+
+#ifdef SCENE_SOLID_PRIMS
+/* The direction terms kept for later rays (prim_dirs): a solve that fills them and one that takes them give what a
+ * solve without them gives, bit for bit. */
+static void check_dirs(const test_ray *ray, ia_real ta, ia_real w, ia_real eps) {
+    ia_interval dir[PRIM_DIRS_INTERVALS];
+    ia_real e[3][4], resume[3] = {0, 0, 0}, end = node_bound(ta, w, 0, 1);
+    kernel_u32 evals = 0;
+    int r[3];
+    for (int k = 0; k < 3; k++)
+        r[k] = prim_segments(host_type, host_params, ray->o, ray->d, ta, end, eps, e[k], &resume[k], &evals,
+                             k ? dir : 0, k == 2);
+    for (int k = 1; k < 3; k++)
+        CHECK(r[k] == r[0] && (r[0] == 0 || (memcmp(e[k], e[0], sizeof e[0]) == 0 && resume[k] == resume[0])),
+              "type %d: a solve %s the kept direction terms differs from one without them", host_type,
+              k == 1 ? "keeping" : "taking");
+}
+#endif
+
 static void run_type(int type, int variants, const char *name) {
     test_rng_t *rng = test_rng();
     tally tl = {0};
     long prims = test_iters(40), per_prim = 30, closable_rays = 0, closed_of_closable = 0;
+#ifdef SCENE_SOLID_PRIMS
+    long beams = 0, beams_out = 0;
+    test_rng_t beam_rng = *rng; /* a stream of its own: the rays above stay those of the tests before */
+    beam_rng.s[0] ^= 0x9e3779b97f4a7c15u;
+#endif
     for (long it = 0; it < prims; it++) {
         /* every type has a closed form (a tgc's variants 0-2, rec, rcc or trc and cone, are quadrics, the others
          * and the torus quartics, kernels/prim_segments.h; a pipe's bends too) */
@@ -512,6 +590,11 @@ static void run_type(int type, int variants, const char *name) {
             if (!clip(box, &ray, &ta, &w))
                 continue;
             check_ray(&sp, scale, &ray, ta, w, eps, &tl);
+#ifdef SCENE_SOLID_PRIMS
+            check_beam(&beam_rng, &sp, box, scale, &ray, &beams, &beams_out);
+            if (type != SCENE_PRIM_PIPE)
+                check_dirs(&ray, ta, w, eps);
+#endif
             closable_rays += closable;
             closed_of_closable += closable && tl.closed > closed;
         }
@@ -530,6 +613,10 @@ static void run_type(int type, int variants, const char *name) {
           "%s: %ld rays in closed form, %ld of the %ld that have one", name, tl.closed, closed_of_closable,
           closable_rays);
     CHECK(tl.closed_worst <= 0.05, "%s: a closed form's BOUNDARY %.3g eps from its crossing", name, tl.closed_worst);
+    int beam_type = type == SCENE_PRIM_ELL || type == SCENE_PRIM_EHY || type == SCENE_PRIM_TGC;
+    test_note("%s: %ld of %ld beams of 16 rays around them proven out", name, beams_out, beams);
+    CHECK(beam_type ? beams_out > beams / 50 : beams_out == 0, "%s: %ld of %ld beams proven out", name, beams_out,
+          beams);
 #else
     CHECK(tl.closed == 0, "%s: %ld rays in closed form without SCENE_SOLID_PRIMS", name, tl.closed);
 #endif

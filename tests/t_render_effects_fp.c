@@ -543,6 +543,50 @@ TEST_FP(effects_aovs_unchanged) {
     }
 }
 
+/* -background alone (and with -aa, off its edges) changes only the misses: every hit keeps the plain render's
+ * colour bit for bit (the kernel's, where the camera kernel would light it with the effects' code otherwise, which
+ * rounds differently), and a miss takes the background of its row, top to bottom (light.h: shade_background). */
+TEST_FP(effects_background_keeps_hits) {
+    const char *texts[2] = {"min(sphere, torus)", "region a = sphere\nregion b = torus\n"};
+    iacsg_view view = sphere_ortho_view(64);
+    view.camera = (iacsg_camera){.eye = {3, -2.5, 2}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 40};
+    view.bounds[2] = -2, view.bounds[5] = 2;
+    iacsg_effects fx = {.background = 1, .background_top = {1, 0.5, 0}, .background_bottom = {0, 0.5, 1}};
+    for (int s = 0; s < 2; s++) {
+        iacsg_frame plain, effects;
+        view.effects = NULL;
+        render_scene_text(texts[s], &view, &plain);
+        view.effects = &fx;
+        render_scene_text(texts[s], &view, &effects);
+        long hits = 0, misses = 0, bad_hits = 0, bad_misses = 0;
+        for (int j = 0; j < view.height; j++)
+            for (int i = 0; i < view.width; i++) {
+                size_t px = (size_t)j * view.width + i;
+                if (!isinf(plain.depth[px])) {
+                    hits++;
+                    bad_hits += memcmp(plain.rgb + 3 * px, effects.rgb + 3 * px, 3 * sizeof(float)) != 0;
+                    continue;
+                }
+                misses++;
+                for (int c = 0; c < 3; c++) {
+                    double v = (double)j / (view.height - 1);
+                    double want = fx.background_top[c] + (fx.background_bottom[c] - fx.background_top[c]) * v;
+                    if (fabs(effects.rgb[3 * px + c] - want) > 1e-5) {
+                        bad_misses++;
+                        break;
+                    }
+                }
+            }
+        iacsg_frame_free(&plain);
+        iacsg_frame_free(&effects);
+        CHECK(hits > 500 && misses > 500, "%s: %ld hits, %ld misses: the view does not test both",
+              s ? "regions" : "expression", hits, misses);
+        CHECK(bad_hits == 0, "%s: %ld of %ld hits changed colour", s ? "regions" : "expression", bad_hits, hits);
+        CHECK(bad_misses == 0, "%s: %ld of %ld misses are not their row's background", s ? "regions" : "expression",
+              bad_misses, misses);
+    }
+}
+
 /* A half-transparent region: a slab of opacity 1/2 in front of an opaque sphere, as regions, seen along -z. A
  * region is a volume, one layer where a ray enters it: through both, a pixel is half the slab's lit colour and
  * half the sphere's, in linear light, each as the plain render of a scene holding it alone shows it. */

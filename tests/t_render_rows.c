@@ -1,7 +1,8 @@
 /* tests/t_render_rows.c -- iacsg_view.row_first/row_count, the bands the MPI layer shares out: each band's rows
- * are bit for bit those of the whole frame (rgb, depth, normals, ids), whatever else is traced with them, and only
- * they are traced (the frame's count of rays), on the first-root path and on the segment path (its re-traced rays
- * and statistics too); a band that does not start on IACSG_ROW_ALIGN or overruns the image is refused. */
+ * are bit for bit those of the whole frame (rgb, depth, normals, ids; with effects too), whatever else is traced
+ * with them, and only they are traced (the frame's count of rays), on the first-root path and on the segment path
+ * (its re-traced rays and statistics too); a band that does not start on IACSG_ROW_ALIGN or overruns the image is
+ * refused. */
 #include "iacsg.h"
 #include "test.h"
 #include <math.h>
@@ -70,6 +71,12 @@ TEST(render_rows_bands_equal_whole_frame) {
     long long retraced[BANDS];
     check_bands(r, view, sums, whole, retraced);
     iacsg_view v = view;
+    /* the effects that the camera kernel applies itself: a point light casting shadows, one reflection */
+    iacsg_effects fx = {.lights = {{IACSG_LIGHT_POINT, {2, -3, 4}, 0.9}}, .nlights = 1, .shadows = 1, .bounces = 1,
+                        .reflect = 0.4};
+    v.effects = &fx;
+    check_bands(r, v, sums, whole, retraced);
+    v.effects = NULL;
     iacsg_frame band;
     static const int bad[][2] = {{16, 32}, {96, 32}, {-32, 32}, {32, 0}};
     for (int b = 0; b < 4; b++) {

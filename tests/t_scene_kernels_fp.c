@@ -73,7 +73,7 @@ static int repeats(const uint32_t *nodes, int n, const unsigned char *state) {
 static scene_ray partition_of(const scene_tables *t, int *solid, int n, unsigned char *state) {
     for (int k = 0; k < n; k++)
         solid[k] = k;
-    scene_ray r = {t->nodes, t->items, t->solid_items_start, t->solid_items, {solid, 0, 0, 0, 0, 0, 0},
+    scene_ray r = {t->nodes, t->items, t->solid_items_start, t->solid_items, {solid, 0, 0, 0, 0, 0, 0, 0},
                    n, n, n, state, 0, 0, 0, 0, 0, 0, 0};
     return r;
 }
@@ -296,7 +296,7 @@ TEST_FP(scene_trace_spheres) {
     unsigned char state[N] = {0};
     for (int k = 0; k < 6 * t.nbvh; k++)
         box[k] = (ia_real)t.bvh_box[k]; /* the spheres' boxes are dyadic with few bits: exact */
-    scene_view v = {box, t.bvh_link, t.nbvh, t.surfaces, 0, (ia_real)0x1p-12, {0, 0}, 0};
+    scene_view v = {box, t.bvh_link, t.nbvh, t.surfaces, 0, (ia_real)0x1p-12, {0, 0}, 0, 0, 0};
     long rays = test_iters(3000), hits = 0, near = 0;
     for (long it = 0; it < rays; it++) {
         ia_real o[3], d[3], len = 0;
@@ -307,7 +307,7 @@ TEST_FP(scene_trace_spheres) {
         }
         for (int a = 0; a < 3; a++)
             d[a] /= sqrt(len);
-        scene_ray ray = {t.nodes, t.items, t.solid_items_start, t.solid_items, {solid, range, pos, level, index, newton, newton_t},
+        scene_ray ray = {t.nodes, t.items, t.solid_items_start, t.solid_items, {solid, range, pos, level, index, newton, newton_t, 0},
                          N, 0, 0, state, 0, 0, 0, 0, 0, 0, 0};
         weave_hit hit = {0, -1, -1, -1};
         int found = scene_trace_ray(&v, &ray, o, d, 0, 8, &hit);
@@ -328,6 +328,119 @@ TEST_FP(scene_trace_spheres) {
         near += hit.item != id;
     }
     test_note("%ld rays, %ld through spheres, %ld claimed by another sphere near its boundary", rays, hits, near);
+    scene_tables_free(&t);
+    iacsg_scene_destroy(s);
+}
+
+/* The solids (and their ranges) of the BVH's leaves that the ray meets, from the top-level nodes (cut 0) or from a
+ * packet's cut: every inner node pending is expanded. Returns how many, or -1 when they pass `cap`. */
+static int bvh_leaves(const bvh_walk *b, int *solid, ia_real *range, int cap) {
+    int count = 0;
+    if (!bvh_roots(b, solid, range, &count, cap))
+        return -1;
+    for (int c = 0; c < count;)
+        if (solid[c] < 0) {
+            if (!bvh_expand(b, c, solid, range, &count, cap))
+                return -1;
+        } else {
+            c++;
+        }
+    return count;
+}
+
+/* Whether two lists of leaves hold the same solids with the same ranges, bit for bit (in any order). */
+static int same_leaves(const int *sa, const ia_real *ra, int na, const int *sb, const ia_real *rb, int nb) {
+    if (na != nb)
+        return 0;
+    for (int i = 0; i < na; i++) {
+        int j = 0;
+        while (j < nb && !(sb[j] == sa[i] && rb[2 * j] == ra[2 * i] && rb[2 * j + 1] == ra[2 * i + 1]))
+            j++;
+        if (j == nb)
+            return 0;
+    }
+    return 1;
+}
+
+/* Packets of 16 rays (a common direction and origins on a small grid, as an orthographic camera's; or a common
+ * origin and a fan of directions, as a perspective one's; some with a direction component 0 in every ray or of
+ * both signs) against the BVH of 64 random spheres and a half-space: every ray meets, from its packet's cut
+ * (bvh_beam_cut), exactly the leaves with exactly the ranges it meets from the top-level nodes. */
+TEST_FP(scene_bvh_beam_cut) {
+    enum { N = 64, LANES = PACKET_LANES };
+    test_rng_t *rng = test_rng();
+    iacsg_error err = {0};
+    iacsg_scene *s = scene_create();
+    for (int k = 0; k < N; k++) {
+        char text[256];
+        double c[3], r = ldexp(floor(ldexp(0.05 + 0.2 * test_rand_unit(rng), 10)), -10);
+        for (int a = 0; a < 3; a++)
+            c[a] = ldexp(floor(ldexp(test_rand_unit(rng) * 2 - 1, 10)), -10);
+        snprintf(text, sizeof text, "(x - %.20g)^2 + (y - %.20g)^2 + (z - %.20g)^2 - %.30g", c[0], c[1], c[2], r * r);
+        scene_add_solid(s, NULL, parse(text), &err);
+        uint32_t leaf = CSG_NODE(CSG_INSIDE, k);
+        scene_add_region(s, NULL, scene_add_tree(s, &leaf, 1, &err), -1, &err);
+    }
+    scene_add_solid(s, NULL, parse("z + 0.5"), &err); /* unbounded: a top-level leaf of its own */
+    uint32_t half = CSG_NODE(CSG_INSIDE, N);
+    scene_add_region(s, NULL, scene_add_tree(s, &half, 1, &err), -1, &err);
+    scene_tables t;
+    CHECK(scene_tables_build(s, &t, &err) == IACSG_OK, "%s", err.message);
+    ia_real *box = malloc(sizeof(ia_real) * 6 * (size_t)t.nbvh);
+    for (int k = 0; k < 6 * t.nbvh; k++)
+        box[k] = (ia_real)t.bvh_box[k];
+    long packets = test_iters(2000), cuts = 0, entries = 0, rays = 0, leaves = 0;
+    for (long it = 0; it < packets; it++) {
+        ia_real o[3][LANES], d[3][LANES], inv[3][LANES], tn[LANES], tf[LANES], base_o[3], base_d[3], u[3], v[3];
+        int ortho = it % 2, zero = test_rand_u64(rng) % 4 == 0 ? (int)(test_rand_u64(rng) % 3) : -1;
+        double spread = ldexp(1, -(int)(test_rand_u64(rng) % 12));
+        for (int a = 0; a < 3; a++) {
+            base_o[a] = (ia_real)(test_rand_unit(rng) * 6 - 3);
+            base_d[a] = (ia_real)(test_rand_unit(rng) * 0.6 - 0.3) - base_o[a] / 3;
+            u[a] = (ia_real)((test_rand_unit(rng) - 0.5) * spread);
+            v[a] = (ia_real)((test_rand_unit(rng) - 0.5) * spread);
+        }
+        bvh_beam m;
+        bvh_beam_start(&m);
+        for (int k = 0; k < LANES; k++) {
+            ia_real i = (ia_real)(k % 4), j = (ia_real)(k / 4);
+            for (int a = 0; a < 3; a++) {
+                o[a][k] = ortho ? base_o[a] + i * u[a] + j * v[a] : base_o[a];
+                d[a][k] = ortho ? base_d[a] : base_d[a] + i * u[a] + j * v[a];
+                if (a == zero)
+                    d[a][k] = 0;
+                inv[a][k] = (ia_real)1 / d[a][k];
+            }
+            tn[k] = (ia_real)test_rand_unit(rng);
+            tf[k] = tn[k] + (ia_real)(8 * test_rand_unit(rng));
+            bvh_beam_add_lane(&m, o, d, inv, k, tn[k], tf[k]);
+        }
+        int cut[BVH_CUT_MAX], ncut = bvh_beam_cut(&m, box, t.bvh_link, t.nbvh, cut);
+        if (ncut < 0)
+            continue;
+        cuts++;
+        entries += ncut;
+        for (int k = 0; k < LANES; k++) {
+            int sa[2 * N + 2], sb[2 * N + 2];
+            ia_real ra[4 * N + 4], rb[4 * N + 4];
+            bvh_ray r = bvh_ray_lane(d, inv, k);
+            ia_real ok[3] = {o[0][k], o[1][k], o[2][k]}, dk[3] = {d[0][k], d[1][k], d[2][k]};
+            bvh_walk b = {box, t.bvh_link, t.nbvh, &r, ok, dk, tn[k], tf[k], 0, 0};
+            int na = bvh_leaves(&b, sa, ra, 2 * N + 2);
+            b.cut = cut;
+            b.ncut = ncut;
+            int nb = bvh_leaves(&b, sb, rb, 2 * N + 2);
+            rays++;
+            leaves += na;
+            CHECK(na >= 0 && same_leaves(sa, ra, na, sb, rb, nb),
+                  "packet %ld (%s, direction %d zero), ray %d: %d leaves from the roots, %d from the cut of %d", it,
+                  ortho ? "orthographic" : "perspective", zero, k, na, nb, ncut);
+        }
+    }
+    CHECK(cuts > packets / 2, "%ld packets of %ld had a cut", cuts, packets);
+    test_note("%ld packets with a cut of %.1f entries on average, %ld rays, %.2f leaves a ray", cuts,
+              (double)entries / (double)cuts, rays, (double)leaves / (double)rays);
+    free(box);
     scene_tables_free(&t);
     iacsg_scene_destroy(s);
 }
