@@ -518,19 +518,25 @@ TEST_FP(effects_transparent_shell) {
 
 /* The AOVs stay the centre ray's: with -aa 4, shadows and reflections the depth, normals and ids are those of
  * the plain render, byte for byte, on both paths (only the colours change). */
-TEST_FP(effects_aovs_unchanged) {
-    const char *texts[2] = {"min(sphere, torus)",
-                            "material m = rgb(1, 0, 0) reflect 0.4\nregion a = sphere : m\nregion b = torus\n"};
+/* The plain render and the render with effects fx of `text`, seen from above and aside (64x64). */
+static iacsg_view plain_and_effects(const char *text, const iacsg_effects *fx, iacsg_frame *plain,
+                                    iacsg_frame *effects) {
     iacsg_view view = sphere_ortho_view(64);
     view.camera = (iacsg_camera){.eye = {3, -2.5, 2}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 40};
     view.bounds[2] = -2, view.bounds[5] = 2;
+    render_scene_text(text, &view, plain);
+    view.effects = fx;
+    render_scene_text(text, &view, effects);
+    return view;
+}
+
+TEST_FP(effects_aovs_unchanged) {
+    const char *texts[2] = {"min(sphere, torus)",
+                            "material m = rgb(1, 0, 0) reflect 0.4\nregion a = sphere : m\nregion b = torus\n"};
     iacsg_effects fx = {.aa = 4, .shadows = 1, .bounces = 2, .reflect = 0.3};
     for (int s = 0; s < 2; s++) {
         iacsg_frame plain, effects;
-        view.effects = NULL;
-        render_scene_text(texts[s], &view, &plain);
-        view.effects = &fx;
-        render_scene_text(texts[s], &view, &effects);
+        iacsg_view view = plain_and_effects(texts[s], &fx, &plain, &effects);
         size_t n = (size_t)view.width * view.height;
         int same = !memcmp(plain.depth, effects.depth, n * sizeof(float)) &&
                    !memcmp(plain.normal, effects.normal, 3 * n * sizeof(float)) &&
@@ -548,16 +554,10 @@ TEST_FP(effects_aovs_unchanged) {
  * rounds differently), and a miss takes the background of its row, top to bottom (light.h: shade_background). */
 TEST_FP(effects_background_keeps_hits) {
     const char *texts[2] = {"min(sphere, torus)", "region a = sphere\nregion b = torus\n"};
-    iacsg_view view = sphere_ortho_view(64);
-    view.camera = (iacsg_camera){.eye = {3, -2.5, 2}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 40};
-    view.bounds[2] = -2, view.bounds[5] = 2;
     iacsg_effects fx = {.background = 1, .background_top = {1, 0.5, 0}, .background_bottom = {0, 0.5, 1}};
     for (int s = 0; s < 2; s++) {
         iacsg_frame plain, effects;
-        view.effects = NULL;
-        render_scene_text(texts[s], &view, &plain);
-        view.effects = &fx;
-        render_scene_text(texts[s], &view, &effects);
+        iacsg_view view = plain_and_effects(texts[s], &fx, &plain, &effects);
         long hits = 0, misses = 0, bad_hits = 0, bad_misses = 0;
         for (int j = 0; j < view.height; j++)
             for (int i = 0; i < view.width; i++) {
