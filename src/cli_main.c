@@ -57,7 +57,7 @@ static const char usage[] =
 
 /* The rest of the help, apart: ISO C bounds a string literal's length. */
 static const char usage_more[] =
-    "Effects (shading on the host from each pixel's hits; secondary rays traced by the same bisection):\n"
+    "Effects (each pixel shaded on the device from its hits; secondary rays traced by the same bisection):\n"
     "  -shade MODE        lit, gradient (the normal's direction as colour, lit), normals, depth, ids [lit]\n"
     "  -background R,G,B[,R,G,B]  the background colour, or a gradient top to bottom, in [0, 1] [grey-blue]\n"
     "  -light KIND,X,Y,Z,I  point,X,Y,Z,I (a point light) or dir,X,Y,Z,I (towards the light) of intensity I;\n"
