@@ -16,8 +16,8 @@
  * Every secondary ray is traced rigorously (effects_trace: effects_march, then packet.h's bisection) with all
  * groups of a union (no tile pass bounded these rays), so an occluder or a surface a ray crosses inside the bounds
  * is never missed. The rays of a packet come from neighbouring pixels (a camera packet's, or listed by the host in
- * blocks of 4 x 4), so that they take similar steps. The normals are render.cl's packet_gradients (this file is appended to the
- * first-root path's program after render.cl).
+ * blocks of 4 x 4), so that they take similar steps. The normals are render.cl's packet_gradients (this file is
+ * appended to the first-root path's program after render.cl).
  */
 
 #ifdef PACKET_NEWTON
@@ -354,10 +354,12 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
  * no path lists a reflected ray (kid_slots 0). Counts the secondary rays and their evaluations. Not inlined into
  * the camera kernel: there its paths' code crowded the camera rays' (CPU samples of the reference view's kernel
  * with shadows, means of 3-5 runs: 2,600 inlined, 1,760-2,120 not; plain 1,470). */
-__attribute__((noinline)) static void effects_centre(__constant ia_real *params, __constant ia_real *fx, __global const ulong *all_groups,
-                           ia_real footprint, packet_int row, int height, ia_maskv live, ia_maskv hit,
-                           const ia_realv o_ray[3], const ia_realv d_ray[3], ia_realv hit_lo, const ia_realv n_hit[3],
-                           shade_colorv color[3], packet_index *rays, packet_index *evals) {
+__attribute__((noinline)) static void effects_centre(__constant ia_real *params, __constant ia_real *fx,
+                                                     __global const ulong *all_groups, ia_real footprint,
+                                                     packet_int row, int height, ia_maskv live, ia_maskv hit,
+                                                     const ia_realv o_ray[3], const ia_realv d_ray[3],
+                                                     ia_realv hit_lo, const ia_realv n_hit[3], shade_colorv color[3],
+                                                     packet_index *rays, packet_index *evals) {
     ia_real start[IA_VW], t_k[IA_VW], n_k[3][IA_VW];
     float n_f[3][IA_VW];
     IAV_STORE(hit_lo, start);

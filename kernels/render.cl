@@ -238,7 +238,7 @@ static void effects_centre(__constant ia_real *params, __constant ia_real *fx, _
 #endif
 
 #ifdef KERNEL_STATS
-/* The sum of a packet's lanes' counts. */
+/* The sum of a packet's lanes' counts (the effects' secondary rays and evaluations). */
 static uint lanes_sum(packet_index v) {
     uint k[IA_VW], sum = 0;
     IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_uint, IA_VW)(v), 0, k);
@@ -300,10 +300,12 @@ static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags
 #ifdef KERNEL_STATS
     /* the packet's sum and maximum, all the host reads (a store per pixel was a fifth of an empty -stats frame's
      * kernel time, and 4 MB of fresh pages a 1024x1024 frame); lanes past the image counted nothing */
-    uint count[IA_VW], sum = lanes_sum(counts), most = 0;
+    uint count[IA_VW], sum = 0, most = 0;
     IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_uint, IA_VW)(counts), 0, count);
-    for (int k = 0; k < IA_VW; k++)
+    for (int k = 0; k < IA_VW; k++) {
+        sum += count[k];
         most = max(most, count[k]);
+    }
     size_t packet = (size_t)(j0 / PACKET_H) * (size_t)((width + PACKET_W - 1) / PACKET_W) + (size_t)(i0 / PACKET_W);
     evals[2 * packet] = sum;
     evals[2 * packet + 1] = most;

@@ -57,8 +57,9 @@ typedef struct {
 } scene_frame;
 
 /* The rays of the packet of pixels from (i0, j0) (camera_ray), their directions' reciprocals (ik, for the BVH),
- * and where they meet the bounds (meets[k] 1, over [tn[k], tf[k]]: camera_clip); a pixel outside the image or the band's rows meets nothing. In SIMD lanes
- * (packet_camera.h, bit for bit the scalar functions' results) where the program has them, else one by one. */
+ * and where they meet the bounds (meets[k] 1, over [tn[k], tf[k]]: camera_clip); a pixel outside the image or the
+ * band's rows meets nothing. In SIMD lanes (packet_camera.h, bit for bit the scalar functions' results) where the
+ * program has them, else one by one. */
 static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, int i0, int j0,
                               ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real ik[3][PACKET_LANES],
                               ia_real tn[PACKET_LANES], ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES]) {
@@ -105,7 +106,8 @@ static void scene_beam_drop_out(const bvh_beam *beam, scene_view *view, int cut[
     for (int j = 0; j < view->ncut;) {
         int solid = view->link[2 * cut[j] + SCENE_BVH_SOLID];
         ia_real ta, tend;
-        if (solid >= 0 && bvh_beam_range(beam, view->box, cut[j], &ta, &tend) && segments_beam_out(solid, o, d, ta, tend))
+        if (solid >= 0 && bvh_beam_range(beam, view->box, cut[j], &ta, &tend) &&
+            segments_beam_out(solid, o, d, ta, tend))
             cut[j] = cut[--view->ncut];
         else
             j++;

@@ -337,7 +337,9 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-static iacsg_status compile_now(iacsg_renderer *r, iacsg_error *err) { return compile_kernel_now(r, r->kernel, 0, err); }
+static iacsg_status compile_now(iacsg_renderer *r, iacsg_error *err) {
+    return compile_kernel_now(r, r->kernel, 0, err);
+}
 
 /* The camera kernel with the effects (kernels/effects.cl: iacsg_render_effects), made and compiled at its first
  * use (counted as build time). */
@@ -481,8 +483,9 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     }
     if (!frame->rgb || (!frame->depth && need_depth) || (!frame->normal && (!view->no_normals || fx_normal)) ||
         (!frame->ids && !view->no_ids) || (r->config.stats && (!evals || !tile_evals)))
-        st = st != IACSG_OK ? st : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
-                             view->height);
+        st = st != IACSG_OK ? st
+                            : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image",
+                                              view->width, view->height);
     if (st == IACSG_OK)
         st = render_check_device_memory(r, view, n, r->config.stats ? 8 : 7, err);
     if (st == IACSG_OK)

@@ -677,9 +677,9 @@ iacsg_status render_effects_camera_open(iacsg_renderer *r, const iacsg_view *vie
     if (st == IACSG_OK)
         st = fx_footprint(view, &c->footprint, err);
     if (st == IACSG_OK && r->config.stats) {
-        c->packets = packets;
         if (!(c->counts_host = calloc(2 * packets, sizeof(cl_uint)))) /* 0 for the packets of rows not traced */
             return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects' counts");
+        c->packets = packets;
         cl_int rc = CL_SUCCESS;
         c->counts = clCreateBuffer(r->rt.context, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR,
                                    2 * packets * sizeof(cl_uint), c->counts_host, &rc);
