@@ -504,6 +504,19 @@ static double aa_eps(const fx_frame *f) {
     return fmax(f->view->eps, f->tracer.footprint / (FX_AA_EPS_PER_SAMPLE * f->e->aa));
 }
 
+/* The hits of -aa's sample rays paths[0 .. n), the aa x aa of each of pixels[0 .. npixels) in antialias's order,
+ * traced as packets of the camera kernel's (fx_scene_samples) with -aa's leaves. */
+static iacsg_status trace_samples(fx_frame *f, const int *pixels, size_t npixels, fx_path *paths, size_t n,
+                                  iacsg_error *err) {
+    fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
+    if (!hits)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for -aa's samples");
+    iacsg_status st = fx_scene_samples(&f->tracer, f->e->aa, aa_eps(f), pixels, npixels, hits, err);
+    for (size_t i = 0; st == IACSG_OK && i < n; i++)
+        paths[i].hit = hits[i];
+    return st;
+}
+
 /* -aa N on the segment path: the pixels on an edge get N x N rays of their own, on a regular grid in the pixel,
  * each weighing 1 / N^2; their centre rays' colours are replaced. */
 static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, fx_path *paths, iacsg_error *err) {
@@ -535,7 +548,7 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, fx_path *paths, iacs
                     camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
                 }
         }
-        st = trace_paths(f, paths, n, aa_eps(f), err);
+        st = trace_samples(f, edges + first, k - first, paths, n, err);
         if (st == IACSG_OK)
             st = run_paths(f, paths, n, err);
         for (size_t q = first; st == IACSG_OK && q < k; q++)
@@ -771,8 +784,10 @@ int iacsg_scene_lights(const iacsg_scene *s, iacsg_light lights[IACSG_MAX_LIGHTS
 void render_effects_free(render_fx *fx) {
     if (!fx)
         return;
-    if (fx->trace)
-        clReleaseKernel(fx->trace);
+    cl_kernel kernels[] = {fx->trace, fx->shade, fx->samples};
+    for (int k = 0; k < 3; k++)
+        if (kernels[k])
+            clReleaseKernel(kernels[k]);
     free(fx->items);
     free(fx);
 }

@@ -261,13 +261,13 @@ static double sphere_coverage(const iacsg_view *v, int i, int j) {
  * one wholly outside (B), takes the blend sqrt(c S^2 + (1 - c) B^2) of its coverage c (linear light, gamma 2),
  * within what 4 x 4 rays and the shading's change over a pixel allow. (Where the shading itself changes fast,
  * in the highlight, neighbours differ by more than -aa's contrast threshold, so those pixels are sampled too.) */
-TEST_FP(effects_aa_edges) {
+static void check_aa_edges(void (*render)(const char *, const iacsg_view *, iacsg_frame *), const char *text) {
     iacsg_view view = sphere_ortho_view(96);
     iacsg_frame plain, aa;
-    render_expr("sphere", &view, &plain);
+    render(text, &view, &plain);
     iacsg_effects fx = {.aa = 4};
     view.effects = &fx;
-    render_expr("sphere", &view, &aa);
+    render(text, &view, &aa);
     long inside = 0, same = 0, edges = 0, bad = 0;
     double worst = 0, worst_edge = 0;
     for (int j = 1; j + 1 < view.height; j++)
@@ -315,6 +315,12 @@ TEST_FP(effects_aa_edges) {
               "neighbours differ by 1/16, were sampled too: within %.1e); %ld edge pixels within %.3f of the blend "
               "of their coverage", same, inside, worst, edges, worst_edge);
 }
+
+TEST_FP(effects_aa_edges) { check_aa_edges(render_expr, "sphere"); }
+
+/* The same as a region: the segment path's samples, traced as packets of the camera kernel's (4 x 4 samples of a
+ * pixel, one packet). */
+TEST_FP(effects_aa_edges_regions) { check_aa_edges(render_scene_text, "region ball = sphere\n"); }
 
 /* The colour's linear light (gamma 2, kernels/light.h). */
 static double linear(float shown) { return (double)shown * shown; }
