@@ -241,8 +241,8 @@ static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n
     long *owner = reserve(&f->shadow_of, (n * nl + 1) * sizeof *owner); /* the (path, light) of each ray */
     if (!rays || !hits || !owner)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-    for (size_t i = 0; i < n; i++)
-        for (size_t l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
+    for (size_t l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* light by light: neighbouring paths' rays, a coherent packet */
+        for (size_t i = 0; i < n; i++) {
             int cast = l < nl && paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[m]);
             vis[EFFECTS_MAX_LIGHTS * i + l] = cast;
             if (cast)

@@ -135,13 +135,14 @@ static void release_trace_buffers(trace_buffers *b) {
             clReleaseMemObject(all[k]);
 }
 
-/* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items as the per-ray
- * buffers have room for (one after the other on the in-order queue, which they share). */
+/* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items (PACKET_LANES rays
+ * each) as the per-ray buffers have room for (one after the other on the in-order queue, which they share). */
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
                                  iacsg_error *err) {
     iacsg_renderer *r = t->r;
     void *held = NULL;
-    size_t slots = n > 0 ? (size_t)n : 1; /* n = 0: one launch that traces nothing (compile_trace_now) */
+    cl_int packets = (n + PACKET_LANES - 1) / PACKET_LANES;
+    size_t slots = packets > 0 ? (size_t)packets : 1; /* n = 0: one launch that traces nothing (compile_trace_now) */
     iacsg_status st = render_scene_trace_args(r, t->view, k, 10, &slots, &held, err);
     cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item, b->evals, b->passing};
     cl_uint at[] = {0, 1, 5, 6, 7, 8, 9};
@@ -151,9 +152,11 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
     if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
                            clSetKernelArg(k, 4, fx_real_bytes(r), eps_real) != CL_SUCCESS))
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
-    for (cl_int first = 0; st == IACSG_OK && (first < n || first == 0); first += (cl_int)slots) {
-        size_t global = (size_t)(n - first) < slots && n > 0 ? (size_t)(n - first) : slots, local = 1;
-        cl_int rc = clSetKernelArg(k, 3, sizeof first, &first);
+    for (cl_int first = 0; st == IACSG_OK && (first < packets || first == 0); first += (cl_int)slots) {
+        size_t global = (size_t)(packets - first) < slots && packets > 0 ? (size_t)(packets - first) : slots;
+        size_t local = 1;
+        cl_int first_ray = PACKET_LANES * first;
+        cl_int rc = clSetKernelArg(k, 3, sizeof first_ray, &first_ray);
         if (rc == CL_SUCCESS)
             rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
         if (rc != CL_SUCCESS)
