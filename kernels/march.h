@@ -139,16 +139,17 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
 
 #if IA_DEVICE && defined(IA_VW) && !defined(IACSG_SCALAR_CODE) /* (as packet.h's lanes) */
 /* Where F has no derivative code (implicits/emit.c: newton_pays, e.g. x^500), the same march by F's enclosure
- * over each step alone: a step whose enclosure excludes 0 is root-free (a moves to b, the next step 8 times as
- * long), else the step shrinks eightfold, down to a leaf no longer than eps whose enclosure holds 0 (the hit; every
- * part a passed is root-free, so the leaf's start is never after the first root). The first step is
- * MARCH_ENCLOSURE_FIRST times the start's distance from the surface `leaving`: a step's box reaches back towards
- * the surface the ray leaves as far as it is long, so much longer first steps fail. The lanes still marching after
- * EFFECTS_MARCH_STEPS go on by the walk from their a (*going_io). */
+ * over each step alone: a step whose enclosure excludes 0 is root-free (a moves to b; the next step 8 times as
+ * long, twice after one that fell short), else the step is halved, down to a leaf no longer than eps whose
+ * enclosure holds 0 (the hit; every part a passed is root-free, so the leaf's start is never after the first
+ * root). Where the caller asks only `whether` the ray meets F's zero set (F > 0 at its start), a failed step at
+ * whose end F < 0 ends it too: F crosses 0 in it. The first step is MARCH_ENCLOSURE_FIRST times the start's
+ * distance from the surface `leaving` (a step's box reaches back towards the surface the ray leaves as far as
+ * it is long). The lanes still marching after EFFECTS_MARCH_STEPS go on by the walk from their a (*going_io). */
 #define MARCH_ENCLOSURE_FIRST 16
 static ia_maskv march_enclosure(const ia_realv o[3], const ia_realv d[3], ia_realv *t_near, ia_realv t_far,
-                                ia_maskv *going_io, ia_realv leaving, ia_real eps, iav time, ia_realv *hit_lo,
-                                ia_realv *hit_hi, packet_index *evals) {
+                                ia_maskv *going_io, ia_realv leaving, ia_real eps, int whether, iav time,
+                                ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
     ia_realv a = *t_near, w = MARCH_ENCLOSURE_FIRST * leaving;
     ia_maskv going = *going_io & (a < t_far), hit = (ia_maskv)0, short_before = (ia_maskv)0;
     for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(going); step++) {
@@ -158,6 +159,14 @@ static ia_maskv march_enclosure(const ia_realv o[3], const ia_realv d[3], ia_rea
                          packet_extent(o[2], d[2], seg), time);
         PACKET_COUNT(*evals, going);
         ia_maskv whole = going & ((f.lo > 0) | (f.hi < 0)), leaf = going & ~whole & (b - a <= eps);
+        if (whether && iav_any(going & ~whole & ~leaf)) { /* F < 0 at b, F > 0 at a: F crosses 0 in [a, b] */
+            ia_maskv failed = going & ~whole & ~leaf;
+            iav at_b = iav_make(b, b);
+            iav fb = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_b), packet_extent(o[1], d[1], at_b),
+                              packet_extent(o[2], d[2], at_b), time);
+            PACKET_COUNT(*evals, failed);
+            leaf |= failed & (fb.hi < 0);
+        }
         *hit_lo = select(*hit_lo, a, leaf);
         *hit_hi = select(*hit_hi, b, leaf);
         hit |= leaf;

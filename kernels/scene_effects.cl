@@ -9,7 +9,9 @@
  * one at a time as a camera ray is (scene_trace.h). The per-ray buffers have room for every solid of the scene
  * (src/render_scene.c, render_scene_trace_args), so no ray overflows. Out per ray: the claimed
  * partition's start (+inf when nothing is hit in [tn, tf] within the bounds), the unit normal there facing the
- * ray, the item, and where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS). A ray continued
+ * ray, the item, and where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS). With `whether` (the
+ * scene's items all opaque: shadow rays), a ray whose march proves g crossing 0 ends there without its leaf,
+ * item EFFECTS_HIT_BLOCKED, t before the crossing. A ray continued
  * through a transparent region starts inside it and passes through it (passing[ray]: 1 + the region, weave.h).
  */
 
@@ -22,10 +24,10 @@
  * [from, leaf_hi] and the solids' states over it (scene_union_states) for scene_union_claim, from +inf where no
  * region is on the ray (g > 0 on all of it: g is continuous and a region is in only where g <= 0,
  * scene_union.h), from t_near for the lanes left to the weave from there. evals: each lane's evaluations. */
-static void scene_rays_union(__constant ia_real *params, ia_real eps, const ia_real ok[3][PACKET_LANES],
+static void scene_rays_union(__constant ia_real *params, ia_real eps, int whether, const ia_real ok[3][PACKET_LANES],
                              const ia_real dk[3][PACKET_LANES], const ia_real tn[PACKET_LANES],
                              const ia_real tf[PACKET_LANES], const ia_real outside_k[PACKET_LANES],
-                             ia_real from[PACKET_LANES], ia_real leaf_hi[PACKET_LANES],
+                             ia_real from[PACKET_LANES], ia_real leaf_hi[PACKET_LANES], ia_real crossed_k[PACKET_LANES],
                              int states[SCENE_REGIONS_UNION][PACKET_LANES], kernel_u32 evals[PACKET_LANES]) {
     ia_realv o[3], d[3], t_near = IAV_LOAD(tn), a = t_near, b = IAV_LOAD(tf);
     for (int c = 0; c < 3; c++) {
@@ -47,9 +49,9 @@ static void scene_rays_union(__constant ia_real *params, ia_real eps, const ia_r
         ia_realv leaving = 4 * eps + (ia_real)4e-6 * (1 + fabs(o[0]) + fabs(o[1]) + fabs(o[2]));
         ia_maskv walking = outside;
 #ifdef PACKET_NEWTON
-        hit = effects_march(o, d, &a, &b, &walking, leaving, eps, 0, time, &lo, &hi, &counts);
+        hit = effects_march(o, d, &a, &b, &walking, leaving, eps, whether, time, &lo, &hi, &counts);
 #else
-        hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, time, &lo, &hi, &counts);
+        hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, whether, time, &lo, &hi, &counts);
 #endif
         ia_real far[IA_VW], w = 0;
         IAV_STORE(select(IAV_R(0), b, walking), far);
@@ -59,7 +61,10 @@ static void scene_rays_union(__constant ia_real *params, ia_real eps, const ia_r
             hit |= packet_first_root(0, o, d, 0, w, (packet_int)0, (packet_index)0, a, b, walking, eps, IA_INF, 0,
                                      time, &lo, &hi, &counts);
     }
-    IAV_STORE(select(t_near, select(IAV_R(IA_INF), lo, hit), outside), from);
+    ia_maskv crossed = hit & (hi - lo > eps); /* `whether`: a part where g crosses 0, not a leaf */
+    hit &= ~crossed;
+    IAV_STORE(select(IAV_R(0), IAV_R(1), crossed), crossed_k);
+    IAV_STORE(select(t_near, select(IAV_R(IA_INF), lo, hit | crossed), outside), from);
     IAV_STORE(select(IAV_R(-IA_INF), hi, hit), leaf_hi);
     if (iav_any(hit))
         scene_union_states(o, d, fmax(t_near, lo), hi, hit, time, states, &counts);
@@ -81,7 +86,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
                                      __global ia_real *cand_range, __global ia_real *cand_pos, __global int *cand_level,
                                      __global bisect_index *cand_index, __global int *cand_newton,
                                      __global ia_real *cand_newton_t, int cand_cap, __global uchar *state,
-                                     int nstates) {
+                                     int nstates, int whether) {
     size_t slot = get_global_id(0);
     int first = first_ray + PACKET_LANES * (int)slot;
     if (first >= nrays)
@@ -99,6 +104,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
                    .state = state + slot * (size_t)nstates};
     ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
     ia_real meets[PACKET_LANES], outside[PACKET_LANES], from[PACKET_LANES], leaf_hi[PACKET_LANES];
+    ia_real crossed[PACKET_LANES];
     kernel_u32 from_evals[PACKET_LANES];
     for (int k = 0; k < PACKET_LANES; k++) {
         int ray = min(first + k, nrays - 1);
@@ -115,11 +121,14 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
             ik[c][k] = (ia_real)1 / d[c];
         }
         from[k] = leaf_hi[k] = -IA_INF;
+        crossed[k] = 0;
         from_evals[k] = 0;
     }
 #ifdef SCENE_RAYS_MARCH
     int states[SCENE_REGIONS_UNION][PACKET_LANES];
-    scene_rays_union(params, eps, ok, dk, tn, tf, outside, from, leaf_hi, states, from_evals);
+    scene_rays_union(params, eps, whether, ok, dk, tn, tf, outside, from, leaf_hi, crossed, states, from_evals);
+#else
+    (void)whether;
 #endif
     for (int k = 0; k < PACKET_LANES && first + k < nrays; k++) {
         int ray = first + k;
@@ -129,7 +138,11 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
         r.evals = 0;
         r.passing = passing ? passing[ray] : 0;
         int found = 0, claimed = 0;
-        if (meets[k] != 0) {
+        if (crossed[k] != 0) { /* certainly blocked (`whether`) */
+            found = 1;
+            hit.t = from[k];
+            hit.item = EFFECTS_HIT_BLOCKED;
+        } else if (meets[k] != 0) {
 #ifdef SCENE_RAYS_MARCH
             if (leaf_hi[k] >= from[k])
                 claimed = scene_union_claim(&r, states, k, fmax(tn[k], from[k]), &hit);
@@ -145,7 +158,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
         if (evals) /* counted with KERNEL_STATS (-stats) */
             evals[ray] = r.evals + from_evals[k];
         ia_real g[3] = {0, 0, 0};
-        if (found)
+        if (found && hit.solid >= 0)
             scene_solid_f_grad(hit.solid, o[0] + hit.t * d[0], o[1] + hit.t * d[1], o[2] + hit.t * d[2],
                                params[PARAM_TIME_LO], &g[0], &g[1], &g[2]);
         ia_real len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), facing = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
@@ -159,8 +172,8 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
  * sees after its shadow rays), 16 per work-item in SIMD lanes, by light.h's shade_effects with each hit's item's
  * material (SCENE_MATERIAL_FLOATS per item) and, for -shade ids, palette colour (3 linear floats per item). In
  * per hit: its ray (EFFECTS_RAY_REALS), depth, normal (3 floats, facing the ray), item (-1: a miss), the
- * fraction of each light that reaches it (EFFECTS_MAX_LIGHTS floats) and its pixel's row. Out per hit, 6 floats: its colour (a miss: the background) and
- * the background of its row, both linear. */
+ * fraction of each light that reaches it (EFFECTS_MAX_LIGHTS floats) and its pixel's row. Out per hit, 6 floats:
+ * its colour (a miss: the background) and the background of its row, both linear. */
 __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *fx, __global const float *materials,
                                 __global const float *palette, int height, __global const ia_real *rays,
                                 __global const ia_real *hit_t, __global const float *hit_n,

@@ -249,13 +249,16 @@ static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n
                 owner[m++] = (long)(EFFECTS_MAX_LIGHTS * i + l);
         }
     for (int layer = 0; m > 0 && layer < EFFECTS_MAX_LAYERS; layer++) {
-        iacsg_status st = fx_trace(&f->tracer, rays, m, FX_SHADOW_EPS_FACTOR * f->view->eps, hits, err);
+        int whether = !transparent(f->r, f->e); /* every item opaque: a ray proven blocked needs no leaf */
+        iacsg_status st = fx_trace(&f->tracer, rays, m, FX_SHADOW_EPS_FACTOR * f->view->eps, whether, hits, err);
         if (st != IACSG_OK)
             return st;
         size_t next = 0;
         for (size_t j = 0; j < m; j++) { /* in place: ray j is read before ray next <= j is written */
+            if (hits[j].item == EFFECTS_HIT_BLOCKED)
+                vis[owner[j]] = 0;
             if (hits[j].item < 0)
-                continue; /* it reached the light */
+                continue; /* it reached the light, or is blocked */
             const fx_item *it = &f->r->fx->items[hits[j].item];
             float *v = &vis[owner[j]];
             *v *= 1 - it->opacity;
@@ -366,7 +369,7 @@ static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double ep
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         rays[i] = paths[i].ray;
     if (st == IACSG_OK)
-        st = fx_trace(&f->tracer, rays, n, eps, hits, err);
+        st = fx_trace(&f->tracer, rays, n, eps, 0, hits, err);
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         paths[i].hit = hits[i];
     return st;

@@ -236,6 +236,33 @@ TEST_FP(effects_shadow_boundary_regions) {
     check_shadows(view, fr);
 }
 
+/* The same as disjoint regions (the ground less the ball): the shadow rays' packets find the regions' union's first
+ * root in SIMD lanes, marching off the surface they leave (kernels/scene_effects.cl, march.h: effects_march with
+ * the union's derivative), and end on a proven crossing (every item opaque). */
+TEST_FP(effects_shadow_boundary_disjoint) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = shadow_effects();
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_scene_text("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                      "region b = ball : m\nregion g = z \\ ball : m\n",
+                      &view, &fr);
+    check_shadows(view, fr);
+}
+
+/* The same with the ground's function z (2 + cos x), the same solid and normals, whose cosine leaves the union
+ * without derivative code: the march by F's enclosure alone (march.h: march_enclosure). */
+TEST_FP(effects_shadow_boundary_disjoint_enclosure) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = shadow_effects();
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_scene_text("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                      "solid ground = z * (2 + cos(x))\nregion b = ball : m\nregion g = ground \\ ball : m\n",
+                      &view, &fr);
+    check_shadows(view, fr);
+}
+
 /* The unit sphere seen along -z, orthographic: the point (s, v) of the image plane is on it iff s^2 + v^2 < 1. */
 static iacsg_view sphere_ortho_view(int size) {
     iacsg_view v = {.width = size, .height = size, .eps = 0x1p-14,
