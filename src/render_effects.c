@@ -10,9 +10,9 @@
  * Everything per ray runs on the device, shaded by light.h (shade_effects): an expression's paths wholly in
  * kernels/effects.cl, most often inside the camera kernel (render_effects_in_camera: render.c launches it with
  * this file's block), else after the frame (render_effects_device.c launches them: this file lists the pixels),
- * as are -aa's edges; a scene's secondary rays
- * traced by kernels/scene_effects.cl and their hits shaded there (render_effects_trace.c), while this file keeps
- * the paths, their shadow rays and children. So an occluder or a reflected surface that a ray crosses inside the
+ * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
+ * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
+ * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children. So an occluder or a reflected surface that a ray crosses inside the
  * bounds is never missed, and with the default rig and no effect but -aa or -background a pixel gets the colour
  * the plain render gives it.
  */
