@@ -159,9 +159,10 @@ static void scene_store_colors(const scene_frame *f, const int pixel[PACKET_LANE
     }
 }
 
-/* A packet none of whose rays meets the bounds: its pixels get the background of their rows and no hit, as the
- * traced path would give them, without its per-ray scaffolding (an empty frame's packets cost 6x as much through
- * it: the per-lane arrays' stores read back in lanes). */
+/* A packet none of whose rays can hit (none meets the bounds, or its beam meets no solid's box and there is no
+ * surface): its pixels get the background of their rows and no hit, as the traced path would give them, without
+ * its per-ray scaffolding (an empty frame's packets cost 6x as much through it: the per-lane arrays' stores read
+ * back in lanes). */
 static void scene_packet_empty(__constant ia_real *params, const scene_frame *f, int i0, int j0, int only,
                                kernel_u32 block_evals) {
     int pixel[PACKET_LANES];
@@ -225,6 +226,12 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
     view->cut = view->ncut >= 0 ? cut : 0;
     scene_beam_drop_out(&beam, view, cut);
+#ifndef SCENE_UNION_PREPASS
+    if (view->ncut == 0 && view->nsurfaces == 0) { /* no ray meets a solid's box (bvh_beam_cut) */
+        scene_packet_empty(params, f, i0, j0, only, block_evals);
+        return;
+    }
+#endif
     ia_real gk[3][PACKET_LANES], on[PACKET_LANES];
     float color[3][PACKET_LANES], rows[PACKET_LANES];
     ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
