@@ -1,11 +1,13 @@
 /* kernels/prim_pipe_segments.h -- a pipe's segments along a ray in closed form (prim_segments' PIPE case, declared
- * there; this file follows prim_segments.h, whose quadrics and quartics it reuses). A pipe is the union of its parts (prim.h):
+ * there; this file follows prim_segments.h, whose quadrics and quartics it reuses). A pipe is the union of its parts
+ * (prim.h):
  *
  *   1. each part whose box the ray meets within [ta, tend] (the t range clipped to the box, rounded outward), over
  *      that range, runs of each piece alone: its cell's start plane, its end plane, its tube and its bore's:
  *        a straight part's frustum, the cone r(w) = R0 + R1 w as a quadric (s0^2 + s1^2) - r^2 on the nappe where r
  *        grows along the ray (within the cell r >= 0, as in a quadric tgc's slab): one run;
- *        a bend's torus (prim_quartic_of's, from the part's frame, bend radius and tube radius) walked as a quartic
+ *        a bend's torus (prim_quartic_bounds' and prim_quartic_solve's, from the part's frame, bend radius and
+ *        tube radius) walked as a quartic
  *        over the cell's possible span: its first run, and where it may be in again, the point to solve again from;
  *   2. the union swept in ray order into a quartet (prim_segments.h): at each point the greatest (OUT < BOUNDARY <
  *      IN) of each part's state (the least of its planes', its tube's and its bore's negation), and of each joint's:
@@ -70,30 +72,27 @@ IA_FN int prim_pipe_max(int a, int b) { return a == SCENE_IN || b == SCENE_IN ? 
 /* A tube's run over [lo, hi] (the cell's possible span within the part's box range [t0, t0 + width]), a, b the ray
  * in the part's frame at t0: a straight part's cone r(w) = R0 + R1 w (intervals at, at + 1: the outer or the bore's)
  * as the quadric (s0^2 + s1^2) - r^2 where r >= 0 (on the nappe where r grows along the ray, as in a quadric tgc's
- * slab); a bend's torus (radius interval 25, tube radius at `at`) walked as a quartic: its first run,
- * and where it may be in again, *resume (else left as it is). 0 where it has no closed form. */
-IA_FN int prim_pipe_tube_run(const ia_real *q, int at, const ia_interval a[3], const ia_interval b[3], ia_real t0,
-                             ia_real width, ia_real lo, ia_real hi, ia_real eps, ia_real run[4], ia_real *resume,
-                             kernel_u32 *evals) {
+ * slab); a bend's torus (radius interval 25, tube radius at `at`) walked as a quartic, its coefficients from the ray
+ * o + t d: its first run, and where it may be in again, *resume (else left as it is). 0 where it has no closed form. */
+IA_FN int prim_pipe_tube_run(const ia_real *q, int at, const ia_real o[3], const ia_real d[3], const ia_interval a[3],
+                             const ia_interval b[3], ia_real t0, ia_real width, ia_real lo, ia_real hi, ia_real eps,
+                             ia_real run[4], ia_real *resume, kernel_u32 *evals) {
     prim_segments_span tube = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0}, bound = tube;
-    ia_interval c[5];
-    if ((int)q[0] & PRIM_PIPE_BEND) { /* the torus's radii where prim_quartic_of reads them (a, b in its frame) */
+    if ((int)q[0] & PRIM_PIPE_BEND) { /* the torus's radii where prim_quartic_bounds reads them (a, b in its frame) */
         ia_real tor[2 * PRIM_TOR_N] = {0};
         ia_interval r2 = ia_sqr(prim_iv(q, at));
         tor[24] = q[50];
         tor[25] = q[51];
         tor[26] = r2.lo;
         tor[27] = r2.hi;
-        int of = lo < hi ? prim_quartic_of(PRIM_TOR, tor, a, b, &tube, &bound, t0, width, c) : 2;
-        for (int k = 0; of == 1 && k < 5; k++)
-            of = isfinite(c[k].lo) && isfinite(c[k].hi);
+        int of = lo < hi ? prim_quartic_bounds(PRIM_TOR, tor, a, b, &tube, &bound, t0, width) : 2;
         if (of == 0 || bound.nan)
             return 0;
         lo = fmax(lo, bound.plo);
         hi = fmin(hi, bound.phi);
         prim_quartet w = {{hi, hi, hi, hi}, 0, IA_INF, -IA_INF, IA_INF}; /* changes not reached: at its end */
-        if (of == 1 && lo < hi)
-            prim_quartic_walk(&w, c, t0, lo, hi, eps, evals);
+        if (of == 1 && lo < hi && !prim_quartic_solve(&w, PRIM_TOR, tor, q, 13, o, d, b, lo, hi, eps, evals))
+            return 0;
         for (int k = 0; k < 4; k++)
             run[k] = w.e[k];
         *resume = w.stage == 5 ? fmin(*resume, w.resume) : *resume;
@@ -137,9 +136,9 @@ IA_FN int prim_pipe_part_runs(const ia_real *q, const ia_real o[3], const ia_rea
     *evals += 1;
     for (int k = 0; k < 4; k++)
         run[3][k] = lo; /* no bore: out of it all along */
-    return prim_pipe_tube_run(q, bend ? 26 : 25, a, b, t0, width, lo, hi, eps, run[2], resume, evals) &&
+    return prim_pipe_tube_run(q, bend ? 26 : 25, o, d, a, b, t0, width, lo, hi, eps, run[2], resume, evals) &&
            (!((int)q[0] & PRIM_PIPE_INNER) ||
-            prim_pipe_tube_run(q, 27, a, b, t0, width, lo, hi, eps, run[3], resume, evals));
+            prim_pipe_tube_run(q, 27, o, d, a, b, t0, width, lo, hi, eps, run[3], resume, evals));
 }
 
 /* A part's state at t from its runs (*next: the runs' next change, if earlier): the least of its planes' and

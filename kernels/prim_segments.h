@@ -1,9 +1,9 @@
-/* kernels/prim_segments.h -- closed-form segments of the primitives along a ray (the pipe's: prim_pipe_segments.h): where librt
- * solves each primitive once per ray, the bisection walk (segments.h) evaluates its implicit some 30 to 60 times.
- * The solid's states come out as the walk's accepted nodes would: OUT, BOUNDARY over an enclosure of the entry, IN,
- * BOUNDARY over an enclosure of the exit, OUT; every enclosure outward, so a boundary the ray crosses is never
- * missed nor late. A torus or a general tgc may have a second run: prim_segments gives the first and the point to
- * solve again from (see "the quartics" below).
+/* kernels/prim_segments.h -- closed-form segments of the primitives along a ray (the pipe's: prim_pipe_segments.h):
+ * where librt solves each primitive once per ray, the bisection walk (segments.h) evaluates its implicit some 30 to 60
+ * times. The solid's states come out as the walk's accepted nodes would: OUT, BOUNDARY over an enclosure of the entry,
+ * IN, BOUNDARY over an enclosure of the exit, OUT; every enclosure outward, so a boundary the ray crosses is never
+ * missed nor late. A torus or a general tgc may have a second run: prim_segments gives the first and the point to solve
+ * again from (see "the quartics" below).
  *
  *   prim_segments(type, p, o, d, ta, tend, eps, e, resume, evals, dir, known):
  *     1. the ray's origin o and direction d (exact), its point at ta enclosed (traverse.h's ray_extent); the
@@ -16,7 +16,8 @@
  *        (prim_segments_plane, prim_segments_quadric);
  *     4. the solid, the intersection of its pieces (convex: one span each), clipped to [ta, tend]: its four
  *        changes e[0..3] (OUT before e0, BOUNDARY to e1, IN to e2, BOUNDARY to e3, OUT after); a quartic's first run
- *        by prim_quartic_walk (eps: its leaves where the quartic is not monotone, at a double root).
+ *        by prim_quartic_walk (eps: its leaves where the quartic is not monotone, at a double root), its
+ *        coefficients in u = t - tm from the middle tm of the range it solves (prim_quartic_solve).
  *   Returns 0 where a piece cannot be decided (a quadric whose A may be 0, along a ray that meets its surface: a
  *   ray on a cone's side line): the walk then bisects. A pipe, the union of its parts: prim_pipe_segments.h.
  *
@@ -140,7 +141,8 @@ IA_FN int prim_segments_quadric(prim_segments_span *s, ia_interval a, ia_interva
         ia_interval root = ia_sqrt(disc);
         if (b.lo > 0 || b.hi < 0) {
             ia_interval q = b.lo > 0 ? ia_neg(ia_add(b, root)) : ia_sub(root, b);
-            ia_interval big = ia_div_one_signed(q, a), small = ia_div_one_signed(c, q); /* q / A is the root of B's other sign */
+            /* q / A is the root of B's other sign */
+            ia_interval big = ia_div_one_signed(q, a), small = ia_div_one_signed(c, q);
             r1 = b.lo > 0 ? big : small;
             r2 = b.lo > 0 ? small : big;
         } else {
@@ -364,17 +366,15 @@ IA_FN int prim_quartic_sphere(prim_segments_span *s, const ia_interval a[3], con
     return prim_segments_quadric(s, bb, ab, ia_sub(aa, k), 0, ta, width);
 }
 
-/* The quartic of a torus or a general tgc from s = a + u b along the ray (a at ta, b = G d): the tgc's slab into s,
- * bounds (a sphere around the solid, a torus's slab) into `bound` (they clip the range, and nothing is in outside
- * them), then where the ray may meet the solid within [ta, ta + width], the coefficients. 1 with them, 2 where the
- * bounds leave nothing to solve, 0 where there is no closed form (a torus whose tube reaches its axis: its quartic
- * is negative in a spindle too). */
-IA_FN int prim_quartic_of(int type, const ia_real *p, const ia_interval a[3], const ia_interval b[3],
-                          prim_segments_span *s, prim_segments_span *bound, ia_real ta, ia_real width,
-                          ia_interval c[5]) {
-    ia_interval x[3], y[3], z[3], range = ia_make(0, width);
-    if (type == PRIM_TOR) { /* (|s|^2 + R^2 - r^2)^2 - 4 R^2 (s0^2 + s1^2): negative inside where r < R */
-        ia_interval r2 = ia_sqr(prim_iv(p, 12)), rh2 = prim_iv(p, 13), sum[3];
+/* The bounds of a torus or a general tgc from s = a + u b along the ray (a at ta, b = G d): the tgc's slab into s,
+ * a sphere around the solid and a torus's slab into `bound` (they clip the range, and nothing is in outside them).
+ * 1 where the ray may meet the solid within [ta, ta + width], 2 where the bounds leave nothing to solve, 0 where
+ * there is no closed form (a torus whose tube reaches its axis: its quartic is negative in a spindle too). */
+IA_FN int prim_quartic_bounds(int type, const ia_real *p, const ia_interval a[3], const ia_interval b[3],
+                              prim_segments_span *s, prim_segments_span *bound, ia_real ta, ia_real width) {
+    ia_interval range = ia_make(0, width);
+    if (type == PRIM_TOR) {
+        ia_interval r2 = ia_sqr(prim_iv(p, 12)), rh2 = prim_iv(p, 13);
         if (!(r2.lo > rh2.hi) || !(rh2.lo >= 0))
             return 0;
         ia_interval rh = ia_sqrt(rh2);
@@ -382,8 +382,27 @@ IA_FN int prim_quartic_of(int type, const ia_real *p, const ia_interval a[3], co
         prim_segments_plane(bound, ia_neg(ia_add(a[2], rh)), ia_neg(b[2]), ta, range);
         if (!prim_quartic_sphere(bound, a, b, 0, ia_sqr(ia_add(prim_iv(p, 12), rh)), ta, width))
             return 0;
-        if (!(fmax(fmax(s->plo, bound->plo), ta) < fmin(fmin(s->phi, bound->phi), ta + width)))
-            return 2;
+    } else {
+        ia_interval alpha = prim_iv(p, 12), beta = prim_iv(p, 13);
+        ia_interval reach = ia_add(ia_sqr(ia_add_r(ia_max(alpha, ia_point(0)), 1)),
+                                   ia_sqr(ia_add_r(ia_max(beta, ia_point(0)), 1)));
+        prim_segments_plane(s, ia_neg(a[2]), ia_neg(b[2]), ta, range);
+        prim_segments_plane(s, ia_add_r(a[2], -1), b[2], ta, range);
+        if (!prim_quartic_sphere(bound, a, b, (ia_real)0.5, ia_add_r(reach, (ia_real)0.25), ta, width))
+            return 0;
+    }
+    return fmax(fmax(s->plo, bound->plo), ta) < fmin(fmin(s->phi, bound->phi), ta + width) ? 1 : 2;
+}
+
+/* The quartic's coefficients in u = t - tm from s = a + u b (a at tm). The walk takes them from tm in the middle
+ * of the range it solves: expanded from the range's start, or farther, the coefficients' rounding, times powers of
+ * u, hid the quartic's sign over a long stretch of a ray that passes near the surface (a BOUNDARY 0.1 long in f32
+ * where 0.0006 was asked for, on a ray that meets the solid nowhere). */
+IA_FN void prim_quartic_coefficients(int type, const ia_real *p, const ia_interval a[3], const ia_interval b[3],
+                                     ia_interval c[5]) {
+    ia_interval x[3], y[3], z[3];
+    if (type == PRIM_TOR) { /* (|s|^2 + R^2 - r^2)^2 - 4 R^2 (s0^2 + s1^2): negative inside where r < R */
+        ia_interval r2 = ia_sqr(prim_iv(p, 12)), rh2 = prim_iv(p, 13), sum[3];
         prim_quadratic_sqr(a[0], b[0], x);
         prim_quadratic_sqr(a[1], b[1], y);
         prim_quadratic_sqr(a[2], b[2], z);
@@ -395,18 +414,11 @@ IA_FN int prim_quartic_of(int type, const ia_real *p, const ia_interval a[3], co
         prim_quartic_sqr(sum, c);
         for (int k = 0; k < 3; k++)
             c[k] = ia_sub(c[k], ia_mul(ia_mul_r(r2, 4), x[k]));
-        return 1;
+        return;
     }
     /* u^2 rb^2 + v^2 ra^2 - ra^2 rb^2 (ra = 1 + alpha w, rb = 1 + beta w) on the slab 0 <= w <= 1: negative exactly
      * where u^2 / ra^2 + v^2 / rb^2 < 1 (it depends on ra and rb through their squares) */
     ia_interval alpha = prim_iv(p, 12), beta = prim_iv(p, 13), ra[3], rb[3], t[5];
-    ia_interval reach = ia_add(ia_sqr(ia_add_r(ia_max(alpha, ia_point(0)), 1)), ia_sqr(ia_add_r(ia_max(beta, ia_point(0)), 1)));
-    prim_segments_plane(s, ia_neg(a[2]), ia_neg(b[2]), ta, range);
-    prim_segments_plane(s, ia_add_r(a[2], -1), b[2], ta, range);
-    if (!prim_quartic_sphere(bound, a, b, (ia_real)0.5, ia_add_r(reach, (ia_real)0.25), ta, width))
-        return 0;
-    if (!(fmax(fmax(s->plo, bound->plo), ta) < fmin(fmin(s->phi, bound->phi), ta + width)))
-        return 2;
     prim_quadratic_sqr(ia_add_r(ia_mul(alpha, a[2]), 1), ia_mul(alpha, b[2]), ra);
     prim_quadratic_sqr(ia_add_r(ia_mul(beta, a[2]), 1), ia_mul(beta, b[2]), rb);
     prim_quadratic_sqr(a[0], b[0], x);
@@ -417,6 +429,22 @@ IA_FN int prim_quartic_of(int type, const ia_real *p, const ia_interval a[3], co
     prim_quartic_mul(ra, y, t);
     for (int k = 0; k < 5; k++)
         c[k] = ia_add(c[k], t[k]);
+}
+
+/* Walks the quartic of a torus or a general tgc (`type`, its radii or alpha and beta in coef_p) over [lo, hi] into
+ * q: its coefficients from the ray o + t d in the frame of frame_p's parameters from `at` (prim_frame), b the
+ * direction's part there, taken at the middle of [lo, hi]. 0 where they are not finite (the walk bisects). */
+IA_FN int prim_quartic_solve(prim_quartet *q, int type, const ia_real *coef_p, const ia_real *frame_p, int at,
+                             const ia_real o[3], const ia_real d[3], const ia_interval b[3], ia_real lo, ia_real hi,
+                             ia_real eps, kernel_u32 *evals) {
+    ia_real tm = lo * (ia_real)0.5 + hi * (ia_real)0.5;
+    ia_interval mid = ia_point(tm), a[3], c[5];
+    prim_frame(frame_p, at, ray_extent(o[0], d[0], mid), ray_extent(o[1], d[1], mid), ray_extent(o[2], d[2], mid), a);
+    prim_quartic_coefficients(type, coef_p, a, b, c);
+    for (int k = 0; k < 5; k++)
+        if (!isfinite(c[k].lo) || !isfinite(c[k].hi))
+            return 0;
+    prim_quartic_walk(q, c, tm, lo, hi, eps, evals);
     return 1;
 }
 
@@ -431,7 +459,7 @@ IA_FN int prim_pipe_segments(const ia_real *p, const ia_real o[3], const ia_real
 IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia_real d[3], ia_real ta, ia_real tend,
                         ia_real eps, ia_real e[4], ia_real *resume, kernel_u32 *evals, ia_interval *dir, int known) {
     prim_segments_span s = {-IA_INF, IA_INF, -IA_INF, IA_INF, 0}, bound = s;
-    ia_interval c[5];
+    ia_interval b[3]; /* the direction's part in a frame type's frame */
     int quartic = 0;
     if (type == PRIM_PIPE)
         return prim_pipe_segments(p, o, d, ta, tend, eps, e, resume, evals);
@@ -440,14 +468,14 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
             prim_segments_plane(&s, ia_sub(prim_segments_dot(p + 8 * j, 0, o), prim_iv(p + 8 * j, 3)),
                                 prim_segments_dir(p + 8 * j, 0, d, dir, known, j), 0, ia_make(ta, tend));
     } else if (type == PRIM_ELL || type == PRIM_TGC || type == PRIM_EHY || type == PRIM_TOR) {
-        ia_interval at = ia_point(ta), a[3], b[3];
+        ia_interval at = ia_point(ta), a[3];
         prim_frame(p, 0, ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at), ray_extent(o[2], d[2], at), a);
         for (int r = 0; r < 3; r++)
             b[r] = prim_segments_dir(p, 3 + 3 * r, d, dir, known, r);
         ia_real width = ia_hi(tend - ta);
         ia_interval gamma = type == PRIM_TGC ? ia_hull(prim_iv(p, 12), prim_iv(p, 13)) : ia_point(0);
         quartic = type == PRIM_TOR || !(gamma.hi - gamma.lo <= PRIM_SEGMENTS_SKEW);
-        int of = quartic ? prim_quartic_of(type, p, a, b, &s, &bound, ta, width, c)
+        int of = quartic ? prim_quartic_bounds(type, p, a, b, &s, &bound, ta, width)
                          : prim_segments_frame(type, p, a, b, &s, ta, width);
         if (of == 0)
             return 0;
@@ -456,9 +484,6 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
             e[0] = e[1] = e[2] = e[3] = ta;
             return 1;
         }
-        for (int k = 0; quartic && k < 5; k++)
-            if (!isfinite(c[k].lo) || !isfinite(c[k].hi))
-                return 0;
     } else {
         return 0;
     }
@@ -472,7 +497,8 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
     }
     if (quartic) {
         prim_quartet q = {{phi, phi, phi, phi}, 0, phi, s.ilo, s.ihi};
-        prim_quartic_walk(&q, c, ta, plo, phi, eps, evals);
+        if (!prim_quartic_solve(&q, type, p, p, 0, o, d, b, plo, phi, eps, evals))
+            return 0;
         for (int k = 0; k < 4; k++)
             e[k] = q.e[k];
         *resume = q.resume;

@@ -124,6 +124,70 @@ static void scene_beam_drop_out(const bvh_beam *beam, scene_view *view, int cut[
 #endif
 }
 
+/* A traced pixel's outputs but its colour and normal: depth, ids, overlap and (KERNEL_STATS) its ray's counts. */
+static void scene_store_hit(const scene_frame *f, int pixel, int found, const weave_hit *hit, kernel_u32 evals,
+                            kernel_u32 segments, kernel_u32 partitions) {
+    if (f->depth)
+        f->depth[pixel] = found ? camera_depth_round_down(hit->t) : INFINITY;
+    f->ids[pixel] = found ? (float)hit->item : -1.0f;
+    f->overlap[pixel] = found ? hit->overlap : -1;
+#ifdef KERNEL_STATS
+    f->counts[3 * pixel] = evals;
+    f->counts[3 * pixel + 1] = segments;
+    f->counts[3 * pixel + 2] = partitions;
+#else
+    (void)evals;
+    (void)segments;
+    (void)partitions;
+#endif
+}
+
+/* The packet's colours (linear rgb in lanes) and, where the frame keeps them, normals (NULL: none hit), to its
+ * pixels (pixel[k] >= 0). */
+static void scene_store_colors(const scene_frame *f, const int pixel[PACKET_LANES], const shade_colorv rgb[3],
+                               const ia_realv *n) {
+    float color[3][PACKET_LANES];
+    ia_real nk[3][PACKET_LANES];
+    for (int c = 0; c < 3; c++) {
+        IAV_CAT(vstore, IA_VW)(rgb[c], 0, color[c]);
+        if (n && f->normal)
+            IAV_STORE(n[c], nk[c]);
+    }
+    for (int k = 0; k < PACKET_LANES; k++) {
+        if (pixel[k] < 0)
+            continue;
+        for (int c = 0; c < 3; c++) {
+            f->rgb[3 * pixel[k] + c] = color[c][k];
+            if (f->normal)
+                f->normal[3 * pixel[k] + c] = n ? (float)nk[c][k] : 0.0f;
+        }
+    }
+}
+
+/* A packet none of whose rays can hit (none meets the bounds, or its beam meets no solid's box and there is no
+ * surface): its pixels get the background of their rows and no hit, as the traced path would give them, without
+ * its per-ray scaffolding (an empty frame's packets cost 6x as much through it: the per-lane arrays' stores read
+ * back in lanes). */
+static void scene_packet_empty(__constant ia_real *params, const scene_frame *f, int i0, int j0, int only,
+                               kernel_u32 block_evals) {
+    int pixel[PACKET_LANES];
+    float rows[PACKET_LANES];
+    weave_hit none = {0, -1, -1, -1};
+    for (int k = 0; k < PACKET_LANES; k++) {
+        int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
+        pixel[k] = i < f->width && j < f->row_end && (only < 0 || k == only) ? j * f->width + i : -1;
+        rows[k] = (float)min(j, f->height - 1);
+        if (pixel[k] >= 0)
+            scene_store_hit(f, pixel[k], 0, &none, block_evals, 0, 0);
+    }
+    shade_colorv albedo[3], rgb[3];
+    for (int c = 0; c < 3; c++)
+        albedo[c] = (shade_colorv)(0);
+    shade_combine((ia_maskv)0, IAV_CAT(vload, IA_VW)(0, rows), f->height, albedo, IAV_R(0), IAV_R(0), IAV_R(0),
+                  IAV_R(0), rgb);
+    scene_store_colors(f, pixel, rgb, 0);
+}
+
 /* Traces the packet of pixels from (i0, j0): all its rays, or (only >= 0) lane `only` alone, a listed ray traced
  * again exactly as in the first pass. The rays and their parts in the bounds come in SIMD lanes (packet.h), then
  * each is woven alone; `tile` is the union's tile pass for the packet's tile (scene_union.h), with its evaluations
@@ -138,6 +202,13 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
     ia_real meets[PACKET_LANES];
     scene_packet_rays(params, f, i0, j0, ok, dk, ik, tn, tf, meets);
+    int any = 0;
+    for (int k = 0; k < PACKET_LANES; k++)
+        any |= meets[k] != 0;
+    if (!any) {
+        scene_packet_empty(params, f, i0, j0, only, block_evals);
+        return;
+    }
     ia_real from[PACKET_LANES]; /* where each ray's weave starts (scene_union.h), or -inf: its own t_near */
     ia_real leaf_hi[PACKET_LANES]; /* the end of the union's leaf starting at from[k], or -inf */
     kernel_u32 from_evals[PACKET_LANES];
@@ -161,6 +232,12 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
     view->cut = view->ncut >= 0 ? cut : 0;
     scene_beam_drop_out(&beam, view, cut);
+#ifndef SCENE_UNION_PREPASS
+    if (view->ncut == 0 && view->nsurfaces == 0) { /* no ray meets a solid's box (bvh_beam_cut) */
+        scene_packet_empty(params, f, i0, j0, only, block_evals);
+        return;
+    }
+#endif
     ia_real gk[3][PACKET_LANES], on[PACKET_LANES];
     float color[3][PACKET_LANES], rows[PACKET_LANES];
     ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
@@ -198,19 +275,9 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         }
         specular[k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SPECULAR] : 0;
         shininess[k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SHININESS] : 1;
-        if (pixel[k] < 0)
-            continue;
-        if (f->depth)
-            f->depth[pixel[k]] = found ? camera_depth_round_down(hit.t) : INFINITY;
-        f->ids[pixel[k]] = found ? (float)hit.item : -1.0f;
-        f->overlap[pixel[k]] = found ? hit.overlap : -1;
-#ifdef KERNEL_STATS
-        f->counts[3 * pixel[k]] = ray->evals + block_evals + from_evals[k];
-        f->counts[3 * pixel[k] + 1] = ray->segments;
-        f->counts[3 * pixel[k] + 2] = ray->partitions;
-#else
-        (void)block_evals;
-#endif
+        if (pixel[k] >= 0)
+            scene_store_hit(f, pixel[k], found, &hit, ray->evals + block_evals + from_evals[k], ray->segments,
+                            ray->partitions);
     }
     ia_realv g[3], d_v[3], n[3];
     shade_colorv albedo_v[3], rgb_v[3];
@@ -230,20 +297,9 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
             n[c] = IAV_R(0);
         shade_combine(hit_v, row_v, height, albedo_v, IAV_R(0), IAV_R(0), IAV_R(0), IAV_R(0), rgb_v);
     }
-    ia_real nk[3][PACKET_LANES];
-    for (int c = 0; c < 3; c++) {
-        IAV_STORE(select(IAV_R(0), n[c], hit_v), nk[c]);
-        IAV_CAT(vstore, IA_VW)(rgb_v[c], 0, color[c]);
-    }
-    for (int k = 0; k < PACKET_LANES; k++) {
-        if (pixel[k] < 0)
-            continue;
-        for (int c = 0; c < 3; c++) {
-            f->rgb[3 * pixel[k] + c] = color[c][k];
-            if (f->normal)
-                f->normal[3 * pixel[k] + c] = (float)nk[c][k];
-        }
-    }
+    for (int c = 0; c < 3; c++)
+        n[c] = select(IAV_R(0), n[c], hit_v);
+    scene_store_colors(f, pixel, rgb_v, n);
 }
 
 /* The union's tile pass over the block of tiles from (tx0, ty0), where the program has the union (else nothing). */

@@ -65,9 +65,8 @@ static uint64_t splitmix(uint64_t *x) {
     return z ^ (z >> 31);
 }
 
-static void seed_rng(const char *name) {
-    const char *s = getenv("IACSG_TEST_SEED");
-    uint64_t x = s ? strtoull(s, NULL, 0) : 0x1acc5eedull;
+void test_rng_reseed(const char *name, uint64_t seed) {
+    uint64_t x = seed;
     for (const char *p = name; *p; p++)
         x = x * 31 + (unsigned char)*p;
     for (int i = 0; i < 4; i++)
@@ -168,7 +167,8 @@ int main(int argc, char **argv) {
         if (!selected(tests[i].name, argc, argv))
             continue;
         notes[0] = '\0';
-        seed_rng(tests[i].name);
+        const char *seed = getenv("IACSG_TEST_SEED");
+        test_rng_reseed(tests[i].name, seed ? strtoull(seed, NULL, 0) : 0x1acc5eedull);
         struct timespec t0, t1;
         clock_gettime(CLOCK_MONOTONIC, &t0);
         int ok = setjmp(on_fail) == 0;

@@ -4,7 +4,8 @@
  *   CHECK(cond, fmt, ...)   on failure prints the place and the message and ends this test (others go on).
  *   test_iters(n)           n scaled by IACSG_TEST_MULT (default 1), for property tests.
  *   test_rng()              a per-test random state seeded from IACSG_TEST_SEED (default fixed), so failures
- *                           reproduce.
+ *                           reproduce; test_rng_reseed(name, seed) gives it test `name`'s stream under that seed
+ *                           (a stream that once found a defect, kept as a regression test).
  *   test_note(fmt, ...)     one line of summary (counts, measured bounds) printed under the test's result.
  */
 #ifndef IACSG_TEST_H
@@ -45,6 +46,7 @@ typedef struct {
     uint64_t s[4];
 } test_rng_t;
 test_rng_t *test_rng(void);
+void test_rng_reseed(const char *name, uint64_t seed);
 uint64_t test_rand_u64(test_rng_t *r);
 double test_rand_unit(test_rng_t *r); /* uniform in [0, 1) */
 
