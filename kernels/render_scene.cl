@@ -124,6 +124,14 @@ static void scene_beam_drop_out(const bvh_beam *beam, scene_view *view, int cut[
 #endif
 }
 
+/* Where lane k of a packet, pixel (i, j), writes its outputs: that pixel, or slot out0 + k (-aa's samples); -1 for
+ * a lane outside the image or the band's rows, or other than `only` (>= 0). */
+static int scene_lane_output(const scene_frame *f, int i, int j, int k, int only) {
+    if (i >= f->width || j >= f->row_end || (only >= 0 && k != only))
+        return -1;
+    return f->out0 < 0 ? j * f->width + i : f->out0 + k;
+}
+
 /* A traced pixel's outputs but its colour and normal: depth, ids, overlap and (KERNEL_STATS) its ray's counts. */
 static void scene_store_hit(const scene_frame *f, int pixel, int found, const weave_hit *hit, kernel_u32 evals,
                             kernel_u32 segments, kernel_u32 partitions) {
@@ -175,7 +183,7 @@ static void scene_packet_empty(__constant ia_real *params, const scene_frame *f,
     weave_hit none = {0, -1, -1, -1};
     for (int k = 0; k < PACKET_LANES; k++) {
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
-        pixel[k] = i < f->width && j < f->row_end && (only < 0 || k == only) ? j * f->width + i : -1;
+        pixel[k] = scene_lane_output(f, i, j, k, only);
         rows[k] = (float)min(j, f->height - 1);
         if (pixel[k] >= 0)
             scene_store_hit(f, pixel[k], 0, &none, block_evals, 0, 0);
@@ -243,8 +251,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
     for (int k = 0; k < PACKET_LANES; k++) {
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
-        int traced = i < width && j < f->row_end && (only < 0 || k == only);
-        pixel[k] = !traced ? -1 : f->out0 < 0 ? j * width + i : f->out0 + k;
+        pixel[k] = scene_lane_output(f, i, j, k, only);
         rows[k] = (float)min(j, height - 1);
         weave_hit hit = {0, -1, -1, -1};
         ray->evals = ray->segments = ray->partitions = 0;
