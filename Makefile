@@ -39,17 +39,17 @@ DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd oc
 IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec.h
 KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/packet_camera.h kernels/traverse.h \
                   kernels/packet.h kernels/tile_rays.h kernels/tile.h kernels/effects.h kernels/light.h kernels/shade.h \
-                  kernels/render.cl kernels/effects.cl
+                  kernels/render.cl kernels/march.h kernels/effects.cl
 # The first-root program of an interpreted expression (src/render_expr.c): the tape interpreter, and the kernels
-# without the effects' kernel, which needs a compiled expression (effects.h's types serve light.h).
-TAPE_KERNEL_SOURCES = kernels/tape_eval.h $(filter-out kernels/effects.cl,$(KERNEL_SOURCES))
+# without the effects' kernel and its march (march.h), which need a compiled expression (effects.h's types serve light.h).
+TAPE_KERNEL_SOURCES = kernels/tape_eval.h $(filter-out kernels/march.h kernels/effects.cl,$(KERNEL_SOURCES))
 # The segment path's program (src/render_scene.c): the same ia/ headers, the scene's solids, then these.
 SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/packet_camera.h kernels/traverse.h \
                        kernels/csg_node.h \
                        kernels/scene_data.h kernels/bvh.h kernels/prim_segments.h kernels/prim_pipe_segments.h kernels/segments.h \
                        kernels/classify.h kernels/weave.h kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h \
                        kernels/effects.h kernels/light.h kernels/packet.h kernels/tile.h kernels/scene_union.h kernels/render_scene.cl \
-                       kernels/scene_effects.cl
+                       kernels/march.h kernels/scene_effects.cl
 # BRL-CAD's primitives, between the ia/ headers and the scene's solids (which call them).
 PRIM_KERNEL_SOURCES = kernels/prim.h
 TEST_CL_SOURCES = $(sort $(wildcard tests/*.cl))

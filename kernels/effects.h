@@ -6,6 +6,9 @@
 
 /* A ray: origin x y z, direction x y z, the part [tn, tf] of it to search. */
 #define EFFECTS_RAY_REALS 8
+/* The item of a segment-path ray asked only whether it meets an item (all of them opaque: a shadow ray), that
+ * certainly does (kernels/scene_effects.cl); -1 is a miss. */
+#define EFFECTS_HIT_BLOCKED (-2)
 
 /* A path of the first-root path's effects kernel (a reflected ray off a transparent surface, listed by the
  * kernel for the next launch): origin x y z, direction x y z, its weight in its pixel's colour, the transparent

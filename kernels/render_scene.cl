@@ -14,6 +14,10 @@
  * the colours (light.h, each pixel's item's albedo). Outputs per pixel: rgb, depth (the claimed partition's start,
  * +inf on a miss), normal, ids (the item, -1 on a miss), overlap (another region certainly in the claimed
  * partition, or -1), and with KERNEL_STATS the evaluations, segments and partitions of each ray.
+ *
+ * iacsg_render_scene_samples: -aa's sample rays (src/render_effects_samples.c) as the camera rays of an image aa
+ * times as wide and high, the listed packets of listed blocks traced as above, each packet's lanes written to an
+ * output slot of its own instead of its pixels.
  */
 #include "packet_camera.h"
 #include "scene_trace.h"
@@ -54,6 +58,7 @@ typedef struct {
     __global int *overlap;
     __global uint *counts;
     __global int *overflow, *noverflow;
+    int out0; /* where a packet's lanes write: -1 their pixels, else out0 + lane (-aa's samples) */
 } scene_frame;
 
 /* The rays of the packet of pixels from (i0, j0) (camera_ray), their directions' reciprocals (ik, for the BVH),
@@ -119,6 +124,14 @@ static void scene_beam_drop_out(const bvh_beam *beam, scene_view *view, int cut[
 #endif
 }
 
+/* Where lane k of a packet, pixel (i, j), writes its outputs: that pixel, or slot out0 + k (-aa's samples); -1 for
+ * a lane outside the image or the band's rows, or other than `only` (>= 0). */
+static int scene_lane_output(const scene_frame *f, int i, int j, int k, int only) {
+    if (i >= f->width || j >= f->row_end || (only >= 0 && k != only))
+        return -1;
+    return f->out0 < 0 ? j * f->width + i : f->out0 + k;
+}
+
 /* A traced pixel's outputs but its colour and normal: depth, ids, overlap and (KERNEL_STATS) its ray's counts. */
 static void scene_store_hit(const scene_frame *f, int pixel, int found, const weave_hit *hit, kernel_u32 evals,
                             kernel_u32 segments, kernel_u32 partitions) {
@@ -170,7 +183,7 @@ static void scene_packet_empty(__constant ia_real *params, const scene_frame *f,
     weave_hit none = {0, -1, -1, -1};
     for (int k = 0; k < PACKET_LANES; k++) {
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
-        pixel[k] = i < f->width && j < f->row_end && (only < 0 || k == only) ? j * f->width + i : -1;
+        pixel[k] = scene_lane_output(f, i, j, k, only);
         rows[k] = (float)min(j, f->height - 1);
         if (pixel[k] >= 0)
             scene_store_hit(f, pixel[k], 0, &none, block_evals, 0, 0);
@@ -192,7 +205,8 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     int width = f->width, height = f->height;
     surface_start starts[SURFACE_BLOCK_MAX];
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
-    kernel_u32 block_evals = scene_block(params, f->flags, i0, j0, width, height, f->items, f->nodes, time, starts, view);
+    kernel_u32 block_evals =
+        scene_block(params, f->flags, i0, j0, width, height, f->items, f->nodes, time, starts, view);
     ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
     ia_real meets[PACKET_LANES];
     scene_packet_rays(params, f, i0, j0, ok, dk, ik, tn, tf, meets);
@@ -237,7 +251,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
     for (int k = 0; k < PACKET_LANES; k++) {
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
-        pixel[k] = i < width && j < f->row_end && (only < 0 || k == only) ? j * width + i : -1;
+        pixel[k] = scene_lane_output(f, i, j, k, only);
         rows[k] = (float)min(j, height - 1);
         weave_hit hit = {0, -1, -1, -1};
         ray->evals = ray->segments = ray->partitions = 0;
@@ -313,6 +327,34 @@ static void scene_tiles(__constant ia_real *params, const scene_frame *f, int tx
 #endif
 }
 
+/* A work-item's ray state over its slice `slot` of the per-ray buffers; dirs: where an orthographic view's rays,
+ * which share their direction, keep the primitives' work on it. */
+static scene_ray scene_slot_ray(__global const uint *nodes, __global const int *items,
+                                __global const int *solid_items_start, __global const int *solid_items,
+                                __global int *cand_solid, __global ia_real *cand_range, __global ia_real *cand_pos,
+                                __global int *cand_level, __global bisect_index *cand_index, __global int *cand_newton,
+                                __global ia_real *cand_newton_t, int cand_cap, __global uchar *state, int nsolids,
+                                size_t slot, int flags, prim_dirs *dirs) {
+    size_t first = slot * (size_t)cand_cap;
+    for (int k = 0; k < PRIM_DIRS_SLOTS; k++)
+        dirs->solid[k] = -1;
+    scene_ray ray = {nodes,
+                     items,
+                     solid_items_start,
+                     solid_items,
+                     {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first,
+                      cand_index + first, cand_newton + first, cand_newton_t + 2 * first,
+                      flags & RENDER_ORTHO ? dirs : 0},
+                     cand_cap,
+                     0,
+                     0,
+                     state + slot * nsolids,
+                     0,
+                     0,
+                     0};
+    return ray;
+}
+
 /* One work-item per block of PACKET_W x PACKET_H tiles (SCENE_BLOCK pixels square) from block row block_row0 on,
  * or, when `pixels` is not NULL, per 16 listed pixels (block_row0 + g) 16 + 0..15, each traced again with its
  * own packet, its block's tile pass included. */
@@ -322,36 +364,24 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                  __global const int *items, __global const int *solid_items_start,
                                  __global const int *solid_items, __global const int *surfaces, int nsurfaces,
                                  __global const float *albedo, __global int *cand_solid, __global ia_real *cand_range,
-                                 __global ia_real *cand_pos, __global int *cand_level, __global bisect_index *cand_index,
-                                 __global int *cand_newton, __global ia_real *cand_newton_t, int cand_cap, __global uchar *state, int nsolids, __global float *rgb, __global float *depth,
-                                 __global float *normal, __global float *ids, __global int *overlap,
-                                 __global uint *counts, __global int *overflow, __global int *noverflow,
-                                 int row_end) {
+                                 __global ia_real *cand_pos, __global int *cand_level,
+                                 __global bisect_index *cand_index, __global int *cand_newton,
+                                 __global ia_real *cand_newton_t, int cand_cap, __global uchar *state, int nsolids,
+                                 __global float *rgb, __global float *depth, __global float *normal,
+                                 __global float *ids, __global int *overlap, __global uint *counts,
+                                 __global int *overflow, __global int *noverflow, int row_end) {
     size_t slot = get_global_id(1) * get_global_size(0) + get_global_id(0);
     int bx = (int)get_global_id(0) * SCENE_BLOCK, by = (block_row0 + (int)get_global_id(1)) * SCENE_BLOCK;
     if (!pixels && (bx >= width || by >= height))
         return;
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, 0};
-    size_t first = slot * (size_t)cand_cap;
     prim_dirs dirs; /* every ray of an orthographic view has the same direction */
-    for (int k = 0; k < PRIM_DIRS_SLOTS; k++)
-        dirs.solid[k] = -1;
-    scene_ray ray = {nodes,
-                     items,
-                     solid_items_start,
-                     solid_items,
-                     {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first, cand_index + first,
-                      cand_newton + first, cand_newton_t + 2 * first, flags & RENDER_ORTHO ? &dirs : 0},
-                     cand_cap,
-                     0,
-                     0,
-                     state + slot * nsolids,
-                     0,
-                     0,
-                     0};
+    scene_ray ray = scene_slot_ray(nodes, items, solid_items_start, solid_items, cand_solid, cand_range, cand_pos,
+                                   cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
+                                   flags, &dirs);
     scene_frame f = {flags, width, height, row_end, items, nodes, albedo, rgb, depth, normal, ids,
-                     overlap, counts, overflow, noverflow};
+                     overlap, counts, overflow, noverflow, -1};
     scene_tile tiles[PACKET_LANES];
     if (pixels) {
         for (int k = 0; k < PACKET_LANES; k++) {
@@ -375,4 +405,53 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                 if (i0 < width && j0 < min(height, row_end))
                     scene_packet(params, &f, &view, &ray, i0, j0, -1, &tiles[t]);
             }
+}
+
+/* -aa's sample rays (src/render_effects_samples.c): sample (a, b) of pixel (i, j) is pixel (aa i + a, aa j + b) of
+ * an image aa times as wide and high (width, height; params is that image's camera, with -aa's eps), whose centre
+ * is the sample's point. One work-item per listed block (SCENE_SAMPLES_INTS ints each, kernels/scene_data.h) from
+ * first_block on: the block's tile pass, then each listed packet traced as the camera rays are, its lanes written
+ * to slot s, outputs PACKET_LANES s + lane (rgb, depth, normal, ids, overlap, counts as iacsg_render_scene's). A
+ * sample's pixel of 4x4 samples is one packet, a coherent beam: the BVH cut, the union's leaf and the claim at it
+ * serve all 16 rays. The per-ray buffers hold every solid (src/render_scene.c: render_scene_trace_args), so no ray
+ * overflows; `overflow` lists any that would. */
+__kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, int width, int height,
+                                         __global const int *blocks, int nblocks, int first_block,
+                                         __global const float *albedo, __global float *rgb, __global float *depth,
+                                         __global float *normal, __global float *ids, __global int *overlap,
+                                         __global uint *counts, __global int *overflow, __global int *noverflow,
+                                         __global const ia_real *bvh_box, __global const int *bvh_link, int nbvh,
+                                         __global const uint *nodes, __global const int *items,
+                                         __global const int *solid_items_start, __global const int *solid_items,
+                                         __global const int *surfaces, int nsurfaces, __global int *cand_solid,
+                                         __global ia_real *cand_range, __global ia_real *cand_pos,
+                                         __global int *cand_level, __global bisect_index *cand_index,
+                                         __global int *cand_newton, __global ia_real *cand_newton_t, int cand_cap,
+                                         __global uchar *state, int nsolids) {
+    size_t slot = get_global_id(0);
+    int listed = first_block + (int)slot;
+    if (listed >= nblocks)
+        return;
+    __global const int *block = blocks + SCENE_SAMPLES_INTS * (size_t)listed;
+    ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
+    scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, 0};
+    prim_dirs dirs;
+    scene_ray ray = scene_slot_ray(nodes, items, solid_items_start, solid_items, cand_solid, cand_range, cand_pos,
+                                   cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
+                                   flags, &dirs);
+    scene_frame f = {flags, width, height, height, items, nodes, albedo, rgb, depth, normal, ids,
+                     overlap, counts, overflow, noverflow, 0};
+    int bx = block[SCENE_SAMPLES_BX] * SCENE_BLOCK, by = block[SCENE_SAMPLES_BY] * SCENE_BLOCK;
+    int out = block[SCENE_SAMPLES_SLOT];
+    scene_tile tiles[PACKET_LANES];
+    scene_tiles(params, &f, bx / TILE_SIZE, by / TILE_SIZE, tiles);
+    for (int p = 0; p < SCENE_BLOCK_PACKETS; p++) {
+        if (!(((uint)block[SCENE_SAMPLES_MASK + p / 32] >> (p % 32)) & 1))
+            continue;
+        int t = p / SCENE_TILE_PACKETS, q = p % SCENE_TILE_PACKETS;
+        int i0 = bx + t % PACKET_W * TILE_SIZE + q % SCENE_TILE_PACKETS_W * PACKET_W;
+        int j0 = by + t / PACKET_W * TILE_SIZE + q / SCENE_TILE_PACKETS_W * PACKET_H;
+        f.out0 = PACKET_LANES * out++;
+        scene_packet(params, &f, &view, &ray, i0, j0, -1, &tiles[t]);
+    }
 }

@@ -20,6 +20,18 @@
 /* A work-item of the first pass renders a block of PACKET_W x PACKET_H tiles, SCENE_BLOCK pixels square: the
  * union's tile pass (kernels/scene_union.h) searches its 16 tiles in SIMD lanes, then its packets are traced. */
 #define SCENE_BLOCK (PACKET_W * TILE_SIZE)
+/* Its packets: SCENE_TILE_PACKETS a tile, SCENE_BLOCK_PACKETS in all, numbered tile by tile (the tiles in rows of
+ * PACKET_W), each tile's in rows of SCENE_TILE_PACKETS_W. */
+#define SCENE_TILE_PACKETS_W (TILE_SIZE / PACKET_W)
+#define SCENE_TILE_PACKETS (SCENE_TILE_PACKETS_W * (TILE_SIZE / PACKET_H))
+#define SCENE_BLOCK_PACKETS (PACKET_LANES * SCENE_TILE_PACKETS)
+
+/* -aa's samples on the segment path (iacsg_render_scene_samples, src/render_effects_samples.c) are the pixels of an
+ * image aa times as wide and high, of which a work-item traces the packets listed in one block: SCENE_SAMPLES_INTS
+ * ints, the block's column and row (in blocks), the mask of its packets to trace (two ints: packets 0-31 and
+ * 32-63) and the first of their output slots (PACKET_LANES lanes a slot, a slot a packet, in packet order). */
+enum { SCENE_SAMPLES_BX = 0, SCENE_SAMPLES_BY = 1, SCENE_SAMPLES_MASK = 2, SCENE_SAMPLES_SLOT = 4,
+       SCENE_SAMPLES_INTS = 5 };
 
 /* A solid's state over a part of a ray, decided on the enclosure F of its function over the part's box: OUT
  * where F > 0, IN where F < 0, BOUNDARY where 0 is in F on a leaf of the bisection (width <= eps): the solid

@@ -1,13 +1,79 @@
 /* kernels/scene_effects.cl -- the segment path's effects (src/render_effects.c): its secondary rays
  * (iacsg_scene_trace_rays) and the colours of their hits (iacsg_scene_shade).
  *
- * iacsg_scene_trace_rays: shadow, reflected and antialiasing rays from the host's ray buffer (kernels/effects.h),
- * each traced as a camera ray is (scene_trace.h), one ray per work-item. The per-ray buffers have room for every
- * solid of the scene (src/render_scene.c, render_scene_trace_args), so no ray overflows. Out per ray: the claimed
+ * iacsg_scene_trace_rays: shadow and reflected rays and transparent layers from the host's ray buffer
+ * (kernels/effects.h), PACKET_LANES consecutive rays per work-item (the host lists them from neighbouring pixels).
+ * Where the program has the regions' union and they are disjoint (scene_union.h), the packet's rays that start
+ * outside every region find the union's first root in SIMD lanes, marching off the surface they leave (march.h),
+ * and claim their region at its leaf, as the camera rays do; the others, and a leaf no region claims, are woven
+ * one at a time as a camera ray is (scene_trace.h). The per-ray buffers have room for every solid of the scene
+ * (src/render_scene.c, render_scene_trace_args), so no ray overflows. Out per ray: the claimed
  * partition's start (+inf when nothing is hit in [tn, tf] within the bounds), the unit normal there facing the
- * ray, the item, and where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS). A ray continued
+ * ray, the item, and where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS). With `whether` (the
+ * scene's items all opaque: shadow rays), a ray whose march proves g crossing 0 ends there without its leaf,
+ * item EFFECTS_HIT_BLOCKED, t before the crossing. A ray continued
  * through a transparent region starts inside it and passes through it (passing[ray]: 1 + the region, weave.h).
  */
+
+#if defined(SCENE_REGIONS_DISJOINT) && defined(SCENE_UNION_PREPASS)
+#define SCENE_RAYS_MARCH 1
+/* Where the packet's rays (ok, dk over [tn, tf]) that start outside every region (lanes of `outside_k`, the ray
+ * not passing through one) meet the regions' union first: g > 0 at t_near (its enclosure at the point), then
+ * g's first root by marching off the surface the ray leaves (march.h: its start is its hit's offset, some
+ * 4 eps + 4e-6 (1 + |o|) off it) and by bisection with Newton from any node where the march hands over; the leaf
+ * [from, leaf_hi] and the solids' states over it (scene_union_states) for scene_union_claim, from +inf where no
+ * region is on the ray (g > 0 on all of it: g is continuous and a region is in only where g <= 0,
+ * scene_union.h), from t_near for the lanes left to the weave from there. evals: each lane's evaluations. */
+static void scene_rays_union(__constant ia_real *params, ia_real eps, int whether, const ia_real ok[3][PACKET_LANES],
+                             const ia_real dk[3][PACKET_LANES], const ia_real tn[PACKET_LANES],
+                             const ia_real tf[PACKET_LANES], const ia_real outside_k[PACKET_LANES],
+                             ia_real from[PACKET_LANES], ia_real leaf_hi[PACKET_LANES], ia_real crossed_k[PACKET_LANES],
+                             int states[SCENE_REGIONS_UNION][PACKET_LANES], kernel_u32 evals[PACKET_LANES]) {
+    ia_realv o[3], d[3], t_near = IAV_LOAD(tn), a = t_near, b = IAV_LOAD(tf);
+    for (int c = 0; c < 3; c++) {
+        o[c] = IAV_LOAD(ok[c]);
+        d[c] = IAV_LOAD(dk[c]);
+    }
+    iav time = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
+    packet_index counts = (packet_index)0;
+    ia_maskv on = IAV_LOAD(outside_k) != 0, outside = (ia_maskv)0, hit = (ia_maskv)0;
+    ia_realv lo = IAV_R(0), hi = IAV_R(0);
+    if (iav_any(on)) {
+        iav at = iav_make(t_near, t_near);
+        outside = on & (iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at),
+                                 packet_extent(o[2], d[2], at), time)
+                            .lo > 0);
+        PACKET_COUNT(counts, on);
+    }
+    if (iav_any(outside)) {
+        ia_realv leaving = 4 * eps + (ia_real)4e-6 * (1 + fabs(o[0]) + fabs(o[1]) + fabs(o[2]));
+        ia_maskv walking = outside;
+#ifdef PACKET_NEWTON
+        hit = effects_march(o, d, &a, &b, &walking, leaving, eps, whether, time, &lo, &hi, &counts);
+#else
+        hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, whether, time, &lo, &hi, &counts);
+#endif
+        ia_real far[IA_VW], w = 0;
+        IAV_STORE(select(IAV_R(0), b, walking), far);
+        for (int k = 0; k < IA_VW; k++)
+            w = fmax(w, far[k]);
+        if (iav_any(walking)) /* a tree as long as the farthest ray; Newton from any node */
+            hit |= packet_first_root(0, o, d, 0, w, (packet_int)0, (packet_index)0, a, b, walking, eps, IA_INF, 0,
+                                     time, &lo, &hi, &counts);
+    }
+    ia_maskv crossed = hit & (hi - lo > eps); /* `whether`: a part where g crosses 0, not a leaf */
+    hit &= ~crossed;
+    IAV_STORE(select(IAV_R(0), IAV_R(1), crossed), crossed_k);
+    IAV_STORE(select(t_near, select(IAV_R(IA_INF), lo, hit | crossed), outside), from);
+    IAV_STORE(select(IAV_R(-IA_INF), hi, hit), leaf_hi);
+    if (iav_any(hit))
+        scene_union_states(o, d, fmax(t_near, lo), hi, hit, time, states, &counts);
+    bisect_index count[IA_VW];
+    IAV_STORE(counts, count);
+    for (int k = 0; k < IA_VW; k++)
+        evals[k] = (kernel_u32)count[k];
+}
+#endif
 
 __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const ia_real *rays, int nrays, int first_ray,
                                      ia_real eps, __global ia_real *hit_t, __global float *normal,
@@ -20,10 +86,10 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
                                      __global ia_real *cand_range, __global ia_real *cand_pos, __global int *cand_level,
                                      __global bisect_index *cand_index, __global int *cand_newton,
                                      __global ia_real *cand_newton_t, int cand_cap, __global uchar *state,
-                                     int nstates) {
+                                     int nstates, int whether) {
     size_t slot = get_global_id(0);
-    int ray = first_ray + (int)slot;
-    if (ray >= nrays)
+    int first = first_ray + PACKET_LANES * (int)slot;
+    if (first >= nrays)
         return;
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, eps, time, 0};
@@ -35,35 +101,79 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
                    .walks = {cand_solid + c0, cand_range + 2 * c0, cand_pos + c0, cand_level + c0, cand_index + c0,
                              cand_newton + c0, cand_newton_t + 2 * c0},
                    .cand_cap = cand_cap,
-                   .state = state + slot * (size_t)nstates,
-                   .passing = passing ? passing[ray] : 0};
-    const __global ia_real *q = rays + EFFECTS_RAY_REALS * (size_t)ray;
-    ia_real o[3] = {q[0], q[1], q[2]}, d[3] = {q[3], q[4], q[5]}, tn, tf;
-    weave_hit hit = {0, -1, -1, -1};
-    int found = camera_clip(params, o, d, &tn, &tf);
-    tn = fmax(tn, q[6]);
-    tf = fmin(tf, q[7]);
-    found = found && tn <= tf && scene_trace_ray(&view, &r, o, d, tn, tf, &hit) == 1;
-    hit_t[ray] = found ? hit.t : IA_INF;
-    hit_item[ray] = found ? hit.item : -1;
-    if (evals) /* counted with KERNEL_STATS (-stats) */
-        evals[ray] = r.evals;
-    ia_real g[3] = {0, 0, 0};
-    if (found)
-        scene_solid_f_grad(hit.solid, o[0] + hit.t * d[0], o[1] + hit.t * d[1], o[2] + hit.t * d[2],
-                           params[PARAM_TIME_LO], &g[0], &g[1], &g[2]);
-    ia_real len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), facing = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
-    int ok = len > 0 && isfinite(len);
-    for (int c = 0; c < 3; c++) /* facing the ray; -d where the gradient vanishes (as light.h's shade_normals) */
-        normal[3 * ray + c] = (float)(!found ? 0 : ok ? (facing > 0 ? -g[c] : g[c]) / len : -d[c]);
+                   .state = state + slot * (size_t)nstates};
+    ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
+    ia_real meets[PACKET_LANES], outside[PACKET_LANES], from[PACKET_LANES], leaf_hi[PACKET_LANES];
+    ia_real crossed[PACKET_LANES];
+    kernel_u32 from_evals[PACKET_LANES];
+    for (int k = 0; k < PACKET_LANES; k++) {
+        int ray = min(first + k, nrays - 1);
+        const __global ia_real *q = rays + EFFECTS_RAY_REALS * (size_t)ray;
+        ia_real o[3] = {q[0], q[1], q[2]}, d[3] = {q[3], q[4], q[5]}, t_near, t_far;
+        int in = first + k < nrays && camera_clip(params, o, d, &t_near, &t_far);
+        tn[k] = fmax(t_near, q[6]);
+        tf[k] = fmin(t_far, q[7]);
+        meets[k] = in && tn[k] <= tf[k];
+        outside[k] = meets[k] != 0 && !(passing && passing[ray]);
+        for (int c = 0; c < 3; c++) {
+            ok[c][k] = o[c];
+            dk[c][k] = d[c];
+            ik[c][k] = (ia_real)1 / d[c];
+        }
+        from[k] = leaf_hi[k] = -IA_INF;
+        crossed[k] = 0;
+        from_evals[k] = 0;
+    }
+#ifdef SCENE_RAYS_MARCH
+    int states[SCENE_REGIONS_UNION][PACKET_LANES];
+    scene_rays_union(params, eps, whether, ok, dk, tn, tf, outside, from, leaf_hi, crossed, states, from_evals);
+#else
+    (void)whether;
+#endif
+    for (int k = 0; k < PACKET_LANES && first + k < nrays; k++) {
+        int ray = first + k;
+        ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
+        bvh_ray br = bvh_ray_lane(dk, ik, k);
+        weave_hit hit = {0, -1, -1, -1};
+        r.evals = 0;
+        r.passing = passing ? passing[ray] : 0;
+        int found = 0, claimed = 0;
+        if (crossed[k] != 0) { /* certainly blocked (`whether`) */
+            found = 1;
+            hit.t = from[k];
+            hit.item = EFFECTS_HIT_BLOCKED;
+        } else if (meets[k] != 0) {
+#ifdef SCENE_RAYS_MARCH
+            if (leaf_hi[k] >= from[k])
+                claimed = scene_union_claim(&r, states, k, fmax(tn[k], from[k]), &hit);
+#endif
+            /* no overflow: the buffers hold every solid (the claim's overflow would be woven from t_near) */
+            found = claimed > 0 ? scene_trace_surfaces(&view, &r, o, d, tn[k], tf[k], 1, &hit)
+                                : scene_trace_ray_from(&view, &r, o, d, &br, tn[k],
+                                                       claimed < 0 ? tn[k] : fmax(tn[k], from[k]), tf[k], &hit);
+        }
+        found = found == 1;
+        hit_t[ray] = found ? hit.t : IA_INF;
+        hit_item[ray] = found ? hit.item : -1;
+        if (evals) /* counted with KERNEL_STATS (-stats) */
+            evals[ray] = r.evals + from_evals[k];
+        ia_real g[3] = {0, 0, 0};
+        if (found && hit.solid >= 0)
+            scene_solid_f_grad(hit.solid, o[0] + hit.t * d[0], o[1] + hit.t * d[1], o[2] + hit.t * d[2],
+                               params[PARAM_TIME_LO], &g[0], &g[1], &g[2]);
+        ia_real len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), facing = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
+        int ok_g = len > 0 && isfinite(len);
+        for (int c = 0; c < 3; c++) /* facing the ray; -d where the gradient vanishes (as light.h's shade_normals) */
+            normal[3 * ray + c] = (float)(!found ? 0 : ok_g ? (facing > 0 ? -g[c] : g[c]) / len : -d[c]);
+    }
 }
 
 /* iacsg_scene_shade: the colours of the segment path's hits (src/render_effects.c lists them, with the lights each
  * sees after its shadow rays), 16 per work-item in SIMD lanes, by light.h's shade_effects with each hit's item's
  * material (SCENE_MATERIAL_FLOATS per item) and, for -shade ids, palette colour (3 linear floats per item). In
  * per hit: its ray (EFFECTS_RAY_REALS), depth, normal (3 floats, facing the ray), item (-1: a miss), the
- * fraction of each light that reaches it (EFFECTS_MAX_LIGHTS floats) and its pixel's row. Out per hit, 6 floats: its colour (a miss: the background) and
- * the background of its row, both linear. */
+ * fraction of each light that reaches it (EFFECTS_MAX_LIGHTS floats) and its pixel's row. Out per hit, 6 floats:
+ * its colour (a miss: the background) and the background of its row, both linear. */
 __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *fx, __global const float *materials,
                                 __global const float *palette, int height, __global const ia_real *rays,
                                 __global const ia_real *hit_t, __global const float *hit_n,

@@ -10,9 +10,9 @@
  * Everything per ray runs on the device, shaded by light.h (shade_effects): an expression's paths wholly in
  * kernels/effects.cl, most often inside the camera kernel (render_effects_in_camera: render.c launches it with
  * this file's block), else after the frame (render_effects_device.c launches them: this file lists the pixels),
- * as are -aa's edges; a scene's secondary rays
- * traced by kernels/scene_effects.cl and their hits shaded there (render_effects_trace.c), while this file keeps
- * the paths, their shadow rays and children. So an occluder or a reflected surface that a ray crosses inside the
+ * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
+ * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
+ * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children. So an occluder or a reflected surface that a ray crosses inside the
  * bounds is never missed, and with the default rig and no effect but -aa or -background a pixel gets the colour
  * the plain render gives it.
  */
@@ -241,21 +241,24 @@ static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n
     long *owner = reserve(&f->shadow_of, (n * nl + 1) * sizeof *owner); /* the (path, light) of each ray */
     if (!rays || !hits || !owner)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-    for (size_t i = 0; i < n; i++)
-        for (size_t l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
+    for (size_t l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* light by light: neighbouring paths' rays, a coherent packet */
+        for (size_t i = 0; i < n; i++) {
             int cast = l < nl && paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[m]);
             vis[EFFECTS_MAX_LIGHTS * i + l] = cast;
             if (cast)
                 owner[m++] = (long)(EFFECTS_MAX_LIGHTS * i + l);
         }
     for (int layer = 0; m > 0 && layer < EFFECTS_MAX_LAYERS; layer++) {
-        iacsg_status st = fx_trace(&f->tracer, rays, m, FX_SHADOW_EPS_FACTOR * f->view->eps, hits, err);
+        int whether = !transparent(f->r, f->e); /* every item opaque: a ray proven blocked needs no leaf */
+        iacsg_status st = fx_trace(&f->tracer, rays, m, FX_SHADOW_EPS_FACTOR * f->view->eps, whether, hits, err);
         if (st != IACSG_OK)
             return st;
         size_t next = 0;
         for (size_t j = 0; j < m; j++) { /* in place: ray j is read before ray next <= j is written */
+            if (hits[j].item == EFFECTS_HIT_BLOCKED)
+                vis[owner[j]] = 0;
             if (hits[j].item < 0)
-                continue; /* it reached the light */
+                continue; /* it reached the light, or is blocked */
             const fx_item *it = &f->r->fx->items[hits[j].item];
             float *v = &vis[owner[j]];
             *v *= 1 - it->opacity;
@@ -366,7 +369,7 @@ static iacsg_status trace_paths(fx_frame *f, fx_path *paths, size_t n, double ep
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         rays[i] = paths[i].ray;
     if (st == IACSG_OK)
-        st = fx_trace(&f->tracer, rays, n, eps, hits, err);
+        st = fx_trace(&f->tracer, rays, n, eps, 0, hits, err);
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         paths[i].hit = hits[i];
     return st;
@@ -504,6 +507,19 @@ static double aa_eps(const fx_frame *f) {
     return fmax(f->view->eps, f->tracer.footprint / (FX_AA_EPS_PER_SAMPLE * f->e->aa));
 }
 
+/* The hits of -aa's sample rays paths[0 .. n), the aa x aa of each of pixels[0 .. npixels) in antialias's order,
+ * traced as packets of the camera kernel's (fx_scene_samples) with -aa's leaves. */
+static iacsg_status trace_samples(fx_frame *f, const int *pixels, size_t npixels, fx_path *paths, size_t n,
+                                  iacsg_error *err) {
+    fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
+    if (!hits)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for -aa's samples");
+    iacsg_status st = fx_scene_samples(&f->tracer, f->e->aa, aa_eps(f), pixels, npixels, hits, err);
+    for (size_t i = 0; st == IACSG_OK && i < n; i++)
+        paths[i].hit = hits[i];
+    return st;
+}
+
 /* -aa N on the segment path: the pixels on an edge get N x N rays of their own, on a regular grid in the pixel,
  * each weighing 1 / N^2; their centre rays' colours are replaced. */
 static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, fx_path *paths, iacsg_error *err) {
@@ -535,7 +551,7 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, fx_path *paths, iacs
                     camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
                 }
         }
-        st = trace_paths(f, paths, n, aa_eps(f), err);
+        st = trace_samples(f, edges + first, k - first, paths, n, err);
         if (st == IACSG_OK)
             st = run_paths(f, paths, n, err);
         for (size_t q = first; st == IACSG_OK && q < k; q++)
@@ -771,8 +787,10 @@ int iacsg_scene_lights(const iacsg_scene *s, iacsg_light lights[IACSG_MAX_LIGHTS
 void render_effects_free(render_fx *fx) {
     if (!fx)
         return;
-    if (fx->trace)
-        clReleaseKernel(fx->trace);
+    cl_kernel kernels[] = {fx->trace, fx->shade, fx->samples};
+    for (int k = 0; k < 3; k++)
+        if (kernels[k])
+            clReleaseKernel(kernels[k]);
     free(fx->items);
     free(fx);
 }

@@ -38,14 +38,14 @@ void fx_encode(float *rgb, int pixel) {
 }
 
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
-                                 iacsg_error *err);
+                                 cl_int whether, iacsg_error *err);
 
 /* PoCL compiles a kernel at its first launch: one launch over no rays makes that happen when the kernel is made,
  * counted as build time (render.c: compile_now), not inside the first frame with effects. */
 static iacsg_status compile_trace_now(fx_tracer *t, iacsg_error *err) {
     struct trace_buffers none = {0};
     double eps[1] = {0};
-    return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, err) : fx_device_compile(t, err);
+    return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, 0, err) : fx_device_compile(t, err);
 }
 
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
@@ -135,13 +135,14 @@ static void release_trace_buffers(trace_buffers *b) {
             clReleaseMemObject(all[k]);
 }
 
-/* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items as the per-ray
- * buffers have room for (one after the other on the in-order queue, which they share). */
+/* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items (PACKET_LANES rays
+ * each) as the per-ray buffers have room for (one after the other on the in-order queue, which they share). */
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
-                                 iacsg_error *err) {
+                                 cl_int whether, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     void *held = NULL;
-    size_t slots = n > 0 ? (size_t)n : 1; /* n = 0: one launch that traces nothing (compile_trace_now) */
+    cl_int packets = (n + PACKET_LANES - 1) / PACKET_LANES;
+    size_t slots = packets > 0 ? (size_t)packets : 1; /* n = 0: one launch that traces nothing (compile_trace_now) */
     iacsg_status st = render_scene_trace_args(r, t->view, k, 10, &slots, &held, err);
     cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item, b->evals, b->passing};
     cl_uint at[] = {0, 1, 5, 6, 7, 8, 9};
@@ -149,11 +150,14 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
         if (clSetKernelArg(k, at[a], sizeof(cl_mem), args[a] ? &args[a] : NULL) != CL_SUCCESS)
             st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
-                           clSetKernelArg(k, 4, fx_real_bytes(r), eps_real) != CL_SUCCESS))
+                           clSetKernelArg(k, 4, fx_real_bytes(r), eps_real) != CL_SUCCESS ||
+                           clSetKernelArg(k, 29, sizeof whether, &whether) != CL_SUCCESS))
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
-    for (cl_int first = 0; st == IACSG_OK && (first < n || first == 0); first += (cl_int)slots) {
-        size_t global = (size_t)(n - first) < slots && n > 0 ? (size_t)(n - first) : slots, local = 1;
-        cl_int rc = clSetKernelArg(k, 3, sizeof first, &first);
+    for (cl_int first = 0; st == IACSG_OK && (first < packets || first == 0); first += (cl_int)slots) {
+        size_t global = (size_t)(packets - first) < slots && packets > 0 ? (size_t)(packets - first) : slots;
+        size_t local = 1;
+        cl_int first_ray = PACKET_LANES * first;
+        cl_int rc = clSetKernelArg(k, 3, sizeof first_ray, &first_ray);
         if (rc == CL_SUCCESS)
             rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
         if (rc != CL_SUCCESS)
@@ -192,7 +196,8 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err) {
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, int whether, fx_hit *hits,
+                      iacsg_error *err) {
     if (n == 0)
         return IACSG_OK;
     if (n > 0x7fffffff / EFFECTS_RAY_REALS)
@@ -227,7 +232,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx
     }
     double eps_block[1];
     fx_put_real(r, eps_block, 0, eps);
-    st = launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, err);
+    st = launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, whether, err);
     for (int k = 1; k < 5 && st == IACSG_OK; k++) /* the outputs */
         if (*dst[k])
             st = fx_sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
@@ -282,7 +287,8 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *ray
             st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
     }
     if (st == IACSG_OK && n > 0) {
-        out_mem = clCreateBuffer(r->rt.context, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, 6 * n * sizeof(float), out, &rc);
+        out_mem = clCreateBuffer(r->rt.context, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, 6 * n * sizeof(float), out,
+                                 &rc);
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
     }

@@ -14,7 +14,7 @@ typedef struct {
 typedef struct {
     double t;   /* the hit leaf's start (never after the first root in [tn, tf]), +inf on a miss */
     float n[3]; /* the unit normal there, facing the ray */
-    int item;   /* the region or surface hit (an expression: 0), -1 on a miss */
+    int item;   /* the region or surface hit (an expression: 0), -1 on a miss, or EFFECTS_HIT_BLOCKED (fx_trace) */
 } fx_hit;
 
 typedef struct {
@@ -26,6 +26,7 @@ typedef struct {
 struct render_fx {
     cl_kernel trace; /* iacsg_effects (kernels/effects.cl) or iacsg_scene_trace_rays */
     cl_kernel shade; /* a scene's: iacsg_scene_shade */
+    cl_kernel samples; /* a scene's -aa samples: iacsg_render_scene_samples (kernels/render_scene.cl) */
     fx_item *items;  /* a scene's items' materials, as the effects need them */
     int nitems;
 };
@@ -76,8 +77,16 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
 /* One launch over no paths: PoCL compiles the kernel then (render_effects_trace.c: compile_trace_now). */
 iacsg_status fx_device_compile(fx_tracer *t, iacsg_error *err);
 
-/* The segment path's secondary rays: traces rays[0 .. n) with leaves of width eps into hits[0 .. n). */
-iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, fx_hit *hits, iacsg_error *err);
+/* The segment path's secondary rays: traces rays[0 .. n) with leaves of width eps into hits[0 .. n). With
+ * `whether` (only when every item is opaque), a ray may end on a proven crossing, item EFFECTS_HIT_BLOCKED. */
+iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, int whether, fx_hit *hits,
+                      iacsg_error *err);
+
+/* The segment path's -aa samples (src/render_effects_samples.c): the aa x aa sample rays of each of
+ * pixels[0 .. npixels), sample (a, b) of pixel q through (i + (a + 1/2) / aa, j + (b + 1/2) / aa) into
+ * hits[aa^2 q + aa b + a], traced by the camera kernel's packets with leaves of width eps. */
+iacsg_status fx_scene_samples(fx_tracer *t, int aa, double eps, const int *pixels, size_t npixels, fx_hit *hits,
+                              iacsg_error *err);
 
 /* The segment path's colours (kernels/scene_effects.cl: iacsg_scene_shade) of the hits[0 .. n) of rays[0 .. n):
  * each lit by the lights of the effects' block (EFFECTS_COUNT, kernels/effects.h), of which the fractions

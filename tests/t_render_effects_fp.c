@@ -236,6 +236,33 @@ TEST_FP(effects_shadow_boundary_regions) {
     check_shadows(view, fr);
 }
 
+/* The same as disjoint regions (the ground less the ball): the shadow rays' packets find the regions' union's first
+ * root in SIMD lanes, marching off the surface they leave (kernels/scene_effects.cl, march.h: effects_march with
+ * the union's derivative), and end on a proven crossing (every item opaque). */
+TEST_FP(effects_shadow_boundary_disjoint) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = shadow_effects();
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_scene_text("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                      "region b = ball : m\nregion g = z \\ ball : m\n",
+                      &view, &fr);
+    check_shadows(view, fr);
+}
+
+/* The same with the ground's function z (2 + cos x), the same solid and normals, whose cosine leaves the union
+ * without derivative code: the march by F's enclosure alone (march.h: march_enclosure). */
+TEST_FP(effects_shadow_boundary_disjoint_enclosure) {
+    iacsg_view view = ground_view(200);
+    iacsg_effects fx = shadow_effects();
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_scene_text("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                      "solid ground = z * (2 + cos(x))\nregion b = ball : m\nregion g = ground \\ ball : m\n",
+                      &view, &fr);
+    check_shadows(view, fr);
+}
+
 /* The unit sphere seen along -z, orthographic: the point (s, v) of the image plane is on it iff s^2 + v^2 < 1. */
 static iacsg_view sphere_ortho_view(int size) {
     iacsg_view v = {.width = size, .height = size, .eps = 0x1p-14,
@@ -261,13 +288,13 @@ static double sphere_coverage(const iacsg_view *v, int i, int j) {
  * one wholly outside (B), takes the blend sqrt(c S^2 + (1 - c) B^2) of its coverage c (linear light, gamma 2),
  * within what 4 x 4 rays and the shading's change over a pixel allow. (Where the shading itself changes fast,
  * in the highlight, neighbours differ by more than -aa's contrast threshold, so those pixels are sampled too.) */
-TEST_FP(effects_aa_edges) {
+static void check_aa_edges(void (*render)(const char *, const iacsg_view *, iacsg_frame *), const char *text) {
     iacsg_view view = sphere_ortho_view(96);
     iacsg_frame plain, aa;
-    render_expr("sphere", &view, &plain);
+    render(text, &view, &plain);
     iacsg_effects fx = {.aa = 4};
     view.effects = &fx;
-    render_expr("sphere", &view, &aa);
+    render(text, &view, &aa);
     long inside = 0, same = 0, edges = 0, bad = 0;
     double worst = 0, worst_edge = 0;
     for (int j = 1; j + 1 < view.height; j++)
@@ -315,6 +342,12 @@ TEST_FP(effects_aa_edges) {
               "neighbours differ by 1/16, were sampled too: within %.1e); %ld edge pixels within %.3f of the blend "
               "of their coverage", same, inside, worst, edges, worst_edge);
 }
+
+TEST_FP(effects_aa_edges) { check_aa_edges(render_expr, "sphere"); }
+
+/* The same as a region: the segment path's samples, traced as packets of the camera kernel's (4 x 4 samples of a
+ * pixel, one packet). */
+TEST_FP(effects_aa_edges_regions) { check_aa_edges(render_scene_text, "region ball = sphere\n"); }
 
 /* The colour's linear light (gamma 2, kernels/light.h). */
 static double linear(float shown) { return (double)shown * shown; }
