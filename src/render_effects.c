@@ -96,8 +96,8 @@ typedef struct {
     double depth_lo, depth_hi; /* the centre hits' range, for -shade depth */
     float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
     /* the segment path's scratch: shadow rays, their hits, the (path, light) of each; the generations of paths
-     * (two, in turn); the rays, hits, rows, lights' fractions and colours of a generation */
-    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, rows, vis, colors;
+     * (two, in turn); the rays, hits and colours of a generation */
+    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, colors;
     double block[EFFECTS_COUNT]; /* the effects' parameters for the kernels (kernels/effects.h) */
     float *palette;              /* a scene's: each item's -shade ids colour, linear */
 } fx_frame;
@@ -287,26 +287,25 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
                                      iacsg_error *err) {
     const iacsg_effects *e = f->e;
     int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
-    fx_ray *rays = reserve(&f->rays, (n + 1) * sizeof *rays);
-    fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
-    int *rows = reserve(&f->rows, (n + 1) * sizeof *rows);
-    float *vis = reserve(&f->vis, (EFFECTS_MAX_LIGHTS * n + 1) * sizeof *vis);
+    fx_shade_in in;
     float *out = reserve(&f->colors, (6 * n + 1) * sizeof *out);
-    if (!rays || !hits || !rows || !vis || !out)
-        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-    iacsg_status st = IACSG_OK;
-    if (lit && e->shadows)
-        st = shadow_fractions(f, paths, n, vis, err);
-    for (size_t k = 0; !(lit && e->shadows) && k < EFFECTS_MAX_LIGHTS * n; k++)
-        vis[k] = 1;
-    /* the colours of the hits, on the device (light.h) */
-    for (size_t i = 0; i < n; i++) {
-        rays[i] = paths[i].ray;
-        hits[i] = paths[i].hit;
-        rows[i] = paths[i].pixel / f->view->width;
+    iacsg_status st = out ? fx_shade_inputs(&f->tracer, n, &in, err)
+                          : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    if (st == IACSG_OK && lit && e->shadows)
+        st = shadow_fractions(f, paths, n, in.vis, err);
+    for (size_t k = 0; st == IACSG_OK && !(lit && e->shadows) && k < EFFECTS_MAX_LIGHTS * n; k++)
+        in.vis[k] = 1;
+    /* the colours of the hits, on the device (light.h), their inputs written where it reads them */
+    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
+        const fx_path *q = &paths[i];
+        fx_put_ray(f->r, in.rays, i, &q->ray);
+        fx_put_real(f->r, in.depth, i, isinf(q->hit.t) ? 0 : q->hit.t);
+        memcpy(in.normal + 3 * i, q->hit.n, sizeof q->hit.n);
+        in.item[i] = q->hit.item;
+        in.row[i] = q->pixel / f->view->width;
     }
     if (st == IACSG_OK)
-        st = fx_scene_shade(&f->tracer, f->block, rays, hits, vis, rows, n, f->palette, out, err);
+        st = fx_scene_shade(&f->tracer, f->block, &in, f->palette, out, err);
     if (st != IACSG_OK)
         return st;
     size_t nkids = 0;
@@ -744,8 +743,8 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
     if (st == IACSG_OK && left)
         st = r->scene ? apply_scene(&f, frame, err) : apply_expr(&f, frame, in_camera != NULL, err);
     free(f.palette);
-    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1],
-                      &f.rays,        &f.hits,        &f.rows,      &f.vis,     &f.colors};
+    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0],
+                      &f.kids[1],     &f.rays,        &f.hits,      &f.colors};
     for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
         free(bufs[k]->p);
     frame->secondary_rays = f.tracer.rays + camera_rays;
