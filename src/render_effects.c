@@ -241,13 +241,13 @@ static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n
     long *owner = reserve(&f->shadow_of, (n * nl + 1) * sizeof *owner); /* the (path, light) of each ray */
     if (!rays || !hits || !owner)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-    for (size_t l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* light by light: neighbouring paths' rays, a coherent packet */
-        for (size_t i = 0; i < n; i++) {
-            int cast = l < nl && paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[m]);
-            vis[EFFECTS_MAX_LIGHTS * i + l] = cast;
-            if (cast)
+    memset(vis, 0, EFFECTS_MAX_LIGHTS * n * sizeof *vis); /* the lights not there, and those behind a surface */
+    for (size_t l = 0; l < nl; l++) /* light by light: neighbouring paths' rays, a coherent packet */
+        for (size_t i = 0; i < n; i++)
+            if (paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[m])) {
+                vis[EFFECTS_MAX_LIGHTS * i + l] = 1;
                 owner[m++] = (long)(EFFECTS_MAX_LIGHTS * i + l);
-        }
+            }
     for (int layer = 0; m > 0 && layer < EFFECTS_MAX_LAYERS; layer++) {
         int whether = !transparent(f->r, f->e); /* every item opaque: a ray proven blocked needs no leaf */
         iacsg_status st = fx_trace(&f->tracer, rays, m, FX_SHADOW_EPS_FACTOR * f->view->eps, whether, hits, err);

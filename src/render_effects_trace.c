@@ -33,8 +33,11 @@ void fx_put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
 }
 
 void fx_encode(float *rgb, int pixel) {
-    for (int c = 0; c < 3; c++)
-        rgb[3 * (size_t)pixel + c] = sqrtf(fminf(fmaxf(rgb[3 * (size_t)pixel + c], 0), 1));
+    for (int c = 0; c < 3; c++) { /* clamped to [0, 1] (NaN to 0) by comparisons: fminf and fmaxf are calls */
+        float v = rgb[3 * (size_t)pixel + c];
+        v = v > 0 ? v : 0;
+        rgb[3 * (size_t)pixel + c] = sqrtf(v < 1 ? v : 1);
+    }
 }
 
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
