@@ -128,27 +128,37 @@ int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view) { 
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static void normalize3(double v[3]) {
+static inline void normalize3(double v[3]) {
     double len = sqrt(dot3(v, v));
     for (int k = 0; k < 3; k++)
         v[k] /= len;
 }
 
-/* The camera ray through the point (x, y) of the image, in pixels from its top left corner (pixel (i, j)'s
- * centre is (i + 1/2, j + 1/2)): kernels/camera.h's convention, in double. */
-static void camera_ray_at(const fx_frame *f, double x, double y, fx_ray *ray) {
+/* The right and up coordinates (s, v) on the image plane of the point x, y of the image, in pixels from its top
+ * left corner (pixel (i, j)'s centre is (i + 1/2, j + 1/2)): kernels/camera.h's convention, in double. */
+static double image_s(const fx_frame *f, double x) { return (2 * x / f->view->width - 1) * f->cam[PARAM_SCALE_S]; }
+static double image_v(const fx_frame *f, double y) { return (1 - 2 * y / f->view->height) * f->cam[PARAM_SCALE_V]; }
+
+/* The camera ray through the point (s, v) of the image plane (image_s, image_v). */
+static void camera_ray_sv(const fx_frame *f, double s, double v, fx_ray *ray) {
     const double *p = f->cam;
     int ortho = f->view->camera.ortho_height > 0;
-    double s = (2 * x / f->view->width - 1) * p[PARAM_SCALE_S], v = (1 - 2 * y / f->view->height) * p[PARAM_SCALE_V];
+    double d[3]; /* normalised here, not in *ray: read back as a pair, two stores just made stall (a third of this) */
     for (int k = 0; k < 3; k++) {
         double offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
         ray->o[k] = p[PARAM_EYE + k] + (ortho ? offset : 0);
-        ray->d[k] = p[PARAM_FORWARD + k] + (ortho ? 0 : offset);
+        d[k] = p[PARAM_FORWARD + k] + (ortho ? 0 : offset);
     }
-    normalize3(ray->d);
+    normalize3(d);
+    memcpy(ray->d, d, sizeof d);
     ray->tn = 0;
     ray->tf = INFINITY;
     ray->passing = 0;
+}
+
+/* The camera ray through the point (x, y) of the image, in pixels from its top left corner. */
+static void camera_ray_at(const fx_frame *f, double x, double y, fx_ray *ray) {
+    camera_ray_sv(f, image_s(f, x), image_v(f, y), ray);
 }
 
 /* The lights: the view's, or the default rig, the plain render's key and fill lights fixed to the camera. */
@@ -197,11 +207,12 @@ static double towards(const fx_light *L, const double p[3], double l[3]) {
         memcpy(l, L->v, 3 * sizeof(double));
         return INFINITY;
     }
+    double v[3]; /* not in l: read back as a pair, two stores just made stall (a third of this) */
     for (int k = 0; k < 3; k++)
-        l[k] = L->v[k] - p[k];
-    double dist = sqrt(dot3(l, l));
+        v[k] = L->v[k] - p[k];
+    double dist = sqrt(dot3(v, v));
     for (int k = 0; k < 3; k++)
-        l[k] /= dist;
+        l[k] = v[k] / dist;
     return dist;
 }
 
@@ -215,10 +226,11 @@ static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx
         l[k] = L->point ? L->v[k] - p[k] : L->v[k];
     if (dot3(n, l) <= 0)
         return 0;
-    double off = offset_of(f, p, q->hit.t);
+    double off = offset_of(f, p, q->hit.t), o[3]; /* o, not ray->o, to towards: see there */
     for (int k = 0; k < 3; k++)
-        ray->o[k] = p[k] + off * n[k];
-    ray->tf = towards(L, ray->o, ray->d);
+        o[k] = p[k] + off * n[k];
+    memcpy(ray->o, o, sizeof o);
+    ray->tf = towards(L, o, ray->d);
     ray->tn = 0;
     ray->passing = 0;
     return 1;
@@ -320,10 +332,19 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
         const fx_item *m = &f->r->fx->items[q->hit.item];
         double a = m->opacity, k = q->bounces < e->bounces ? m->reflect : 0;
         add(f->accum, q->pixel, q->w * a * (1 - k), lin);
+        double through = q->w * (1 - a);
+        int mirrored = k > 0 && q->w * a * k >= EFFECTS_MIN_WEIGHT;
+        int ends = through > 0 && (through < EFFECTS_MIN_WEIGHT || q->layers + 1 >= EFFECTS_MAX_LAYERS);
+        if (ends) { /* what is left of the path */
+            double left[3] = {background[0], background[1], background[2]};
+            add(f->accum, q->pixel, through, left);
+        }
+        if (!mirrored && (through <= 0 || ends))
+            continue; /* no child (most hits): its start is not needed */
         double p[3], n3[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
         hit_point(q, p);
         double off = offset_of(f, p, q->hit.t);
-        if (k > 0 && q->w * a * k >= EFFECTS_MIN_WEIGHT) { /* the mirror direction, from off the surface */
+        if (mirrored) { /* the mirror direction, from off the surface */
             fx_path *c = &kids[nkids++];
             *c = *q;
             c->w = q->w * a * k;
@@ -338,11 +359,7 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             c->ray.tf = INFINITY;
             c->ray.passing = 0;
         }
-        double through = q->w * (1 - a);
-        if (through > 0 && (through < EFFECTS_MIN_WEIGHT || q->layers + 1 >= EFFECTS_MAX_LAYERS)) {
-            double left[3] = {background[0], background[1], background[2]}; /* what is left of the path */
-            add(f->accum, q->pixel, through, left);
-        } else if (through > 0) { /* on through the surface: from just past it, the same direction */
+        if (through > 0 && !ends) { /* on through the surface: from just past it, the same direction */
             fx_path *c = &kids[nkids++];
             *c = *q;
             c->w = through;
@@ -453,12 +470,14 @@ static void depth_range(fx_frame *f, const iacsg_frame *fr) {
         }
 }
 
-/* The path of a pixel's centre ray, its hit the frame's (depth, normal, id). */
-static void centre_path(const fx_frame *f, const iacsg_frame *fr, int pixel, fx_path *q) {
+/* The path of a pixel's centre ray, its hit the frame's (depth, normal, id); col_s and row_v: image_s and image_v
+ * of each column's and row's centre (a megapixel's divisions made once a column and row). */
+static void centre_path(const fx_frame *f, const iacsg_frame *fr, const double *col_s, const double *row_v, int pixel,
+                        fx_path *q) {
     memset(q, 0, sizeof *q);
     q->pixel = pixel;
     q->w = 1;
-    camera_ray_at(f, pixel % f->view->width + 0.5, pixel / f->view->width + 0.5, &q->ray);
+    camera_ray_sv(f, col_s[pixel % f->view->width], row_v[pixel / f->view->width], &q->ray);
     q->hit.t = fr->depth[pixel];
     memcpy(q->hit.n, fr->normal + 3 * (size_t)pixel, sizeof q->hit.n);
     q->hit.item = isinf(q->hit.t) ? -1 : fr->ids ? (int)fr->ids[pixel] : 0;
@@ -630,18 +649,26 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
     iacsg_status st = IACSG_OK;
     fx_path *paths = malloc(FX_CHUNK * sizeof *paths);
     int *listed = pixel_list(f);
-    if (!paths || !listed) {
+    double *col_s = malloc((size_t)f->view->width * sizeof *col_s);
+    double *row_v = malloc((size_t)f->view->height * sizeof *row_v);
+    if (!paths || !listed || !col_s || !row_v) {
         free(paths);
         free(listed);
+        free(col_s);
+        free(row_v);
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     }
+    for (int i = 0; i < f->view->width; i++)
+        col_s[i] = image_s(f, i + 0.5);
+    for (int j = 0; j < f->view->height; j++)
+        row_v[j] = image_v(f, j + 0.5);
     size_t count = block_select(f, frame, NULL, listed);
     for (size_t k = 0; st == IACSG_OK && k < count;) {
         size_t n = 0;
         for (; k < count && n < FX_CHUNK; k++) {
             int pixel = listed[k];
             memset(frame->rgb + 3 * (size_t)pixel, 0, 3 * sizeof(float));
-            centre_path(f, frame, pixel, &paths[n++]);
+            centre_path(f, frame, col_s, row_v, pixel, &paths[n++]);
         }
         st = run_paths(f, paths, n, err);
         for (size_t q = 0; st == IACSG_OK && q < n; q++)
@@ -651,6 +678,8 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
         st = antialias(f, frame, paths, err);
     free(paths);
     free(listed);
+    free(col_s);
+    free(row_v);
     return st;
 }
 
