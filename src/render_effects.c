@@ -139,18 +139,26 @@ static inline void normalize3(double v[3]) {
 static double image_s(const fx_frame *f, double x) { return (2 * x / f->view->width - 1) * f->cam[PARAM_SCALE_S]; }
 static double image_v(const fx_frame *f, double y) { return (1 - 2 * y / f->view->height) * f->cam[PARAM_SCALE_V]; }
 
-/* The camera ray through the point (s, v) of the image plane (image_s, image_v). */
+/* Axis k of the camera ray through (s, v) on the image plane: its origin's, into *o, and its direction's,
+ * unnormalised (returned). */
+static double camera_axis(const double *p, int ortho, int k, double s, double v, double *o) {
+    double offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
+    *o = p[PARAM_EYE + k] + (ortho ? offset : 0);
+    return p[PARAM_FORWARD + k] + (ortho ? 0 : offset);
+}
+
+/* The camera ray through the point (s, v) of the image plane (image_s, image_v). Its direction is normalised
+ * as normalize3 does but in registers: read back from memory as a pair (GCC's vectors), its two 8-byte stores
+ * just made cannot be forwarded, a stall that held each ray until the one before was stored (most of the time
+ * of a frame's centre rays). */
 static void camera_ray_sv(const fx_frame *f, double s, double v, fx_ray *ray) {
     const double *p = f->cam;
     int ortho = f->view->camera.ortho_height > 0;
-    double d[3]; /* normalised here, not in *ray: read back as a pair, two stores just made stall (a third of this) */
-    for (int k = 0; k < 3; k++) {
-        double offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
-        ray->o[k] = p[PARAM_EYE + k] + (ortho ? offset : 0);
-        d[k] = p[PARAM_FORWARD + k] + (ortho ? 0 : offset);
-    }
-    normalize3(d);
-    memcpy(ray->d, d, sizeof d);
+    double d0 = camera_axis(p, ortho, 0, s, v, &ray->o[0]), d1 = camera_axis(p, ortho, 1, s, v, &ray->o[1]);
+    double d2 = camera_axis(p, ortho, 2, s, v, &ray->o[2]), len = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    ray->d[0] = d0 / len;
+    ray->d[1] = d1 / len;
+    ray->d[2] = d2 / len;
     ray->tn = 0;
     ray->tf = INFINITY;
     ray->passing = 0;
@@ -207,12 +215,11 @@ static double towards(const fx_light *L, const double p[3], double l[3]) {
         memcpy(l, L->v, 3 * sizeof(double));
         return INFINITY;
     }
-    double v[3]; /* not in l: read back as a pair, two stores just made stall (a third of this) */
-    for (int k = 0; k < 3; k++)
-        v[k] = L->v[k] - p[k];
-    double dist = sqrt(dot3(v, v));
-    for (int k = 0; k < 3; k++)
-        l[k] = v[k] / dist;
+    /* in registers, not read back from l: see camera_ray_sv */
+    double x = L->v[0] - p[0], y = L->v[1] - p[1], z = L->v[2] - p[2], dist = sqrt(x * x + y * y + z * z);
+    l[0] = x / dist;
+    l[1] = y / dist;
+    l[2] = z / dist;
     return dist;
 }
 
