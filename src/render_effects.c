@@ -209,18 +209,23 @@ static void hit_point(const fx_path *q, double p[3]) {
         p[k] = q->ray.o[k] + q->hit.t * q->ray.d[k];
 }
 
-/* The direction and distance from p to light L. */
-static double towards(const fx_light *L, const double p[3], double l[3]) {
+/* The ray from (x, y, z) to light L: its origin, unit direction and [0, the distance]. The origin comes as
+ * values and the direction is normalised in registers, not read back from the ray: see camera_ray_sv. */
+static void aim_at_light(const fx_light *L, double x, double y, double z, fx_ray *ray) {
+    ray->o[0] = x;
+    ray->o[1] = y;
+    ray->o[2] = z;
+    ray->tn = 0;
     if (!L->point) {
-        memcpy(l, L->v, 3 * sizeof(double));
-        return INFINITY;
+        memcpy(ray->d, L->v, sizeof ray->d);
+        ray->tf = INFINITY;
+        return;
     }
-    /* in registers, not read back from l: see camera_ray_sv */
-    double x = L->v[0] - p[0], y = L->v[1] - p[1], z = L->v[2] - p[2], dist = sqrt(x * x + y * y + z * z);
-    l[0] = x / dist;
-    l[1] = y / dist;
-    l[2] = z / dist;
-    return dist;
+    double lx = L->v[0] - x, ly = L->v[1] - y, lz = L->v[2] - z, dist = sqrt(lx * lx + ly * ly + lz * lz);
+    ray->d[0] = lx / dist;
+    ray->d[1] = ly / dist;
+    ray->d[2] = lz / dist;
+    ray->tf = dist;
 }
 
 /* The shadow ray from the hit of q to light L: from the hit moved off the surface along its normal (which faces
@@ -233,12 +238,8 @@ static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx
         l[k] = L->point ? L->v[k] - p[k] : L->v[k];
     if (dot3(n, l) <= 0)
         return 0;
-    double off = offset_of(f, p, q->hit.t), o[3]; /* o, not ray->o, to towards: see there */
-    for (int k = 0; k < 3; k++)
-        o[k] = p[k] + off * n[k];
-    memcpy(ray->o, o, sizeof o);
-    ray->tf = towards(L, o, ray->d);
-    ray->tn = 0;
+    double off = offset_of(f, p, q->hit.t);
+    aim_at_light(L, p[0] + off * n[0], p[1] + off * n[1], p[2] + off * n[2], ray);
     ray->passing = 0;
     return 1;
 }
@@ -287,11 +288,10 @@ static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n
             double p[3];
             hit_point(&past, p);
             double off = offset_of(f, p, hits[j].t);
+            const float *n = hits[j].n;
             fx_ray *y = &rays[next];
-            for (int k = 0; k < 3; k++)
-                y->o[k] = p[k] - off * hits[j].n[k];
-            y->tf = towards(&f->lights[owner[j] % EFFECTS_MAX_LIGHTS], y->o, y->d);
-            y->tn = 0;
+            aim_at_light(&f->lights[owner[j] % EFFECTS_MAX_LIGHTS], p[0] - off * n[0], p[1] - off * n[1],
+                         p[2] - off * n[2], y);
             y->passing = it->region ? 1 + hits[j].item : 0;
             owner[next++] = owner[j];
         }

@@ -193,8 +193,12 @@ static iacsg_status reserve_scratch(void **host, size_t *have, size_t bytes, iac
 
 void fx_put_ray(const iacsg_renderer *r, void *reals, size_t i, const fx_ray *y) {
     double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
+    if (r->config.fp64) { /* the precision decided once a ray, not once a real: the loop is then converted in SIMD */
+        memcpy((double *)reals + EFFECTS_RAY_REALS * i, v, sizeof v);
+        return;
+    }
     for (int k = 0; k < EFFECTS_RAY_REALS; k++)
-        fx_put_real(r, reals, EFFECTS_RAY_REALS * i + (size_t)k, v[k]);
+        ((float *)reals)[EFFECTS_RAY_REALS * i + (size_t)k] = (float)v[k];
 }
 
 iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {
