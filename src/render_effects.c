@@ -128,7 +128,7 @@ int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view) { 
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static inline void normalize3(double v[3]) {
+static void normalize3(double v[3]) {
     double len = sqrt(dot3(v, v));
     for (int k = 0; k < 3; k++)
         v[k] /= len;
