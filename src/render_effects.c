@@ -96,8 +96,8 @@ typedef struct {
     double depth_lo, depth_hi; /* the centre hits' range, for -shade depth */
     float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
     /* the segment path's scratch: shadow rays, their hits, the (path, light) of each; the generations of paths
-     * (two, in turn); the rays, hits, rows, lights' fractions and colours of a generation */
-    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, rows, vis, colors;
+     * (two, in turn); the rays, hits and colours of a generation */
+    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, colors;
     double block[EFFECTS_COUNT]; /* the effects' parameters for the kernels (kernels/effects.h) */
     float *palette;              /* a scene's: each item's -shade ids colour, linear */
 } fx_frame;
@@ -134,21 +134,39 @@ static void normalize3(double v[3]) {
         v[k] /= len;
 }
 
-/* The camera ray through the point (x, y) of the image, in pixels from its top left corner (pixel (i, j)'s
- * centre is (i + 1/2, j + 1/2)): kernels/camera.h's convention, in double. */
-static void camera_ray_at(const fx_frame *f, double x, double y, fx_ray *ray) {
+/* The right and up coordinates (s, v) on the image plane of the point x, y of the image, in pixels from its top
+ * left corner (pixel (i, j)'s centre is (i + 1/2, j + 1/2)): kernels/camera.h's convention, in double. */
+static double image_s(const fx_frame *f, double x) { return (2 * x / f->view->width - 1) * f->cam[PARAM_SCALE_S]; }
+static double image_v(const fx_frame *f, double y) { return (1 - 2 * y / f->view->height) * f->cam[PARAM_SCALE_V]; }
+
+/* Axis k of the camera ray through (s, v) on the image plane: its origin's, into *o, and its direction's,
+ * unnormalised (returned). */
+static double camera_axis(const double *p, int ortho, int k, double s, double v, double *o) {
+    double offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
+    *o = p[PARAM_EYE + k] + (ortho ? offset : 0);
+    return p[PARAM_FORWARD + k] + (ortho ? 0 : offset);
+}
+
+/* The camera ray through the point (s, v) of the image plane (image_s, image_v). Its direction is normalised
+ * as normalize3 does but in registers: read back from memory as a pair (GCC's vectors), its two 8-byte stores
+ * just made cannot be forwarded, a stall that held each ray until the one before was stored (most of the time
+ * of a frame's centre rays). */
+static void camera_ray_sv(const fx_frame *f, double s, double v, fx_ray *ray) {
     const double *p = f->cam;
     int ortho = f->view->camera.ortho_height > 0;
-    double s = (2 * x / f->view->width - 1) * p[PARAM_SCALE_S], v = (1 - 2 * y / f->view->height) * p[PARAM_SCALE_V];
-    for (int k = 0; k < 3; k++) {
-        double offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
-        ray->o[k] = p[PARAM_EYE + k] + (ortho ? offset : 0);
-        ray->d[k] = p[PARAM_FORWARD + k] + (ortho ? 0 : offset);
-    }
-    normalize3(ray->d);
+    double d0 = camera_axis(p, ortho, 0, s, v, &ray->o[0]), d1 = camera_axis(p, ortho, 1, s, v, &ray->o[1]);
+    double d2 = camera_axis(p, ortho, 2, s, v, &ray->o[2]), len = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    ray->d[0] = d0 / len;
+    ray->d[1] = d1 / len;
+    ray->d[2] = d2 / len;
     ray->tn = 0;
     ray->tf = INFINITY;
     ray->passing = 0;
+}
+
+/* The camera ray through the point (x, y) of the image, in pixels from its top left corner. */
+static void camera_ray_at(const fx_frame *f, double x, double y, fx_ray *ray) {
+    camera_ray_sv(f, image_s(f, x), image_v(f, y), ray);
 }
 
 /* The lights: the view's, or the default rig, the plain render's key and fill lights fixed to the camera. */
@@ -191,18 +209,23 @@ static void hit_point(const fx_path *q, double p[3]) {
         p[k] = q->ray.o[k] + q->hit.t * q->ray.d[k];
 }
 
-/* The direction and distance from p to light L. */
-static double towards(const fx_light *L, const double p[3], double l[3]) {
+/* The ray from (x, y, z) to light L: its origin, unit direction and [0, the distance]. The origin comes as
+ * values and the direction is normalised in registers, not read back from the ray: see camera_ray_sv. */
+static void aim_at_light(const fx_light *L, double x, double y, double z, fx_ray *ray) {
+    ray->o[0] = x;
+    ray->o[1] = y;
+    ray->o[2] = z;
+    ray->tn = 0;
     if (!L->point) {
-        memcpy(l, L->v, 3 * sizeof(double));
-        return INFINITY;
+        memcpy(ray->d, L->v, sizeof ray->d);
+        ray->tf = INFINITY;
+        return;
     }
-    for (int k = 0; k < 3; k++)
-        l[k] = L->v[k] - p[k];
-    double dist = sqrt(dot3(l, l));
-    for (int k = 0; k < 3; k++)
-        l[k] /= dist;
-    return dist;
+    double lx = L->v[0] - x, ly = L->v[1] - y, lz = L->v[2] - z, dist = sqrt(lx * lx + ly * ly + lz * lz);
+    ray->d[0] = lx / dist;
+    ray->d[1] = ly / dist;
+    ray->d[2] = lz / dist;
+    ray->tf = dist;
 }
 
 /* The shadow ray from the hit of q to light L: from the hit moved off the surface along its normal (which faces
@@ -216,10 +239,7 @@ static int shadow_ray(const fx_frame *f, const fx_path *q, const fx_light *L, fx
     if (dot3(n, l) <= 0)
         return 0;
     double off = offset_of(f, p, q->hit.t);
-    for (int k = 0; k < 3; k++)
-        ray->o[k] = p[k] + off * n[k];
-    ray->tf = towards(L, ray->o, ray->d);
-    ray->tn = 0;
+    aim_at_light(L, p[0] + off * n[0], p[1] + off * n[1], p[2] + off * n[2], ray);
     ray->passing = 0;
     return 1;
 }
@@ -241,13 +261,13 @@ static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n
     long *owner = reserve(&f->shadow_of, (n * nl + 1) * sizeof *owner); /* the (path, light) of each ray */
     if (!rays || !hits || !owner)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-    for (size_t l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* light by light: neighbouring paths' rays, a coherent packet */
-        for (size_t i = 0; i < n; i++) {
-            int cast = l < nl && paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[m]);
-            vis[EFFECTS_MAX_LIGHTS * i + l] = cast;
-            if (cast)
+    memset(vis, 0, EFFECTS_MAX_LIGHTS * n * sizeof *vis); /* the lights not there, and those behind a surface */
+    for (size_t l = 0; l < nl; l++) /* light by light: neighbouring paths' rays, a coherent packet */
+        for (size_t i = 0; i < n; i++)
+            if (paths[i].hit.item >= 0 && shadow_ray(f, &paths[i], &f->lights[l], &rays[m])) {
+                vis[EFFECTS_MAX_LIGHTS * i + l] = 1;
                 owner[m++] = (long)(EFFECTS_MAX_LIGHTS * i + l);
-        }
+            }
     for (int layer = 0; m > 0 && layer < EFFECTS_MAX_LAYERS; layer++) {
         int whether = !transparent(f->r, f->e); /* every item opaque: a ray proven blocked needs no leaf */
         iacsg_status st = fx_trace(&f->tracer, rays, m, FX_SHADOW_EPS_FACTOR * f->view->eps, whether, hits, err);
@@ -268,11 +288,10 @@ static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n
             double p[3];
             hit_point(&past, p);
             double off = offset_of(f, p, hits[j].t);
+            const float *n = hits[j].n;
             fx_ray *y = &rays[next];
-            for (int k = 0; k < 3; k++)
-                y->o[k] = p[k] - off * hits[j].n[k];
-            y->tf = towards(&f->lights[owner[j] % EFFECTS_MAX_LIGHTS], y->o, y->d);
-            y->tn = 0;
+            aim_at_light(&f->lights[owner[j] % EFFECTS_MAX_LIGHTS], p[0] - off * n[0], p[1] - off * n[1],
+                         p[2] - off * n[2], y);
             y->passing = it->region ? 1 + hits[j].item : 0;
             owner[next++] = owner[j];
         }
@@ -287,26 +306,25 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
                                      iacsg_error *err) {
     const iacsg_effects *e = f->e;
     int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
-    fx_ray *rays = reserve(&f->rays, (n + 1) * sizeof *rays);
-    fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
-    int *rows = reserve(&f->rows, (n + 1) * sizeof *rows);
-    float *vis = reserve(&f->vis, (EFFECTS_MAX_LIGHTS * n + 1) * sizeof *vis);
+    fx_shade_in in;
     float *out = reserve(&f->colors, (6 * n + 1) * sizeof *out);
-    if (!rays || !hits || !rows || !vis || !out)
-        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
-    iacsg_status st = IACSG_OK;
-    if (lit && e->shadows)
-        st = shadow_fractions(f, paths, n, vis, err);
-    for (size_t k = 0; !(lit && e->shadows) && k < EFFECTS_MAX_LIGHTS * n; k++)
-        vis[k] = 1;
-    /* the colours of the hits, on the device (light.h) */
-    for (size_t i = 0; i < n; i++) {
-        rays[i] = paths[i].ray;
-        hits[i] = paths[i].hit;
-        rows[i] = paths[i].pixel / f->view->width;
+    iacsg_status st = out ? fx_shade_inputs(&f->tracer, n, &in, err)
+                          : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    if (st == IACSG_OK && lit && e->shadows)
+        st = shadow_fractions(f, paths, n, in.vis, err);
+    for (size_t k = 0; st == IACSG_OK && !(lit && e->shadows) && k < EFFECTS_MAX_LIGHTS * n; k++)
+        in.vis[k] = 1;
+    /* the colours of the hits, on the device (light.h), their inputs written where it reads them */
+    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
+        const fx_path *q = &paths[i];
+        fx_put_ray(f->r, in.rays, i, &q->ray);
+        fx_put_real(f->r, in.depth, i, isinf(q->hit.t) ? 0 : q->hit.t);
+        memcpy(in.normal + 3 * i, q->hit.n, sizeof q->hit.n);
+        in.item[i] = q->hit.item;
+        in.row[i] = q->pixel / f->view->width;
     }
     if (st == IACSG_OK)
-        st = fx_scene_shade(&f->tracer, f->block, rays, hits, vis, rows, n, f->palette, out, err);
+        st = fx_scene_shade(&f->tracer, f->block, &in, f->palette, out, err);
     if (st != IACSG_OK)
         return st;
     size_t nkids = 0;
@@ -321,10 +339,19 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
         const fx_item *m = &f->r->fx->items[q->hit.item];
         double a = m->opacity, k = q->bounces < e->bounces ? m->reflect : 0;
         add(f->accum, q->pixel, q->w * a * (1 - k), lin);
+        double through = q->w * (1 - a);
+        int mirrored = k > 0 && q->w * a * k >= EFFECTS_MIN_WEIGHT;
+        int ends = through > 0 && (through < EFFECTS_MIN_WEIGHT || q->layers + 1 >= EFFECTS_MAX_LAYERS);
+        if (ends) { /* what is left of the path */
+            double left[3] = {background[0], background[1], background[2]};
+            add(f->accum, q->pixel, through, left);
+        }
+        if (!mirrored && (through <= 0 || ends))
+            continue; /* no child (most hits): its start is not needed */
         double p[3], n3[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
         hit_point(q, p);
         double off = offset_of(f, p, q->hit.t);
-        if (k > 0 && q->w * a * k >= EFFECTS_MIN_WEIGHT) { /* the mirror direction, from off the surface */
+        if (mirrored) { /* the mirror direction, from off the surface */
             fx_path *c = &kids[nkids++];
             *c = *q;
             c->w = q->w * a * k;
@@ -339,11 +366,7 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             c->ray.tf = INFINITY;
             c->ray.passing = 0;
         }
-        double through = q->w * (1 - a);
-        if (through > 0 && (through < EFFECTS_MIN_WEIGHT || q->layers + 1 >= EFFECTS_MAX_LAYERS)) {
-            double left[3] = {background[0], background[1], background[2]}; /* what is left of the path */
-            add(f->accum, q->pixel, through, left);
-        } else if (through > 0) { /* on through the surface: from just past it, the same direction */
+        if (through > 0 && !ends) { /* on through the surface: from just past it, the same direction */
             fx_path *c = &kids[nkids++];
             *c = *q;
             c->w = through;
@@ -454,12 +477,14 @@ static void depth_range(fx_frame *f, const iacsg_frame *fr) {
         }
 }
 
-/* The path of a pixel's centre ray, its hit the frame's (depth, normal, id). */
-static void centre_path(const fx_frame *f, const iacsg_frame *fr, int pixel, fx_path *q) {
+/* The path of a pixel's centre ray, its hit the frame's (depth, normal, id); col_s and row_v: image_s and image_v
+ * of each column's and row's centre (a megapixel's divisions made once a column and row). */
+static void centre_path(const fx_frame *f, const iacsg_frame *fr, const double *col_s, const double *row_v, int pixel,
+                        fx_path *q) {
     memset(q, 0, sizeof *q);
     q->pixel = pixel;
     q->w = 1;
-    camera_ray_at(f, pixel % f->view->width + 0.5, pixel / f->view->width + 0.5, &q->ray);
+    camera_ray_sv(f, col_s[pixel % f->view->width], row_v[pixel / f->view->width], &q->ray);
     q->hit.t = fr->depth[pixel];
     memcpy(q->hit.n, fr->normal + 3 * (size_t)pixel, sizeof q->hit.n);
     q->hit.item = isinf(q->hit.t) ? -1 : fr->ids ? (int)fr->ids[pixel] : 0;
@@ -631,18 +656,26 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
     iacsg_status st = IACSG_OK;
     fx_path *paths = malloc(FX_CHUNK * sizeof *paths);
     int *listed = pixel_list(f);
-    if (!paths || !listed) {
+    double *col_s = malloc((size_t)f->view->width * sizeof *col_s);
+    double *row_v = malloc((size_t)f->view->height * sizeof *row_v);
+    if (!paths || !listed || !col_s || !row_v) {
         free(paths);
         free(listed);
+        free(col_s);
+        free(row_v);
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     }
+    for (int i = 0; i < f->view->width; i++)
+        col_s[i] = image_s(f, i + 0.5);
+    for (int j = 0; j < f->view->height; j++)
+        row_v[j] = image_v(f, j + 0.5);
     size_t count = block_select(f, frame, NULL, listed);
     for (size_t k = 0; st == IACSG_OK && k < count;) {
         size_t n = 0;
         for (; k < count && n < FX_CHUNK; k++) {
             int pixel = listed[k];
             memset(frame->rgb + 3 * (size_t)pixel, 0, 3 * sizeof(float));
-            centre_path(f, frame, pixel, &paths[n++]);
+            centre_path(f, frame, col_s, row_v, pixel, &paths[n++]);
         }
         st = run_paths(f, paths, n, err);
         for (size_t q = 0; st == IACSG_OK && q < n; q++)
@@ -652,6 +685,8 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
         st = antialias(f, frame, paths, err);
     free(paths);
     free(listed);
+    free(col_s);
+    free(row_v);
     return st;
 }
 
@@ -744,8 +779,8 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
     if (st == IACSG_OK && left)
         st = r->scene ? apply_scene(&f, frame, err) : apply_expr(&f, frame, in_camera != NULL, err);
     free(f.palette);
-    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1],
-                      &f.rays,        &f.hits,        &f.rows,      &f.vis,     &f.colors};
+    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0],
+                      &f.kids[1],     &f.rays,        &f.hits,      &f.colors};
     for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
         free(bufs[k]->p);
     frame->secondary_rays = f.tracer.rays + camera_rays;

@@ -33,8 +33,11 @@ void fx_put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
 }
 
 void fx_encode(float *rgb, int pixel) {
-    for (int c = 0; c < 3; c++)
-        rgb[3 * (size_t)pixel + c] = sqrtf(fminf(fmaxf(rgb[3 * (size_t)pixel + c], 0), 1));
+    for (int c = 0; c < 3; c++) { /* clamped to [0, 1] (NaN to 0) by comparisons: fminf and fmaxf are calls */
+        float v = rgb[3 * (size_t)pixel + c];
+        v = v > 0 ? v : 0;
+        rgb[3 * (size_t)pixel + c] = sqrtf(v < 1 ? v : 1);
+    }
 }
 
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
@@ -71,7 +74,7 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
         if (st == IACSG_OK && r->scene) {
             fx->shade = clCreateKernel(r->program, "iacsg_scene_shade", &rc);
             CLRT_CHECK(err, rc);
-            st = fx_scene_shade(t, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, err);
+            st = fx_scene_shade(t, NULL, NULL, NULL, NULL, err);
         }
         r->build_seconds += render_now_seconds() - t0;
         if (st != IACSG_OK)
@@ -117,8 +120,9 @@ iacsg_status fx_block_buffer(iacsg_renderer *r, const double *block, cl_mem *out
 
 void fx_tracer_close(fx_tracer *t) {
     free(t->host);
-    t->host = NULL;
-    t->host_bytes = 0;
+    free(t->shade_host);
+    t->host = t->shade_host = NULL;
+    t->host_bytes = t->shade_bytes = 0;
     if (t->params)
         clReleaseMemObject(t->params);
     if (t->all_groups)
@@ -173,17 +177,28 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
  * use in place. */
 static size_t page_round(size_t bytes) { return (bytes + 4095) / 4096 * 4096; }
 
-/* Makes the host scratch hold `bytes` (it only grows, so that a frame's passes reuse its pages). */
-static iacsg_status reserve_scratch(fx_tracer *t, size_t bytes, iacsg_error *err) {
-    if (bytes <= t->host_bytes)
+/* Makes a host scratch (*host, *have bytes) hold `bytes` (it only grows, so that a frame's passes reuse its
+ * pages). */
+static iacsg_status reserve_scratch(void **host, size_t *have, size_t bytes, iacsg_error *err) {
+    if (bytes <= *have)
         return IACSG_OK;
     void *p = NULL;
     if (posix_memalign(&p, 4096, bytes) != 0)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the secondary rays");
-    free(t->host);
-    t->host = p;
-    t->host_bytes = bytes;
+    free(*host);
+    *host = p;
+    *have = bytes;
     return IACSG_OK;
+}
+
+void fx_put_ray(const iacsg_renderer *r, void *reals, size_t i, const fx_ray *y) {
+    double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
+    if (r->config.fp64) { /* the precision decided once a ray, not once a real: the loop is then converted in SIMD */
+        memcpy((double *)reals + EFFECTS_RAY_REALS * i, v, sizeof v);
+        return;
+    }
+    for (int k = 0; k < EFFECTS_RAY_REALS; k++)
+        ((float *)reals)[EFFECTS_RAY_REALS * i + (size_t)k] = (float)v[k];
 }
 
 iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {
@@ -209,16 +224,13 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, in
     size_t at[6] = {0};
     for (int k = 1; k < 6; k++)
         at[k] = at[k - 1] + page_round(bytes[k - 1]);
-    iacsg_status st = reserve_scratch(t, at[5] + page_round(bytes[5]), err);
+    iacsg_status st = reserve_scratch(&t->host, &t->host_bytes, at[5] + page_round(bytes[5]), err);
     if (st != IACSG_OK)
         return st;
     char *host = t->host;
     for (size_t i = 0; i < n; i++) {
-        const fx_ray *y = &rays[i];
-        double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
-        for (int k = 0; k < EFFECTS_RAY_REALS; k++)
-            fx_put_real(r, host, EFFECTS_RAY_REALS * i + k, v[k]);
-        ((cl_int *)(void *)(host + at[5]))[i] = y->passing;
+        fx_put_ray(r, host, i, &rays[i]);
+        ((cl_int *)(void *)(host + at[5]))[i] = rays[i].passing;
     }
     trace_buffers b = {0};
     cl_mem *dst[6] = {&b.rays, &b.t, &b.normal, &b.item, &b.evals, &b.passing};
@@ -253,36 +265,57 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *rays, const fx_hit *hits,
-                            const float *vis, const int *rows, size_t n, const float *palette, float *out,
-                            iacsg_error *err) {
+/* The bytes of fx_shade_in's arrays for n hits, in its order (rays, depth, normal, vis, item, row), each from a
+ * page. */
+static void shade_parts(const iacsg_renderer *r, size_t n, size_t bytes[6]) {
+    size_t rb = fx_real_bytes(r);
+    size_t b[6] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), EFFECTS_MAX_LIGHTS * n * sizeof(float),
+                   n * sizeof(cl_int), n * sizeof(cl_int)};
+    memcpy(bytes, b, sizeof b);
+}
+
+iacsg_status fx_shade_inputs(fx_tracer *t, size_t n, fx_shade_in *in, iacsg_error *err) {
+    size_t bytes[6], at[7] = {0};
+    shade_parts(t->r, n, bytes);
+    for (int k = 0; k < 6; k++)
+        at[k + 1] = at[k] + page_round(bytes[k] + 1);
+    iacsg_status st = reserve_scratch(&t->shade_host, &t->shade_bytes, at[6], err);
+    if (st != IACSG_OK)
+        return st;
+    char *host = t->shade_host;
+    *in = (fx_shade_in){.rays = host,
+                        .depth = host + at[1],
+                        .normal = (float *)(void *)(host + at[2]),
+                        .vis = (float *)(void *)(host + at[3]),
+                        .item = (cl_int *)(void *)(host + at[4]),
+                        .row = (cl_int *)(void *)(host + at[5]),
+                        .n = n};
+    return IACSG_OK;
+}
+
+iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in *in, const float *palette,
+                            float *out, iacsg_error *err) {
     iacsg_renderer *r = t->r;
-    size_t rb = fx_real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1;
-    char *reals = malloc((n * (EFFECTS_RAY_REALS + 1) + EFFECTS_COUNT + 1) * rb);
-    float *normal = malloc((3 * n + 1) * sizeof *normal);
-    cl_int *item = malloc((n + 1) * sizeof *item);
+    size_t rb = fx_real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1, n = in ? in->n : 0;
     cl_mem mem[9] = {0}; /* block, materials, palette, rays, depths, normals, items, light fractions, rows */
     cl_mem out_mem = NULL;
-    iacsg_status st = reals && normal && item ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
-    char *ray_reals = reals + EFFECTS_COUNT * rb, *depth = ray_reals + n * EFFECTS_RAY_REALS * rb;
-    for (int k = 0; st == IACSG_OK && block && k < EFFECTS_COUNT; k++)
+    char reals[EFFECTS_COUNT * sizeof(double)];
+    for (int k = 0; block && k < EFFECTS_COUNT; k++)
         fx_put_real(r, reals, (size_t)k, block[k]);
-    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
-        const fx_ray *y = &rays[i];
-        double v[EFFECTS_RAY_REALS] = {y->o[0], y->o[1], y->o[2], y->d[0], y->d[1], y->d[2], y->tn, y->tf};
-        for (int k = 0; k < EFFECTS_RAY_REALS; k++)
-            fx_put_real(r, ray_reals, EFFECTS_RAY_REALS * i + (size_t)k, v[k]);
-        fx_put_real(r, depth, i, isinf(hits[i].t) ? 0 : hits[i].t);
-        memcpy(normal + 3 * i, hits[i].n, sizeof hits[i].n);
-        item[i] = hits[i].item;
-    }
-    const void *host[9] = {reals, render_scene_materials(r), palette, ray_reals, depth, normal, item, vis, rows};
+    size_t part[6];
+    shade_parts(r, n, part);
+    const void *host[9] = {reals, render_scene_materials(r), palette, NULL, NULL, NULL, NULL, NULL, NULL};
     size_t bytes[9] = {EFFECTS_COUNT * rb, SCENE_MATERIAL_FLOATS * nitems * sizeof(float), 3 * nitems * sizeof(float),
-                       n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
-                       EFFECTS_MAX_LIGHTS * n * sizeof(float), n * sizeof(int)};
+                       part[0], part[1], part[2], part[4], part[3], part[5]};
+    if (in) {
+        const void *arrays[6] = {in->rays, in->depth, in->normal, in->item, in->vis, in->row};
+        memcpy(host + 3, arrays, sizeof arrays);
+    }
     cl_int rc = CL_SUCCESS;
-    for (int b = 0; b < 9 && st == IACSG_OK && n > 0; b++) {
-        mem[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes[b], (void *)host[b], &rc);
+    iacsg_status st = IACSG_OK;
+    for (int b = 0; b < 9 && st == IACSG_OK && n > 0; b++) { /* the hits' arrays read in place, where they are */
+        cl_mem_flags flags = CL_MEM_READ_ONLY | (b < 3 ? CL_MEM_COPY_HOST_PTR : CL_MEM_USE_HOST_PTR);
+        mem[b] = clCreateBuffer(r->rt.context, flags, bytes[b], (void *)host[b], &rc);
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
     }
@@ -318,8 +351,5 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *ray
             clReleaseMemObject(mem[b]);
     if (out_mem)
         clReleaseMemObject(out_mem);
-    free(reals);
-    free(normal);
-    free(item);
     return st;
 }

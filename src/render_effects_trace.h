@@ -54,6 +54,8 @@ typedef struct {
     long long rays;   /* secondary rays traced, and their interval evaluations (with config.stats) */
     double evals;
     size_t host_bytes;
+    void *shade_host; /* fx_shade_in's arrays, the same way */
+    size_t shade_bytes;
 } fx_tracer;
 
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err);
@@ -88,13 +90,28 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, in
 iacsg_status fx_scene_samples(fx_tracer *t, int aa, double eps, const int *pixels, size_t npixels, fx_hit *hits,
                               iacsg_error *err);
 
-/* The segment path's colours (kernels/scene_effects.cl: iacsg_scene_shade) of the hits[0 .. n) of rays[0 .. n):
- * each lit by the lights of the effects' block (EFFECTS_COUNT, kernels/effects.h), of which the fractions
- * vis[EFFECTS_MAX_LIGHTS i + l] reach hit i; its pixel's row in rows; palette: 3 linear floats per item (-shade
- * ids). Out: 6 floats per hit, its colour (a miss: the background) and its row's background, linear. n = 0:
- * only compiles the kernel. */
-iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_ray *rays, const fx_hit *hits,
-                            const float *vis, const int *rows, size_t n, const float *palette, float *out,
-                            iacsg_error *err);
+/* Ray y as reals i of `reals` (EFFECTS_RAY_REALS each, kernels/effects.h), in the working precision. */
+void fx_put_ray(const iacsg_renderer *r, void *reals, size_t i, const fx_ray *y);
+
+/* The inputs of iacsg_scene_shade (kernels/scene_effects.cl) for n hits, in its layout and the working precision,
+ * written by the caller where the device reads them (no copy): hit i's ray (fx_put_ray), its t (0 on a miss),
+ * unit normal facing the ray, item (-1: a miss), the fractions vis[EFFECTS_MAX_LIGHTS i + l] of each light l that
+ * reach it, and its pixel's row. */
+typedef struct {
+    void *rays, *depth;
+    float *normal, *vis;
+    cl_int *item, *row;
+    size_t n;
+} fx_shade_in;
+
+/* Room for the inputs of n hits, in t's scratch (reused by the next call). */
+iacsg_status fx_shade_inputs(fx_tracer *t, size_t n, fx_shade_in *in, iacsg_error *err);
+
+/* The segment path's colours (kernels/scene_effects.cl: iacsg_scene_shade) of the hits of `in`, each lit by the
+ * lights of the effects' block (EFFECTS_COUNT, kernels/effects.h); palette: 3 linear floats per item (-shade ids).
+ * Out: 6 floats per hit, its colour (a miss: the background) and its row's background, linear. in NULL: only
+ * compiles the kernel. */
+iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in *in, const float *palette,
+                            float *out, iacsg_error *err);
 
 #endif
