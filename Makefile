@@ -41,7 +41,8 @@ KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/pac
                   kernels/packet.h kernels/tile_rays.h kernels/tile.h kernels/effects.h kernels/light.h kernels/shade.h \
                   kernels/render.cl kernels/march.h kernels/effects.cl
 # The first-root program of an interpreted expression (src/render_expr.c): the tape interpreter, and the kernels
-# without the effects' kernel and its march (march.h), which need a compiled expression (effects.h's types serve light.h).
+# without the effects' kernel and its march (march.h), which need a compiled expression (effects.h's types serve
+# light.h).
 TAPE_KERNEL_SOURCES = kernels/tape_eval.h $(filter-out kernels/march.h kernels/effects.cl,$(KERNEL_SOURCES))
 # The segment path's program (src/render_scene.c): the same ia/ headers, the scene's solids, then these.
 SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/packet_camera.h kernels/traverse.h \

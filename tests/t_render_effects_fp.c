@@ -224,43 +224,35 @@ TEST_FP(effects_shadow_through_transparent_region) {
     check_ground_light(view, fr, 1, 0.4);
 }
 
-/* The same scene as two regions of the expression's colour: the segment path's shadow rays. */
-TEST_FP(effects_shadow_boundary_regions) {
+/* The shadows' check on a scene file of the same ball above the ground (the segment path's shadow rays). */
+static void check_scene_shadows(const char *scene) {
     iacsg_view view = ground_view(200);
     iacsg_effects fx = shadow_effects();
     view.effects = &fx;
     iacsg_frame fr;
-    render_scene_text("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
-                      "region b = ball : m\nregion g = z : m\n",
-                      &view, &fr);
+    render_scene_text(scene, &view, &fr);
     check_shadows(view, fr);
+}
+
+/* The same scene as two regions of the expression's colour. */
+TEST_FP(effects_shadow_boundary_regions) {
+    check_scene_shadows("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                        "region b = ball : m\nregion g = z : m\n");
 }
 
 /* The same as disjoint regions (the ground less the ball): the shadow rays' packets find the regions' union's first
  * root in SIMD lanes, marching off the surface they leave (kernels/scene_effects.cl, march.h: effects_march with
  * the union's derivative), and end on a proven crossing (every item opaque). */
 TEST_FP(effects_shadow_boundary_disjoint) {
-    iacsg_view view = ground_view(200);
-    iacsg_effects fx = shadow_effects();
-    view.effects = &fx;
-    iacsg_frame fr;
-    render_scene_text("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
-                      "region b = ball : m\nregion g = z \\ ball : m\n",
-                      &view, &fr);
-    check_shadows(view, fr);
+    check_scene_shadows("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                        "region b = ball : m\nregion g = z \\ ball : m\n");
 }
 
 /* The same with the ground's function z (2 + cos x), the same solid and normals, whose cosine leaves the union
  * without derivative code: the march by F's enclosure alone (march.h: march_enclosure). */
 TEST_FP(effects_shadow_boundary_disjoint_enclosure) {
-    iacsg_view view = ground_view(200);
-    iacsg_effects fx = shadow_effects();
-    view.effects = &fx;
-    iacsg_frame fr;
-    render_scene_text("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
-                      "solid ground = z * (2 + cos(x))\nregion b = ball : m\nregion g = ground \\ ball : m\n",
-                      &view, &fr);
-    check_shadows(view, fr);
+    check_scene_shadows("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                        "solid ground = z * (2 + cos(x))\nregion b = ball : m\nregion g = ground \\ ball : m\n");
 }
 
 /* The unit sphere seen along -z, orthographic: the point (s, v) of the image plane is on it iff s^2 + v^2 < 1. */
