@@ -47,7 +47,7 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
     for (int k = 0; k < IA_VW; k++)
         w = fmax(w, far[k]);
     ia_maskv hit = (ia_maskv)0;
-#ifdef PACKET_FDV
+#ifdef PACKET_NEWTON
     ia_maskv marching = searching & (leaving > 0);
     if (iav_any(marching)) {
         ia_maskv walking = marching;
