@@ -335,7 +335,7 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
         if (disjoint) /* then the union's: IACSG_FDV says whether it (not a solid) has iacsg_Fdv */
             st = emit_solids_in_lanes(&b, s, err);
         if (vector)
-            strbuf_printf(&b, "#undef IACSG_FDV\n%s", vector);
+            strbuf_printf(&b, "#undef IACSG_FDV\n#undef IACSG_FDV_MARCH\n%s", vector);
     }
     free(prim_reals);
     free(params32);

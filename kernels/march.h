@@ -1,7 +1,7 @@
 /* kernels/march.h -- a secondary ray's first root of F from off the surface it leaves, by marching
  * (effects_march), in SIMD lanes: the first-root path's effects (kernels/effects.cl, F the expression) and the
  * segment path's secondary rays (kernels/scene_effects.cl, F the union of its regions, kernels/scene_union.h).
- * Needs packet.h and the emitted iacsg_Fdv (PACKET_NEWTON).
+ * Needs packet.h and the emitted iacsg_Fdv (PACKET_FDV).
  */
 #ifndef KERNELS_MARCH_H
 #define KERNELS_MARCH_H
@@ -10,7 +10,7 @@
 #define EFFECTS_MARCH_STEPS 32
 #define EFFECTS_MARCH_FIRST 4096
 
-#ifdef PACKET_NEWTON
+#ifdef PACKET_FDV
 /* A secondary ray starts next to a surface it leaves (or crosses): bisection must halve its first nodes down to
  * its distance from that surface before one excludes it, some 2 log2(length / distance) evaluations, and then
  * halve its way down again to the next root. Instead the ray marches: from a (t_near on), one evaluation of
@@ -138,7 +138,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
 #endif
 
 #if IA_DEVICE && defined(IA_VW) && !defined(IACSG_SCALAR_CODE) /* (as packet.h's lanes) */
-/* Where F has no derivative code (implicits/emit.c: newton_pays, e.g. x^500), the same march by F's enclosure
+/* Where F has no derivative code (implicits/emit.c: newton_pays, e.g. sin, cos, pow), the same march by F's enclosure
  * over each step alone: a step whose enclosure excludes 0 is root-free (a moves to b; the next step 8 times as
  * long, twice after one that fell short), else the step is halved, down to a leaf no longer than eps whose
  * enclosure holds 0 (the hit; every part a passed is root-free, so the leaf's start is never after the first

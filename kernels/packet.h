@@ -268,6 +268,9 @@ IA_FN void packet_advance_some(ia_maskv *searching, ia_maskv moving, ia_maskv do
 #if defined(IACSG_FDV) && !defined(IACSG_TAPE) /* a tape has no derivative code */
 #define PACKET_NEWTON 1
 #endif
+#if (defined(IACSG_FDV) || defined(IACSG_FDV_MARCH)) && !defined(IACSG_TAPE) /* iacsg_Fdv, for march.h at least */
+#define PACKET_FDV 1
+#endif
 #define NEWTON_PIXELS 32
 #define NEWTON_MIN_LEAVES 64
 

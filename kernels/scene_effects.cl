@@ -48,7 +48,7 @@ static void scene_rays_union(__constant ia_real *params, ia_real eps, int whethe
     if (iav_any(outside)) {
         ia_realv leaving = 4 * eps + (ia_real)4e-6 * (1 + fabs(o[0]) + fabs(o[1]) + fabs(o[2]));
         ia_maskv walking = outside;
-#ifdef PACKET_NEWTON
+#ifdef PACKET_FDV
         hit = effects_march(o, d, &a, &b, &walking, leaving, eps, whether, time, &lo, &hi, &counts);
 #else
         hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, whether, time, &lo, &hi, &counts);
