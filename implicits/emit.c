@@ -636,7 +636,8 @@ static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *
  * enclosure over the step's box (each coordinate on its own) reaches back towards the surface the ray leaves.
  * Fig. 2's regions (x^500): 14.75 -> 4.54 evaluations a shadow ray, the shadow rays' kernel 17 % less CPU, a cold
  * kernel build 5.4 -> 6.7 s. The first-root path's (kernels/effects.cl) keep the enclosure: Fig. 2 as one
- * expression, 15.46 -> 3.76 evaluations a shadow ray but no less CPU (its x^500's derivative costs as much). */
+ * expression, 15.46 -> 3.76 evaluations a shadow ray but no less CPU (its x^500's derivative costs as much); so
+ * only the regions' union is emitted with it (emit_cl's `march`), and no other program pays for its build. */
 #define EMIT_NEWTON_MAX_POWER 8
 static int newton_pays(const dag *d, const int *order, int count, int max_power) {
     for (int k = 0; k < count; k++) {
@@ -657,7 +658,7 @@ static int newton_pays(const dag *d, const int *order, int count, int max_power)
     return 1;
 }
 
-iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, iacsg_error *err) {
+iacsg_status emit_cl(const dag *d, int root, const char *prefix, int march, char **source, iacsg_error *err) {
     *source = NULL;
     if (!valid_prefix(prefix))
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the name prefix for generated code must be an identifier");
@@ -713,7 +714,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, 
         put_solid_value(&b, &em, root, AS_VECTOR);
         strbuf_printf(&b, ";\n}\n");
         int newton = newton_pays(d, order, count, EMIT_NEWTON_MAX_POWER);
-        if (newton || newton_pays(d, order, count, INT_MAX)) {
+        if (newton || (march && newton_pays(d, order, count, INT_MAX))) {
             strbuf_printf(&b, newton ? "#define IACSG_FDV 1\n" : "#define IACSG_FDV_MARCH 1\n");
             emit_tderiv_function(&b, &em, order, count, root, prefix, AS_VECTOR_DT);
         }

@@ -4,8 +4,9 @@
 #include "dag.h"
 
 /* The source for the sub-DAG of root with name prefix `prefix` (checked to be a C identifier). The caller
- * free()s *source. */
-iacsg_status emit_cl(const dag *d, int root, const char *prefix, char **source, iacsg_error *err);
+ * free()s *source. `march`: also the derivative along the ray where only a power above interval Newton's limit
+ * keeps it out (IACSG_FDV_MARCH: for the segment path's marching secondary rays, not worth its build elsewhere). */
+iacsg_status emit_cl(const dag *d, int root, const char *prefix, int march, char **source, iacsg_error *err);
 
 /* The operands of the root's union (min(min(a, b), c) -> a, b, c, left to right): their number, in a malloc'ed
  * *out; 0 (and *out NULL) when the root is not a min or the parts are too many, -1 out of memory. */

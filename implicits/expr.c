@@ -52,7 +52,7 @@ void iacsg_expr_destroy(iacsg_expr *e) {
 }
 
 iacsg_status iacsg_expr_emit_cl(const iacsg_expr *e, const char *prefix, char **source, iacsg_error *err) {
-    return emit_cl(&e->simple, e->root, prefix, source, err);
+    return emit_cl(&e->simple, e->root, prefix, 0, source, err);
 }
 
 int iacsg_expr_uses_time(const iacsg_expr *e) {

@@ -258,7 +258,7 @@ static iacsg_status emit_regions_union(const iacsg_scene *s, char **vector, iacs
     iacsg_status st = failed ? err->status : expr_from_dag(&d, root, "regions", 1, &u, err);
     dag_free(&d);
     if (st == IACSG_OK)
-        st = iacsg_expr_emit_cl(u, "iacsg", vector, err);
+        st = emit_cl(&u->simple, u->root, "iacsg", 1, vector, err); /* march.h's secondary rays use it */
     iacsg_expr_destroy(u);
     return st;
 }
