@@ -823,7 +823,7 @@ void render_effects_free(render_fx *fx) {
     if (!fx)
         return;
     cl_kernel kernels[] = {fx->trace, fx->shade, fx->samples};
-    for (int k = 0; k < 3; k++)
+    for (size_t k = 0; k < sizeof kernels / sizeof kernels[0]; k++)
         if (kernels[k])
             clReleaseKernel(kernels[k]);
     free(fx->items);

@@ -174,15 +174,9 @@ static iacsg_status launch_samples(fx_tracer *t, const iacsg_view *samples_view,
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clSetKernelArg(iacsg_render_scene_samples)", __func__, __LINE__);
     }
-    for (cl_int first = 0; st == IACSG_OK && (first < nblocks || first == 0); first += (cl_int)slots) {
-        size_t global = (size_t)(nblocks - first) < slots && nblocks > 0 ? (size_t)(nblocks - first) : slots;
-        size_t local = 1;
-        rc = clSetKernelArg(k, 6, sizeof first, &first);
-        if (rc == CL_SUCCESS)
-            rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
-        if (rc != CL_SUCCESS)
-            st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_render_scene_samples)", __func__, __LINE__);
-    }
+    if (st == IACSG_OK)
+        st = fx_launch_slices(r->rt.queue, k, 6, nblocks, slots, 1, /* argument 6: the launch's first block */
+                              "clEnqueueNDRangeKernel(iacsg_render_scene_samples)", err);
     for (int a = 0; a < OUT_ALL && st == IACSG_OK; a++)
         if (o->mem[a])
             st = fx_sync_to_host(r->rt.queue, o->mem[a], o->bytes[a], err);

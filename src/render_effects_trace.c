@@ -139,6 +139,19 @@ static void release_trace_buffers(trace_buffers *b) {
             clReleaseMemObject(all[k]);
 }
 
+iacsg_status fx_launch_slices(cl_command_queue q, cl_kernel k, cl_uint first_arg, cl_int count, size_t slots,
+                              cl_int scale, const char *what, iacsg_error *err) {
+    for (cl_int first = 0; first < count || first == 0; first += (cl_int)slots) {
+        size_t global = count > 0 && (size_t)(count - first) < slots ? (size_t)(count - first) : slots, local = 1;
+        cl_int value = scale * first, rc = clSetKernelArg(k, first_arg, sizeof value, &value);
+        if (rc == CL_SUCCESS)
+            rc = clEnqueueNDRangeKernel(q, k, 1, NULL, &global, &local, 0, NULL, NULL);
+        if (rc != CL_SUCCESS)
+            return clrt_record(err, rc, what, __func__, __LINE__);
+    }
+    return IACSG_OK;
+}
+
 /* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items (PACKET_LANES rays
  * each) as the per-ray buffers have room for (one after the other on the in-order queue, which they share). */
 static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
@@ -157,16 +170,9 @@ static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers 
                            clSetKernelArg(k, 4, fx_real_bytes(r), eps_real) != CL_SUCCESS ||
                            clSetKernelArg(k, 29, sizeof whether, &whether) != CL_SUCCESS))
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
-    for (cl_int first = 0; st == IACSG_OK && (first < packets || first == 0); first += (cl_int)slots) {
-        size_t global = (size_t)(packets - first) < slots && packets > 0 ? (size_t)(packets - first) : slots;
-        size_t local = 1;
-        cl_int first_ray = PACKET_LANES * first;
-        cl_int rc = clSetKernelArg(k, 3, sizeof first_ray, &first_ray);
-        if (rc == CL_SUCCESS)
-            rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
-        if (rc != CL_SUCCESS)
-            st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_scene_trace_rays)", __func__, __LINE__);
-    }
+    if (st == IACSG_OK) /* argument 3: the launch's first ray */
+        st = fx_launch_slices(r->rt.queue, k, 3, packets, slots, PACKET_LANES,
+                              "clEnqueueNDRangeKernel(iacsg_scene_trace_rays)", err);
     if (st == IACSG_OK && clFinish(r->rt.queue) != CL_SUCCESS)
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clFinish after the scene's trace failed");
     render_scene_trace_release(held);
@@ -265,12 +271,12 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* The bytes of fx_shade_in's arrays for n hits, in its order (rays, depth, normal, vis, item, row), each from a
- * page. */
+/* The bytes of fx_shade_in's arrays for n hits, in iacsg_scene_shade's order of them (rays, depth, normal, item,
+ * vis, row), each from a page. */
 static void shade_parts(const iacsg_renderer *r, size_t n, size_t bytes[6]) {
     size_t rb = fx_real_bytes(r);
-    size_t b[6] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), EFFECTS_MAX_LIGHTS * n * sizeof(float),
-                   n * sizeof(cl_int), n * sizeof(cl_int)};
+    size_t b[6] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
+                   EFFECTS_MAX_LIGHTS * n * sizeof(float), n * sizeof(cl_int)};
     memcpy(bytes, b, sizeof b);
 }
 
@@ -286,8 +292,8 @@ iacsg_status fx_shade_inputs(fx_tracer *t, size_t n, fx_shade_in *in, iacsg_erro
     *in = (fx_shade_in){.rays = host,
                         .depth = host + at[1],
                         .normal = (float *)(void *)(host + at[2]),
-                        .vis = (float *)(void *)(host + at[3]),
-                        .item = (cl_int *)(void *)(host + at[4]),
+                        .item = (cl_int *)(void *)(host + at[3]),
+                        .vis = (float *)(void *)(host + at[4]),
                         .row = (cl_int *)(void *)(host + at[5]),
                         .n = n};
     return IACSG_OK;
@@ -302,11 +308,9 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in
     char reals[EFFECTS_COUNT * sizeof(double)];
     for (int k = 0; block && k < EFFECTS_COUNT; k++)
         fx_put_real(r, reals, (size_t)k, block[k]);
-    size_t part[6];
-    shade_parts(r, n, part);
     const void *host[9] = {reals, render_scene_materials(r), palette, NULL, NULL, NULL, NULL, NULL, NULL};
-    size_t bytes[9] = {EFFECTS_COUNT * rb, SCENE_MATERIAL_FLOATS * nitems * sizeof(float), 3 * nitems * sizeof(float),
-                       part[0], part[1], part[2], part[4], part[3], part[5]};
+    size_t bytes[9] = {EFFECTS_COUNT * rb, SCENE_MATERIAL_FLOATS * nitems * sizeof(float), 3 * nitems * sizeof(float)};
+    shade_parts(r, n, bytes + 3); /* the hits' arrays, in the kernel's order */
     if (in) {
         const void *arrays[6] = {in->rays, in->depth, in->normal, in->item, in->vis, in->row};
         memcpy(host + 3, arrays, sizeof arrays);

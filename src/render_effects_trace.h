@@ -79,6 +79,12 @@ iacsg_status fx_device_run(fx_tracer *t, const double *block, int kid_slots, int
 /* One launch over no paths: PoCL compiles the kernel then (render_effects_trace.c: compile_trace_now). */
 iacsg_status fx_device_compile(fx_tracer *t, iacsg_error *err);
 
+/* Launches kernel k over `count` work-items, at most `slots` a launch (count 0: one launch of `slots` that does
+ * nothing, so that PoCL compiles the kernel), one after the other on the in-order queue q; argument `first_arg`
+ * (a cl_int) is each launch's first work-item times `scale`. `what` names the call in an error. */
+iacsg_status fx_launch_slices(cl_command_queue q, cl_kernel k, cl_uint first_arg, cl_int count, size_t slots,
+                              cl_int scale, const char *what, iacsg_error *err);
+
 /* The segment path's secondary rays: traces rays[0 .. n) with leaves of width eps into hits[0 .. n). With
  * `whether` (only when every item is opaque), a ray may end on a proven crossing, item EFFECTS_HIT_BLOCKED. */
 iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, int whether, fx_hit *hits,
