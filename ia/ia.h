@@ -14,7 +14,9 @@
  *   ia/round.h (the OpenCL C specification's table on the device, measured glibc bounds on the host). Each
  *   bound computed in round-to-nearest is then moved outward past that error (ia/round.h explains why that
  *   is enough). With IA_FTZ the same holds on a device (or an x86 host in FTZ+DAZ mode) that flushes
- *   subnormals to zero, provided no input bound is subnormal; results then have no subnormal bound either.
+ *   subnormals to zero, provided no input bound (and no real operand) is subnormal; results then have no
+ *   subnormal bound either, so a chain of operations keeps the precondition. The renderer's kernels are built
+ *   so (src/clrt.c); what the host hands them as bounds goes through ia/flush.h.
  *
  *   Tightness. Each bound is within a few steps (format numbers) of the exact range rounded outward:
  *   0 for neg, abs, min, max, hull, intersect; 1 for + - * sqr, add_r, mul_r, width and correctly rounded
@@ -26,6 +28,8 @@
  *   interval may contain an extremum, and find out whether it does from the derivative's signs when the
  *   interval is shorter than 2 pi (so huge arguments stay tight); sqr and even pown of an interval holding 0
  *   start at exactly 0. Nothing returns [-inf, +inf] unless the true range is unbounded on both sides.
+ *   With IA_FTZ the steps are counted on its grid (the normal numbers and 0), and each rounding or widening
+ *   may also add its TINY, the smallest normal number (tests/t_ia_tight_fp.c, ftz_within).
  *   tests/t_ia_tight_fp.c checks all of this against MPFR, on the host and on the device.
  *
  *   Values. Empty is [+inf, -inf]; every operation maps empty inputs to empty (for hull, empty is the

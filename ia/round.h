@@ -21,7 +21,8 @@
  * bound, two within 2^(p+3) smallest subnormals of 0 (p = 24 or 53), where TINY is no longer negligible.
  *
  * TINY is the smallest subnormal, or the smallest normal number when IA_FTZ says the device flushes
- * subnormals to zero (then a bound that would be subnormal is pushed to the nearest normal one instead).
+ * subnormals to zero (then a bound that would be subnormal is pushed to the nearest normal one instead, and
+ * below 2^(p+2) TINY the widening's r + TINY may round a step further out: a tie where TINY is half an ulp).
  * The final min/max with MAX turns the NaN of "+inf - inf" into the largest finite number: a lower bound
  * of +inf only arises from an overflowed finite result, whose exact value is at least MAX.
  * Callers never pass NaN: each operation resolves 0 * inf and inf - inf before widening.
@@ -77,7 +78,8 @@
 #else
 /* The widening for an error of k ulps moves r by |r| * C + T: C = 0.625 EPS and T = TINY for k = 0, C = (k+1) EPS
  * and T = (k+1) TINY for k >= 1, as above. It is computed as fma(|r|, -C, r - T): r - T first, which is exact
- * or rounds to r (T is below half an ulp of r once r is normal, and differences of subnormals are exact), then
+ * or rounds to r (T is below half an ulp of r once r is normal, and differences of subnormals are exact; with
+ * IA_FTZ it may round further out, see TINY above, which only widens), then
  * the exact product |r| * C taken off with one rounding, which is monotone. The argument above holds for this
  * form as it is (its pad is this one up to the rounding of the product, far inside its margins), and it is one
  * fused operation where a multiply, an add and a subtract were. The widening was half the render kernel's time

@@ -1,6 +1,7 @@
 /* implicits/dag.c -- the hash-consed expression DAG (see dag.h). */
 #include "dag.h"
 #include "ia/decimal.h"
+#include "ia/flush.h"
 #include "strbuf.h"
 #include <math.h>
 #include <stdint.h>
@@ -152,6 +153,7 @@ static int intern_text(dag *d, const char *text, iacsg_error *err) {
 
 int dag_add_const(dag *d, double lo, double hi, double near, float flo, float fhi, float fnear, const char *text,
                   iacsg_error *err) {
+    lo = ia_flush_lo_d(lo), hi = ia_flush_hi_d(hi), flo = ia_flush_lo_f(flo), fhi = ia_flush_hi_f(fhi);
     dag_node key = {OP_CONST, -1, -1, -1, lo, hi, near, flo, fhi, fnear};
     long s = find_slot(d, &key, err);
     if (s < 0)

@@ -1,6 +1,7 @@
 /* implicits/device_eval.c -- see device_eval.h. The kernel is generated here: a switch over the expressions,
  * each emitted with the prefix e<k>. */
 #include "device_eval.h"
+#include "ia/flush.h"
 #include "strbuf.h"
 #include <math.h>
 #include <stdio.h>
@@ -52,14 +53,14 @@ static char *program_source(const iacsg_expr *const *exprs, int nexprs, iacsg_er
     return s;
 }
 
-/* Outward rounding of box bounds to float (even positions are lower bounds); points are rounded to nearest. */
+/* Outward rounding of box bounds to float (even positions are lower bounds), out of the subnormals too. */
 static float to_float(double v, int down) {
     float f = (float)v;
     if (down && (double)f > v)
         f = nextafterf(f, -INFINITY);
     if (!down && (double)f < v)
         f = nextafterf(f, INFINITY);
-    return f;
+    return down ? ia_flush_lo_f(f) : ia_flush_hi_f(f);
 }
 
 iacsg_status device_eval(clrt *rt, const iacsg_expr *const *exprs, int nexprs, int fp64, size_t n,
@@ -83,7 +84,7 @@ iacsg_status device_eval(clrt *rt, const iacsg_expr *const *exprs, int nexprs, i
     }
     for (size_t i = 0; i < DEVICE_EVAL_IN * n; i++) {
         if (fp64)
-            ((double *)host_in)[i] = in[i];
+            ((double *)host_in)[i] = i % 2 == 0 ? ia_flush_lo_d(in[i]) : ia_flush_hi_d(in[i]);
         else /* the corner x0, y0, z0, t0 is also the point: round it down with the box */
             ((float *)host_in)[i] = to_float(in[i], i % 2 == 0);
     }

@@ -16,6 +16,7 @@
  * op_may_be_undefined), a union of them is ia_union, and the value of the whole expression is read through
  * ia_or_outside. */
 #include "emit.h"
+#include "ia/flush.h"
 #include "strbuf.h"
 #include <limits.h>
 #include <math.h>
@@ -200,6 +201,7 @@ int emit_reciprocal_enclosure(const dag_node *c, double d[2], float f[2]) {
         f[0] = nextafterf(f[0], 0.0f);
     if (fmaf(f[1], c->flo, -1.0f) < 0)
         f[1] = nextafterf(f[1], INFINITY);
+    d[0] = ia_flush_lo_d(d[0]), d[1] = ia_flush_hi_d(d[1]), f[0] = ia_flush_lo_f(f[0]), f[1] = ia_flush_hi_f(f[1]);
     return 1;
 }
 

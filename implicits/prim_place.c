@@ -4,6 +4,7 @@
  * which make a face) are made here the same way, on the midpoints; what follows from them is enclosed. */
 #define IA_FP64 1
 #include "prim_place.h"
+#include "ia/flush.h"
 #include "ia/ia.h"
 #include "kernels/prim.h"
 #include <math.h>
@@ -749,5 +750,5 @@ float prim_float_bound(double x, int upper) {
     float f = (float)x;
     if (upper ? (double)f < x : (double)f > x)
         f = nextafterf(f, upper ? INFINITY : -INFINITY);
-    return f;
+    return upper ? ia_flush_hi_f(f) : ia_flush_lo_f(f);
 }

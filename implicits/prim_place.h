@@ -29,7 +29,8 @@ void prim_keep(scene_prim *p);
 /* Frees what prim_keep kept. */
 void prim_unkeep(scene_prim *p);
 
-/* A bound as a float, rounded outward (down for a lower bound): the parameters of a float program. */
+/* A bound as a float, rounded outward (down for a lower bound), and a subnormal one moved out to 0 or the
+ * smallest normal number (ia/flush.h): the parameters of a float program. */
 float prim_float_bound(double x, int upper);
 
 /* The primitive's world box (infinite where it is unbounded, as a half-space); 1 if bounded, 0 if not or if the

@@ -23,6 +23,7 @@
 #include "scene_emit.h"
 #include "emit.h"
 #include "expr_internal.h"
+#include "ia/flush.h"
 #include "prim_place.h"
 #include "strbuf.h"
 #include <math.h>
@@ -132,11 +133,12 @@ int scene_emit_hex(double x, char out[32]) {
 
 /* A bound as a literal of each precision, the program's float and double variants of the parameters (in p[0] and
  * p[1], under #ifdef IA_FP64, so that the preprocessor skips the other instead of expanding a macro per literal):
- * the double itself, and its float rounded outward (down for a lower bound). */
+ * the double itself, and its float rounded outward (down for a lower bound); either moved out of the subnormals
+ * (ia/flush.h). */
 static void emit_bound(strbuf p[2], double x, int upper) {
     float f = prim_float_bound(x, upper);
     for (int fp64 = 0; fp64 < 2; fp64++) {
-        double v = fp64 ? x : (double)f;
+        double v = fp64 ? (upper ? ia_flush_hi_d(x) : ia_flush_lo_d(x)) : (double)f;
         char text[32];
         int n = isinf(v) ? snprintf(text, sizeof text, "%sINFINITY", v < 0 ? "-" : "") : scene_emit_hex(v, text);
         if (!fp64 && !isinf(v))

@@ -2,6 +2,7 @@
 #include "tape.h"
 #include "emit.h"
 #include "eval.h"
+#include "ia/flush.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -89,9 +90,11 @@ static void tape_part_box(const dag *d, const int *order, int count, void *scrat
         }
 }
 
-/* A real of the working precision, rounded down (dir < 0), up (dir > 0) or to nearest (dir 0). */
+/* A real of the working precision, rounded down (dir < 0), up (dir > 0) or to nearest (dir 0); a bound (dir != 0)
+ * as the flushing device must be given it (ia/flush.h). */
 static void put_real(words *a, int fp64, double v, int dir) {
     if (fp64) {
+        v = dir < 0 ? ia_flush_lo_d(v) : dir > 0 ? ia_flush_hi_d(v) : v;
         unsigned w[2];
         memcpy(w, &v, sizeof v);
         words_put(a, w[0]);
@@ -103,6 +106,7 @@ static void put_real(words *a, int fp64, double v, int dir) {
         f = nextafterf(f, -INFINITY);
     if (dir > 0 && (double)f < v)
         f = nextafterf(f, INFINITY);
+    f = dir < 0 ? ia_flush_lo_f(f) : dir > 0 ? ia_flush_hi_f(f) : f;
     unsigned w;
     memcpy(&w, &f, sizeof f);
     words_put(a, w);

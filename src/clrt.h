@@ -16,7 +16,9 @@ typedef struct {
     char device_name[256];
     char platform_name[256];
     int has_fp64;         /* cl_khr_fp64 */
-    int float_denorms;    /* CL_FP_DENORM in the single-precision config; if 0, ia/ is built with IA_FTZ */
+    int float_denorms;    /* CL_FP_DENORM in the single-precision config */
+    int keep_subnormals;  /* 0 (clrt_open's): ia/ is built to flush subnormals, see clrt_ia_options; 1: where the
+                           * device has them, kept (the ia/ tests' build for subnormal operands) */
     int cr_divide_sqrt;   /* CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT: build with -cl-fp32-correctly-rounded-...;
                            * 0 when the environment sets IACSG_INEXACT_DIVIDE_SQRT (non-empty): then float / and
                            * sqrt are widened by the spec's bounds as on a device without them (the tests use it) */
@@ -61,8 +63,11 @@ iacsg_status clrt_open(clrt *rt, int device_index, iacsg_error *err);
 void clrt_close(clrt *rt);
 
 /* The build options that make ia/ rigorous on this device: never fast-math; -D IA_FP64 when fp64, -D IA_FAST
- * for the fast mode, -D IA_FTZ when the device flushes float subnormals, and correctly rounded divide/sqrt
- * when the device offers it. Writes into buf (at least 256 bytes). */
+ * for the fast mode, correctly rounded divide/sqrt when the device offers it, and subnormals flushed to zero
+ * (-cl-denorms-are-zero -D IA_FTZ) unless rt->keep_subnormals asks to keep those the device has: a subnormal
+ * operand or result costs a microcode assist on x86 CPUs (the sigmoid blend's exp rendered 15x slower with them)
+ * and GPUs flush at full speed; the host hands the device no subnormal bound (ia/flush.h). Writes into buf (at
+ * least 256 bytes). */
 iacsg_status clrt_ia_options(const clrt *rt, int fp64, int fast, char *buf, size_t size, iacsg_error *err);
 
 /* Builds a program from the concatenation of `count` source strings. On a build failure the log is saved to a

@@ -12,6 +12,7 @@
  */
 #ifndef IACSG_ORACLE_IA_H
 #define IACSG_ORACLE_IA_H
+#include "ia/flush.h"
 #include "oracle.h"
 #include "test.h"
 #include <limits.h>
@@ -42,6 +43,26 @@ typedef struct {
 } ia_case;
 
 #define GEN_NO_SUBNORMAL 1 /* for IA_FTZ: no subnormal bound (the contract's precondition there) */
+
+/* A real as a device that flushes subnormals reads it: a subnormal one is a zero of its sign. */
+static inline ia_real real_flushed(ia_real x) { return fabs(x) < IA_REAL_MIN_NORMAL ? copysign((ia_real)0, x) : x; }
+
+/* Case k as a device that flushes subnormals must be given it (ia/flush.h) into *out: its intervals' subnormal
+ * bounds moved outward, a subnormal real c read as zero, as the device reads it. Returns 1 if that changed k. */
+static inline int case_flushed(const ia_case *k, ia_case *out) {
+#ifdef IA_FP64
+#define CASE_FLUSH(x, side) ia_flush_##side##_d(x)
+#else
+#define CASE_FLUSH(x, side) ia_flush_##side##_f(x)
+#endif
+    *out = *k;
+    out->a = ia_make(CASE_FLUSH(k->a.lo, lo), CASE_FLUSH(k->a.hi, hi));
+    out->b = ia_make(CASE_FLUSH(k->b.lo, lo), CASE_FLUSH(k->b.hi, hi));
+#undef CASE_FLUSH
+    out->c = real_flushed(k->c);
+    return out->a.lo != k->a.lo || out->a.hi != k->a.hi || out->b.lo != k->b.lo || out->b.hi != k->b.hi ||
+           out->c != k->c;
+}
 
 static inline uint32_t gen_u32(test_rng_t *r, uint32_t n) { return (uint32_t)(test_rand_u64(r) % n); }
 static inline ia_real fmt_step(ia_real x, int k) { /* k ulps of the format up (k > 0) or down */
@@ -583,7 +604,8 @@ static inline int pt_check(int op, const ia_case *k, const pt_t *p, int n, const
                 int sub = mpfr_cmp_d(d, w) > 0;
                 mpfr_clear(d);
                 int loose = oracle_steps(du, w, FMT_MANT) > fmt_k0_steps(du);
-                if (pt_ftz && loose && w - du <= 2 * (double)IA_REAL_MIN_NORMAL) /* widening adds MIN there */
+                /* flushing, the widening adds MIN, and one ulp more where r + MIN rounds up (a tie for the ulp 2 MIN) */
+                if (pt_ftz && loose && w - du <= 2 * (double)IA_REAL_MIN_NORMAL + (fmt_step((ia_real)du, 1) - du))
                     loose = 0;
                 if (sub || loose)
                     FAIL("width %s, exact width rounded up %s", oracle_hex(w), oracle_hex(du));
@@ -625,11 +647,13 @@ static inline void fn_args(int fn, test_rng_t *r, ia_real *x, ia_real *y) {
     *x = u, *y = v;
 }
 
-/* Max ulp error of fn over `count` arguments; the worst argument in *wx, *wy. */
-static inline double fn_measure(int fn, const ia_real *x, const ia_real *y, const ia_real *res, long count, double *wx,
-                                double *wy) {
-    mpfr_t e;
-    mpfr_init2(e, ORACLE_PREC);
+/* Max ulp error of fn over `count` arguments; the worst argument in *wx, *wy. With ftz (a device that flushes
+ * subnormals, given arguments as real_flushed makes them), an error within the smallest normal number is its
+ * flush, which ia/round.h's TINY covers there, and does not count. */
+static inline double fn_measure(int fn, const ia_real *x, const ia_real *y, const ia_real *res, long count, int ftz,
+                                double *wx, double *wy) {
+    mpfr_t e, gap;
+    mpfr_inits2(ORACLE_PREC, e, gap, (mpfr_ptr)0);
     double worst = 0;
     for (long i = 0; i < count; i++) {
         if (isnan(res[i]) && (fn == ORACLE_FN_DIV ? y[i] == 0 : 0))
@@ -637,11 +661,17 @@ static inline double fn_measure(int fn, const ia_real *x, const ia_real *y, cons
         oracle_fn(fn, x[i], y[i], e);
         if (mpfr_nan_p(e))
             continue; /* 0/0, inf/inf: not used by ia/ */
+        if (ftz && isfinite(res[i]) && mpfr_number_p(e)) {
+            mpfr_sub_d(gap, e, res[i], MPFR_RNDA);
+            mpfr_abs(gap, gap, MPFR_RNDN);
+            if (mpfr_cmp_d(gap, (double)IA_REAL_MIN_NORMAL) <= 0)
+                continue;
+        }
         double u = oracle_ulp_error(res[i], e, FMT_MANT, FMT_EMIN);
         if (u > worst)
             worst = u, *wx = x[i], *wy = y[i];
     }
-    mpfr_clear(e);
+    mpfr_clears(e, gap, (mpfr_ptr)0);
     return worst;
 }
 
@@ -655,8 +685,8 @@ typedef struct {
 } ulp_report;
 
 static inline void ulp_report_add(ulp_report *rep, int fn, int table_ulps, const ia_real *x, const ia_real *y,
-                                  const ia_real *res, long count) {
-    double wx = 0, wy = 0, u = fn_measure(fn, x, y, res, count, &wx, &wy);
+                                  const ia_real *res, long count, int ftz) {
+    double wx = 0, wy = 0, u = fn_measure(fn, x, y, res, count, ftz, &wx, &wy);
     double bound = table_ulps == 0 ? 0.5 : table_ulps;
     if (rep->len < sizeof rep->line)
         rep->len += (size_t)snprintf(rep->line + rep->len, sizeof rep->line - rep->len, " %s %.3g (<= %g)",
@@ -677,11 +707,11 @@ static inline void ulp_report_add(ulp_report *rep, int fn, int table_ulps, const
 /* An evaluator of op on count cases into out (two reals a case); returns 0, or nonzero with a message. */
 typedef int (*pt_evaluator)(int op, const ia_case *k, long count, ia_real *out, char *msg, size_t size);
 
-/* The IA_FTZ check of the host (MXCSR FTZ+DAZ) and of the device: every op on count random cases without
- * subnormal bounds (IA_FTZ's precondition), evaluated by eval and checked for containment with pt_ftz's
- * allowances. Returns 0 with *checks counted, or nonzero with the first violation in msg. */
-static inline int pt_check_ftz_ops(test_rng_t *r, long count, pt_evaluator eval, const char *who, long *checks,
-                                   char *msg, size_t size) {
+/* Containment of every op on count random cases evaluated by eval: with ftz (an IA_FTZ build: the host in MXCSR
+ * FTZ+DAZ, a device that flushes subnormals) on cases without subnormal bounds, IA_FTZ's precondition, and with
+ * pt_ftz's allowances. Returns 0 with *checks counted, or nonzero with the first violation in msg. */
+static inline int pt_check_all_ops(test_rng_t *r, long count, int ftz, pt_evaluator eval, const char *who,
+                                   long *checks, char *msg, size_t size) {
     const int np = 10;
     ia_case *k = calloc((size_t)count, sizeof *k);
     ia_real *out = malloc(sizeof *out * 2 * (size_t)count);
@@ -693,10 +723,10 @@ static inline int pt_check_ftz_ops(test_rng_t *r, long count, pt_evaluator eval,
     pt_t p[PT_MAX];
     pt_init(p, np);
     int saved = pt_ftz, bad = 0;
-    pt_ftz = 1;
+    pt_ftz = ftz;
     for (int op = 0; op < ORACLE_NOPS && !bad; op++) {
         for (long i = 0; i < count; i++)
-            k[i] = gen_case(r, GEN_NO_SUBNORMAL);
+            k[i] = gen_case(r, ftz ? GEN_NO_SUBNORMAL : 0);
         bad = eval(op, k, count, out, msg, size);
         for (long i = 0; !bad && i < count; i++) {
             pt_draw(op, &k[i], p, np, r);
@@ -710,7 +740,7 @@ static inline int pt_check_ftz_ops(test_rng_t *r, long count, pt_evaluator eval,
 }
 
 /* ---- the device (tests/t_ia_device_fp.c): one OpenCL device, the ia/ test program built once per format with
- * the options of clrt_ia_options, in a mode: 0 rigorous, 1 fast (IA_FAST), 2 rigorous with IA_FTZ forced.
+ * the options of clrt_ia_options, in a mode: 0 rigorous, 1 fast (IA_FAST), 2 rigorous keeping subnormals.
  * Each returns 0, or -1 with a message in err. */
 int FP_NAME(ia_dev_ops)(int mode, int op, const ia_case *k, long count, ia_real *out, char *err, size_t size);
 int FP_NAME(ia_dev_fns)(int fn, const ia_real *x, const ia_real *y, long count, ia_real *out, char *err, size_t size);
@@ -722,5 +752,10 @@ int FP_NAME(ia_dev_bench)(int fast, int op, int reps, const ia_case *k, long cou
 int FP_NAME(ia_dev_ulp_table)(int *out, char *err, size_t size);
 /* "platform / device (build options)" of a mode's build, after a successful call of the above. */
 const char *FP_NAME(ia_dev_describe)(int mode);
+/* 1 if a mode's build flushes subnormals (IA_FTZ: the renderer's, modes 0 and 1; mode 2 only on a device without
+ * them): its cases must then be given as case_flushed makes them. */
+int FP_NAME(ia_dev_flushes)(int mode);
+/* "platform / device (build options)" of the build in a mode with extra options (see ia_dev_ops_in). */
+const char *FP_NAME(ia_dev_describe_in)(int mode, const char *extra);
 
 #endif

@@ -146,3 +146,37 @@ TEST_FP(expr_device_contains) {
     long partials = 3L * (long)(sizeof smooth / sizeof smooth[0]) * BOXES;
     CHECK(grads >= partials * 9 / 10, "only %ld of %ld partials checked", grads, partials);
 }
+
+/* The kernels flush subnormals (ia/flush.h): a subnormal constant, or a subnormal bound of a query's box, read as
+ * zero would lose a product of it with a large number. Both are handed to the device moved out of the
+ * subnormals, so tiny * big keeps its exact value, 1e-10, of either sign. */
+TEST_FP(expr_device_subnormal_bounds) {
+    const double tiny = FP64 ? 1e-310 : 1e-40, big = FP64 ? 1e300 : 1e30;
+    char texts[2][64];
+    snprintf(texts[0], sizeof texts[0], "x*%g", tiny);
+    snprintf(texts[1], sizeof texts[1], "x*y");
+    iacsg_expr *exprs[2];
+    for (int i = 0; i < 2; i++)
+        CHECK(iacsg_expr_parse(texts[i], "<test>", &exprs[i], NULL) == IACSG_OK, "'%s' does not compile", texts[i]);
+    int which[4] = {0, 0, 1, 1};
+    double in[4 * DEVICE_EVAL_IN] = {0}, out[4 * DEVICE_EVAL_OUT], want[4];
+    for (int k = 0; k < 4; k++) {
+        double *v = in + DEVICE_EVAL_IN * k, sign = k % 2 ? -1 : 1;
+        v[0] = v[1] = which[k] ? sign * tiny : sign * big; /* x */
+        v[2] = v[3] = big;                                 /* y */
+        want[k] = which[k] ? sign * tiny * big : sign * big * tiny;
+    }
+    clrt rt;
+    iacsg_error err = {0};
+    CHECK(clrt_open(&rt, 0, &err) == IACSG_OK, "%s", err.message);
+    iacsg_status st = device_eval(&rt, (const iacsg_expr *const *)exprs, 2, FP64, 4, which, in, out, &err);
+    clrt_close(&rt);
+    iacsg_expr_destroy(exprs[0]), iacsg_expr_destroy(exprs[1]);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    for (int k = 0; k < 4; k++) {
+        const double *o = out + DEVICE_EVAL_OUT * k;
+        CHECK(o[0] <= want[k] && want[k] <= o[1], "device: '%s' at x = %g, y = %g gave [%a, %a], not holding %g",
+              texts[which[k]], in[DEVICE_EVAL_IN * k], in[DEVICE_EVAL_IN * k + 2], o[0], o[1], want[k]);
+    }
+    test_note("%s and x*y with x = +-%g: each holds +-%g", texts[0], tiny, tiny * big);
+}

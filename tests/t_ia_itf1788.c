@@ -256,13 +256,15 @@ static long parse_file(itl_set *set, const char *path, const char *file) {
 static int same(double x, double y) { return x == y || (isnan(x) && isnan(y)); }
 
 /* Judges one result: 0 violation, 1 contained, 2 contained and tight. */
-static int judge(const itl_test *t, const double *r) {
+static int judge(const itl_test *t, const double *r, int ftz) {
     double lo = r[0], hi = r[1];
     if (t->op == ORACLE_MID) {
         if (isnan(t->elo))
             return isnan(lo) ? 2 : 0;
         if (lo == t->elo)
             return 2;
+        if (ftz && fabs(lo - t->elo) <= DBL_MIN) /* a build that flushes has no subnormal midpoint */
+            return 1;
         return llabs(oracle_steps(t->elo, lo, 53)) <= 1 ? 1 : 0;
     }
     if (t->op == ORACLE_WIDTH) {
@@ -298,6 +300,7 @@ TEST(ia_itf1788) {
     long run[ORACLE_NOPS] = {0}, cont[ORACLE_NOPS] = {0}, tight[ORACLE_NOPS] = {0}, dtight[ORACLE_NOPS] = {0};
     char first[1024] = "";
     long bad = 0;
+    int flushes = FP_NAME(ia_dev_flushes)(0);
     for (int op = 0; op < ORACLE_NOPS; op++) {
         long m = 0;
         for (long i = 0; i < set.n; i++)
@@ -314,6 +317,8 @@ TEST(ia_itf1788) {
                 t[j] = &set.v[i];
                 k[j] = set.v[i].k;
                 ia_apply(op, &k[j], host + 2 * j);
+                if (flushes) /* as the device must be given it: its result must still contain the expected one */
+                    case_flushed(&k[j], &k[j]);
                 j++;
             }
         char err[1024];
@@ -323,7 +328,7 @@ TEST(ia_itf1788) {
             CHECK(0, "%s", err);
         }
         for (j = 0; j < m; j++) {
-            int h = judge(t[j], host + 2 * j), d = judge(t[j], dev + 2 * j);
+            int h = judge(t[j], host + 2 * j, 0), d = judge(t[j], dev + 2 * j, flushes);
             run[op]++;
             cont[op] += h > 0;
             tight[op] += h == 2;

@@ -33,7 +33,7 @@ TEST_FP(ia_libm_ulps) {
             fn_args(fn, r, &x[i], &y[i]);
             res[i] = host_fn(fn, x[i], y[i]);
         }
-        ulp_report_add(&rep, fn, table[fn], x, y, res, count);
+        ulp_report_add(&rep, fn, table[fn], x, y, res, count, 0);
     }
     free(x), free(y), free(res);
     ULP_REPORT_FINISH(rep, "host");

@@ -3,7 +3,9 @@
  * For each op: pinned regression cases (iteration 0), then random cases of every kind (tests/oracle_ia.h); each
  * case runs on the host (these headers) and on the device (the same headers built by OpenCL with the options
  * of clrt_ia_options); points are drawn inside the inputs, end points included, the exact value at each comes
- * from MPFR, and both results must contain it. Set ops, queries, mid and width are checked exactly.
+ * from MPFR, and both results must contain it (the device's build flushes subnormals: it is given each case as
+ * case_flushed makes it, subnormal bounds moved outward, and checked at points of that case). Set ops, queries,
+ * mid and width are checked exactly.
  * IACSG_TEST_MULT scales the case count; the default makes >= 10^6 checks per op over f32 and f64, host and
  * device. A failure prints the op, every input in hex, the point, the oracle value and the result. */
 #include "ia/ia.h"
@@ -61,20 +63,23 @@ static void run_op(int op) {
     long count = test_iters(op == ORACLE_MID ? 300000 : partial ? 60000 : 32000);
     if (count < PINNED + 100)
         count = PINNED + 100;
-    ia_case *k = malloc(sizeof *k * (size_t)count);
+    ia_case *k = malloc(sizeof *k * (size_t)count), *kd = malloc(sizeof *kd * (size_t)count);
     ia_real *host = malloc(sizeof *host * 2 * (size_t)count), *devo = malloc(sizeof *devo * 2 * (size_t)count);
-    CHECK(k && host && devo, "out of memory");
+    CHECK(k && kd && host && devo, "out of memory");
+    int ftz = FP_NAME(ia_dev_flushes)(0), host_ftz = pt_ftz;
     for (long i = 0; i < count; i++) {
         if (i < PINNED)
             k[i] = pinned_case((int)i);
         else if (!regress_case((int)(i - PINNED), &k[i]))
             k[i] = gen_case(r, 0);
         ia_apply(op, &k[i], host + 2 * i);
+        if (!ftz || !case_flushed(&k[i], &kd[i])) /* the device's case: as a flushing build must be given it */
+            kd[i] = k[i];
     }
     char msg[2048];
-    int have_dev = FP_NAME(ia_dev_ops)(0, op, k, count, devo, msg, sizeof msg) == 0;
+    int have_dev = FP_NAME(ia_dev_ops)(0, op, kd, count, devo, msg, sizeof msg) == 0;
     if (!have_dev) {
-        free(k), free(host), free(devo);
+        free(k), free(kd), free(host), free(devo);
         CHECK(0, "%s", msg);
     }
     pt_t p[PT_MAX];
@@ -83,16 +88,20 @@ static void run_op(int op) {
     for (long i = 0; i < count; i++) {
         pt_draw(op, &k[i], p, np, r);
         int bad = pt_check(op, &k[i], p, np, host + 2 * i, "host", msg, sizeof msg, &checks_host);
+        if (!bad && ftz && case_flushed(&k[i], &kd[i])) /* the device's case has points of its own */
+            pt_draw(op, &kd[i], p, np, r);
+        pt_ftz = ftz;
         if (!bad)
-            bad = pt_check(op, &k[i], p, np, devo + 2 * i, "device", msg, sizeof msg, &checks_dev);
+            bad = pt_check(op, &kd[i], p, np, devo + 2 * i, "device", msg, sizeof msg, &checks_dev);
+        pt_ftz = host_ftz;
         if (bad) {
             pt_clear(p, np);
-            free(k), free(host), free(devo);
+            free(k), free(kd), free(host), free(devo);
             CHECK(0, "case %ld: %s", i, msg);
         }
     }
     pt_clear(p, np);
-    free(k), free(host), free(devo);
+    free(k), free(kd), free(host), free(devo);
     test_note("%s " FMT_NAME ": %ld cases, %ld host + %ld device checks, 0 violations", oracle_op_name[op], count,
               checks_host, checks_dev);
 }

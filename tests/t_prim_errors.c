@@ -112,6 +112,11 @@ TEST(prim_float_bound_outward) {
               "%a: [%a, %a] is not the nearest floats", x, (double)lo, (double)hi);
     }
     CHECK(prim_float_bound(1e300, 1) == INFINITY && prim_float_bound(1e300, 0) == FLT_MAX, "beyond the floats' range");
+    /* the kernels flush subnormals: a subnormal bound moves out to 0 or the smallest normal float (ia/flush.h) */
+    CHECK(prim_float_bound(1e-40, 0) == 0 && prim_float_bound(1e-40, 1) == FLT_MIN &&
+              prim_float_bound(-1e-40, 0) == -FLT_MIN && prim_float_bound(-1e-40, 1) == 0,
+          "subnormal bounds: [%a, %a] and [%a, %a]", (double)prim_float_bound(1e-40, 0),
+          (double)prim_float_bound(1e-40, 1), (double)prim_float_bound(-1e-40, 0), (double)prim_float_bound(-1e-40, 1));
 }
 
 /* The emitter's hexadecimal literals (scene_emit_hex) are printf's "%a", byte for byte, and read back exactly:
