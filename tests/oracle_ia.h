@@ -604,7 +604,7 @@ static inline int pt_check(int op, const ia_case *k, const pt_t *p, int n, const
                 int sub = mpfr_cmp_d(d, w) > 0;
                 mpfr_clear(d);
                 int loose = oracle_steps(du, w, FMT_MANT) > fmt_k0_steps(du);
-                /* flushing, the widening adds MIN, and one ulp more where r + MIN rounds up (a tie for the ulp 2 MIN) */
+                /* flushing, the widening adds MIN, and an ulp more where r + MIN rounds up (a tie for the ulp 2 MIN) */
                 if (pt_ftz && loose && w - du <= 2 * (double)IA_REAL_MIN_NORMAL + (fmt_step((ia_real)du, 1) - du))
                     loose = 0;
                 if (sub || loose)
