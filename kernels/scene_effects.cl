@@ -19,8 +19,9 @@
 #if defined(SCENE_REGIONS_DISJOINT) && defined(SCENE_UNION_PREPASS)
 #define SCENE_RAYS_MARCH 1
 /* g's first root on the lanes of `walking` over [a, b]: with `march`, the march off the surface the ray leaves
- * (march.h: `leaving` is the start's distance from it), then bisection with Newton from any node where the march
- * hands over; *lo, *hi its leaf (with `whether`, a part where g crosses 0, wider than a leaf). */
+ * (march.h: `leaving` is the start's distance from it), then for the lanes it hands over (all of them without
+ * `march`) bisection with Newton from any node; *lo, *hi its leaf (with `whether`, a part where g crosses 0, wider
+ * than a leaf). */
 static ia_maskv scene_rays_root(const ia_realv o[3], const ia_realv d[3], ia_realv a, ia_realv b, ia_maskv walking,
                                 int march, ia_realv leaving, ia_real eps, int whether, iav time, ia_realv *lo,
                                 ia_realv *hi, packet_index *counts) {
@@ -134,7 +135,6 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
         if (iav_any(beyond & hit2))
             scene_union_states(o, d, lo2, hi2, beyond & hit2, time, states, &counts);
     }
-    hit = (hit & outside) | exit;
     if (iav_any(hit & outside))
         scene_union_states(o, d, fmax(t_near, lo), hi, hit & outside, time, states, &counts);
     IAV_STORE(select(IAV_R(0), IAV_R(1), crossed), crossed_k);
