@@ -225,7 +225,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         from_evals[k] = 0;
     }
 #ifdef SCENE_UNION_PREPASS
-    int states[SCENE_REGIONS_UNION][PACKET_LANES]; /* the solids' states over the leaves (disjoint regions) */
+    int states[SCENE_REGIONS_UNION][PACKET_LANES] = {{0}}; /* the solids' states over the leaves (disjoint regions) */
     scene_union_packet(params, f->flags, height, tile, ok, dk, tn, tf, meets, from, leaf_hi, states,
                        from_evals);
 #else
@@ -261,7 +261,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         if (pixel[k] >= 0 && meets[k] != 0 && (from[k] < IA_INF || view->nsurfaces > 0)) { /* else no hit */
 #ifdef SCENE_REGIONS_DISJOINT
             if (leaf_hi[k] >= from[k])
-                claimed = scene_union_claim(ray, states, k, fmax(tn[k], from[k]), &hit);
+                claimed = scene_union_claim(ray, states, k, -1, fmax(tn[k], from[k]), &hit);
 #endif
             found = claimed == SCENE_TRACE_OVERFLOW ? claimed
                     : claimed ? scene_trace_surfaces(view, ray, o, d, tn[k], tf[k], 1, &hit)

@@ -5,69 +5,142 @@
  * (kernels/effects.h), PACKET_LANES consecutive rays per work-item (the host lists them from neighbouring pixels).
  * Where the program has the regions' union and they are disjoint (scene_union.h), the packet's rays that start
  * outside every region find the union's first root in SIMD lanes, marching off the surface they leave (march.h),
- * and claim their region at its leaf, as the camera rays do; the others, and a leaf no region claims, are woven
- * one at a time as a camera ray is (scene_trace.h). The per-ray buffers have room for every solid of the scene
- * (src/render_scene.c, render_scene_trace_args), so no ray overflows. Out per ray: the claimed
- * partition's start (+inf when nothing is hit in [tn, tf] within the bounds), the unit normal there facing the
- * ray, the item, and where `evals` is not NULL the ray's interval evaluations (KERNEL_STATS). With `whether` (the
- * scene's items all opaque: shadow rays), a ray whose march proves g crossing 0 ends there without its leaf,
- * item EFFECTS_HIT_BLOCKED, t before the crossing. A ray continued
- * through a transparent region starts inside it and passes through it (passing[ray]: 1 + the region, weave.h).
+ * and claim their region at its leaf, as the camera rays do; a transparent layer's ray, which starts inside the
+ * region it passes through (passing[ray]: 1 + the region, weave.h), finds where it leaves it in lanes too, and the
+ * next region on (scene_rays_union); the others, and a leaf no region claims, are woven one at a time as a camera
+ * ray is (scene_trace.h). The per-ray buffers have room for every solid of the scene (src/render_scene.c,
+ * render_scene_trace_args), so no ray overflows. Out per ray: the claimed partition's start (+inf when nothing is
+ * hit in [tn, tf] within the bounds), the unit normal there facing the ray, the item, and where `evals` is not
+ * NULL the ray's interval evaluations (KERNEL_STATS). With `whether` (the scene's items all opaque: shadow rays), a
+ * ray whose march proves g crossing 0 ends there without its leaf, item EFFECTS_HIT_BLOCKED, t before the
+ * crossing.
  */
 
 #if defined(SCENE_REGIONS_DISJOINT) && defined(SCENE_UNION_PREPASS)
 #define SCENE_RAYS_MARCH 1
-/* Where the packet's rays (ok, dk over [tn, tf]) that start outside every region (lanes of `outside_k`, the ray
- * not passing through one) meet the regions' union first: g > 0 at t_near (its enclosure at the point), then
- * g's first root by marching off the surface the ray leaves (march.h: its start is its hit's offset, some
- * 4 eps + 4e-6 (1 + |o|) off it) and by bisection with Newton from any node where the march hands over; the leaf
- * [from, leaf_hi] and the solids' states over it (scene_union_states) for scene_union_claim, from +inf where no
- * region is on the ray (g > 0 on all of it: g is continuous and a region is in only where g <= 0,
- * scene_union.h), from t_near for the lanes left to the weave from there. evals: each lane's evaluations. */
-static void scene_rays_union(__constant ia_real *params, ia_real eps, int whether, const ia_real ok[3][PACKET_LANES],
-                             const ia_real dk[3][PACKET_LANES], const ia_real tn[PACKET_LANES],
-                             const ia_real tf[PACKET_LANES], const ia_real outside_k[PACKET_LANES],
+/* g's first root on the lanes of `walking` over [a, b]: with `march`, the march off the surface the ray leaves
+ * (march.h: `leaving` is the start's distance from it), then for the lanes it hands over (all of them without
+ * `march`) bisection with Newton from any node; *lo, *hi its leaf (with `whether`, a part where g crosses 0, wider
+ * than a leaf). */
+static ia_maskv scene_rays_root(const ia_realv o[3], const ia_realv d[3], ia_realv a, ia_realv b, ia_maskv walking,
+                                int march, ia_realv leaving, ia_real eps, int whether, iav time, ia_realv *lo,
+                                ia_realv *hi, packet_index *counts) {
+    ia_maskv hit = (ia_maskv)0;
+#ifdef PACKET_FDV
+    if (march)
+        hit = effects_march(o, d, &a, &b, &walking, leaving, eps, whether, time, lo, hi, counts);
+#else
+    if (march)
+        hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, whether, time, lo, hi, counts);
+#endif
+    ia_real far[IA_VW], w = 0;
+    IAV_STORE(select(IAV_R(0), b, walking), far);
+    for (int k = 0; k < IA_VW; k++)
+        w = fmax(w, far[k]);
+    if (iav_any(walking)) /* a tree as long as the farthest ray; Newton from any node */
+        hit |= packet_first_root(0, o, d, 0, w, (packet_int)0, (packet_index)0, a, b, walking, eps, IA_INF, 0, time,
+                                 lo, hi, counts);
+    return hit;
+}
+
+/* The lanes of `lanes` whose states (scene_union_states) let a region other than pass_k[k] - 1 be in. */
+static ia_maskv scene_rays_other(scene_ray *r, const int states[SCENE_REGIONS_UNION][PACKET_LANES],
+                                 const ia_real pass_k[PACKET_LANES], ia_maskv lanes) {
+    ia_real on[IA_VW], other[IA_VW];
+    IAV_STORE(select(IAV_R(0), IAV_R(1), lanes), on);
+    for (int k = 0; k < IA_VW; k++) {
+        int item, solid;
+        other[k] = on[k] != 0 && scene_union_first(r, states, k, (int)pass_k[k] - 1, &item, &solid) != 0;
+    }
+    return IAV_LOAD(other) != 0;
+}
+
+/* Where the packet's rays (ok, dk over [tn, tf]) where meets[k] is not 0 meet a region first, in lanes, and which
+ * region the claim there may not be (pass_k[k], in: 1 + the region a transparent layer's ray passes through,
+ * weave.h, else 0; out: the ray's `passing` from `from` on). evals: each lane's evaluations.
+ * - A ray that starts outside every region (g > 0 at t_near, its enclosure at the point): g's first root
+ *   (scene_rays_root); no region is in before it (g is continuous, and a region is in only where g <= 0,
+ *   scene_union.h).
+ * - A transparent layer's ray (not `whether`: some item is transparent) that starts inside the region it passes through
+ *   (g < 0 at t_near, and no other region may be in there): g's first root, the leaf where it leaves the region, by
+ *   bisection alone (Fig. 2's glass: the march took 26.9 evaluations of g's derivative code a ray to that leaf, closing
+ *   in on x^500's wall from inside, each some 2.5 of g's enclosure). g < 0 all the way there: no region's boundary is
+ *   crossed (g is 0 on each, the regions being disjoint), so the ray stays in its region. Where another region may be
+ *   in over that leaf (a region touching it), the leaf is claimed, not by the region passed through. Else, where g > 0
+ *   at the leaf's end (the ray has left every region: the weave would claim again from there), g's first root from
+ *   there on (marching), claimed by any region.
+ * Out: the leaf [from, leaf_hi] and the solids' states over it (scene_union_states) for scene_union_claim; from
+ * +inf where no region is on the ray, from t_near or from a leaf with leaf_hi -inf for the lanes left to the weave
+ * from there; with `whether` (the scene's items all opaque), crossed_k 1 where g certainly crosses 0 in [from,
+ * leaf_hi]. */
+static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real eps, int whether,
+                             const ia_real ok[3][PACKET_LANES], const ia_real dk[3][PACKET_LANES],
+                             const ia_real tn[PACKET_LANES], const ia_real tf[PACKET_LANES],
+                             const ia_real meets[PACKET_LANES], ia_real pass_k[PACKET_LANES],
                              ia_real from[PACKET_LANES], ia_real leaf_hi[PACKET_LANES], ia_real crossed_k[PACKET_LANES],
                              int states[SCENE_REGIONS_UNION][PACKET_LANES], kernel_u32 evals[PACKET_LANES]) {
-    ia_realv o[3], d[3], t_near = IAV_LOAD(tn), a = t_near, b = IAV_LOAD(tf);
+    ia_realv o[3], d[3], t_near = IAV_LOAD(tn), t_far = IAV_LOAD(tf), pass = IAV_LOAD(pass_k);
     for (int c = 0; c < 3; c++) {
         o[c] = IAV_LOAD(ok[c]);
         d[c] = IAV_LOAD(dk[c]);
     }
     iav time = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     packet_index counts = (packet_index)0;
-    ia_maskv on = IAV_LOAD(outside_k) != 0, outside = (ia_maskv)0, hit = (ia_maskv)0;
-    ia_realv lo = IAV_R(0), hi = IAV_R(0);
+    ia_maskv on = IAV_LOAD(meets) != 0, passing = on & (pass > 0), outside = (ia_maskv)0, inside = (ia_maskv)0;
+    if (whether)
+        on &= ~passing;
     if (iav_any(on)) {
         iav at = iav_make(t_near, t_near);
-        outside = on & (iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at),
-                                 packet_extent(o[2], d[2], at), time)
-                            .lo > 0);
+        iav g = iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at), packet_extent(o[2], d[2], at),
+                         time);
         PACKET_COUNT(counts, on);
+        outside = on & ~passing & (g.lo > 0);
+        inside = passing & (g.hi < 0);
     }
-    if (iav_any(outside)) {
-        ia_realv leaving = 4 * eps + (ia_real)4e-6 * (1 + fabs(o[0]) + fabs(o[1]) + fabs(o[2]));
-        ia_maskv walking = outside;
-#ifdef PACKET_FDV
-        hit = effects_march(o, d, &a, &b, &walking, leaving, eps, whether, time, &lo, &hi, &counts);
-#else
-        hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, whether, time, &lo, &hi, &counts);
-#endif
-        ia_real far[IA_VW], w = 0;
-        IAV_STORE(select(IAV_R(0), b, walking), far);
-        for (int k = 0; k < IA_VW; k++)
-            w = fmax(w, far[k]);
-        if (iav_any(walking)) /* a tree as long as the farthest ray; Newton from any node */
-            hit |= packet_first_root(0, o, d, 0, w, (packet_int)0, (packet_index)0, a, b, walking, eps, IA_INF, 0,
-                                     time, &lo, &hi, &counts);
+    if (iav_any(inside)) { /* in no region but its own at t_near */
+        scene_union_states(o, d, t_near, t_near, inside, time, states, &counts);
+        inside &= ~scene_rays_other(r, states, pass_k, inside);
     }
-    ia_maskv crossed = hit & (hi - lo > eps); /* `whether`: a part where g crosses 0, not a leaf */
-    hit &= ~crossed;
+    ia_realv leaving = 4 * eps + (ia_real)4e-6 * (1 + fabs(o[0]) + fabs(o[1]) + fabs(o[2]));
+    ia_realv lo = IAV_R(0), hi = IAV_R(0), out_from = t_near, out_hi = IAV_R(-IA_INF);
+    ia_maskv hit = (ia_maskv)0, crossed = (ia_maskv)0;
+    if (iav_any(outside | inside)) {
+        hit = scene_rays_root(o, d, t_near, t_far, outside, 1, leaving, eps, whether, time, &lo, &hi, &counts);
+        if (iav_any(inside)) /* no march (see above) */
+            hit |= scene_rays_root(o, d, t_near, t_far, inside, 0, leaving, eps, 0, time, &lo, &hi, &counts);
+        crossed = hit & (hi - lo > eps); /* `whether`: a part where g crosses 0, not a leaf */
+        hit &= ~crossed;
+        out_from = select(out_from, select(IAV_R(IA_INF), lo, hit | crossed), outside | inside);
+        out_hi = select(out_hi, hi, hit);
+    }
+    ia_maskv exit = inside & hit, beyond = (ia_maskv)0;
+    if (iav_any(exit)) { /* the leaf where the layer's ray leaves its region, claimed by a region touching it */
+        scene_union_states(o, d, lo, hi, exit, time, states, &counts);
+        ia_maskv left = exit & ~scene_rays_other(r, states, pass_k, exit);
+        out_hi = select(out_hi, IAV_R(-IA_INF), left); /* else woven from the leaf on, passing through */
+        if (iav_any(left)) {
+            iav at = iav_make(hi, hi);
+            iav g = iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at),
+                             packet_extent(o[2], d[2], at), time);
+            PACKET_COUNT(counts, left);
+            beyond = left & (g.lo > 0);
+        }
+    }
+    if (iav_any(beyond)) { /* out of every region: the next root of g, claimed by any region */
+        ia_realv lo2 = IAV_R(0), hi2 = IAV_R(0);
+        ia_maskv hit2 = scene_rays_root(o, d, hi, t_far, beyond, 1, leaving, eps, 0, time, &lo2, &hi2, &counts);
+        out_from = select(out_from, select(IAV_R(IA_INF), lo2, hit2), beyond);
+        out_hi = select(out_hi, hi2, beyond & hit2);
+        pass = select(pass, IAV_R(0), beyond);
+        if (iav_any(beyond & hit2))
+            scene_union_states(o, d, lo2, hi2, beyond & hit2, time, states, &counts);
+    }
+    if (iav_any(hit & outside))
+        scene_union_states(o, d, fmax(t_near, lo), hi, hit & outside, time, states, &counts);
     IAV_STORE(select(IAV_R(0), IAV_R(1), crossed), crossed_k);
-    IAV_STORE(select(t_near, select(IAV_R(IA_INF), lo, hit | crossed), outside), from);
-    IAV_STORE(select(IAV_R(-IA_INF), hi, hit), leaf_hi);
-    if (iav_any(hit))
-        scene_union_states(o, d, fmax(t_near, lo), hi, hit, time, states, &counts);
+    IAV_STORE(out_from, from);
+    IAV_STORE(out_hi, leaf_hi);
+    IAV_STORE(pass, pass_k);
     bisect_index count[IA_VW];
     IAV_STORE(counts, count);
     for (int k = 0; k < IA_VW; k++)
@@ -103,7 +176,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
                    .cand_cap = cand_cap,
                    .state = state + slot * (size_t)nstates};
     ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
-    ia_real meets[PACKET_LANES], outside[PACKET_LANES], from[PACKET_LANES], leaf_hi[PACKET_LANES];
+    ia_real meets[PACKET_LANES], pass[PACKET_LANES], from[PACKET_LANES], leaf_hi[PACKET_LANES];
     ia_real crossed[PACKET_LANES];
     kernel_u32 from_evals[PACKET_LANES];
     for (int k = 0; k < PACKET_LANES; k++) {
@@ -114,7 +187,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
         tn[k] = fmax(t_near, q[6]);
         tf[k] = fmin(t_far, q[7]);
         meets[k] = in && tn[k] <= tf[k];
-        outside[k] = meets[k] != 0 && !(passing && passing[ray]);
+        pass[k] = passing && first + k < nrays ? passing[ray] : 0;
         for (int c = 0; c < 3; c++) {
             ok[c][k] = o[c];
             dk[c][k] = d[c];
@@ -125,8 +198,9 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
         from_evals[k] = 0;
     }
 #ifdef SCENE_RAYS_MARCH
-    int states[SCENE_REGIONS_UNION][PACKET_LANES];
-    scene_rays_union(params, eps, whether, ok, dk, tn, tf, outside, from, leaf_hi, crossed, states, from_evals);
+    int states[SCENE_REGIONS_UNION][PACKET_LANES] = {{0}};
+    scene_rays_union(&r, params, eps, whether, ok, dk, tn, tf, meets, pass, from, leaf_hi, crossed, states,
+                     from_evals);
 #else
     (void)whether;
 #endif
@@ -136,7 +210,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
         bvh_ray br = bvh_ray_lane(dk, ik, k);
         weave_hit hit = {0, -1, -1, -1};
         r.evals = 0;
-        r.passing = passing ? passing[ray] : 0;
+        r.passing = (int)pass[k]; /* from `from` on */
         int found = 0, claimed = 0;
         if (crossed[k] != 0) { /* certainly blocked (`whether`) */
             found = 1;
@@ -145,8 +219,10 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
         } else if (meets[k] != 0) {
 #ifdef SCENE_RAYS_MARCH
             if (leaf_hi[k] >= from[k])
-                claimed = scene_union_claim(&r, states, k, fmax(tn[k], from[k]), &hit);
+                claimed = scene_union_claim(&r, states, k, r.passing - 1, fmax(tn[k], from[k]), &hit);
 #endif
+            if (claimed < 0)
+                r.passing = passing ? passing[ray] : 0;
             /* no overflow: the buffers hold every solid (the claim's overflow would be woven from t_near) */
             found = claimed > 0 ? scene_trace_surfaces(&view, &r, o, d, tn[k], tf[k], 1, &hit)
                                 : scene_trace_ray_from(&view, &r, o, d, &br, tn[k],

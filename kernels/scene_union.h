@@ -81,7 +81,8 @@ static void scene_union_tiles(__constant ia_real *params, int flags, int width, 
 
 #ifdef SCENE_REGIONS_DISJOINT
 /* Each solid's state over the leaf [lo, hi] of g of each lane of `hit` (OUT where F > 0 or is empty, IN where
- * F < 0, else BOUNDARY: the leaf is no wider than eps), in lanes (scene_solid_Fv), for scene_union_claim. */
+ * F < 0, else BOUNDARY: the leaf is no wider than eps), in lanes (scene_solid_Fv), for scene_union_claim; the other
+ * lanes' states are kept. */
 static void scene_union_states(const ia_realv o[3], const ia_realv d[3], ia_realv lo, ia_realv hi, ia_maskv hit,
                                iav time, int states[SCENE_REGIONS_UNION][PACKET_LANES], packet_index *evals) {
     iav t = iav_make(lo, hi);
@@ -91,20 +92,22 @@ static void scene_union_states(const ia_realv o[3], const ia_realv d[3], ia_real
         PACKET_COUNT(*evals, hit);
         ia_maskv out = !(f.lo <= f.hi) | (f.lo > 0);
         ia_maskv s = select(select((ia_maskv)SCENE_BOUNDARY, (ia_maskv)SCENE_IN, f.hi < 0), (ia_maskv)SCENE_OUT, out);
-        IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_int, IA_VW)(s), 0, states[k]); /* a mask of longs in double */
+        IAV_CAT(int, IA_VW) was = IAV_CAT(vload, IA_VW)(0, states[k]); /* a mask of longs in double */
+        IAV_CAT(vstore, IA_VW)(select(was, IAV_CAT(convert_int, IA_VW)(s), IAV_CAT(convert_int, IA_VW)(hit)), 0,
+                               states[k]);
     }
 }
 
-/* Claims the ray's partition at g's leaf from lo on (before lo no region is in) when some region may be in over it,
- * as weave_ray would claim a partition starting at lo: from the solids' states over the leaf (scene_union_states,
- * lane `lane`), the first declared region that may be in there (weave_first_region), and for the normal a solid of
- * that region in a BOUNDARY state (else one not OUT). No two regions can be in at one point
- * (implicits/scene_emit.c: regions_disjoint), so there is no overlap to weave on for. Returns 0 when no region may
- * be in over the leaf (the ray is then woven from lo), SCENE_TRACE_OVERFLOW when more solids may be in there than
- * the ray's buffer lists; the states table is left all OUT. */
-IA_FN int scene_union_claim(scene_ray *r, const int states[SCENE_REGIONS_UNION][PACKET_LANES], int lane, ia_real lo,
-                            weave_hit *hit) {
+/* The first declared region other than `except` (-1: none) that may be in where the scene's solids have the states
+ * of lane `lane` (scene_union_states): 1 with *item, 0 when none may be in there (*item WEAVE_NONE),
+ * SCENE_TRACE_OVERFLOW when more solids may be in there than the ray's buffer lists. The solids not OUT are left
+ * listed in r->walks.solid[0 .. nstarted), the states table all OUT. For the claim's normal, *solid: a solid of
+ * that region in a BOUNDARY state, else one not OUT (-1 without a region). */
+IA_FN int scene_union_first(scene_ray *r, const int states[SCENE_REGIONS_UNION][PACKET_LANES], int lane, int except,
+                            int *item, int *solid) {
     r->nstarted = 0;
+    *item = WEAVE_NONE;
+    *solid = -1;
     for (int k = 0; k < SCENE_REGIONS_UNION; k++) { /* the scene's solids */
         int s = states[k][lane];
         if (s == SCENE_OUT)
@@ -117,19 +120,31 @@ IA_FN int scene_union_claim(scene_ray *r, const int states[SCENE_REGIONS_UNION][
         r->state[k] = (unsigned char)s;
         r->walks.solid[r->nstarted++] = k;
     }
-    int item = WEAVE_NONE, found = weave_first_region(r, 0, -1, &item), solid = -1, rank = 2;
-    for (int c = 0; c < r->nstarted; c++) {
-        int k = r->walks.solid[c];
-        const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * (found ? item : 0);
-        if (found && classify_tree_holds(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], k) && (r->state[k] == SCENE_BOUNDARY ? 0 : 1) < rank) {
-            solid = k;
-            rank = r->state[k] == SCENE_BOUNDARY ? 0 : 1;
+    int found = weave_first_region(r, 0, except, item), rank = 2;
+    for (int c = 0; found && c < r->nstarted; c++) {
+        int k = r->walks.solid[c], boundary = r->state[k] == SCENE_BOUNDARY;
+        const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * *item;
+        if (classify_tree_holds(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], k) && (boundary ? 0 : 1) < rank) {
+            *solid = k;
+            rank = boundary ? 0 : 1;
         }
     }
     for (int c = 0; c < r->nstarted; c++)
         r->state[r->walks.solid[c]] = SCENE_OUT;
-    if (!found)
-        return 0;
+    return found;
+}
+
+/* Claims the ray's partition at g's leaf from lo on (before lo no region is in, but for `except`, -1: none, the
+ * region a transparent layer's ray passes through, weave.h) when some region other than `except` may be in over
+ * it, as weave_ray would claim a partition starting at lo: the first declared such region (scene_union_first).
+ * No two regions can be in at one point (implicits/scene_emit.c: regions_disjoint), so there is no overlap to
+ * weave on for. Returns 0 when no region may be in over the leaf (the ray is then woven from lo),
+ * SCENE_TRACE_OVERFLOW when more solids may be in there than the ray's buffer lists. */
+IA_FN int scene_union_claim(scene_ray *r, const int states[SCENE_REGIONS_UNION][PACKET_LANES], int lane, int except,
+                            ia_real lo, weave_hit *hit) {
+    int item, solid, found = scene_union_first(r, states, lane, except, &item, &solid);
+    if (found <= 0)
+        return found;
     r->segments += (kernel_u32)r->nstarted;
     r->partitions += 1;
     hit->t = lo;
@@ -140,10 +155,11 @@ IA_FN int scene_union_claim(scene_ray *r, const int states[SCENE_REGIONS_UNION][
 }
 #endif
 
-/* Where the packet's rays (ok, dk, their parts [tn, tf] in the bounds where meets is not 0) start
- * their weaves, from their tile's leaf (scene_union_tiles): from[k] t_near, the leaf's start, or +inf for a ray on
- * which no region is in; leaf_hi[k] the leaf's end (-inf without a leaf); evals[k] the pre-pass's evaluations of each (the tile pass's shared out over the tile's
- * rays); with disjoint regions, states[k][lane] solid k's over the leaf (scene_union_states). */
+/* Where the packet's rays (ok, dk, their parts [tn, tf] in the bounds where meets is not 0) start their weaves, from
+ * their tile's leaf (scene_union_tiles): from[k] t_near, the leaf's start, or +inf for a ray on which no region is
+ * in; leaf_hi[k] the leaf's end (-inf without a leaf); evals[k] the pre-pass's evaluations of each (the tile pass's
+ * shared out over the tile's rays); with disjoint regions, states[k][lane] solid k's over the leaf
+ * (scene_union_states). */
 static void scene_union_packet(__constant ia_real *params, int flags, int height, const scene_tile *tile,
                                const ia_real ok[3][PACKET_LANES],
                                const ia_real dk[3][PACKET_LANES], const ia_real tn[PACKET_LANES],
