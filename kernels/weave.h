@@ -126,12 +126,11 @@ IA_FN ia_real weave_zone_length(const ia_real o[3], const ia_real d[3], ia_real 
     return ((ia_real)SCENE_DIST_TOL + WEAVE_ZONE_ULPS * IA_REAL_EPS * reach) / len;
 }
 
-/* The hit's surface for a claim from a zone: of the solids whose changes start the zone (zone_solid) and its last
- * partition (solid), one that the claiming region holds, so that the normal is its own. */
+/* The hit's surface for a claim from a zone: the solid whose change starts the zone (at the hit's t) where the
+ * claiming region holds it, so that the normal is its own; else the one whose change ends the zone. */
 IA_FN int weave_zone_solid(const scene_ray *r, int item, int zone_solid, int solid) {
     const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * item;
-    return zone_solid >= 0 && !classify_tree_holds(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], solid) &&
-                   classify_tree_holds(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], zone_solid)
+    return zone_solid >= 0 && classify_tree_holds(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], zone_solid)
                ? zone_solid
                : solid;
 }
@@ -214,13 +213,16 @@ IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_interval ti
                     return 1;
             } else {
                 r->partitions += 1;
-                int may = weave_first_region(r, 0, r->passing - 1, &hit->item);
-                if (may && zone_end < pending_t) { /* no zone open: this partition starts one */
+                int inside = zone_end >= pending_t; /* in a zone an earlier partition opened: not classified */
+                int past = at > zone_end || !(at < tf);
+                int may = (!inside || past) && weave_first_region(r, 0, r->passing - 1, &hit->item);
+                if (may && !inside) { /* this partition opens a zone */
                     zone_t = pending_t;
                     zone_end = pending_t + weave_zone_length(o, d, pending_t);
                     zone_solid = pending_solid;
+                    past = at > zone_end || !(at < tf);
                 }
-                if (at > zone_end || !(at < tf)) { /* past the zone (if any): claimed for itself or from the zone */
+                if (past) { /* claimed for itself, or for the zone from its start */
                     if (may) {
                         found = 1;
                         int fused = zone_t < pending_t;
