@@ -23,9 +23,13 @@ void brlcad_db_destroy(brlcad_db *db);
 int brlcad_db_top_count(const brlcad_db *db);
 const char *brlcad_db_top_name(const brlcad_db *db, int k);
 
+/* librt's distance tolerance (rt_tol.dist, mm): a model's scene fuses a ray's changes of state closer than this
+ * (iacsg_scene's dist_tol, kernels/weave.h), and two placements within it are one instance. */
+#define BRLCAD_DIST_TOL 0.0005
+
 /* The regions librt makes of the given top objects (all tops when nobjects is 0): one scene region per librt
  * region, in librt's order, named by its path ("/all/a.r"); solids are the distinct (primitive, matrix)
- * instances. Air regions are left out, as rt does. */
+ * instances. Air regions are left out, as rt does. The scene's dist_tol is BRLCAD_DIST_TOL. */
 typedef struct {
     iacsg_scene *scene;
     int *region_ids;  /* per scene item: the BRL-CAD region id */

@@ -228,11 +228,11 @@ static int list_region_tops(builder *b, int k, int **tops, int *n, int *cap) {
     return 0;
 }
 
-/* librt's test for one instance (bn_mat_is_equal with rt's tolerances): translations within 0.0005 mm, the
+/* librt's test for one instance (bn_mat_is_equal with rt's tolerances): translations within BRLCAD_DIST_TOL, the
  * other numbers within 1e-6. */
 static int same_matrix(const double *a, const double *c) {
     for (int k = 0; k < 16; k++) {
-        double tol = k == 3 || k == 7 || k == 11 ? 0.0005 : 1e-6, d = a[k] - c[k];
+        double tol = k == 3 || k == 7 || k == 11 ? BRLCAD_DIST_TOL : 1e-6, d = a[k] - c[k];
         if (!(d > -tol && d < tol))
             return 0;
     }
@@ -455,6 +455,8 @@ iacsg_status brlcad_model_build(const brlcad_db *db, const char *const *objects,
     b.err = err;
     b.model = out;
     out->scene = scene_create();
+    if (out->scene)
+        out->scene->dist_tol = BRLCAD_DIST_TOL;
     iacsg_status st = out->scene ? build(&b, objects, nobjects) : (iacsg_status)(nomem(&b), IACSG_ERR_NOMEM);
     if (st == IACSG_OK && out->scene->nitems == 0)
         st = iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "the objects hold no region to render (all empty or air)");

@@ -98,6 +98,7 @@ struct iacsg_scene {
     uint32_t *nodes; /* every tree and condition, kernels/csg_node.h */
     int nnodes, cap_nodes;
     iacsg_expr *expr; /* a plain scene's final expression (then nitems == 0), else NULL */
+    double dist_tol;  /* world units: a ray's changes of state closer than this are fused (kernels/weave.h); 0: none */
 };
 typedef struct iacsg_scene iacsg_scene;
 

@@ -6,7 +6,9 @@
  * region is in: every solid's states tile its box's range without gaps, OUT outside it; a partition holding
  * such a point has each solid's state containing its true state there, so the region's three-valued value
  * there may be in. It is at most about eps before it: a partition that may be in but is not has a solid in a
- * BOUNDARY leaf (width <= eps) that the region depends on.
+ * BOUNDARY leaf (width <= eps) that the region depends on. With a distance tolerance (weave.h's zones), read "a
+ * point where a region is in" as "the start of a stretch longer than the zone where one is in", and the claim may
+ * be the zone's length early.
  */
 #ifndef KERNELS_SCENE_TRACE_H
 #define KERNELS_SCENE_TRACE_H

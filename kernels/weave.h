@@ -6,6 +6,15 @@
  * it. At the first partition from there on where the winner is certainly in, another region certainly in makes
  * an overlap (weave_ray).
  *
+ * A scene with a distance tolerance (SCENE_DIST_TOL, world units: BRL-CAD's 0.0005 mm, librt's rt_tol.dist) fuses
+ * the changes of state that lie within it, as librt's weave fuses hit points closer than tol.dist: a change that no
+ * zone holds opens one (weave_zone_length long), the partitions inside it are passed unclassified, and the first
+ * partition that ends past it is classified and claimed from the zone's start. A region that may be in only inside
+ * a zone -- the sliver of no volume between a minuend's face and its subtrahend's on the same plane, whose two
+ * enclosures leave it "may be in" -- is left out; a region the ray crosses for longer than the zone is in somewhere
+ * past the zone's end in the partition classified there, so it is never missed, and the claim is at most the
+ * zone's length before its first point. Without a tolerance every zone is one point: each partition is classified.
+ *
  * Why not Domingues' linked list of partitions: the walks give the state changes already in order, so a
  * partition is classified as the weave passes it and never stored; the per-ray buffer is the candidates alone
  * (scene_data.h). What a partition is in is the table of states per solid (bytes, not bits: each ray resets only
@@ -102,6 +111,30 @@ IA_FN int weave_overlap(const scene_ray *r, int winner, int *other) {
     return 1;
 }
 
+/* Without a tolerance, no zone: each partition is claimed for itself. */
+#ifndef SCENE_DIST_TOL
+#define SCENE_DIST_TOL 0
+#endif
+/* The zone's length in t from a zone's start t: the tolerance, plus WEAVE_ZONE_ULPS units of rounding of the
+ * coordinates there (the enclosures of a face's crossing are a few of them wide: in float about 1e-3 mm at 10 m from
+ * the origin, twice librt's tolerance), over dlen = |d|, t's unit along the ray; 0 without a tolerance. */
+#define WEAVE_ZONE_ULPS 16
+IA_FN ia_real weave_zone_length(const ia_real o[3], ia_real dlen, ia_real t) {
+    if (SCENE_DIST_TOL <= 0)
+        return 0;
+    ia_real reach = fmax(fabs(o[0]), fmax(fabs(o[1]), fabs(o[2]))) + fabs(t) * dlen;
+    return ((ia_real)SCENE_DIST_TOL + WEAVE_ZONE_ULPS * IA_REAL_EPS * reach) / dlen;
+}
+
+/* The hit's surface for a claim from a zone: the solid whose change starts the zone (at the hit's t) where the
+ * claiming region holds it, so that the normal is its own; else the one whose change ends the zone. */
+IA_FN int weave_zone_solid(const scene_ray *r, int item, int zone_solid, int solid) {
+    const KERNEL_GLOBAL int *it = r->items + SCENE_ITEM_INTS * item;
+    return zone_solid >= 0 && classify_tree_holds(r->nodes, it[SCENE_ITEM_ROOT], it[SCENE_ITEM_SIZE], zone_solid)
+               ? zone_solid
+               : solid;
+}
+
 /* Brings the pending entry (bvh.h) with the least range start to position nstarted, expanding the BVH nodes that
  * come first until it is a solid (or none is left). Returns 0 when the pending entries overflow. */
 IA_FN int weave_next_entry(scene_ray *r, const bvh_walk *b) {
@@ -152,13 +185,15 @@ IA_FN int weave_next_walk(scene_ray *r, const bvh_walk *b) {
  * (*hit), 0 when no partition starting before tf is claimed, -1 when the ray meets more boxes than r has room
  * for. The claimed partition is mostly a BOUNDARY leaf, where no region is certainly in: for the overlap, the
  * weave goes on to the first partition where the winner is certainly in (at most WEAVE_OVERLAP_PARTITIONS
- * further) and names another region certainly in there. */
+ * further) and names another region certainly in there. With a tolerance, only the partitions that end past a
+ * zone are classified (see the top). */
 #define WEAVE_OVERLAP_PARTITIONS 8
 IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_interval time, weave_hit *hit) {
     const ia_real *o = b->o, *d = b->d;
     ia_real tf = b->tf;
-    int pending = 0, pending_solid = -1, found = 0, confirming = WEAVE_OVERLAP_PARTITIONS;
-    ia_real pending_t = 0;
+    int pending = 0, pending_solid = -1, found = 0, confirming = WEAVE_OVERLAP_PARTITIONS, zone_solid = -1;
+    ia_real pending_t = 0, zone_t = 0, zone_end = -IA_INF; /* the open zone, [zone_t, zone_end]: none at first */
+    ia_real dlen = SCENE_DIST_TOL > 0 ? sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) : 1;
     r->nstarted = 0;
     r->ncand = 0;
     if (!bvh_roots(b, r->walks.solid, r->walks.range, &r->ncand, r->cand_cap) || !weave_next_entry(r, b))
@@ -177,18 +212,26 @@ IA_FN int weave_ray(scene_ray *r, const bvh_walk *b, ia_real eps, ia_interval ti
                 hit->overlap = v > 0 ? other : -1;
                 if (v != 0 || --confirming == 0)
                     return 1;
-            } else if (weave_first_region(r, 0, r->passing - 1, &hit->item)) {
-                r->partitions += 1;
-                found = 1;
-                hit->t = pending_t;
-                hit->solid = pending_solid;
-                hit->overlap = -1;
-                int other = -1, v = weave_overlap(r, hit->item, &other);
-                hit->overlap = v > 0 ? other : -1;
-                if (v != 0)
-                    return 1;
             } else {
                 r->partitions += 1;
+                if (zone_end < pending_t) { /* no zone open: this partition's start opens one */
+                    zone_t = pending_t;
+                    zone_end = pending_t + weave_zone_length(o, dlen, pending_t);
+                    zone_solid = pending_solid;
+                }
+                if (at > zone_end || !(at < tf)) { /* past the zone: classified, and claimed from its start */
+                    if (weave_first_region(r, 0, r->passing - 1, &hit->item)) {
+                        found = 1;
+                        hit->t = zone_t;
+                        hit->solid = zone_t < pending_t ? weave_zone_solid(r, hit->item, zone_solid, pending_solid)
+                                                        : pending_solid;
+                        int other = -1, v = weave_overlap(r, hit->item, &other);
+                        hit->overlap = v > 0 ? other : -1;
+                        if (v != 0)
+                            return 1;
+                    }
+                    zone_end = -IA_INF;
+                }
             }
         }
         if (!(at < tf))

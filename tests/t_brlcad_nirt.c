@@ -6,10 +6,10 @@
  * answer is not decided by the geometry at that tolerance, either answer is accepted: nirt's first partition is
  * thinner than TOL (a graze), or another partition begins within TOL of it (two regions touch or overlap there),
  * or iacsg's hit is within TOL of where a partition begins or ends (an edge seen edge-on). A hit before nirt's
- * first (or where nirt has none) is counted apart: the segment path never misses, so on a face that two solids of
- * a region share (truck's r150 = s150 - s151, two boxes with a common bottom; goliath's inner gear and the cut
- * that shares its cap) it shows the region that rt, deciding each point, finds empty there. Undecided rays are
- * bounded by 2%, early hits by 8% of all rays (4.8% measured, 2026-11-23); a miss or a later hit where nirt has a
+ * first (or where nirt has none) is counted apart: the segment path never misses, so where the ray grazes a solid
+ * that nirt does not report it shows that solid (havoc's antenna, 1 ray). Undecided rays and early hits are each
+ * bounded by 1 in 400 rays (0 and 1 of 4032 measured, 2026-11-27; before the distance tolerance, 18 and 9, most on
+ * truck's bed, where r150's sliver of no volume claimed r136's top); a miss or a later hit where nirt has a
  * partition, or another region at nirt's depth, fails. nirt's partitions are cut to the bounds, outside which
  * nothing is traced. */
 #include "implicits/brlcad.h"
@@ -214,6 +214,6 @@ TEST(brlcad_against_nirt) {
     }
     closedir(d);
     CHECK(scenes > 0, "no data in %s", dir);
-    CHECK(open * 50 <= rays && extra * 100 <= 8 * rays, "of %d rays, %d undecided and different (at most 2%%), "
-          "%d hits before nirt's (at most 8%%)", rays, open, extra);
+    CHECK(open * 400 <= rays && extra * 400 <= rays, "of %d rays, %d undecided and different, %d hits before nirt's "
+          "(at most 1 in 400 each)", rays, open, extra);
 }

@@ -48,7 +48,9 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         g = os.path.join(tmp, "model.g")
         subprocess.run([os.path.join(bindir, "asc2g"), model, g], check=True, capture_output=True)
-        cmds = ['fmt r "R\\n"', 'fmt h ""', 'fmt p "P %s %.17g %.17g %.17g %.17g %.17g %.17g\\n" path_name x_in y_in '
+        # nirt reads and writes points in the database's units (truck's are inches, havoc's cm): ours are mm
+        cmds = ['units mm', 'fmt r "R\\n"', 'fmt h ""',
+                'fmt p "P %s %.17g %.17g %.17g %.17g %.17g %.17g\\n" path_name x_in y_in '
                 'z_in x_out y_out z_out', 'fmt f "E\\n"', 'fmt m "M\\n"', 'fmt g ""', 'fmt o ""',
                 "dir %.17g %.17g %.17g" % tuple(f)]
         for _, _, o in origins:
