@@ -76,6 +76,12 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
             CLRT_CHECK(err, rc);
             st = fx_scene_shade(t, NULL, NULL, NULL, NULL, err);
         }
+        if (st == IACSG_OK && r->scene) {
+            double none[EFFECTS_COUNT] = {0};
+            fx->centre = clCreateKernel(r->program, "iacsg_scene_centre", &rc);
+            CLRT_CHECK(err, rc);
+            st = fx_scene_centre(t, none, NULL, 0, NULL, 0, 0, NULL, NULL, err);
+        }
         r->build_seconds += render_now_seconds() - t0;
         if (st != IACSG_OK)
             return st;
@@ -299,27 +305,24 @@ iacsg_status fx_shade_inputs(fx_tracer *t, size_t n, fx_shade_in *in, iacsg_erro
     return IACSG_OK;
 }
 
-iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in *in, const float *palette,
-                            float *out, iacsg_error *err) {
+/* Launches iacsg_scene_shade over the n hits whose arrays are hits[0 .. 6) (rays, depths, normals, items, light
+ * fractions, rows: device buffers; n 0: none, a launch that only compiles it), shadow_item (or NULL) its
+ * argument; their colours into out (6 floats a hit). */
+static iacsg_status shade_launch(fx_tracer *t, const double *block, const cl_mem hits[6], cl_mem shadow_item,
+                                 size_t n, const float *palette, float *out, iacsg_error *err) {
     iacsg_renderer *r = t->r;
-    size_t rb = fx_real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1, n = in ? in->n : 0;
-    cl_mem mem[9] = {0}; /* block, materials, palette, rays, depths, normals, items, light fractions, rows */
+    size_t rb = fx_real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1;
+    cl_mem mem[3] = {0}; /* block, materials, palette */
     cl_mem out_mem = NULL;
     char reals[EFFECTS_COUNT * sizeof(double)];
     for (int k = 0; block && k < EFFECTS_COUNT; k++)
         fx_put_real(r, reals, (size_t)k, block[k]);
-    const void *host[9] = {reals, render_scene_materials(r), palette, NULL, NULL, NULL, NULL, NULL, NULL};
-    size_t bytes[9] = {EFFECTS_COUNT * rb, SCENE_MATERIAL_FLOATS * nitems * sizeof(float), 3 * nitems * sizeof(float)};
-    shade_parts(r, n, bytes + 3); /* the hits' arrays, in the kernel's order */
-    if (in) {
-        const void *arrays[6] = {in->rays, in->depth, in->normal, in->item, in->vis, in->row};
-        memcpy(host + 3, arrays, sizeof arrays);
-    }
+    const void *host[3] = {reals, render_scene_materials(r), palette};
+    size_t bytes[3] = {EFFECTS_COUNT * rb, SCENE_MATERIAL_FLOATS * nitems * sizeof(float), 3 * nitems * sizeof(float)};
     cl_int rc = CL_SUCCESS;
     iacsg_status st = IACSG_OK;
-    for (int b = 0; b < 9 && st == IACSG_OK && n > 0; b++) { /* the hits' arrays read in place, where they are */
-        cl_mem_flags flags = CL_MEM_READ_ONLY | (b < 3 ? CL_MEM_COPY_HOST_PTR : CL_MEM_USE_HOST_PTR);
-        mem[b] = clCreateBuffer(r->rt.context, flags, bytes[b], (void *)host[b], &rc);
+    for (int b = 0; b < 3 && st == IACSG_OK && n > 0; b++) {
+        mem[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes[b], (void *)host[b], &rc);
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
     }
@@ -331,9 +334,9 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in
     }
     cl_kernel k = r->fx->shade;
     cl_int height = t->view->height, count = (cl_int)n;
-    cl_mem *args[] = {&t->params, &mem[0], &mem[1], &mem[2], NULL, &mem[3], &mem[4], &mem[5], &mem[6], &mem[7],
-                      &mem[8], NULL, &out_mem};
-    for (cl_uint a = 0; a < 13 && st == IACSG_OK; a++) {
+    const cl_mem *args[] = {&t->params, &mem[0], &mem[1], &mem[2], NULL,     &hits[0], &hits[1],
+                            &hits[2],   &hits[3], &hits[4], &hits[5], NULL,    &out_mem, &shadow_item};
+    for (cl_uint a = 0; a < 14 && st == IACSG_OK; a++) {
         rc = a == 4 ? clSetKernelArg(k, a, sizeof height, &height)
              : a == 11 ? clSetKernelArg(k, a, sizeof count, &count)
                        : clSetKernelArg(k, a, sizeof(cl_mem), *args[a] ? args[a] : NULL);
@@ -350,10 +353,143 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in
     }
     if (st == IACSG_OK && out_mem)
         st = fx_sync_to_host(r->rt.queue, out_mem, 6 * n * sizeof(float), err);
-    for (int b = 0; b < 9; b++)
+    for (int b = 0; b < 3; b++)
         if (mem[b])
             clReleaseMemObject(mem[b]);
     if (out_mem)
         clReleaseMemObject(out_mem);
+    return st;
+}
+
+static void release_all(cl_mem *mem, int count) {
+    for (int b = 0; b < count; b++)
+        if (mem[b])
+            clReleaseMemObject(mem[b]);
+}
+
+iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in *in, const float *palette,
+                            float *out, iacsg_error *err) {
+    size_t n = in ? in->n : 0, bytes[6];
+    shade_parts(t->r, n, bytes);
+    cl_mem hits[6] = {0};
+    iacsg_status st = IACSG_OK;
+    for (int b = 0; b < 6 && st == IACSG_OK && n > 0; b++) { /* read in place, where the host wrote them */
+        const void *arrays[6] = {in->rays, in->depth, in->normal, in->item, in->vis, in->row};
+        cl_int rc = CL_SUCCESS;
+        hits[b] = clCreateBuffer(t->r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, bytes[b],
+                                 (void *)arrays[b], &rc);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
+    }
+    if (st == IACSG_OK)
+        st = shade_launch(t, block, hits, NULL, n, palette, out, err);
+    release_all(hits, 6);
+    return st;
+}
+
+/* Sets kernel k's arguments from `at` on: values[a] of sizes[a] bytes. */
+static iacsg_status set_args(cl_kernel k, cl_uint at, int count, const size_t *sizes, const void *const *values,
+                             const char *what, iacsg_error *err) {
+    for (int a = 0; a < count; a++) {
+        cl_int rc = clSetKernelArg(k, at + (cl_uint)a, sizes[a], values[a]);
+        if (rc != CL_SUCCESS)
+            return clrt_record(err, rc, what, __func__, __LINE__);
+    }
+    return IACSG_OK;
+}
+
+/* With -stats: the centre paths' shadow rays that were traced (a light in front of its hit: vis, EFFECTS_MAX_LIGHTS
+ * per hit, for nl lights) and their evaluations (evals, nl n), into t's counts as the host's rays were. */
+static iacsg_status count_centre_rays(fx_tracer *t, cl_mem vis, cl_mem evals, size_t n, size_t nl,
+                                      iacsg_error *err) {
+    float *seen = malloc(EFFECTS_MAX_LIGHTS * n * sizeof *seen + 1);
+    cl_uint *each = malloc(nl * n * sizeof *each + 1);
+    cl_int rc = !seen || !each ? CL_OUT_OF_HOST_MEMORY
+                               : clEnqueueReadBuffer(t->r->rt.queue, vis, CL_TRUE, 0, EFFECTS_MAX_LIGHTS * n * sizeof *seen,
+                                                     seen, 0, NULL, NULL);
+    if (rc == CL_SUCCESS)
+        rc = clEnqueueReadBuffer(t->r->rt.queue, evals, CL_TRUE, 0, nl * n * sizeof *each, each, 0, NULL, NULL);
+    for (size_t i = 0; rc == CL_SUCCESS && i < n; i++)
+        for (size_t l = 0; l < nl; l++)
+            if (seen[EFFECTS_MAX_LIGHTS * i + l] != 0) {
+                t->rays++;
+                t->evals += each[l * n + i];
+            }
+    free(seen);
+    free(each);
+    return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "the centre paths' counts", __func__, __LINE__);
+}
+
+iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixels, size_t n,
+                             const iacsg_frame *frame, int shadows, double eps, const float *palette, float *out,
+                             iacsg_error *err) {
+    iacsg_renderer *r = t->r;
+    const iacsg_view *v = t->view;
+    size_t rb = fx_real_bytes(r), nl = (size_t)block[EFFECTS_NLIGHTS], area = (size_t)v->width * v->height;
+    size_t rays = shadows ? nl * n : 0, bytes[6];
+    shade_parts(r, n, bytes);
+    /* in: the pixels, the frame's depth, normals, ids; the hits' arrays (shade_parts); the shadow rays, their t,
+     * normals, items and evaluations (KERNEL_STATS) */
+    cl_mem in[4] = {0}, hits[6] = {0}, sh[5] = {0};
+    const void *in_host[4] = {pixels, frame ? frame->depth : NULL, frame ? frame->normal : NULL,
+                              frame ? frame->ids : NULL};
+    size_t in_bytes[4] = {n * sizeof(int), area * sizeof(float), 3 * area * sizeof(float), area * sizeof(float)};
+    size_t sh_bytes[5] = {rays * EFFECTS_RAY_REALS * rb, rays * rb, 3 * rays * sizeof(float), rays * sizeof(cl_int),
+                          rays * sizeof(cl_uint)};
+    cl_int rc = CL_SUCCESS;
+    for (int b = 0; b < 4 && rc == CL_SUCCESS && n > 0; b++)
+        in[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, in_bytes[b], (void *)in_host[b],
+                               &rc);
+    for (int b = 0; b < 6 && rc == CL_SUCCESS && n > 0; b++)
+        hits[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, bytes[b], NULL, &rc);
+    for (int b = 0; b < 5 && rc == CL_SUCCESS && rays > 0; b++)
+        if (b < 4 || r->config.stats)
+            sh[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, sh_bytes[b], NULL, &rc);
+    iacsg_status st = rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clCreateBuffer(centre)", __func__, __LINE__);
+    char eps_real[sizeof(double)], reals[EFFECTS_COUNT * sizeof(double)];
+    fx_put_real(r, eps_real, 0, eps);
+    for (int k = 0; k < EFFECTS_COUNT; k++)
+        fx_put_real(r, reals, (size_t)k, block[k]);
+    cl_mem fx = n > 0 ? clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, EFFECTS_COUNT * rb,
+                                       reals, &rc)
+                      : NULL;
+    if (st == IACSG_OK && rc != CL_SUCCESS)
+        st = clrt_record(err, rc, "clCreateBuffer(centre)", __func__, __LINE__);
+    cl_int flags = v->camera.ortho_height > 0 ? RENDER_ORTHO : 0, width = v->width, height = v->height;
+    cl_int count = (cl_int)n, with_shadows = shadows;
+    const void *values[18] = {&t->params, &fx,      &flags,   &width,   &height,  &in[0],
+                              &count,     &in[1],   &in[2],   &in[3],   &with_shadows, eps_real,
+                              &hits[0],   &hits[1], &hits[2], &hits[3], &hits[4], &hits[5]};
+    size_t sizes[18];
+    for (int a = 0; a < 18; a++)
+        sizes[a] = a == 2 || a == 3 || a == 4 || a == 6 || a == 10 ? sizeof(cl_int) : a == 11 ? rb : sizeof(cl_mem);
+    for (int a = 0; a < 18; a++) /* NULL buffers (n 0: a launch that only compiles it) */
+        if (sizes[a] == sizeof(cl_mem) && a != 11 && !*(const cl_mem *)values[a])
+            values[a] = NULL;
+    if (st == IACSG_OK)
+        st = set_args(r->fx->centre, 0, 18, sizes, values, "clSetKernelArg(iacsg_scene_centre)", err);
+    const void *last[1] = {sh[0] ? &sh[0] : NULL};
+    size_t last_size[1] = {sizeof(cl_mem)};
+    if (st == IACSG_OK)
+        st = set_args(r->fx->centre, 18, 1, last_size, last, "clSetKernelArg(iacsg_scene_centre)", err);
+    size_t global = n > 0 ? (n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1;
+    if (st == IACSG_OK && (rc = clEnqueueNDRangeKernel(r->rt.queue, r->fx->centre, 1, NULL, &global, &local, 0, NULL,
+                                                       NULL)) != CL_SUCCESS)
+        st = clrt_record(err, rc, "clEnqueueNDRangeKernel(iacsg_scene_centre)", __func__, __LINE__);
+    if (st == IACSG_OK && n == 0 && clFinish(r->rt.queue) != CL_SUCCESS)
+        st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clFinish after iacsg_scene_centre failed");
+    if (st == IACSG_OK && rays > 0) { /* one layer: every item is opaque, so a ray proven blocked needs no leaf */
+        trace_buffers b = {sh[0], sh[1], sh[2], sh[3], sh[4], NULL};
+        st = launch_scene(t, r->fx->trace, &b, (cl_int)rays, eps_real, 1, err);
+    }
+    if (st == IACSG_OK && n > 0)
+        st = shade_launch(t, block, hits, sh[3], n, palette, out, err);
+    if (st == IACSG_OK && rays > 0 && r->config.stats) /* the rays traced (a light in front) and their evaluations */
+        st = count_centre_rays(t, hits[4], sh[4], n, nl, err);
+    release_all(in, 4);
+    release_all(hits, 6);
+    release_all(sh, 5);
+    if (fx)
+        clReleaseMemObject(fx);
     return st;
 }

@@ -1,0 +1,80 @@
+/* kernels/scene_centre.cl -- the segment path's centre paths kept on the device (src/render_effects.c, where no
+ * path can have a child: every item opaque, no reflected ray), from the camera kernel's hits:
+ *
+ *   the listed pixels, PACKET_LANES per work-item --> each one's camera ray (camera_ray: the ray the camera kernel
+ *   traced), its hit (the frame's depth, normal, id) and row: iacsg_scene_shade's inputs
+ *   --> with shadows, per light (ray l n + i, light by light: neighbouring pixels' rays in a packet): where the
+ *       light is in front of the hit, the shadow ray from off the surface to it (effects.cl's, in lanes), else
+ *       an empty one (t in [1, 0], met by nothing) --> iacsg_scene_trace_rays --> iacsg_scene_shade, a light seen
+ *       where its ray met nothing.
+ *
+ * So no host pass builds a path, a camera ray in double, a shadow ray or the shading's inputs.
+ */
+
+__kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real *fx, int flags, int width, int height,
+                                 __global const int *pixels, int n, __global const float *depth,
+                                 __global const float *normal, __global const float *ids, int shadows, ia_real eps,
+                                 __global ia_real *rays, __global ia_real *hit_t, __global float *hit_n,
+                                 __global int *hit_item, __global float *vis, __global int *rows,
+                                 __global ia_real *shadow_rays) {
+    int first = (int)get_global_id(0) * IA_VW;
+    if (first >= n)
+        return;
+    ia_real o_k[3][IA_VW], d_k[3][IA_VW], n_k[3][IA_VW], t_k[IA_VW], on_k[IA_VW];
+    for (int k = 0; k < IA_VW; k++) {
+        int i = min(first + k, n - 1), pixel = pixels[i], row = pixel / width;
+        ia_real o[3], d[3];
+        camera_ray(params, flags & RENDER_ORTHO, pixel % width, row, width, height, o, d);
+        float t = depth[pixel];
+        int hit = !isinf(t);
+        __global ia_real *q = rays + EFFECTS_RAY_REALS * (size_t)i;
+        for (int c = 0; c < 3; c++) {
+            q[c] = o_k[c][k] = o[c];
+            q[3 + c] = d_k[c][k] = d[c];
+            hit_n[3 * i + c] = normal[3 * (size_t)pixel + c];
+            n_k[c][k] = normal[3 * (size_t)pixel + c];
+        }
+        q[6] = 0;
+        q[7] = IA_INF;
+        hit_t[i] = t_k[k] = hit ? t : 0;
+        hit_item[i] = hit ? (int)ids[pixel] : -1;
+        on_k[k] = hit;
+        rows[i] = row;
+    }
+    ia_realv p[3], nv[3], t = IAV_LOAD(t_k);
+    ia_maskv hit = IAV_LOAD(on_k) != 0;
+    for (int c = 0; c < 3; c++) {
+        nv[c] = IAV_LOAD(n_k[c]);
+        p[c] = IAV_LOAD(o_k[c]) + t * IAV_LOAD(d_k[c]);
+    }
+    ia_realv off = effects_offset(eps, p, t), so[3];
+    for (int c = 0; c < 3; c++) /* off the surface, on the side its normal faces (the ray's) */
+        so[c] = p[c] + off * nv[c];
+    int nlights = (int)fx[EFFECTS_NLIGHTS];
+    for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
+        ia_realv seen = IAV_R(1); /* without shadows every light, as the host's paths had it */
+        if (shadows) {
+            __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * min(l, nlights - 1);
+            ia_realv towards[3], sd[3];
+            shade_towards(params, L, p, towards);
+            ia_maskv ray = l < nlights ? hit & (nv[0] * towards[0] + nv[1] * towards[1] + nv[2] * towards[2] > 0)
+                                        : (ia_maskv)0;
+            ia_realv dist = shade_towards(params, L, so, sd);
+            ia_real s_k[EFFECTS_RAY_REALS][IA_VW];
+            for (int c = 0; c < 3; c++) {
+                IAV_STORE(so[c], s_k[c]);
+                IAV_STORE(sd[c], s_k[3 + c]);
+            }
+            IAV_STORE(select(IAV_R(1), IAV_R(0), ray), s_k[6]);
+            IAV_STORE(select(IAV_R(0), dist, ray), s_k[7]);
+            for (int k = 0; k < IA_VW && first + k < n && l < nlights; k++)
+                for (int c = 0; c < EFFECTS_RAY_REALS; c++)
+                    shadow_rays[EFFECTS_RAY_REALS * ((size_t)l * n + first + k) + c] = s_k[c][k];
+            seen = select(IAV_R(0), IAV_R(1), ray);
+        }
+        float seen_k[IA_VW];
+        IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_float, IA_VW)(seen), 0, seen_k);
+        for (int k = 0; k < IA_VW && first + k < n; k++)
+            vis[EFFECTS_MAX_LIGHTS * (first + k) + l] = seen_k[k];
+    }
+}
