@@ -20,33 +20,37 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
     int first = (int)get_global_id(0) * IA_VW;
     if (first >= n)
         return;
-    ia_real o_k[3][IA_VW], d_k[3][IA_VW], n_k[3][IA_VW], t_k[IA_VW], on_k[IA_VW];
+    ia_real col_k[IA_VW], row_k[IA_VW], n_k[3][IA_VW], t_k[IA_VW], on_k[IA_VW];
     for (int k = 0; k < IA_VW; k++) {
-        int i = min(first + k, n - 1), pixel = pixels[i], row = pixel / width;
-        ia_real o[3], d[3];
-        camera_ray(params, flags & RENDER_ORTHO, pixel % width, row, width, height, o, d);
+        int i = min(first + k, n - 1), pixel = pixels[i];
         float t = depth[pixel];
         int hit = !isinf(t);
-        __global ia_real *q = rays + EFFECTS_RAY_REALS * (size_t)i;
-        for (int c = 0; c < 3; c++) {
-            q[c] = o_k[c][k] = o[c];
-            q[3 + c] = d_k[c][k] = d[c];
-            hit_n[3 * i + c] = normal[3 * (size_t)pixel + c];
-            n_k[c][k] = normal[3 * (size_t)pixel + c];
-        }
-        q[6] = 0;
-        q[7] = IA_INF;
+        col_k[k] = pixel % width;
+        row_k[k] = rows[i] = pixel / width;
+        for (int c = 0; c < 3; c++)
+            hit_n[3 * i + c] = n_k[c][k] = normal[3 * (size_t)pixel + c];
         hit_t[i] = t_k[k] = hit ? t : 0;
         hit_item[i] = hit ? (int)ids[pixel] : -1;
         on_k[k] = hit;
-        rows[i] = row;
     }
-    ia_realv p[3], nv[3], t = IAV_LOAD(t_k);
-    ia_maskv hit = IAV_LOAD(on_k) != 0;
+    /* the camera rays in lanes (packet_camera.h: bit for bit camera_ray's, the camera kernel's rays) */
+    ia_realv o[3], d[3], p[3], nv[3], t = IAV_LOAD(t_k);
+    packet_rays(params, flags & RENDER_ORTHO, packet_to_int(IAV_LOAD(col_k)), packet_to_int(IAV_LOAD(row_k)), width,
+                height, o, d);
+    ia_real ray_k[EFFECTS_RAY_REALS][IA_VW];
     for (int c = 0; c < 3; c++) {
         nv[c] = IAV_LOAD(n_k[c]);
-        p[c] = IAV_LOAD(o_k[c]) + t * IAV_LOAD(d_k[c]);
+        p[c] = o[c] + t * d[c];
+        IAV_STORE(o[c], ray_k[c]);
+        IAV_STORE(d[c], ray_k[3 + c]);
     }
+    for (int k = 0; k < IA_VW && first + k < n; k++) {
+        for (int c = 0; c < 6; c++)
+            rays[EFFECTS_RAY_REALS * (size_t)(first + k) + c] = ray_k[c][k];
+        rays[EFFECTS_RAY_REALS * (size_t)(first + k) + 6] = 0;
+        rays[EFFECTS_RAY_REALS * (size_t)(first + k) + 7] = IA_INF;
+    }
+    ia_maskv hit = IAV_LOAD(on_k) != 0;
     ia_realv off = effects_offset(eps, p, t), so[3];
     for (int c = 0; c < 3; c++) /* off the surface, on the side its normal faces (the ray's) */
         so[c] = p[c] + off * nv[c];
