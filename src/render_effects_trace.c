@@ -404,9 +404,9 @@ static iacsg_status count_centre_rays(fx_tracer *t, cl_mem vis, cl_mem evals, si
                                       iacsg_error *err) {
     float *seen = malloc(EFFECTS_MAX_LIGHTS * n * sizeof *seen + 1);
     cl_uint *each = malloc(nl * n * sizeof *each + 1);
+    size_t seen_bytes = EFFECTS_MAX_LIGHTS * n * sizeof *seen;
     cl_int rc = !seen || !each ? CL_OUT_OF_HOST_MEMORY
-                               : clEnqueueReadBuffer(t->r->rt.queue, vis, CL_TRUE, 0, EFFECTS_MAX_LIGHTS * n * sizeof *seen,
-                                                     seen, 0, NULL, NULL);
+                               : clEnqueueReadBuffer(t->r->rt.queue, vis, CL_TRUE, 0, seen_bytes, seen, 0, NULL, NULL);
     if (rc == CL_SUCCESS)
         rc = clEnqueueReadBuffer(t->r->rt.queue, evals, CL_TRUE, 0, nl * n * sizeof *each, each, 0, NULL, NULL);
     for (size_t i = 0; rc == CL_SUCCESS && i < n; i++)
