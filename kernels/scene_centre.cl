@@ -3,10 +3,11 @@
  *
  *   the listed pixels, PACKET_LANES per work-item --> each one's camera ray (camera_ray: the ray the camera kernel
  *   traced), its hit (the frame's depth, normal, id) and row: iacsg_scene_shade's inputs
- *   --> with shadows, per light (ray l n + i, light by light: neighbouring pixels' rays in a packet): where the
- *       light is in front of the hit, the shadow ray from off the surface to it (effects.cl's, in lanes), else
- *       an empty one (t in [1, 0], met by nothing) --> iacsg_scene_trace_rays --> iacsg_scene_shade, a light seen
- *       where its ray met nothing.
+ *   --> with shadows, per light where it is in front of the hit: the shadow ray from off the surface to it
+ *       (effects.cl's, in lanes), staged at l n + i, and each work-item's count of them
+ *   --> (the host sums the counts: each work-item's first place) iacsg_scene_centre_compact: the live rays in the
+ *       host's order, light by light, path by path (neighbouring pixels' rays in a packet, none empty)
+ *   --> iacsg_scene_trace_rays --> iacsg_scene_shade, a light seen where its ray met nothing.
  *
  * So no host pass builds a path, a camera ray in double, a shadow ray or the shading's inputs.
  */
@@ -16,7 +17,7 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
                                  __global const float *normal, __global const float *ids, int shadows, ia_real eps,
                                  __global ia_real *rays, __global ia_real *hit_t, __global float *hit_n,
                                  __global int *hit_item, __global float *vis, __global int *rows,
-                                 __global ia_real *shadow_rays) {
+                                 __global ia_real *staged, __global int *counts) {
     int first = (int)get_global_id(0) * IA_VW;
     if (first >= n)
         return;
@@ -69,16 +70,46 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
                 IAV_STORE(so[c], s_k[c]);
                 IAV_STORE(sd[c], s_k[3 + c]);
             }
-            IAV_STORE(select(IAV_R(1), IAV_R(0), ray), s_k[6]);
-            IAV_STORE(select(IAV_R(0), dist, ray), s_k[7]);
-            for (int k = 0; k < IA_VW && first + k < n && l < nlights; k++)
-                for (int c = 0; c < EFFECTS_RAY_REALS; c++)
-                    shadow_rays[EFFECTS_RAY_REALS * ((size_t)l * n + first + k) + c] = s_k[c][k];
+            IAV_STORE(IAV_R(0), s_k[6]);
+            IAV_STORE(dist, s_k[7]);
             seen = select(IAV_R(0), IAV_R(1), ray);
+            ia_real live_k[IA_VW];
+            IAV_STORE(seen, live_k);
+            int live = 0;
+            for (int k = 0; k < IA_VW && first + k < n && l < nlights; k++) {
+                live += live_k[k] != 0;
+                for (int c = 0; live_k[k] != 0 && c < EFFECTS_RAY_REALS; c++)
+                    staged[EFFECTS_RAY_REALS * ((size_t)l * n + first + k) + c] = s_k[c][k];
+            }
+            if (l < nlights)
+                counts[l * ((n + IA_VW - 1) / IA_VW) + first / IA_VW] = live;
         }
         float seen_k[IA_VW];
         IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_float, IA_VW)(seen), 0, seen_k);
         for (int k = 0; k < IA_VW && first + k < n; k++)
             vis[EFFECTS_MAX_LIGHTS * (first + k) + l] = seen_k[k];
+    }
+}
+
+/* iacsg_scene_centre_compact: the live shadow rays (a light in front of the hit) of work-item g of
+ * iacsg_scene_centre moved from `staged` to their places in the host's order (light by light, path by path:
+ * offsets[l groups + g], the exclusive prefix sum of the counts), so that each packet of the trace holds 16 live
+ * rays of neighbouring pixels; slot[l n + i]: the place of ray (l, i), -1 where there is none. */
+__kernel void iacsg_scene_centre_compact(int n, int nlights, __global const float *vis, __global const int *offsets,
+                                         __global const ia_real *staged, __global ia_real *rays,
+                                         __global int *slot) {
+    int g = (int)get_global_id(0), groups = (n + IA_VW - 1) / IA_VW, first = g * IA_VW;
+    if (first >= n)
+        return;
+    for (int l = 0; l < nlights; l++) {
+        int at = offsets[l * groups + g];
+        for (int k = 0; k < IA_VW && first + k < n; k++) {
+            size_t i = (size_t)(first + k);
+            int live = vis[EFFECTS_MAX_LIGHTS * i + l] != 0;
+            slot[(size_t)l * n + i] = live ? at : -1;
+            for (int c = 0; live && c < EFFECTS_RAY_REALS; c++)
+                rays[EFFECTS_RAY_REALS * (size_t)at + c] = staged[EFFECTS_RAY_REALS * ((size_t)l * n + i) + c];
+            at += live;
+        }
     }
 }

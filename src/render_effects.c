@@ -851,7 +851,7 @@ int iacsg_scene_lights(const iacsg_scene *s, iacsg_light lights[IACSG_MAX_LIGHTS
 void render_effects_free(render_fx *fx) {
     if (!fx)
         return;
-    cl_kernel kernels[] = {fx->trace, fx->shade, fx->samples, fx->centre};
+    cl_kernel kernels[] = {fx->trace, fx->shade, fx->samples, fx->centre, fx->compact};
     for (size_t k = 0; k < sizeof kernels / sizeof kernels[0]; k++)
         if (kernels[k])
             clReleaseKernel(kernels[k]);

@@ -28,6 +28,7 @@ struct render_fx {
     cl_kernel shade; /* a scene's: iacsg_scene_shade */
     cl_kernel samples; /* a scene's -aa samples: iacsg_render_scene_samples (kernels/render_scene.cl) */
     cl_kernel centre;  /* a scene's centre paths on the device: iacsg_scene_centre (kernels/scene_centre.cl) */
+    cl_kernel compact; /* and their shadow rays' compaction: iacsg_scene_centre_compact */
     fx_item *items;  /* a scene's items' materials, as the effects need them */
     int nitems;
 };
