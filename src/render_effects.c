@@ -12,7 +12,9 @@
  * this file's block), else after the frame (render_effects_device.c launches them: this file lists the pixels),
  * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
  * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
- * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children. So an
+ * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children; where no
+ * path can have a child (every item opaque, no reflected ray) a scene's centre paths stay wholly on the device
+ * (kernels/scene_centre.cl: centre_on_device), the host only encoding their colours. So an
  * occluder or a reflected surface that a ray crosses inside the bounds is never missed, and with the default rig
  * and no effect but -aa or -background a pixel gets the colour the plain render gives it.
  */

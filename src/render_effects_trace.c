@@ -2,7 +2,9 @@
  * the kernels made at the renderer's first use), and the segment path's secondary rays and colours: the rays go
  * to the device in one buffer per call, in the working precision (kernels/effects.h), traced one per work-item
  * with per-ray buffers that every ray fits (render_scene.c); their hits are shaded 16 at a time in SIMD lanes
- * (kernels/scene_effects.cl: iacsg_scene_shade, by light.h). */
+ * (kernels/scene_effects.cl: iacsg_scene_shade, by light.h). Where no path can have a child, the centre paths'
+ * rays, shadow rays and shading inputs are made on the device from the frame (fx_scene_centre,
+ * kernels/scene_centre.cl) and never pass through the host. */
 #include "render_effects_trace.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"
