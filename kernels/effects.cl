@@ -70,13 +70,6 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
     return hit;
 }
 
-/* How far a secondary ray starts off its hit p (at t along its ray): past the hit leaf's distance from the surface
- * (a few eps) and the rounding of the hit point (the frame's depth is float32). Without it the shadow test sees
- * acne (tests/t_render_effects_fp.c). */
-static ia_realv effects_offset(ia_real eps, const ia_realv p[3], ia_realv t) {
-    return 4 * eps + (ia_real)4e-6 * (1 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]) + fabs(t));
-}
-
 /* acc += w c in the lanes of `on`. */
 static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shade_colorv c[3]) {
     IAV_CAT(int, IA_VW) lanes = IAV_CAT(convert_int, IA_VW)(on) != 0;

@@ -10,6 +10,13 @@
 #define EFFECTS_MARCH_STEPS 32
 #define EFFECTS_MARCH_FIRST 4096
 
+/* How far a secondary ray starts off its hit p (at t along its ray): past the hit leaf's distance from the surface
+ * (a few eps) and the rounding of the hit point (the frame's depth is float32; the host's: render_effects.c's
+ * offset_of). Without it the shadow test sees acne (tests/t_render_effects_fp.c). */
+static ia_realv effects_offset(ia_real eps, const ia_realv p[3], ia_realv t) {
+    return 4 * eps + (ia_real)4e-6 * (1 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]) + fabs(t));
+}
+
 #ifdef PACKET_FDV
 /* A secondary ray starts next to a surface it leaves (or crosses): bisection must halve its first nodes down to
  * its distance from that surface before one excludes it, some 2 log2(length / distance) evaluations, and then

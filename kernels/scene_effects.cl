@@ -248,13 +248,16 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
  * sees after its shadow rays), 16 per work-item in SIMD lanes, by light.h's shade_effects with each hit's item's
  * material (SCENE_MATERIAL_FLOATS per item) and, for -shade ids, palette colour (3 linear floats per item). In
  * per hit: its ray (EFFECTS_RAY_REALS), depth, normal (3 floats, facing the ray), item (-1: a miss), the
- * fraction of each light that reaches it (EFFECTS_MAX_LIGHTS floats) and its pixel's row. Out per hit, 6 floats:
- * its colour (a miss: the background) and the background of its row, both linear. */
+ * fraction of each light that reaches it (EFFECTS_MAX_LIGHTS floats) and its pixel's row; shadow_item, where not
+ * NULL (every item opaque: kernels/scene_centre.cl), the items that the shadow rays met, that towards light l from
+ * hit i at shadow_slot[l n + i] (where vis_in is not 0), a light being seen only where its ray met nothing (-1).
+ * Out per hit, 6 floats: its colour (a miss: the background) and the background of its row, both linear. */
 __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *fx, __global const float *materials,
                                 __global const float *palette, int height, __global const ia_real *rays,
                                 __global const ia_real *hit_t, __global const float *hit_n,
                                 __global const int *hit_item, __global const float *vis_in,
-                                __global const int *rows, int n, __global float *out) {
+                                __global const int *rows, int n, __global float *out,
+                                __global const int *shadow_item, __global const int *shadow_slot) {
     int first = (int)get_global_id(0) * IA_VW;
     if (first >= n)
         return;
@@ -277,8 +280,10 @@ __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *
         row_k[k] = (ia_real)rows[i];
         specular_k[k] = m[SCENE_MATERIAL_SPECULAR];
         shininess_k[k] = m[SCENE_MATERIAL_SHININESS];
-        for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++)
-            seen_k[l][k] = vis_in[EFFECTS_MAX_LIGHTS * i + l];
+        for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
+            float v = vis_in[EFFECTS_MAX_LIGHTS * i + l];
+            seen_k[l][k] = v != 0 && shadow_item && shadow_item[shadow_slot[(size_t)l * n + i]] != -1 ? 0 : v;
+        }
     }
     ia_realv o[3], d[3], nv[3], p[3], t = IAV_LOAD(t_k);
     shade_colorv albedo[3], id_rgb[3], lin[3], bg[3];

@@ -12,7 +12,9 @@
  * this file's block), else after the frame (render_effects_device.c launches them: this file lists the pixels),
  * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
  * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
- * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children. So an
+ * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children; where no
+ * path can have a child (every item opaque, no reflected ray) a scene's centre paths stay wholly on the device
+ * (kernels/scene_centre.cl: centre_on_device), the host only encoding their colours. So an
  * occluder or a reflected surface that a ray crosses inside the bounds is never missed, and with the default rig
  * and no effect but -aa or -background a pixel gets the colour the plain render gives it.
  */
@@ -650,6 +652,33 @@ static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, int in_camera, i
     return st;
 }
 
+/* Whether a segment path's path may have a child: a reflected ray, or one through a transparent hit. */
+static int has_children(const iacsg_renderer *r, const iacsg_effects *e) {
+    return transparent(r, e) || (e->bounces > 0 && reflects(r, e));
+}
+
+/* The centre paths of pixels[0 .. count) where none has a child, FX_CHUNK at a time, wholly on the device
+ * (fx_scene_centre: their rays, shadow rays and colours); the host only encodes their colours. Their rays are the
+ * camera kernel's, in the working precision (the host's were in double, rounded): a shading point, a shadow ray's
+ * start may move by ulps. */
+static iacsg_status centre_on_device(fx_frame *f, iacsg_frame *frame, const int *pixels, size_t count,
+                                     iacsg_error *err) {
+    const iacsg_effects *e = f->e;
+    int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
+    float *out = reserve(&f->colors, (6 * FX_CHUNK + 1) * sizeof *out);
+    iacsg_status st = out ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    for (size_t k = 0; st == IACSG_OK && k < count; k += FX_CHUNK) {
+        size_t n = count - k < FX_CHUNK ? count - k : FX_CHUNK;
+        st = fx_scene_centre(&f->tracer, f->block, pixels + k, n, frame, lit && e->shadows,
+                             FX_SHADOW_EPS_FACTOR * f->view->eps, f->palette, out, err);
+        for (size_t q = 0; st == IACSG_OK && q < n; q++) { /* a path's colour, all of its pixel's */
+            memcpy(frame->rgb + 3 * (size_t)pixels[k + q], out + 6 * q, 3 * sizeof(float));
+            fx_encode(frame->rgb, pixels[k + q]);
+        }
+    }
+    return st;
+}
+
 /* The segment path: the centre rays' colours FX_CHUNK hits at a time (a miss is its background, and a hit keeps
  * the kernel's colour where the host's would be the same); then -aa decides its edges on them. */
 static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *err) {
@@ -670,7 +699,9 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
     for (int j = 0; j < f->view->height; j++)
         row_v[j] = image_v(f, j + 0.5);
     size_t count = block_select(f, frame, NULL, listed);
-    for (size_t k = 0; st == IACSG_OK && k < count;) {
+    if (!has_children(f->r, f->e))
+        st = centre_on_device(f, frame, listed, count, err);
+    for (size_t k = has_children(f->r, f->e) ? 0 : count; st == IACSG_OK && k < count;) {
         size_t n = 0;
         for (; k < count && n < FX_CHUNK; k++) {
             int pixel = listed[k];
@@ -822,7 +853,7 @@ int iacsg_scene_lights(const iacsg_scene *s, iacsg_light lights[IACSG_MAX_LIGHTS
 void render_effects_free(render_fx *fx) {
     if (!fx)
         return;
-    cl_kernel kernels[] = {fx->trace, fx->shade, fx->samples};
+    cl_kernel kernels[] = {fx->trace, fx->shade, fx->samples, fx->centre, fx->compact};
     for (size_t k = 0; k < sizeof kernels / sizeof kernels[0]; k++)
         if (kernels[k])
             clReleaseKernel(kernels[k]);

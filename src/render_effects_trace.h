@@ -27,6 +27,8 @@ struct render_fx {
     cl_kernel trace; /* iacsg_effects (kernels/effects.cl) or iacsg_scene_trace_rays */
     cl_kernel shade; /* a scene's: iacsg_scene_shade */
     cl_kernel samples; /* a scene's -aa samples: iacsg_render_scene_samples (kernels/render_scene.cl) */
+    cl_kernel centre;  /* a scene's centre paths on the device: iacsg_scene_centre (kernels/scene_centre.cl) */
+    cl_kernel compact; /* and their shadow rays' compaction: iacsg_scene_centre_compact */
     fx_item *items;  /* a scene's items' materials, as the effects need them */
     int nitems;
 };
@@ -119,5 +121,13 @@ iacsg_status fx_shade_inputs(fx_tracer *t, size_t n, fx_shade_in *in, iacsg_erro
  * compiles the kernel. */
 iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in *in, const float *palette,
                             float *out, iacsg_error *err);
+
+/* The segment path's centre paths of pixels[0 .. n) where none can have a child (every item opaque, no reflected
+ * ray), wholly on the device (kernels/scene_centre.cl): their camera rays and hits (the frame's depth, normals and
+ * ids), with `shadows` their shadow rays (leaves eps wide) traced, then their colours (iacsg_scene_shade) into out,
+ * 6 floats a path as fx_scene_shade's. block: the effects' parameters (EFFECTS_COUNT, kernels/effects.h). */
+iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixels, size_t n,
+                             const iacsg_frame *frame, int shadows, double eps, const float *palette, float *out,
+                             iacsg_error *err);
 
 #endif

@@ -255,6 +255,46 @@ TEST_FP(effects_shadow_boundary_disjoint_enclosure) {
                         "solid ground = z * (2 + cos(x))\nregion b = ball : m\nregion g = ground \\ ball : m\n");
 }
 
+/* The segment path's centre paths, kept on the device where none can have a child (every item opaque, no reflected
+ * ray: kernels/scene_centre.cl), against the host's paths of the same scene with its ground of opacity 1 - 1e-6
+ * (a child-bearing material, so the host lists every path; its colour and its shadows' within 1e-5 of the opaque
+ * one's): lit by a point and a dir light, with shadows, and with -background (its misses go through the paths
+ * too). A pixel may differ by the shading point's rounding (the device's float ray against the host's double one)
+ * or, on a shadow's boundary, by a flip: at most 1 % of them by more than 2e-3. */
+TEST_FP(effects_scene_centre_on_device) {
+    static const char *ground[2] = {"material g = rgb(0.7, 0.7, 0.68)",
+                                    "material g = rgb(0.7, 0.7, 0.68) opacity 0.999999"};
+    iacsg_effects fx = shadow_effects();
+    fx.nlights = 2;
+    fx.lights[1] = (iacsg_light){IACSG_LIGHT_DIR, {1, 0.5, 2}, 0.3};
+    fx.background = 1;
+    fx.background_top[0] = 1, fx.background_bottom[2] = 1;
+    iacsg_frame fr[2];
+    iacsg_view view = ground_view(96);
+    view.effects = &fx;
+    for (int k = 0; k < 2; k++) {
+        char text[400];
+        snprintf(text, sizeof text,
+                 "material m = rgb(0.8, 0.52, 0.28)\n%s\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                 "region b = ball : m\nregion f = z \\ ball : g\n",
+                 ground[k]);
+        render_scene_text(text, &view, &fr[k]);
+    }
+    long n = (long)view.width * view.height, off = 0, dark = 0, lit = 0;
+    for (long px = 0; px < n; px++) {
+        double most = 0;
+        for (int c = 0; c < 3; c++)
+            most = fmax(most, fabs(fr[0].rgb[3 * px + c] - fr[1].rgb[3 * px + c]));
+        off += most > 2e-3;
+        dark += fr[0].ids[px] == 1 && fr[0].rgb[3 * px] < 0.35;
+        lit += fr[0].ids[px] == 1 && fr[0].rgb[3 * px] > 0.5;
+    }
+    iacsg_frame_free(&fr[0]);
+    iacsg_frame_free(&fr[1]);
+    CHECK(dark > 100 && lit > 100, "%ld shadowed and %ld lit ground pixels: the view does not test both", dark, lit);
+    CHECK(off <= n / 100, "%ld of %ld pixels differ from the host's paths by more than 2e-3", off, n);
+}
+
 /* The unit sphere seen along -z, orthographic: the point (s, v) of the image plane is on it iff s^2 + v^2 < 1. */
 static iacsg_view sphere_ortho_view(int size) {
     iacsg_view v = {.width = size, .height = size, .eps = 0x1p-14,
