@@ -18,7 +18,7 @@
  * occluder or a reflected surface that a ray crosses inside the bounds is never missed, and with the default rig
  * and no effect but -aa or -background a pixel gets the colour the plain render gives it.
  */
-#include "render_effects_trace.h"
+#include "render_effects_centre.h"
 #include "implicits/scene.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"

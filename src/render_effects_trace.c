@@ -2,21 +2,15 @@
  * the kernels made at the renderer's first use), and the segment path's secondary rays and colours: the rays go
  * to the device in one buffer per call, in the working precision (kernels/effects.h), traced one per work-item
  * with per-ray buffers that every ray fits (render_scene.c); their hits are shaded 16 at a time in SIMD lanes
- * (kernels/scene_effects.cl: iacsg_scene_shade, by light.h). Where no path can have a child, the centre paths'
- * rays, shadow rays and shading inputs are made on the device from the frame (fx_scene_centre,
- * kernels/scene_centre.cl) and never pass through the host. */
-#include "render_effects_trace.h"
+ * (kernels/scene_effects.cl: iacsg_scene_shade, by light.h). Where no path can have a child, the centre paths
+ * stay on the device (render_effects_centre.c, with the launches shared below). */
+#include "render_effects_centre.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"
 #include "kernels/scene_data.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* The device buffers of one call. */
-typedef struct trace_buffers {
-    cl_mem rays, t, normal, item, evals, passing;
-} trace_buffers;
 
 iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err) {
     if (!r->fx && !(r->fx = calloc(1, sizeof *r->fx)))
@@ -42,15 +36,12 @@ void fx_encode(float *rgb, int pixel) {
     }
 }
 
-static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const struct trace_buffers *b, cl_int n, void *eps_real,
-                                 cl_int whether, iacsg_error *err);
-
 /* PoCL compiles a kernel at its first launch: one launch over no rays makes that happen when the kernel is made,
  * counted as build time (render.c: compile_now), not inside the first frame with effects. */
 static iacsg_status compile_trace_now(fx_tracer *t, iacsg_error *err) {
-    struct trace_buffers none = {0};
+    fx_trace_buffers none = {0};
     double eps[1] = {0};
-    return t->r->scene ? launch_scene(t, t->r->fx->trace, &none, 0, eps, 0, err) : fx_device_compile(t, err);
+    return t->r->scene ? fx_launch_scene(t, t->r->fx->trace, &none, 0, eps, 0, err) : fx_device_compile(t, err);
 }
 
 iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *view, iacsg_error *err) {
@@ -142,7 +133,7 @@ void fx_tracer_close(fx_tracer *t) {
 
 
 
-static void release_trace_buffers(trace_buffers *b) {
+static void release_trace_buffers(fx_trace_buffers *b) {
     cl_mem all[] = {b->rays, b->t, b->normal, b->item, b->evals, b->passing};
     for (int k = 0; k < 6; k++)
         if (all[k])
@@ -164,8 +155,8 @@ iacsg_status fx_launch_slices(cl_command_queue q, cl_kernel k, cl_uint first_arg
 
 /* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items (PACKET_LANES rays
  * each) as the per-ray buffers have room for (one after the other on the in-order queue, which they share). */
-static iacsg_status launch_scene(fx_tracer *t, cl_kernel k, const trace_buffers *b, cl_int n, void *eps_real,
-                                 cl_int whether, iacsg_error *err) {
+iacsg_status fx_launch_scene(fx_tracer *t, cl_kernel k, const fx_trace_buffers *b, cl_int n, void *eps_real,
+                             cl_int whether, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     void *held = NULL;
     cl_int packets = (n + PACKET_LANES - 1) / PACKET_LANES;
@@ -248,7 +239,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, in
         fx_put_ray(r, host, i, &rays[i]);
         ((cl_int *)(void *)(host + at[5]))[i] = rays[i].passing;
     }
-    trace_buffers b = {0};
+    fx_trace_buffers b = {0};
     cl_mem *dst[6] = {&b.rays, &b.t, &b.normal, &b.item, &b.evals, &b.passing};
     cl_int rc = CL_SUCCESS;
     for (int k = 0; k < 6; k++) {
@@ -260,7 +251,7 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, in
     }
     double eps_block[1];
     fx_put_real(r, eps_block, 0, eps);
-    st = launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, whether, err);
+    st = fx_launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_block, whether, err);
     for (int k = 1; k < 5 && st == IACSG_OK; k++) /* the outputs */
         if (*dst[k])
             st = fx_sync_to_host(r->rt.queue, *dst[k], bytes[k], err);
@@ -283,7 +274,7 @@ fail:
 
 /* The bytes of fx_shade_in's arrays for n hits, in iacsg_scene_shade's order of them (rays, depth, normal, item,
  * vis, row), each from a page. */
-static void shade_parts(const iacsg_renderer *r, size_t n, size_t bytes[6]) {
+void fx_shade_parts(const iacsg_renderer *r, size_t n, size_t bytes[6]) {
     size_t rb = fx_real_bytes(r);
     size_t b[6] = {n * EFFECTS_RAY_REALS * rb, n * rb, 3 * n * sizeof(float), n * sizeof(cl_int),
                    EFFECTS_MAX_LIGHTS * n * sizeof(float), n * sizeof(cl_int)};
@@ -292,7 +283,7 @@ static void shade_parts(const iacsg_renderer *r, size_t n, size_t bytes[6]) {
 
 iacsg_status fx_shade_inputs(fx_tracer *t, size_t n, fx_shade_in *in, iacsg_error *err) {
     size_t bytes[6], at[7] = {0};
-    shade_parts(t->r, n, bytes);
+    fx_shade_parts(t->r, n, bytes);
     for (int k = 0; k < 6; k++)
         at[k + 1] = at[k] + page_round(bytes[k] + 1);
     iacsg_status st = reserve_scratch(&t->shade_host, &t->shade_bytes, at[6], err);
@@ -312,8 +303,8 @@ iacsg_status fx_shade_inputs(fx_tracer *t, size_t n, fx_shade_in *in, iacsg_erro
 /* Launches iacsg_scene_shade over the n hits whose arrays are hits[0 .. 6) (rays, depths, normals, items, light
  * fractions, rows: device buffers; n 0: none, a launch that only compiles it), shadow_item and shadow_slot (or
  * NULL) its arguments; their colours into out (6 floats a hit). */
-static iacsg_status shade_launch(fx_tracer *t, const double *block, const cl_mem hits[6], cl_mem shadow_item,
-                                 cl_mem shadow_slot, size_t n, const float *palette, float *out, iacsg_error *err) {
+iacsg_status fx_shade_launch(fx_tracer *t, const double *block, const cl_mem hits[6], cl_mem shadow_item,
+                             cl_mem shadow_slot, size_t n, const float *palette, float *out, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     size_t rb = fx_real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1;
     cl_mem mem[3] = {0}; /* block, materials, palette */
@@ -366,7 +357,7 @@ static iacsg_status shade_launch(fx_tracer *t, const double *block, const cl_mem
     return st;
 }
 
-static void release_all(cl_mem *mem, int count) {
+void fx_release_all(cl_mem *mem, int count) {
     for (int b = 0; b < count; b++)
         if (mem[b])
             clReleaseMemObject(mem[b]);
@@ -375,7 +366,7 @@ static void release_all(cl_mem *mem, int count) {
 iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in *in, const float *palette,
                             float *out, iacsg_error *err) {
     size_t n = in ? in->n : 0, bytes[6];
-    shade_parts(t->r, n, bytes);
+    fx_shade_parts(t->r, n, bytes);
     cl_mem hits[6] = {0};
     iacsg_status st = IACSG_OK;
     for (int b = 0; b < 6 && st == IACSG_OK && n > 0; b++) { /* read in place, where the host wrote them */
@@ -387,139 +378,7 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in
             st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
     }
     if (st == IACSG_OK)
-        st = shade_launch(t, block, hits, NULL, NULL, n, palette, out, err);
-    release_all(hits, 6);
-    return st;
-}
-
-/* The centre paths' shadow rays: their work-items' counts (iacsg_scene_centre, nl a work-item, light by light) read
- * back and summed into each one's first place (offsets, into *mem); returns how many there are, or -1 on an error. */
-static long centre_offsets(fx_tracer *t, cl_mem counts, size_t groups, size_t nl, cl_mem *mem, iacsg_error *err) {
-    cl_int *at = malloc(nl * groups * sizeof *at + 1), rc = CL_OUT_OF_HOST_MEMORY;
-    long total = 0;
-    if (at)
-        rc = clEnqueueReadBuffer(t->r->rt.queue, counts, CL_TRUE, 0, nl * groups * sizeof *at, at, 0, NULL, NULL);
-    for (size_t g = 0; rc == CL_SUCCESS && g < nl * groups; g++) { /* exclusive prefix sum, in place */
-        cl_int c = at[g];
-        at[g] = (cl_int)total;
-        total += c;
-    }
-    if (rc == CL_SUCCESS)
-        *mem = clCreateBuffer(t->r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, nl * groups * sizeof *at + 1,
-                              at, &rc);
-    free(at);
-    if (rc != CL_SUCCESS) {
-        clrt_record(err, rc, "the centre paths' shadow rays", __func__, __LINE__);
-        return -1;
-    }
-    return total;
-}
-
-/* With -stats: the evaluations of the m shadow rays traced (evals), into t's counts as the host's rays were. */
-static iacsg_status count_centre_rays(fx_tracer *t, cl_mem evals, size_t m, iacsg_error *err) {
-    cl_uint *each = malloc(m * sizeof *each + 1);
-    cl_int rc = !each ? CL_OUT_OF_HOST_MEMORY
-                      : clEnqueueReadBuffer(t->r->rt.queue, evals, CL_TRUE, 0, m * sizeof *each, each, 0, NULL, NULL);
-    for (size_t j = 0; rc == CL_SUCCESS && j < m; j++)
-        t->evals += each[j];
-    t->rays += rc == CL_SUCCESS ? (long long)m : 0;
-    free(each);
-    return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "the centre paths' counts", __func__, __LINE__);
-}
-
-/* Launches kernel k over `global` work-items, one a group (global 0: one that does nothing, so that PoCL compiles
- * it), after setting its arguments: values[a] of sizes[a] bytes, a cl_mem where bit a of `mems` is set (NULL where
- * it is NULL). */
-static iacsg_status launch_with(iacsg_renderer *r, cl_kernel k, size_t global, int count, const size_t *sizes,
-                                const void *const *values, unsigned long mems, const char *what, iacsg_error *err) {
-    cl_int rc = CL_SUCCESS;
-    for (int a = 0; a < count && rc == CL_SUCCESS; a++) {
-        int null_mem = (mems >> a & 1) && !*(const cl_mem *)values[a];
-        rc = clSetKernelArg(k, (cl_uint)a, null_mem ? sizeof(cl_mem) : sizes[a], null_mem ? NULL : values[a]);
-    }
-    size_t local = 1;
-    global = global > 0 ? global : 1;
-    if (rc == CL_SUCCESS)
-        rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
-    return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, what, __func__, __LINE__);
-}
-
-iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixels, size_t n,
-                             const iacsg_frame *frame, int shadows, double eps, const float *palette, float *out,
-                             iacsg_error *err) {
-    iacsg_renderer *r = t->r;
-    const iacsg_view *v = t->view;
-    size_t rb = fx_real_bytes(r), area = (size_t)v->width * v->height, groups = (n + PACKET_LANES - 1) / PACKET_LANES;
-    size_t nl = shadows ? (size_t)block[EFFECTS_NLIGHTS] : 0, bytes[6];
-    shade_parts(r, n, bytes);
-    /* in: the pixels, the frame's depth, normals, ids; the hits' arrays (shade_parts); the shadow rays staged, the
-     * work-items' counts of them, their places; then the live ones, their t, normals, items and evaluations */
-    cl_mem in[4] = {0}, hits[6] = {0}, stage[4] = {0}, sh[5] = {0}, fx = NULL;
-    const void *in_host[4] = {pixels, frame ? frame->depth : NULL, frame ? frame->normal : NULL,
-                              frame ? frame->ids : NULL};
-    size_t in_bytes[4] = {n * sizeof(int), area * sizeof(float), 3 * area * sizeof(float), area * sizeof(float)};
-    size_t stage_bytes[3] = {nl * n * EFFECTS_RAY_REALS * rb, nl * groups * sizeof(cl_int), nl * n * sizeof(cl_int)};
-    cl_int rc = CL_SUCCESS;
-    for (int b = 0; b < 4 && rc == CL_SUCCESS && n > 0; b++)
-        in[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, in_bytes[b], (void *)in_host[b],
-                               &rc);
-    for (int b = 0; b < 6 && rc == CL_SUCCESS && n > 0; b++)
-        hits[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, bytes[b], NULL, &rc);
-    for (int b = 0; b < 3 && rc == CL_SUCCESS && nl * n > 0; b++)
-        stage[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, stage_bytes[b], NULL, &rc);
-    char eps_real[sizeof(double)], reals[EFFECTS_COUNT * sizeof(double)];
-    fx_put_real(r, eps_real, 0, eps);
-    for (int k = 0; k < EFFECTS_COUNT; k++)
-        fx_put_real(r, reals, (size_t)k, block[k]);
-    if (rc == CL_SUCCESS && n > 0)
-        fx = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, EFFECTS_COUNT * rb, reals, &rc);
-    iacsg_status st = rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clCreateBuffer(centre)", __func__, __LINE__);
-    cl_int flags = v->camera.ortho_height > 0 ? RENDER_ORTHO : 0, width = v->width, height = v->height;
-    cl_int count = (cl_int)n, with_shadows = shadows, lights = (cl_int)nl;
-    const void *values[20] = {&t->params, &fx,      &flags,   &width,   &height,  &in[0],   &count,
-                              &in[1],     &in[2],   &in[3],   &with_shadows,      eps_real, &hits[0],
-                              &hits[1],   &hits[2], &hits[3], &hits[4], &hits[5], &stage[0], &stage[1]};
-    unsigned long mems = 0xfffff & ~(1ul << 2 | 1ul << 3 | 1ul << 4 | 1ul << 6 | 1ul << 10 | 1ul << 11);
-    size_t sizes[20];
-    for (int a = 0; a < 20; a++)
-        sizes[a] = mems >> a & 1 ? sizeof(cl_mem) : a == 11 ? rb : sizeof(cl_int);
-    if (st == IACSG_OK)
-        st = launch_with(r, r->fx->centre, groups, 20, sizes, values, mems, "iacsg_scene_centre", err);
-    const void *compact_values[7] = {&count, &lights, &hits[4], &stage[3], &stage[0], &sh[0], &stage[2]};
-    size_t compact_sizes[7] = {sizeof(cl_int), sizeof(cl_int), sizeof(cl_mem), sizeof(cl_mem), sizeof(cl_mem),
-                               sizeof(cl_mem), sizeof(cl_mem)};
-    long m = 0;
-    if (st == IACSG_OK && n == 0) /* only compiling: the compaction's kernel too */
-        st = launch_with(r, r->fx->compact, 0, 7, compact_sizes, compact_values, 0x7c, "iacsg_scene_centre_compact",
-                         err);
-    if (st == IACSG_OK && nl * n > 0 && (m = centre_offsets(t, stage[1], groups, nl, &stage[3], err)) < 0)
-        st = IACSG_ERR_OPENCL;
-    size_t sh_bytes[5] = {(size_t)m * EFFECTS_RAY_REALS * rb, (size_t)m * rb, 3 * (size_t)m * sizeof(float),
-                          (size_t)m * sizeof(cl_int), (size_t)m * sizeof(cl_uint)};
-    for (int b = 0; b < 5 && st == IACSG_OK && m > 0; b++)
-        if (b < 4 || r->config.stats) {
-            sh[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, sh_bytes[b], NULL, &rc);
-            if (rc != CL_SUCCESS)
-                st = clrt_record(err, rc, "clCreateBuffer(centre)", __func__, __LINE__);
-        }
-    if (st == IACSG_OK && m > 0)
-        st = launch_with(r, r->fx->compact, groups, 7, compact_sizes, compact_values, 0x7c,
-                         "iacsg_scene_centre_compact", err);
-    if (st == IACSG_OK && m > 0) { /* one layer: every item is opaque, so a ray proven blocked needs no leaf */
-        trace_buffers b = {sh[0], sh[1], sh[2], sh[3], sh[4], NULL};
-        st = launch_scene(t, r->fx->trace, &b, (cl_int)m, eps_real, 1, err);
-    }
-    if (st == IACSG_OK && n == 0 && clFinish(r->rt.queue) != CL_SUCCESS)
-        st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clFinish after iacsg_scene_centre failed");
-    if (st == IACSG_OK && n > 0)
-        st = shade_launch(t, block, hits, m > 0 ? sh[3] : NULL, stage[2], n, palette, out, err);
-    if (st == IACSG_OK && m > 0 && r->config.stats)
-        st = count_centre_rays(t, sh[4], (size_t)m, err);
-    release_all(in, 4);
-    release_all(hits, 6);
-    release_all(stage, 4);
-    release_all(sh, 5);
-    if (fx)
-        clReleaseMemObject(fx);
+        st = fx_shade_launch(t, block, hits, NULL, NULL, n, palette, out, err);
+    fx_release_all(hits, 6);
     return st;
 }

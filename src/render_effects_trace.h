@@ -122,12 +122,17 @@ iacsg_status fx_shade_inputs(fx_tracer *t, size_t n, fx_shade_in *in, iacsg_erro
 iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in *in, const float *palette,
                             float *out, iacsg_error *err);
 
-/* The segment path's centre paths of pixels[0 .. n) where none can have a child (every item opaque, no reflected
- * ray), wholly on the device (kernels/scene_centre.cl): their camera rays and hits (the frame's depth, normals and
- * ids), with `shadows` their shadow rays (leaves eps wide) traced, then their colours (iacsg_scene_shade) into out,
- * 6 floats a path as fx_scene_shade's. block: the effects' parameters (EFFECTS_COUNT, kernels/effects.h). */
-iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixels, size_t n,
-                             const iacsg_frame *frame, int shadows, double eps, const float *palette, float *out,
-                             iacsg_error *err);
+/* Shared with render_effects_centre.c. The device buffers of one trace call; the scene's trace kernel k over n rays
+ * (render_effects_trace.c: its launches); the bytes of fx_shade_in's arrays for n hits; iacsg_scene_shade over n
+ * hits in device buffers (shadow_item and shadow_slot: the centre paths' shadow rays, or NULL); buffers released. */
+typedef struct fx_trace_buffers {
+    cl_mem rays, t, normal, item, evals, passing;
+} fx_trace_buffers;
+iacsg_status fx_launch_scene(fx_tracer *t, cl_kernel k, const fx_trace_buffers *b, cl_int n, void *eps_real,
+                             cl_int whether, iacsg_error *err);
+void fx_shade_parts(const iacsg_renderer *r, size_t n, size_t bytes[6]);
+iacsg_status fx_shade_launch(fx_tracer *t, const double *block, const cl_mem hits[6], cl_mem shadow_item,
+                             cl_mem shadow_slot, size_t n, const float *palette, float *out, iacsg_error *err);
+void fx_release_all(cl_mem *mem, int count);
 
 #endif

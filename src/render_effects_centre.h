@@ -1,0 +1,15 @@
+/* src/render_effects_centre.h -- the segment path's centre paths kept on the device, where none can have a child
+ * (src/render_effects.c decides; kernels/scene_centre.cl computes). */
+#ifndef IACSG_RENDER_EFFECTS_CENTRE_H
+#define IACSG_RENDER_EFFECTS_CENTRE_H
+#include "render_effects_trace.h"
+
+/* The segment path's centre paths of pixels[0 .. n) where none can have a child (every item opaque, no reflected
+ * ray), wholly on the device (kernels/scene_centre.cl): their camera rays and hits (the frame's depth, normals and
+ * ids), with `shadows` their shadow rays (leaves eps wide) traced, then their colours (iacsg_scene_shade) into out,
+ * 6 floats a path as fx_scene_shade's. block: the effects' parameters (EFFECTS_COUNT, kernels/effects.h). */
+iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixels, size_t n,
+                             const iacsg_frame *frame, int shadows, double eps, const float *palette, float *out,
+                             iacsg_error *err);
+
+#endif
