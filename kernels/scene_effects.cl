@@ -90,9 +90,7 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
     if (whether)
         on &= ~passing;
     if (iav_any(on)) {
-        iav at = iav_make(t_near, t_near);
-        iav g = iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at), packet_extent(o[2], d[2], at),
-                         time);
+        iav g = scene_union_g_at(o, d, t_near, time);
         PACKET_COUNT(counts, on);
         outside = on & ~passing & (g.lo > 0);
         inside = passing & (g.hi < 0);
@@ -101,7 +99,7 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
         scene_union_states(o, d, t_near, t_near, inside, time, states, &counts);
         inside &= ~scene_rays_other(r, states, pass_k, inside);
     }
-    ia_realv leaving = 4 * eps + (ia_real)4e-6 * (1 + fabs(o[0]) + fabs(o[1]) + fabs(o[2]));
+    ia_realv leaving = effects_offset(eps, o, IAV_R(0)); /* the start's distance off its hit (offset_of) */
     ia_realv lo = IAV_R(0), hi = IAV_R(0), out_from = t_near, out_hi = IAV_R(-IA_INF);
     ia_maskv hit = (ia_maskv)0, crossed = (ia_maskv)0;
     if (iav_any(outside | inside)) {
@@ -119,11 +117,8 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
         ia_maskv left = exit & ~scene_rays_other(r, states, pass_k, exit);
         out_hi = select(out_hi, IAV_R(-IA_INF), left); /* else woven from the leaf on, passing through */
         if (iav_any(left)) {
-            iav at = iav_make(hi, hi);
-            iav g = iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at),
-                             packet_extent(o[2], d[2], at), time);
             PACKET_COUNT(counts, left);
-            beyond = left & (g.lo > 0);
+            beyond = left & (scene_union_g_at(o, d, hi, time).lo > 0);
         }
     }
     if (iav_any(beyond)) { /* out of every region: the next root of g, claimed by any region */

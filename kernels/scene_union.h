@@ -38,6 +38,12 @@ typedef struct {
 #define SCENE_UNION_PREPASS 1
 #include "tile.h"
 
+/* g's enclosure at each lane's point o + t d (as the rays' tile pass and weave read t: exactly). */
+static iav scene_union_g_at(const ia_realv o[3], const ia_realv d[3], ia_realv t, iav time) {
+    iav at = iav_make(t, t);
+    return iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at), packet_extent(o[2], d[2], at), time);
+}
+
 /* The union's tile pass (tile.h, as render.cl's) over the PACKET_W x PACKET_H tiles from (tx0, ty0), searched in
  * SIMD lanes: tiles[k] tile k's first coarse leaf in the frame's tree, and whether g > 0 before it (g over the
  * tile's box at t0: the nodes before the leaf tile [t0, leaf) and none holds 0 over the tile's box, so g has no
@@ -181,10 +187,7 @@ static void scene_union_packet(__constant ia_real *params, int flags, int height
     ia_real t_leaf = leaf->level >= 0 ? node_bound(leaf->t0, leaf->w, leaf->level, leaf->i) : IA_INF;
     ia_maskv outside = tile->above ? searching & (t_near < t_leaf) : (ia_maskv)0, unknown = searching & ~outside;
     if (iav_any(unknown)) {
-        iav at = iav_make(t_near, t_near);
-        outside |= unknown & (iacsg_Fv(packet_extent(o[0], d[0], at), packet_extent(o[1], d[1], at),
-                                       packet_extent(o[2], d[2], at), time)
-                                  .lo > 0);
+        outside |= unknown & (scene_union_g_at(o, d, t_near, time).lo > 0);
         PACKET_COUNT(counts, unknown);
     }
     ia_maskv hit = (ia_maskv)0;

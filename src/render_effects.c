@@ -699,9 +699,10 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
     for (int j = 0; j < f->view->height; j++)
         row_v[j] = image_v(f, j + 0.5);
     size_t count = block_select(f, frame, NULL, listed);
-    if (!has_children(f->r, f->e))
+    int on_device = !has_children(f->r, f->e);
+    if (on_device)
         st = centre_on_device(f, frame, listed, count, err);
-    for (size_t k = has_children(f->r, f->e) ? 0 : count; st == IACSG_OK && k < count;) {
+    for (size_t k = on_device ? count : 0; st == IACSG_OK && k < count;) {
         size_t n = 0;
         for (; k < count && n < FX_CHUNK; k++) {
             int pixel = listed[k];
