@@ -155,6 +155,7 @@ iacsg_status clrt_open(clrt *rt, int device_index, iacsg_error *err) {
     CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof rt->max_alloc_size,
                                     &rt->max_alloc_size, NULL));
     rt->has_fp64 = strstr(ext, "cl_khr_fp64") != NULL;
+    rt->compiles_at_build = strcmp(rt->platform_name, "Portable Computing Language") != 0;
     rt->float_denorms = (fp & CL_FP_DENORM) != 0;
     const char *inexact = getenv("IACSG_INEXACT_DIVIDE_SQRT");
     rt->cr_divide_sqrt = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0 && !(inexact && *inexact);
@@ -216,7 +217,7 @@ iacsg_status clrt_build(clrt *rt, const char *const *sources, size_t count, cons
     CLRT_CHECK(err, rc);
     rc = clBuildProgram(*program, 1, &rt->device, options, NULL, NULL);
     if (rc == CL_SUCCESS) {
-        clrt_cache_store(&entry, *program);
+        clrt_cache_store(&entry, *program, rt->compiles_at_build);
         return IACSG_OK;
     }
     size_t len = 0;

@@ -22,6 +22,9 @@ typedef struct {
     int cr_divide_sqrt;   /* CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT: build with -cl-fp32-correctly-rounded-...;
                            * 0 when the environment sets IACSG_INEXACT_DIVIDE_SQRT (non-empty): then float / and
                            * sqrt are widened by the spec's bounds as on a device without them (the tests use it) */
+    int compiles_at_build; /* clBuildProgram compiles the kernels (every driver seen but PoCL, which compiles at the
+                            * first launch and again for a binary): a built program's binary is then free to query,
+                            * so the program cache saves it at its first build (src/clrt_cache.c) */
     cl_uint compute_units;
     cl_ulong global_mem_size; /* CL_DEVICE_GLOBAL_MEM_SIZE */
     cl_ulong max_alloc_size;  /* CL_DEVICE_MAX_MEM_ALLOC_SIZE: the largest single buffer */

@@ -203,8 +203,8 @@ static void trim(const char *dir) {
     closedir(d);
 }
 
-/* Whether the entry's program was built before (its marker, KEY.seen, exists); makes the marker if not. Only
- * a program built a second time is saved: PoCL compiles every kernel of the program anew for a binary (for any
+/* Whether the entry's program was built before (its marker, KEY.seen, exists); makes the marker if not. Where
+ * the driver compiles at the first launch, only a program built a second time is saved: PoCL compiles every kernel of the program anew for a binary (for any
  * work-group size), which cost ~4 s for the reference view's program, more than the 2-3 s of its first build, and
  * would double the first run of every expression tried once. */
 static int seen_before(const char *path, const char *dir) {
@@ -265,13 +265,13 @@ static struct {
     cl_program programs[MAX_DEFERRED];
 } deferred;
 
-void clrt_cache_store(const clrt_cache_entry *entry, cl_program program) {
+void clrt_cache_store(const clrt_cache_entry *entry, cl_program program, int compiled) {
     if (!entry->path[0] || !deferred.on)
         return;
     char dir[sizeof entry->path];
     snprintf(dir, sizeof dir, "%s", entry->path);
     *strrchr(dir, '/') = '\0';
-    if (seen_before(entry->path, dir) && deferred.count < MAX_DEFERRED && clRetainProgram(program) == CL_SUCCESS) {
+    if ((compiled || seen_before(entry->path, dir)) && deferred.count < MAX_DEFERRED && clRetainProgram(program) == CL_SUCCESS) {
         deferred.entries[deferred.count] = *entry;
         deferred.programs[deferred.count++] = program;
     }

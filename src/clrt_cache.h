@@ -26,9 +26,11 @@ void clrt_cache_find(const clrt *rt, const char *const *sources, size_t count, c
 cl_program clrt_cache_load(const clrt *rt, const clrt_cache_entry *entry, const char *options);
 
 /* Holds the built program back for clrt_cache_save_deferred (retained), if saves are asked for
- * (clrt_cache_defer_saves) and its program was built before (see seen_before). Without that call the process
- * only reads the cache: the library saves nothing on its own, so a program embedding it never stalls on a save. */
-void clrt_cache_store(const clrt_cache_entry *entry, cl_program program);
+ * (clrt_cache_defer_saves) and its program was built before (see seen_before), or at once where the driver
+ * compiled it at its build (`compiled`: its binary costs nothing to query; NVIDIA's compiler took about two
+ * minutes for a camera kernel, which a second build would repeat). Without that call the process only reads the
+ * cache: the library saves nothing on its own, so a program embedding it never stalls on a save. */
+void clrt_cache_store(const clrt_cache_entry *entry, cl_program program, int compiled);
 
 /* For the command: programs built from here on may be saved. clrt_cache_save_deferred hands those held back to a
  * process of their own, detached and at the lowest priority, so that no command waits for PoCL's compile of the
