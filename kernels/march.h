@@ -101,7 +101,10 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         ia_realv e = select(IAV_R(IA_INF), a + fa.hi / -s.hi, (fa.lo > 0) & (s.hi < 0));
         e = select(e, a + -fa.lo / s.lo, (fa.hi < 0) & (s.lo > 0));
         ia_realv towards = select(2 * (c - a), fmax((ia_real)1.5 * (e - c), (ia_real)0.25 * (c - a)), e <= b);
-        ia_realv shorter = select(w * (ia_real)0.125, towards, part & (c - a >= w * (ia_real)0x1p-6));
+        /* never under a quarter of the failed step: an eighth of it, then x2 and x8, failed again just as far on
+         * through a shallow solid (layers 12.44 -> 11.55 evaluations with the slope below) */
+        ia_realv shorter = select(w * (ia_real)0.125, fmax(towards, w * (ia_real)0.25),
+                                  part & (c - a >= w * (ia_real)0x1p-6));
         shorter = select(shorter, IAV_R(0), use & ~part & (r < eps));
         w = fmax(select(shorter, longer, whole), (ia_real)0.5 * eps);
         short_before = ~whole;
@@ -116,8 +119,22 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
     /* F crosses 0 in [a, t_far] of the handed lanes and its slope there, hs, keeps one sign (the root is unique):
      * interval Newton with that slope, [a, t_far] <- [a, t_far] & (m - F(m) / hs), down to a leaf. Each step keeps
      * the root and at least halves the part (m is outside m - F(m) / hs where F(m) excludes 0); a lane whose step
-     * halves it no more (F(m) holds 0 at a width above eps) goes on by the walk over its part. */
+     * halves it no more (F(m) holds 0 at a width above eps) goes on by the walk over its part. hs is the march's
+     * step's slope, loose over a long step, so that Newton converged only linearly (up to 11 steps): where a step
+     * shrank the part by less than 4, F' over the part that is left is evaluated again and hs narrowed to its
+     * intersection with it (both enclose F' there), which keeps its sign (layers 12.44 -> 12.04 evaluations). */
+    ia_maskv stale = (ia_maskv)0;
     for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(handed); step++) {
+        stale &= handed;
+        if (iav_any(stale)) {
+            iav seg = iav_make(a, t_far), slope;
+            (void)iacsg_Fdv(packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
+                            packet_extent(o[2], d[2], seg), time, iav_make(d[0], d[0]), iav_make(d[1], d[1]),
+                            iav_make(d[2], d[2]), &slope);
+            PACKET_COUNT(*evals, stale);
+            ia_maskv use = stale & (fmax(hs.lo, slope.lo) <= fmin(hs.hi, slope.hi)); /* false for NaN */
+            hs = iav_make(select(hs.lo, fmax(hs.lo, slope.lo), use), select(hs.hi, fmin(hs.hi, slope.hi), use));
+        }
         ia_realv m = a * (ia_real)0.5 + t_far * (ia_real)0.5;
         iav at_m = iav_make(m, m);
         iav fm = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_m), packet_extent(o[1], d[1], at_m),
@@ -128,6 +145,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         ia_realv lo = fmax(a, n.lo), hi = fmin(t_far, n.hi);
         hi = fmin(t_far, fmax(hi, lo + (ia_real)0.5 * eps));
         ia_maskv ok = handed & (lo <= hi) & (hi - lo <= (ia_real)0.5 * (t_far - a));
+        stale = ok & (hi - lo > (ia_real)0.25 * (t_far - a));
         a = select(a, lo, ok);
         t_far = select(t_far, hi, ok);
         ia_maskv leaf = ok & (t_far - a <= eps);
