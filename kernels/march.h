@@ -73,6 +73,20 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         /* F(a) and the form at b of certain, opposite signs: the first root is in [a, b] */
         iav fb = iav_add(fa, iav_mul(s, iav_sub(iav_make(b, b), at_a)));
         ia_maskv crossed = use & ~whole & ~leaf & (((fa.lo > 0) & (fb.hi < 0)) | ((fa.hi < 0) & (fb.lo > 0)));
+        /* where F' keeps the sign that takes F(a) towards 0 over the step, F at b decides the step: of F(a)'s
+         * sign, F is off 0 all over it (monotone between them), of the other it crosses 0 in it, once */
+        ia_maskv towards_0 = ((fa.hi < 0) & (s.lo > 0)) | ((fa.lo > 0) & (s.hi < 0));
+        ia_maskv monotone = use & ~whole & ~leaf & ~crossed & towards_0, held = (ia_maskv)0;
+        iav f_b = fb;
+        if (iav_any(monotone)) {
+            iav at_b = iav_make(b, b);
+            f_b = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_b), packet_extent(o[1], d[1], at_b),
+                           packet_extent(o[2], d[2], at_b), time);
+            PACKET_COUNT(*evals, monotone);
+            held = monotone & (((fa.hi < 0) & (f_b.hi < 0)) | ((fa.lo > 0) & (f_b.lo > 0)));
+            crossed |= monotone & (((fa.hi < 0) & (f_b.lo > 0)) | ((fa.lo > 0) & (f_b.hi < 0)));
+            whole |= held;
+        }
         if (whether) /* the hit's place unknown: the caller asks only whether there is one */
             leaf |= crossed;
         else
@@ -92,6 +106,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         ia_realv next = select(select(a, c, part), b, whole);
         iav moved = iav_add(fa, iav_mul(s, iav_sub(iav_make(next, next), at_a)));
         fa = iav_make(select(fa.lo, moved.lo, whole | part), select(fa.hi, moved.hi, whole | part));
+        fa = iav_make(select(fa.lo, f_b.lo, held), select(fa.hi, f_b.hi, held));
         /* the next step: longer after one that held (twice, after one that fell short); after a step towards a
          * root, twice as far as it went; else an eighth, or straight to a leaf's width when r says the root is
          * that close */
