@@ -93,6 +93,17 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
             handed |= crossed;
         hs = iav_make(select(hs.lo, s.lo, crossed), select(hs.hi, s.hi, crossed));
         t_far = select(t_far, b, crossed);
+        ia_realv cross_lo = a;
+        ia_maskv narrowed = (ia_maskv)0;
+        if (iav_any(crossed)) { /* Newton's steps from both ends, free: F there and the slope over [a, b] known */
+            iav slope_1 = iav__pick(iav_point(1), s, crossed); /* lanes not crossing divide by 1 */
+            iav from_a = iav_sub(at_a, iav_div(fa, slope_1));
+            iav from_b = iav_sub(iav_make(b, b), iav_div(f_b, slope_1));
+            cross_lo = fmax(from_a.lo, from_b.lo);
+            ia_realv cross_hi = fmin(b, fmin(from_a.hi, from_b.hi));
+            narrowed = crossed & (cross_lo <= cross_hi); /* both hold the root (false for NaN) */
+            t_far = select(t_far, cross_hi, narrowed);
+        }
         *hit_lo = select(*hit_lo, a, leaf);
         *hit_hi = select(*hit_hi, b, leaf);
         hit |= leaf;
@@ -104,6 +115,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         iav check = iav_add(fa, iav_mul(s, iav_sub(iav_make(a, c), at_a)));
         part &= (c > a) & ((check.lo > 0) | (check.hi < 0));
         ia_realv next = select(select(a, c, part), b, whole);
+        next = select(next, fmax(next, cross_lo), narrowed);
         iav moved = iav_add(fa, iav_mul(s, iav_sub(iav_make(next, next), at_a)));
         fa = iav_make(select(fa.lo, moved.lo, whole | part), select(fa.hi, moved.hi, whole | part));
         fa = iav_make(select(fa.lo, f_b.lo, held), select(fa.hi, f_b.hi, held));
