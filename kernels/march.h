@@ -123,6 +123,10 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
          * root, twice as far as it went; else an eighth, or straight to a leaf's width when r says the root is
          * that close */
         ia_realv longer = select(w * 8, w * 2, short_before);
+        if (step == 0) /* after a first step that held, the rest of the ray: most reflected rays leave the scene
+                        * (evaluations per reflected ray 4.38 -> 4.31, layer 10.76 -> 10.66; after the second step
+                        * too: 4.52, 11.06) */
+            longer = fmax(longer, t_far - b);
         /* where F' keeps one sign over the step, F has crossed 0 by where the form's far bound does: the root lies
          * in [c, e], and a step just past e has a tight F' */
         ia_realv e = select(IAV_R(IA_INF), a + fa.hi / -s.hi, (fa.lo > 0) & (s.hi < 0));
