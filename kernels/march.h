@@ -73,12 +73,37 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         /* F(a) and the form at b of certain, opposite signs: the first root is in [a, b] */
         iav fb = iav_add(fa, iav_mul(s, iav_sub(iav_make(b, b), at_a)));
         ia_maskv crossed = use & ~whole & ~leaf & (((fa.lo > 0) & (fb.hi < 0)) | ((fa.hi < 0) & (fb.lo > 0)));
+        /* where F' keeps the sign that takes F(a) towards 0 over the step, F at b decides the step: of F(a)'s
+         * sign, F is off 0 all over it (monotone between them), of the other it crosses 0 in it, once */
+        ia_maskv towards_0 = ((fa.hi < 0) & (s.lo > 0)) | ((fa.lo > 0) & (s.hi < 0));
+        ia_maskv monotone = use & ~whole & ~leaf & ~crossed & towards_0, held = (ia_maskv)0;
+        iav f_b = fb;
+        if (iav_any(monotone)) {
+            iav at_b = iav_make(b, b);
+            f_b = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_b), packet_extent(o[1], d[1], at_b),
+                           packet_extent(o[2], d[2], at_b), time);
+            PACKET_COUNT(*evals, monotone);
+            held = monotone & (((fa.hi < 0) & (f_b.hi < 0)) | ((fa.lo > 0) & (f_b.lo > 0)));
+            crossed |= monotone & (((fa.hi < 0) & (f_b.lo > 0)) | ((fa.lo > 0) & (f_b.hi < 0)));
+            whole |= held;
+        }
         if (whether) /* the hit's place unknown: the caller asks only whether there is one */
             leaf |= crossed;
         else
             handed |= crossed;
         hs = iav_make(select(hs.lo, s.lo, crossed), select(hs.hi, s.hi, crossed));
         t_far = select(t_far, b, crossed);
+        ia_realv cross_lo = a;
+        ia_maskv narrowed = (ia_maskv)0;
+        if (iav_any(crossed)) { /* Newton's steps from both ends, free: F there and the slope over [a, b] known */
+            iav slope_1 = iav__pick(iav_point(1), s, crossed); /* lanes not crossing divide by 1 */
+            iav from_a = iav_sub(at_a, iav_div(fa, slope_1));
+            iav from_b = iav_sub(iav_make(b, b), iav_div(f_b, slope_1));
+            cross_lo = fmax(from_a.lo, from_b.lo);
+            ia_realv cross_hi = fmin(b, fmin(from_a.hi, from_b.hi));
+            narrowed = crossed & (cross_lo <= cross_hi); /* both hold the root (false for NaN) */
+            t_far = select(t_far, cross_hi, narrowed);
+        }
         *hit_lo = select(*hit_lo, a, leaf);
         *hit_hi = select(*hit_hi, b, leaf);
         hit |= leaf;
@@ -90,18 +115,27 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         iav check = iav_add(fa, iav_mul(s, iav_sub(iav_make(a, c), at_a)));
         part &= (c > a) & ((check.lo > 0) | (check.hi < 0));
         ia_realv next = select(select(a, c, part), b, whole);
+        next = select(next, fmax(next, cross_lo), narrowed);
         iav moved = iav_add(fa, iav_mul(s, iav_sub(iav_make(next, next), at_a)));
         fa = iav_make(select(fa.lo, moved.lo, whole | part), select(fa.hi, moved.hi, whole | part));
+        fa = iav_make(select(fa.lo, f_b.lo, held), select(fa.hi, f_b.hi, held));
         /* the next step: longer after one that held (twice, after one that fell short); after a step towards a
          * root, twice as far as it went; else an eighth, or straight to a leaf's width when r says the root is
          * that close */
         ia_realv longer = select(w * 8, w * 2, short_before);
+        if (step == 0) /* after a first step that held, the rest of the ray: most reflected rays leave the scene
+                        * (evaluations per reflected ray 4.38 -> 4.31, layer 10.76 -> 10.66; after the second step
+                        * too: 4.52, 11.06) */
+            longer = fmax(longer, t_far - b);
         /* where F' keeps one sign over the step, F has crossed 0 by where the form's far bound does: the root lies
          * in [c, e], and a step just past e has a tight F' */
         ia_realv e = select(IAV_R(IA_INF), a + fa.hi / -s.hi, (fa.lo > 0) & (s.hi < 0));
         e = select(e, a + -fa.lo / s.lo, (fa.hi < 0) & (s.lo > 0));
         ia_realv towards = select(2 * (c - a), fmax((ia_real)1.5 * (e - c), (ia_real)0.25 * (c - a)), e <= b);
-        ia_realv shorter = select(w * (ia_real)0.125, towards, part & (c - a >= w * (ia_real)0x1p-6));
+        /* never under a quarter of the failed step: an eighth of it, then x2 and x8, failed again just as far on
+         * through a shallow solid (layers 12.44 -> 11.55 evaluations with the slope below) */
+        ia_realv shorter = select(w * (ia_real)0.125, fmax(towards, w * (ia_real)0.25),
+                                  part & (c - a >= w * (ia_real)0x1p-6));
         shorter = select(shorter, IAV_R(0), use & ~part & (r < eps));
         w = fmax(select(shorter, longer, whole), (ia_real)0.5 * eps);
         short_before = ~whole;
@@ -116,8 +150,22 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
     /* F crosses 0 in [a, t_far] of the handed lanes and its slope there, hs, keeps one sign (the root is unique):
      * interval Newton with that slope, [a, t_far] <- [a, t_far] & (m - F(m) / hs), down to a leaf. Each step keeps
      * the root and at least halves the part (m is outside m - F(m) / hs where F(m) excludes 0); a lane whose step
-     * halves it no more (F(m) holds 0 at a width above eps) goes on by the walk over its part. */
+     * halves it no more (F(m) holds 0 at a width above eps) goes on by the walk over its part. hs is the march's
+     * step's slope, loose over a long step, so that Newton converged only linearly (up to 11 steps): where a step
+     * shrank the part by less than 4, F' over the part that is left is evaluated again and hs narrowed to its
+     * intersection with it (both enclose F' there), which keeps its sign (layers 12.44 -> 12.04 evaluations). */
+    ia_maskv stale = (ia_maskv)0;
     for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(handed); step++) {
+        stale &= handed;
+        if (iav_any(stale)) {
+            iav seg = iav_make(a, t_far), slope;
+            (void)iacsg_Fdv(packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
+                            packet_extent(o[2], d[2], seg), time, iav_make(d[0], d[0]), iav_make(d[1], d[1]),
+                            iav_make(d[2], d[2]), &slope);
+            PACKET_COUNT(*evals, stale);
+            ia_maskv use = stale & (fmax(hs.lo, slope.lo) <= fmin(hs.hi, slope.hi)); /* false for NaN */
+            hs = iav_make(select(hs.lo, fmax(hs.lo, slope.lo), use), select(hs.hi, fmin(hs.hi, slope.hi), use));
+        }
         ia_realv m = a * (ia_real)0.5 + t_far * (ia_real)0.5;
         iav at_m = iav_make(m, m);
         iav fm = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_m), packet_extent(o[1], d[1], at_m),
@@ -128,6 +176,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         ia_realv lo = fmax(a, n.lo), hi = fmin(t_far, n.hi);
         hi = fmin(t_far, fmax(hi, lo + (ia_real)0.5 * eps));
         ia_maskv ok = handed & (lo <= hi) & (hi - lo <= (ia_real)0.5 * (t_far - a));
+        stale = ok & (hi - lo > (ia_real)0.25 * (t_far - a));
         a = select(a, lo, ok);
         t_far = select(t_far, hi, ok);
         ia_maskv leaf = ok & (t_far - a <= eps);
