@@ -430,6 +430,18 @@ static int kernel_colors_hold(const iacsg_renderer *r, const iacsg_effects *e) {
            !transparent(r, e);
 }
 
+/* Whether the kernel's colour stands for a centre hit on `item` (a scene's; -1 a miss): the rig alone lights it
+ * (kernel_colors_hold but for the materials) and its material neither reflects nor lets light through, so its
+ * path would have no child and the host's colour would be the kernel's. The mirror's and the glass's other items
+ * then get no path at all. */
+static int item_keeps(const fx_frame *f, int item) {
+    const iacsg_effects *e = f->e;
+    if (item < 0 || !f->r->scene || e->shade != IACSG_SHADE_LIT || e->nlights != 0 || e->shadows)
+        return 0;
+    const fx_item *m = &f->r->fx->items[item];
+    return !(e->bounces > 0 && m->reflect > 0) && m->opacity >= 1;
+}
+
 /* The reflected rays a first-root path's path may list for a next launch: only off a transparent surface (off an
  * opaque one the path goes on in its lane), one per layer at most. */
 static int expr_kid_slots(const iacsg_effects *e) {
@@ -451,7 +463,9 @@ static size_t block_select(const fx_frame *f, const iacsg_frame *fr, const unsig
             for (int j = bj; j < bj + PACKET_H && j < row1; j++)
                 for (int i = bi; i < bi + PACKET_W && i < v->width; i++) {
                     int pixel = j * v->width + i;
-                    if (edge ? edge[pixel] : isinf(fr->depth[pixel]) ? background : !keep)
+                    int hit = !isinf(fr->depth[pixel]);
+                    if (edge ? edge[pixel]
+                             : !hit ? background : !keep && !item_keeps(f, fr->ids ? (int)fr->ids[pixel] : -1))
                         out[n++] = pixel;
                 }
     return n;
