@@ -671,10 +671,18 @@ static int has_children(const iacsg_renderer *r, const iacsg_effects *e) {
     return transparent(r, e) || (e->bounces > 0 && reflects(r, e));
 }
 
-/* The centre paths of pixels[0 .. count) where none has a child, FX_CHUNK at a time, wholly on the device
- * (fx_scene_centre: their rays, shadow rays and colours); the host only encodes their colours. Their rays are the
- * camera kernel's, in the working precision (the host's were in double, rounded): a shading point, a shadow ray's
- * start may move by ulps. */
+/* Whether a segment path's children are all reflected rays that are leaves (one bounce, every item opaque, no
+ * shadows, lit): fx_scene_centre then makes, traces and shades them too. */
+static int leaf_reflections(const fx_frame *f) {
+    const iacsg_effects *e = f->e;
+    int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
+    return lit && !e->shadows && e->bounces == 1 && !transparent(f->r, e);
+}
+
+/* The centre paths of pixels[0 .. count) where none has a child but a leaf_reflections one, FX_CHUNK at a time,
+ * wholly on the device (fx_scene_centre: their rays, shadow rays, reflected rays and colours); the host only
+ * encodes their colours. Their rays are the camera kernel's, in the working precision (the host's were in double,
+ * rounded): a shading point, a shadow ray's or a reflected ray's start may move by ulps. */
 static iacsg_status centre_on_device(fx_frame *f, iacsg_frame *frame, const int *pixels, size_t count,
                                      iacsg_error *err) {
     const iacsg_effects *e = f->e;
@@ -684,7 +692,7 @@ static iacsg_status centre_on_device(fx_frame *f, iacsg_frame *frame, const int 
     for (size_t k = 0; st == IACSG_OK && k < count; k += FX_CHUNK) {
         size_t n = count - k < FX_CHUNK ? count - k : FX_CHUNK;
         st = fx_scene_centre(&f->tracer, f->block, pixels + k, n, frame, lit && e->shadows,
-                             FX_SHADOW_EPS_FACTOR * f->view->eps, f->palette, out, err);
+                             FX_SHADOW_EPS_FACTOR * f->view->eps, f->palette, has_children(f->r, e), out, err);
         for (size_t q = 0; st == IACSG_OK && q < n; q++) { /* a path's colour, all of its pixel's */
             memcpy(frame->rgb + 3 * (size_t)pixels[k + q], out + 6 * q, 3 * sizeof(float));
             fx_encode(frame->rgb, pixels[k + q]);
@@ -713,7 +721,7 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
     for (int j = 0; j < f->view->height; j++)
         row_v[j] = image_v(f, j + 0.5);
     size_t count = block_select(f, frame, NULL, listed);
-    int on_device = !has_children(f->r, f->e);
+    int on_device = !has_children(f->r, f->e) || leaf_reflections(f);
     if (on_device)
         st = centre_on_device(f, frame, listed, count, err);
     for (size_t k = on_device ? count : 0; st == IACSG_OK && k < count;) {

@@ -2,12 +2,15 @@
  *
  *   iacsg_scene_centre (the listed pixels' camera rays in lanes, their shading inputs, their shadow rays staged and
  *   counted per work-item) --> the counts summed on the host (centre_offsets) --> iacsg_scene_centre_compact (the
- *   live shadow rays in the host's order) --> the scene's trace kernel --> iacsg_scene_shade.
+ *   live shadow rays in the host's order) --> the scene's trace kernel --> iacsg_scene_shade
+ *   --> with `reflect` (the children are leaves): the reflected rays that iacsg_scene_centre made --> the trace
+ *   kernel --> iacsg_scene_shade of their hits (each lit by every light, as its parent: no shadows).
  */
 #include "render_effects_centre.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"
 #include "kernels/scene_data.h"
+#include <math.h>
 #include <stdlib.h>
 
 /* The centre paths' shadow rays: their work-items' counts (iacsg_scene_centre, nl a work-item, light by light) read
@@ -33,14 +36,15 @@ static long centre_offsets(fx_tracer *t, cl_mem counts, size_t groups, size_t nl
     return total;
 }
 
-/* With -stats: the evaluations of the m shadow rays traced (evals), into t's counts as the host's rays were. */
-static iacsg_status count_centre_rays(fx_tracer *t, cl_mem evals, size_t m, iacsg_error *err) {
+/* With -stats: the evaluations of the m rays traced (evals), `live` of them not empty, into t's counts as the host's
+ * rays were. */
+static iacsg_status count_centre_rays(fx_tracer *t, cl_mem evals, size_t m, size_t live, iacsg_error *err) {
     cl_uint *each = malloc(m * sizeof *each + 1);
     cl_int rc = !each ? CL_OUT_OF_HOST_MEMORY
                       : clEnqueueReadBuffer(t->r->rt.queue, evals, CL_TRUE, 0, m * sizeof *each, each, 0, NULL, NULL);
     for (size_t j = 0; rc == CL_SUCCESS && j < m; j++)
         t->evals += each[j];
-    t->rays += rc == CL_SUCCESS ? (long long)m : 0;
+    t->rays += rc == CL_SUCCESS ? (long long)live : 0;
     free(each);
     return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "the centre paths' counts", __func__, __LINE__);
 }
@@ -62,9 +66,58 @@ static iacsg_status launch_with(iacsg_renderer *r, cl_kernel k, size_t global, i
     return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, what, __func__, __LINE__);
 }
 
+/* Each item's reflect where a centre hit on it gets a reflected ray (a path of weight 1, opaque: as
+ * render_effects.c's shade_generation decides), else 0; NULL when out of memory. */
+static float *reflect_weights(const render_fx *fx) {
+    float *w = malloc((size_t)fx->nitems * sizeof *w + 1);
+    for (int i = 0; w && i < fx->nitems; i++)
+        w[i] = fx->items[i].reflect > 0 && fx->items[i].reflect >= EFFECTS_MIN_WEIGHT ? fx->items[i].reflect : 0;
+    return w;
+}
+
+/* The children of fx_scene_centre: the n rays `kids` (iacsg_scene_centre's, some empty) traced, their hits shaded
+ * with their parents' light fractions and rows (hits[4], hits[5]), and added to the paths' colours in out (6
+ * floats a path) as the host's paths add them: the parent's colour weighted 1 - reflect, the child's reflect
+ * (each its float, in turn). With -stats, the children of `reflect`ing hits counted as rays. */
+static iacsg_status centre_kids(fx_tracer *t, const double *block, const cl_mem hits[6], cl_mem kids, size_t n,
+                                void *eps_real, const float *palette, const int *pixels, const iacsg_frame *frame,
+                                const float *reflect, float *out, iacsg_error *err) {
+    iacsg_renderer *r = t->r;
+    size_t bytes[4] = {n * fx_real_bytes(r), 3 * n * sizeof(float), n * sizeof(cl_int), n * sizeof(cl_uint)};
+    cl_mem kh[4] = {0}; /* their t, normals, items, evaluations */
+    float *kid_out = malloc(6 * n * sizeof *kid_out);
+    cl_int rc = kid_out ? CL_SUCCESS : CL_OUT_OF_HOST_MEMORY;
+    for (int b = 0; b < 4 && rc == CL_SUCCESS; b++)
+        if (b < 3 || r->config.stats)
+            kh[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, bytes[b], NULL, &rc);
+    iacsg_status st = rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clCreateBuffer(kids)", __func__, __LINE__);
+    fx_trace_buffers b = {kids, kh[0], kh[1], kh[2], kh[3], NULL};
+    if (st == IACSG_OK)
+        st = fx_launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_real, 0, err);
+    const cl_mem kid_hits[6] = {kids, kh[0], kh[1], kh[2], hits[4], hits[5]};
+    if (st == IACSG_OK)
+        st = fx_shade_launch(t, block, kid_hits, NULL, NULL, n, palette, kid_out, err);
+    size_t live = 0;
+    for (size_t i = 0; st == IACSG_OK && i < n; i++) {
+        int item = isinf(frame->depth[pixels[i]]) ? -1 : (int)frame->ids[pixels[i]];
+        double k = item >= 0 ? r->fx->items[item].reflect : 0;
+        int child = item >= 0 && reflect[item] > 0;
+        for (int c = 0; c < 3; c++) {
+            out[6 * i + c] = (float)((1 - k) * out[6 * i + c]);
+            out[6 * i + c] += child ? (float)(k * kid_out[6 * i + c]) : 0;
+        }
+        live += child;
+    }
+    if (st == IACSG_OK && r->config.stats)
+        st = count_centre_rays(t, kh[3], n, live, err);
+    fx_release_all(kh, 4);
+    free(kid_out);
+    return st;
+}
+
 iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixels, size_t n,
-                             const iacsg_frame *frame, int shadows, double eps, const float *palette, float *out,
-                             iacsg_error *err) {
+                             const iacsg_frame *frame, int shadows, double eps, const float *palette,
+                             int reflections, float *out, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     const iacsg_view *v = t->view;
     size_t rb = fx_real_bytes(r), area = (size_t)v->width * v->height, groups = (n + PACKET_LANES - 1) / PACKET_LANES;
@@ -72,7 +125,7 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
     fx_shade_parts(r, n, bytes);
     /* in: the pixels, the frame's depth, normals, ids; the hits' arrays (fx_shade_parts); the shadow rays staged, the
      * work-items' counts of them, their places; then the live ones, their t, normals, items and evaluations */
-    cl_mem in[4] = {0}, hits[6] = {0}, stage[4] = {0}, sh[5] = {0}, fx = NULL;
+    cl_mem in[4] = {0}, hits[6] = {0}, stage[4] = {0}, sh[5] = {0}, fx = NULL, kid[2] = {0}; /* reflect, rays */
     const void *in_host[4] = {pixels, frame ? frame->depth : NULL, frame ? frame->normal : NULL,
                               frame ? frame->ids : NULL};
     size_t in_bytes[4] = {n * sizeof(int), area * sizeof(float), 3 * area * sizeof(float), area * sizeof(float)};
@@ -85,6 +138,13 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
         hits[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, bytes[b], NULL, &rc);
     for (int b = 0; b < 3 && rc == CL_SUCCESS && nl * n > 0; b++)
         stage[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, stage_bytes[b], NULL, &rc);
+    float *reflect = reflections && n > 0 ? reflect_weights(r->fx) : NULL;
+    if (reflections && n > 0 && !reflect)
+        rc = CL_OUT_OF_HOST_MEMORY;
+    for (int b = 0; b < 2 && rc == CL_SUCCESS && reflect; b++)
+        kid[b] = b == 0 ? clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
+                                         (size_t)r->fx->nitems * sizeof(float) + 1, (void *)reflect, &rc)
+                        : clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, n * EFFECTS_RAY_REALS * rb, NULL, &rc);
     char eps_real[sizeof(double)], reals[EFFECTS_COUNT * sizeof(double)];
     fx_put_real(r, eps_real, 0, eps);
     for (int k = 0; k < EFFECTS_COUNT; k++)
@@ -94,15 +154,15 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
     iacsg_status st = rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clCreateBuffer(centre)", __func__, __LINE__);
     cl_int flags = v->camera.ortho_height > 0 ? RENDER_ORTHO : 0, width = v->width, height = v->height;
     cl_int count = (cl_int)n, with_shadows = shadows, lights = (cl_int)nl;
-    const void *values[20] = {&t->params, &fx,      &flags,   &width,   &height,  &in[0],   &count,
-                              &in[1],     &in[2],   &in[3],   &with_shadows,      eps_real, &hits[0],
-                              &hits[1],   &hits[2], &hits[3], &hits[4], &hits[5], &stage[0], &stage[1]};
-    unsigned long mems = 0xfffff & ~(1ul << 2 | 1ul << 3 | 1ul << 4 | 1ul << 6 | 1ul << 10 | 1ul << 11);
-    size_t sizes[20];
-    for (int a = 0; a < 20; a++)
+    const void *values[22] = {&t->params, &fx,      &flags,   &width,   &height,  &in[0],    &count,    &in[1],
+                              &in[2],     &in[3],   &with_shadows,      eps_real, &hits[0], &hits[1],  &hits[2],
+                              &hits[3],   &hits[4], &hits[5], &stage[0], &stage[1], &kid[0], &kid[1]};
+    unsigned long mems = 0x3ffffful & ~(1ul << 2 | 1ul << 3 | 1ul << 4 | 1ul << 6 | 1ul << 10 | 1ul << 11);
+    size_t sizes[22];
+    for (int a = 0; a < 22; a++)
         sizes[a] = mems >> a & 1 ? sizeof(cl_mem) : a == 11 ? rb : sizeof(cl_int);
     if (st == IACSG_OK)
-        st = launch_with(r, r->fx->centre, groups, 20, sizes, values, mems, "iacsg_scene_centre", err);
+        st = launch_with(r, r->fx->centre, groups, 22, sizes, values, mems, "iacsg_scene_centre", err);
     const void *compact_values[7] = {&count, &lights, &hits[4], &stage[3], &stage[0], &sh[0], &stage[2]};
     size_t compact_sizes[7] = {sizeof(cl_int), sizeof(cl_int), sizeof(cl_mem), sizeof(cl_mem), sizeof(cl_mem),
                                sizeof(cl_mem), sizeof(cl_mem)};
@@ -132,11 +192,15 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
     if (st == IACSG_OK && n > 0)
         st = fx_shade_launch(t, block, hits, m > 0 ? sh[3] : NULL, stage[2], n, palette, out, err);
     if (st == IACSG_OK && m > 0 && r->config.stats)
-        st = count_centre_rays(t, sh[4], (size_t)m, err);
+        st = count_centre_rays(t, sh[4], (size_t)m, (size_t)m, err);
+    if (st == IACSG_OK && kid[1])
+        st = centre_kids(t, block, hits, kid[1], n, eps_real, palette, pixels, frame, reflect, out, err);
     fx_release_all(in, 4);
     fx_release_all(hits, 6);
     fx_release_all(stage, 4);
     fx_release_all(sh, 5);
+    fx_release_all(kid, 2);
+    free(reflect);
     if (fx)
         clReleaseMemObject(fx);
     return st;

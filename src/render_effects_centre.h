@@ -7,9 +7,12 @@
 /* The segment path's centre paths of pixels[0 .. n) where none can have a child (every item opaque, no reflected
  * ray), wholly on the device (kernels/scene_centre.cl): their camera rays and hits (the frame's depth, normals and
  * ids), with `shadows` their shadow rays (leaves eps wide) traced, then their colours (iacsg_scene_shade) into out,
- * 6 floats a path as fx_scene_shade's. block: the effects' parameters (EFFECTS_COUNT, kernels/effects.h). */
+ * 6 floats a path as fx_scene_shade's. block: the effects' parameters (EFFECTS_COUNT, kernels/effects.h).
+ * With `reflections` (no shadows, every item opaque, one bounce: each child a leaf), the hits whose material
+ * reflects get their reflected rays (leaves eps wide) traced and shaded too, each path's colour then its own and
+ * its child's, weighted as the host's paths weight them. */
 iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixels, size_t n,
-                             const iacsg_frame *frame, int shadows, double eps, const float *palette, float *out,
-                             iacsg_error *err);
+                             const iacsg_frame *frame, int shadows, double eps, const float *palette,
+                             int reflections, float *out, iacsg_error *err);
 
 #endif

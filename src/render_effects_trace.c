@@ -75,7 +75,7 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
             CLRT_CHECK(err, rc);
             fx->compact = clCreateKernel(r->program, "iacsg_scene_centre_compact", &rc);
             CLRT_CHECK(err, rc);
-            st = fx_scene_centre(t, none, NULL, 0, NULL, 0, 0, NULL, NULL, err);
+            st = fx_scene_centre(t, none, NULL, 0, NULL, 0, 0, NULL, 0, NULL, err);
         }
         r->build_seconds += render_now_seconds() - t0;
         if (st != IACSG_OK)
