@@ -3,8 +3,9 @@
  *   iacsg_scene_centre (the listed pixels' camera rays in lanes, their shading inputs, their shadow rays staged and
  *   counted per work-item) --> the counts summed on the host (centre_offsets) --> iacsg_scene_centre_compact (the
  *   live shadow rays in the host's order) --> the scene's trace kernel --> iacsg_scene_shade
- *   --> with `reflect` (the children are leaves): the reflected rays that iacsg_scene_centre made --> the trace
- *   kernel --> iacsg_scene_shade of their hits (each lit by every light, as its parent: no shadows).
+ *   --> with `children` (at most one a path): the reflected or transmitted rays that iacsg_scene_centre made --> the
+ *   trace kernel --> iacsg_scene_shade of their hits (each lit by every light, as its parent: no shadows) --> the
+ *   weighted sums of the two colours; the children whose hits have children go back to the host's paths.
  */
 #include "render_effects_centre.h"
 #include "kernels/effects.h"
@@ -12,6 +13,7 @@
 #include "kernels/scene_data.h"
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* The centre paths' shadow rays: their work-items' counts (iacsg_scene_centre, nl a work-item, light by light) read
  * back and summed into each one's first place (offsets, into *mem); returns how many there are, or -1 on an error. */
@@ -66,58 +68,122 @@ static iacsg_status launch_with(iacsg_renderer *r, cl_kernel k, size_t global, i
     return rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, what, __func__, __LINE__);
 }
 
-/* Each item's reflect where a centre hit on it gets a reflected ray (a path of weight 1, opaque: as
- * render_effects.c's shade_generation decides), else 0; NULL when out of memory. */
-static float *reflect_weights(const render_fx *fx) {
-    float *w = malloc((size_t)fx->nitems * sizeof *w + 1);
-    for (int i = 0; w && i < fx->nitems; i++)
-        w[i] = fx->items[i].reflect > 0 && fx->items[i].reflect >= EFFECTS_MIN_WEIGHT ? fx->items[i].reflect : 0;
-    return w;
+/* The child a centre hit on each item gets (EFFECTS_KID_*, kernels/effects.h), as shade_generation decides for a
+ * path of weight 1 at the first generation (fx_path_weights); NULL when out of memory. */
+static cl_int *kid_kinds(const render_fx *fx, int max_bounces) {
+    cl_int *kind = malloc((size_t)fx->nitems * sizeof *kind + 1);
+    for (int i = 0; kind && i < fx->nitems; i++) {
+        fx_weights w = fx_path_weights(&fx->items[i], 1, 0, 0, max_bounces);
+        kind[i] = w.mirror > 0    ? EFFECTS_KID_REFLECTED
+                  : w.through > 0 ? (fx->items[i].region ? EFFECTS_KID_THROUGH_REGION : EFFECTS_KID_THROUGH)
+                                  : EFFECTS_KID_NONE;
+    }
+    return kind;
 }
 
-/* The children of fx_scene_centre: the n rays `kids` (iacsg_scene_centre's, some empty) traced, their hits shaded
- * with their parents' light fractions and rows (hits[4], hits[5]), and added to the paths' colours in out (6
- * floats a path) as the host's paths add them: the parent's colour weighted 1 - reflect, the child's reflect
- * (each its float, in turn). With -stats, the children of `reflect`ing hits counted as rays. */
-static iacsg_status centre_kids(fx_tracer *t, const double *block, const cl_mem hits[6], cl_mem kids, size_t n,
-                                void *eps_real, const float *palette, const int *pixels, const iacsg_frame *frame,
-                                const float *reflect, float *out, iacsg_error *err) {
+/* A centre path's child i as the host's path of it (its ray and hit read back from the device: float to double
+ * and back is exact), weight w. */
+static fx_path kid_path(const iacsg_renderer *r, const void *rays, const void *t, const float *normal,
+                        const cl_int *item, const cl_int *pass, size_t i, int pixel, double w, int reflected) {
+    fx_path q = {.pixel = pixel, .w = w, .bounces = reflected, .layers = !reflected};
+    double v[EFFECTS_RAY_REALS];
+    for (int k = 0; k < EFFECTS_RAY_REALS; k++)
+        v[k] = r->config.fp64 ? ((const double *)rays)[EFFECTS_RAY_REALS * i + (size_t)k]
+                              : ((const float *)rays)[EFFECTS_RAY_REALS * i + (size_t)k];
+    q.ray = (fx_ray){{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7], pass[i]};
+    q.hit.t = r->config.fp64 ? ((const double *)t)[i] : ((const float *)t)[i];
+    memcpy(q.hit.n, normal + 3 * i, sizeof q.hit.n);
+    q.hit.item = isinf(q.hit.t) ? -1 : item[i];
+    return q;
+}
+
+/* Reads device buffer m (bytes) into host memory *to (malloc'd; the caller frees it). */
+static cl_int read_back(cl_command_queue q, cl_mem m, size_t bytes, void **to) {
+    *to = malloc(bytes + 1);
+    return *to ? clEnqueueReadBuffer(q, m, CL_TRUE, 0, bytes, *to, 0, NULL, NULL) : CL_OUT_OF_HOST_MEMORY;
+}
+
+/* The children of fx_scene_centre: the n rays `kids` (iacsg_scene_centre's, some empty; kid_pass their passing)
+ * traced, their hits shaded with their parents' light fractions and rows (hits[4], hits[5]), and added to the
+ * paths' colours in out (6 floats a path) as the host's paths add them (fx_path_weights, each weighted colour
+ * rounded to float in turn). A child whose hit has a child of its own goes to rest (*nrest of them) instead, for
+ * the host's paths to shade and follow. With -stats, the children counted as rays. */
+static iacsg_status centre_kids(fx_tracer *t, const double *block, const cl_mem hits[6], cl_mem kids,
+                                cl_mem kid_pass, size_t n, void *eps_real, const float *palette, const int *pixels,
+                                const iacsg_frame *frame, float *out, fx_path *rest, size_t *nrest,
+                                iacsg_error *err) {
     iacsg_renderer *r = t->r;
-    size_t bytes[4] = {n * fx_real_bytes(r), 3 * n * sizeof(float), n * sizeof(cl_int), n * sizeof(cl_uint)};
+    int max_bounces = t->view->effects->bounces;
+    size_t rb = fx_real_bytes(r);
+    size_t bytes[4] = {n * rb, 3 * n * sizeof(float), n * sizeof(cl_int), n * sizeof(cl_uint)};
     cl_mem kh[4] = {0}; /* their t, normals, items, evaluations */
+    void *back[5] = {0}; /* read back: their items, then for rest their rays, t, normals and passing */
     float *kid_out = malloc(6 * n * sizeof *kid_out);
     cl_int rc = kid_out ? CL_SUCCESS : CL_OUT_OF_HOST_MEMORY;
     for (int b = 0; b < 4 && rc == CL_SUCCESS; b++)
         if (b < 3 || r->config.stats)
             kh[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, bytes[b], NULL, &rc);
     iacsg_status st = rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clCreateBuffer(kids)", __func__, __LINE__);
-    fx_trace_buffers b = {kids, kh[0], kh[1], kh[2], kh[3], NULL};
+    fx_trace_buffers b = {kids, kh[0], kh[1], kh[2], kh[3], kid_pass};
     if (st == IACSG_OK)
         st = fx_launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_real, 0, err);
     const cl_mem kid_hits[6] = {kids, kh[0], kh[1], kh[2], hits[4], hits[5]};
     if (st == IACSG_OK)
         st = fx_shade_launch(t, block, kid_hits, NULL, NULL, n, palette, kid_out, err);
+    if (st == IACSG_OK && (rc = read_back(r->rt.queue, kh[2], bytes[2], &back[0])) != CL_SUCCESS)
+        st = clrt_record(err, rc, "the children's items", __func__, __LINE__);
+    const cl_int *kid_item = back[0];
     size_t live = 0;
+    *nrest = 0;
     for (size_t i = 0; st == IACSG_OK && i < n; i++) {
         int item = isinf(frame->depth[pixels[i]]) ? -1 : (int)frame->ids[pixels[i]];
-        double k = item >= 0 ? r->fx->items[item].reflect : 0;
-        int child = item >= 0 && reflect[item] > 0;
+        if (item < 0)
+            continue; /* a miss: its background, weight 1 */
+        fx_weights w0 = fx_path_weights(&r->fx->items[item], 1, 0, 0, max_bounces);
+        float *colour = out + 6 * i, *kid = kid_out + 6 * i;
+        double wk = w0.mirror + w0.through; /* at most one of them (render_effects.c: centre_on_device) */
+        fx_weights w1 = {wk, 0, 0, 0};      /* a child that misses: its background */
+        int k1 = wk > 0 ? kid_item[i] : -1;
+        if (wk > 0 && k1 >= 0)
+            w1 = fx_path_weights(&r->fx->items[k1], wk, w0.mirror > 0, w0.through > 0, max_bounces);
         for (int c = 0; c < 3; c++) {
-            out[6 * i + c] = (float)((1 - k) * out[6 * i + c]);
-            out[6 * i + c] += child ? (float)(k * kid_out[6 * i + c]) : 0;
+            colour[c] = (float)(w0.shown * colour[c]);
+            colour[c] += w0.left > 0 ? (float)(w0.left * colour[3 + c]) : 0;
         }
-        live += child;
+        live += wk > 0;
+        if (w1.mirror > 0 || w1.through > 0) {
+            rest[(*nrest)++].w = (double)i; /* its place, for now (below) */
+            continue;
+        }
+        for (int c = 0; c < 3 && wk > 0; c++) {
+            colour[c] += (float)(w1.shown * kid[c]);
+            colour[c] += w1.left > 0 ? (float)(w1.left * kid[3 + c]) : 0;
+        }
+    }
+    const cl_mem rest_mem[4] = {kids, kh[0], kh[1], kid_pass};
+    size_t rest_bytes[4] = {n * EFFECTS_RAY_REALS * rb, bytes[0], bytes[1], n * sizeof(cl_int)};
+    for (int m = 0; m < 4 && st == IACSG_OK && *nrest > 0; m++)
+        if ((rc = read_back(r->rt.queue, rest_mem[m], rest_bytes[m], &back[1 + m])) != CL_SUCCESS)
+            st = clrt_record(err, rc, "the children with children", __func__, __LINE__);
+    for (size_t j = 0; st == IACSG_OK && j < *nrest; j++) {
+        size_t i = (size_t)rest[j].w;
+        int item = (int)frame->ids[pixels[i]];
+        fx_weights w0 = fx_path_weights(&r->fx->items[item], 1, 0, 0, max_bounces);
+        rest[j] = kid_path(r, back[1], back[2], back[3], kid_item, back[4], i, pixels[i], w0.mirror + w0.through,
+                           w0.mirror > 0);
     }
     if (st == IACSG_OK && r->config.stats)
         st = count_centre_rays(t, kh[3], n, live, err);
     fx_release_all(kh, 4);
+    for (int m = 0; m < 5; m++)
+        free(back[m]);
     free(kid_out);
     return st;
 }
 
 iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixels, size_t n,
                              const iacsg_frame *frame, int shadows, double eps, const float *palette,
-                             int reflections, float *out, iacsg_error *err) {
+                             int children, float *out, fx_path *rest, size_t *nrest, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     const iacsg_view *v = t->view;
     size_t rb = fx_real_bytes(r), area = (size_t)v->width * v->height, groups = (n + PACKET_LANES - 1) / PACKET_LANES;
@@ -125,7 +191,7 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
     fx_shade_parts(r, n, bytes);
     /* in: the pixels, the frame's depth, normals, ids; the hits' arrays (fx_shade_parts); the shadow rays staged, the
      * work-items' counts of them, their places; then the live ones, their t, normals, items and evaluations */
-    cl_mem in[4] = {0}, hits[6] = {0}, stage[4] = {0}, sh[5] = {0}, fx = NULL, kid[2] = {0}; /* reflect, rays */
+    cl_mem in[4] = {0}, hits[6] = {0}, stage[4] = {0}, sh[5] = {0}, fx = NULL, kid[3] = {0}; /* kinds, rays, passing */
     const void *in_host[4] = {pixels, frame ? frame->depth : NULL, frame ? frame->normal : NULL,
                               frame ? frame->ids : NULL};
     size_t in_bytes[4] = {n * sizeof(int), area * sizeof(float), 3 * area * sizeof(float), area * sizeof(float)};
@@ -138,13 +204,13 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
         hits[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, bytes[b], NULL, &rc);
     for (int b = 0; b < 3 && rc == CL_SUCCESS && nl * n > 0; b++)
         stage[b] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, stage_bytes[b], NULL, &rc);
-    float *reflect = reflections && n > 0 ? reflect_weights(r->fx) : NULL;
-    if (reflections && n > 0 && !reflect)
+    cl_int *kinds = children && n > 0 ? kid_kinds(r->fx, v->effects->bounces) : NULL;
+    if (children && n > 0 && !kinds)
         rc = CL_OUT_OF_HOST_MEMORY;
-    for (int b = 0; b < 2 && rc == CL_SUCCESS && reflect; b++)
-        kid[b] = b == 0 ? clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
-                                         (size_t)r->fx->nitems * sizeof(float) + 1, (void *)reflect, &rc)
-                        : clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, n * EFFECTS_RAY_REALS * rb, NULL, &rc);
+    size_t kid_bytes[3] = {(size_t)r->fx->nitems * sizeof(cl_int) + 1, n * EFFECTS_RAY_REALS * rb, n * sizeof(cl_int)};
+    for (int b = 0; b < 3 && rc == CL_SUCCESS && kinds; b++)
+        kid[b] = clCreateBuffer(r->rt.context, b == 0 ? CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR : CL_MEM_READ_WRITE,
+                                kid_bytes[b], b == 0 ? (void *)kinds : NULL, &rc);
     char eps_real[sizeof(double)], reals[EFFECTS_COUNT * sizeof(double)];
     fx_put_real(r, eps_real, 0, eps);
     for (int k = 0; k < EFFECTS_COUNT; k++)
@@ -154,15 +220,15 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
     iacsg_status st = rc == CL_SUCCESS ? IACSG_OK : clrt_record(err, rc, "clCreateBuffer(centre)", __func__, __LINE__);
     cl_int flags = v->camera.ortho_height > 0 ? RENDER_ORTHO : 0, width = v->width, height = v->height;
     cl_int count = (cl_int)n, with_shadows = shadows, lights = (cl_int)nl;
-    const void *values[22] = {&t->params, &fx,      &flags,   &width,   &height,  &in[0],    &count,    &in[1],
+    const void *values[23] = {&t->params, &fx,      &flags,   &width,   &height,  &in[0],    &count,    &in[1],
                               &in[2],     &in[3],   &with_shadows,      eps_real, &hits[0], &hits[1],  &hits[2],
-                              &hits[3],   &hits[4], &hits[5], &stage[0], &stage[1], &kid[0], &kid[1]};
-    unsigned long mems = 0x3ffffful & ~(1ul << 2 | 1ul << 3 | 1ul << 4 | 1ul << 6 | 1ul << 10 | 1ul << 11);
-    size_t sizes[22];
-    for (int a = 0; a < 22; a++)
+                              &hits[3],   &hits[4], &hits[5], &stage[0], &stage[1], &kid[0], &kid[1],  &kid[2]};
+    unsigned long mems = 0x7ffffful & ~(1ul << 2 | 1ul << 3 | 1ul << 4 | 1ul << 6 | 1ul << 10 | 1ul << 11);
+    size_t sizes[23];
+    for (int a = 0; a < 23; a++)
         sizes[a] = mems >> a & 1 ? sizeof(cl_mem) : a == 11 ? rb : sizeof(cl_int);
     if (st == IACSG_OK)
-        st = launch_with(r, r->fx->centre, groups, 22, sizes, values, mems, "iacsg_scene_centre", err);
+        st = launch_with(r, r->fx->centre, groups, 23, sizes, values, mems, "iacsg_scene_centre", err);
     const void *compact_values[7] = {&count, &lights, &hits[4], &stage[3], &stage[0], &sh[0], &stage[2]};
     size_t compact_sizes[7] = {sizeof(cl_int), sizeof(cl_int), sizeof(cl_mem), sizeof(cl_mem), sizeof(cl_mem),
                                sizeof(cl_mem), sizeof(cl_mem)};
@@ -193,14 +259,15 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
         st = fx_shade_launch(t, block, hits, m > 0 ? sh[3] : NULL, stage[2], n, palette, out, err);
     if (st == IACSG_OK && m > 0 && r->config.stats)
         st = count_centre_rays(t, sh[4], (size_t)m, (size_t)m, err);
-    if (st == IACSG_OK && kid[1])
-        st = centre_kids(t, block, hits, kid[1], n, eps_real, palette, pixels, frame, reflect, out, err);
+    *nrest = 0;
+    if (st == IACSG_OK && kinds)
+        st = centre_kids(t, block, hits, kid[1], kid[2], n, eps_real, palette, pixels, frame, out, rest, nrest, err);
     fx_release_all(in, 4);
     fx_release_all(hits, 6);
     fx_release_all(stage, 4);
     fx_release_all(sh, 5);
-    fx_release_all(kid, 2);
-    free(reflect);
+    fx_release_all(kid, 3);
+    free(kinds);
     if (fx)
         clReleaseMemObject(fx);
     return st;
