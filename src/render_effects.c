@@ -13,8 +13,9 @@
  * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
  * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
  * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children; where no
- * path can have a child (every item opaque, no reflected ray) a scene's centre paths stay wholly on the device
- * (kernels/scene_centre.cl: centre_on_device), the host only encoding their colours. So an
+ * path can have a child (every item opaque, no reflected ray), or none more than one and no shadow rays are cast,
+ * a scene's centre paths and their children stay on the device (kernels/scene_centre.cl: centre_on_device), the
+ * host only encoding their colours and following the children whose hits have children. So an
  * occluder or a reflected surface that a ray crosses inside the bounds is never missed, and with the default rig
  * and no effect but -aa or -background a pixel gets the colour the plain render gives it.
  */

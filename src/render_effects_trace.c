@@ -213,7 +213,8 @@ fx_weights fx_path_weights(const fx_item *m, double w, int bounces, int layers, 
     double a = m->opacity, k = bounces < max_bounces ? m->reflect : 0, through = w * (1 - a);
     int mirrored = k > 0 && w * a * k >= EFFECTS_MIN_WEIGHT;
     int ends = through > 0 && (through < EFFECTS_MIN_WEIGHT || layers + 1 >= EFFECTS_MAX_LAYERS);
-    return (fx_weights){w * a * (1 - k), ends ? through : 0, mirrored ? w * a * k : 0, through > 0 && !ends ? through : 0};
+    return (fx_weights){w * a * (1 - k), ends ? through : 0, mirrored ? w * a * k : 0,
+                        through > 0 && !ends ? through : 0};
 }
 
 iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {
