@@ -133,7 +133,8 @@ static iacsg_status centre_kids(fx_tracer *t, const double *block, const cl_mem 
     if (st == IACSG_OK && (rc = read_back(r->rt.queue, kh[2], bytes[2], &back[0])) != CL_SUCCESS)
         st = clrt_record(err, rc, "the children's items", __func__, __LINE__);
     const cl_int *kid_item = back[0];
-    size_t live = 0;
+    const cl_mem rest_mem[4] = {kids, kh[0], kh[1], kid_pass};
+    size_t rest_bytes[4] = {n * EFFECTS_RAY_REALS * rb, bytes[0], bytes[1], n * sizeof(cl_int)}, live = 0;
     *nrest = 0;
     for (size_t i = 0; st == IACSG_OK && i < n; i++) {
         int item = isinf(frame->depth[pixels[i]]) ? -1 : (int)frame->ids[pixels[i]];
@@ -141,7 +142,7 @@ static iacsg_status centre_kids(fx_tracer *t, const double *block, const cl_mem 
             continue; /* a miss: its background, weight 1 */
         fx_weights w0 = fx_path_weights(&r->fx->items[item], 1, 0, 0, max_bounces);
         float *colour = out + 6 * i, *kid = kid_out + 6 * i;
-        double wk = w0.mirror + w0.through; /* at most one of them (render_effects.c: centre_on_device) */
+        double wk = w0.mirror + w0.through; /* at most one of them (render_effects.c: children_on_device) */
         fx_weights w1 = {wk, 0, 0, 0};      /* a child that misses: its background */
         int k1 = wk > 0 ? kid_item[i] : -1;
         if (wk > 0 && k1 >= 0)
@@ -151,26 +152,19 @@ static iacsg_status centre_kids(fx_tracer *t, const double *block, const cl_mem 
             colour[c] += w0.left > 0 ? (float)(w0.left * colour[3 + c]) : 0;
         }
         live += wk > 0;
-        if (w1.mirror > 0 || w1.through > 0) {
-            rest[(*nrest)++].w = (double)i; /* its place, for now (below) */
+        if (w1.mirror > 0 || w1.through > 0) { /* the children's rays and hits read back at the first such */
+            for (int m = 0; m < 4 && st == IACSG_OK && !back[4]; m++)
+                if ((rc = read_back(r->rt.queue, rest_mem[m], rest_bytes[m], &back[1 + m])) != CL_SUCCESS)
+                    st = clrt_record(err, rc, "the children with children", __func__, __LINE__);
+            if (st == IACSG_OK)
+                rest[(*nrest)++] = kid_path(r, back[1], back[2], back[3], kid_item, back[4], i, pixels[i], wk,
+                                            w0.mirror > 0);
             continue;
         }
         for (int c = 0; c < 3 && wk > 0; c++) {
             colour[c] += (float)(w1.shown * kid[c]);
             colour[c] += w1.left > 0 ? (float)(w1.left * kid[3 + c]) : 0;
         }
-    }
-    const cl_mem rest_mem[4] = {kids, kh[0], kh[1], kid_pass};
-    size_t rest_bytes[4] = {n * EFFECTS_RAY_REALS * rb, bytes[0], bytes[1], n * sizeof(cl_int)};
-    for (int m = 0; m < 4 && st == IACSG_OK && *nrest > 0; m++)
-        if ((rc = read_back(r->rt.queue, rest_mem[m], rest_bytes[m], &back[1 + m])) != CL_SUCCESS)
-            st = clrt_record(err, rc, "the children with children", __func__, __LINE__);
-    for (size_t j = 0; st == IACSG_OK && j < *nrest; j++) {
-        size_t i = (size_t)rest[j].w;
-        int item = (int)frame->ids[pixels[i]];
-        fx_weights w0 = fx_path_weights(&r->fx->items[item], 1, 0, 0, max_bounces);
-        rest[j] = kid_path(r, back[1], back[2], back[3], kid_item, back[4], i, pixels[i], w0.mirror + w0.through,
-                           w0.mirror > 0);
     }
     if (st == IACSG_OK && r->config.stats)
         st = count_centre_rays(t, kh[3], n, live, err);
