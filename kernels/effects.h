@@ -9,6 +9,9 @@
 /* The item of a segment-path ray asked only whether it meets an item (all of them opaque: a shadow ray), that
  * certainly does (kernels/scene_effects.cl); -1 is a miss. */
 #define EFFECTS_HIT_BLOCKED (-2)
+/* The child a segment-path centre hit gets on the device (kernels/scene_centre.cl), by its item's material: none,
+ * its reflected ray, its ray on through a transparent surface, or on into a transparent region (passing it). */
+enum { EFFECTS_KID_NONE = 0, EFFECTS_KID_REFLECTED = 1, EFFECTS_KID_THROUGH = 2, EFFECTS_KID_THROUGH_REGION = 3 };
 
 /* A path of the first-root path's effects kernel (a reflected ray off a transparent surface, listed by the
  * kernel for the next launch): origin x y z, direction x y z, its weight in its pixel's colour, the transparent

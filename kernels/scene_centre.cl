@@ -1,5 +1,5 @@
 /* kernels/scene_centre.cl -- the segment path's centre paths kept on the device (src/render_effects.c, where no
- * path can have a child: every item opaque, no reflected ray), from the camera kernel's hits:
+ * path can have a child, or each at most one that the device traces: see below), from the camera kernel's hits:
  *
  *   the listed pixels, PACKET_LANES per work-item --> each one's camera ray (camera_ray: the ray the camera kernel
  *   traced), its hit (the frame's depth, normal, id) and row: iacsg_scene_shade's inputs
@@ -8,8 +8,12 @@
  *   --> (the host sums the counts: each work-item's first place) iacsg_scene_centre_compact: the live rays in the
  *       host's order, light by light, path by path (neighbouring pixels' rays in a packet, none empty)
  *   --> iacsg_scene_trace_rays --> iacsg_scene_shade, a light seen where its ray met nothing.
+ *   --> where `kind` is not NULL (no shadows; a path has at most one child), each hit's child by kind[item]
+ *       (EFFECTS_KID_*, effects.h): its reflected ray from off its surface, or its ray on through it from
+ *       just past it (passing the region it enters: kid_pass, weave.h), into `kids` at i (an empty ray, [1, 0],
+ *       where it has none, or a miss) --> iacsg_scene_trace_rays --> iacsg_scene_shade: the children's colours.
  *
- * So no host pass builds a path, a camera ray in double, a shadow ray or the shading's inputs.
+ * So no host pass builds a path, a camera ray in double, a shadow ray, a reflected ray or the shading's inputs.
  */
 
 __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real *fx, int flags, int width, int height,
@@ -17,11 +21,12 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
                                  __global const float *normal, __global const float *ids, int shadows, ia_real eps,
                                  __global ia_real *rays, __global ia_real *hit_t, __global float *hit_n,
                                  __global int *hit_item, __global float *vis, __global int *rows,
-                                 __global ia_real *staged, __global int *counts) {
+                                 __global ia_real *staged, __global int *counts, __global const int *kind,
+                                 __global ia_real *kids, __global int *kid_pass) {
     int first = (int)get_global_id(0) * IA_VW;
     if (first >= n)
         return;
-    ia_real col_k[IA_VW], row_k[IA_VW], n_k[3][IA_VW], t_k[IA_VW], on_k[IA_VW];
+    ia_real col_k[IA_VW], row_k[IA_VW], n_k[3][IA_VW], t_k[IA_VW], on_k[IA_VW], mirror_k[IA_VW], through_k[IA_VW];
     for (int k = 0; k < IA_VW; k++) {
         int i = min(first + k, n - 1), pixel = pixels[i];
         float t = depth[pixel];
@@ -33,6 +38,11 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
         hit_t[i] = t_k[k] = hit ? t : 0;
         hit_item[i] = hit ? (int)ids[pixel] : -1;
         on_k[k] = hit;
+        int kid = kind && hit ? kind[(int)ids[pixel]] : EFFECTS_KID_NONE;
+        mirror_k[k] = kid == EFFECTS_KID_REFLECTED;
+        through_k[k] = kid == EFFECTS_KID_THROUGH || kid == EFFECTS_KID_THROUGH_REGION;
+        if (kind && first + k < n)
+            kid_pass[first + k] = kid == EFFECTS_KID_THROUGH_REGION ? 1 + (int)ids[pixel] : 0;
     }
     /* the camera rays in lanes (packet_camera.h: bit for bit camera_ray's, the camera kernel's rays) */
     ia_realv o[3], d[3], p[3], nv[3], t = IAV_LOAD(t_k);
@@ -55,6 +65,25 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
     ia_realv off = effects_offset(eps, p, t), so[3];
     for (int c = 0; c < 3; c++) /* off the surface, on the side its normal faces (the ray's) */
         so[c] = p[c] + off * nv[c];
+    if (kind) { /* the mirror direction d - 2 (d.n) n from off the surface (as the shadow rays start), or d on
+                 * from just past it */
+        ia_realv dn = d[0] * nv[0] + d[1] * nv[1] + d[2] * nv[2], kd[3];
+        for (int c = 0; c < 3; c++)
+            kd[c] = d[c] - 2 * dn * nv[c];
+        ia_realv len = sqrt(kd[0] * kd[0] + kd[1] * kd[1] + kd[2] * kd[2]);
+        ia_maskv mirror = IAV_LOAD(mirror_k) != 0, through = IAV_LOAD(through_k) != 0, live = mirror | through;
+        ia_real kid_k[EFFECTS_RAY_REALS][IA_VW];
+        for (int c = 0; c < 3; c++) {
+            ia_realv ko = select(select(IAV_R(0), p[c] - off * nv[c], through), so[c], mirror);
+            IAV_STORE(ko, kid_k[c]);
+            IAV_STORE(select(select(IAV_R(c == 2), d[c], through), kd[c] / len, mirror), kid_k[3 + c]);
+        }
+        IAV_STORE(select(IAV_R(1), IAV_R(0), live), kid_k[6]);
+        IAV_STORE(select(IAV_R(0), IAV_R(IA_INF), live), kid_k[7]);
+        for (int k = 0; k < IA_VW && first + k < n; k++)
+            for (int c = 0; c < EFFECTS_RAY_REALS; c++)
+                kids[EFFECTS_RAY_REALS * (size_t)(first + k) + c] = kid_k[c][k];
+    }
     int nlights = (int)fx[EFFECTS_NLIGHTS];
     for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
         ia_realv seen = IAV_R(1); /* without shadows every light, as the host's paths had it */

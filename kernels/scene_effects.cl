@@ -177,20 +177,31 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
     for (int k = 0; k < PACKET_LANES; k++) {
         int ray = min(first + k, nrays - 1);
         const __global ia_real *q = rays + EFFECTS_RAY_REALS * (size_t)ray;
-        ia_real o[3] = {q[0], q[1], q[2]}, d[3] = {q[3], q[4], q[5]}, t_near, t_far;
-        int in = first + k < nrays && camera_clip(params, o, d, &t_near, &t_far);
-        tn[k] = fmax(t_near, q[6]);
-        tf[k] = fmin(t_far, q[7]);
-        meets[k] = in && tn[k] <= tf[k];
-        pass[k] = passing && first + k < nrays ? passing[ray] : 0;
         for (int c = 0; c < 3; c++) {
-            ok[c][k] = o[c];
-            dk[c][k] = d[c];
-            ik[c][k] = (ia_real)1 / d[c];
+            ok[c][k] = q[c];
+            dk[c][k] = q[3 + c];
         }
+        tn[k] = q[6];
+        tf[k] = q[7];
+        meets[k] = first + k < nrays;
+        pass[k] = passing && first + k < nrays ? passing[ray] : 0;
         from[k] = leaf_hi[k] = -IA_INF;
         crossed[k] = 0;
         from_evals[k] = 0;
+    }
+    { /* the part in the bounds (camera_clip, in lanes: packet_clip) and the inverse directions */
+        ia_realv o[3], d[3], t_near, t_far;
+        for (int c = 0; c < 3; c++) {
+            o[c] = IAV_LOAD(ok[c]);
+            d[c] = IAV_LOAD(dk[c]);
+            IAV_STORE((ia_real)1 / d[c], ik[c]);
+        }
+        ia_maskv in = packet_clip(params, o, d, &t_near, &t_far) & (IAV_LOAD(meets) != 0);
+        t_near = fmax(t_near, IAV_LOAD(tn));
+        t_far = fmin(t_far, IAV_LOAD(tf));
+        IAV_STORE(t_near, tn);
+        IAV_STORE(t_far, tf);
+        IAV_STORE(select(IAV_R(0), IAV_R(1), in & (t_near <= t_far)), meets);
     }
 #ifdef SCENE_RAYS_MARCH
     int states[SCENE_REGIONS_UNION][PACKET_LANES] = {{0}};

@@ -13,8 +13,9 @@
  * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
  * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
  * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children; where no
- * path can have a child (every item opaque, no reflected ray) a scene's centre paths stay wholly on the device
- * (kernels/scene_centre.cl: centre_on_device), the host only encoding their colours. So an
+ * path can have a child (every item opaque, no reflected ray), or none more than one and no shadow rays are cast,
+ * a scene's centre paths and their children stay on the device (kernels/scene_centre.cl: centre_on_device), the
+ * host only encoding their colours and following the children whose hits have children. So an
  * occluder or a reflected surface that a ray crosses inside the bounds is never missed, and with the default rig
  * and no effect but -aa or -background a pixel gets the colour the plain render gives it.
  */
@@ -61,14 +62,6 @@ typedef struct {
     double highlight; /* the highlight's weight (times the material's specular) */
 } fx_light;
 
-typedef struct {
-    int pixel;
-    double w; /* the weight of its colour in the pixel's */
-    int bounces, layers;
-    fx_ray ray;
-    fx_hit hit;
-} fx_path;
-
 /* A buffer that only grows: a frame's passes reuse its pages (a malloc and free per pass of several MB went to
  * mmap and back, and its pages faulted in each time). */
 typedef struct {
@@ -98,8 +91,8 @@ typedef struct {
     double depth_lo, depth_hi; /* the centre hits' range, for -shade depth */
     float *accum;              /* 3 per pixel: the frame's rgb, holding linear light until encoded */
     /* the segment path's scratch: shadow rays, their hits, the (path, light) of each; the generations of paths
-     * (two, in turn); the rays, hits and colours of a generation */
-    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, colors;
+     * (two, in turn); the rays, hits and colours of a generation; the device's children left to the host */
+    fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, colors, rest;
     double block[EFFECTS_COUNT]; /* the effects' parameters for the kernels (kernels/effects.h) */
     float *palette;              /* a scene's: each item's -shade ids colour, linear */
 } fx_frame;
@@ -339,24 +332,21 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             continue;
         }
         const fx_item *m = &f->r->fx->items[q->hit.item];
-        double a = m->opacity, k = q->bounces < e->bounces ? m->reflect : 0;
-        add(f->accum, q->pixel, q->w * a * (1 - k), lin);
-        double through = q->w * (1 - a);
-        int mirrored = k > 0 && q->w * a * k >= EFFECTS_MIN_WEIGHT;
-        int ends = through > 0 && (through < EFFECTS_MIN_WEIGHT || q->layers + 1 >= EFFECTS_MAX_LAYERS);
-        if (ends) { /* what is left of the path */
+        fx_weights wt = fx_path_weights(m, q->w, q->bounces, q->layers, e->bounces);
+        add(f->accum, q->pixel, wt.shown, lin);
+        if (wt.left > 0) { /* what is left of the path */
             double left[3] = {background[0], background[1], background[2]};
-            add(f->accum, q->pixel, through, left);
+            add(f->accum, q->pixel, wt.left, left);
         }
-        if (!mirrored && (through <= 0 || ends))
+        if (wt.mirror == 0 && wt.through == 0)
             continue; /* no child (most hits): its start is not needed */
         double p[3], n3[3] = {q->hit.n[0], q->hit.n[1], q->hit.n[2]};
         hit_point(q, p);
         double off = offset_of(f, p, q->hit.t);
-        if (mirrored) { /* the mirror direction, from off the surface */
+        if (wt.mirror > 0) { /* the mirror direction, from off the surface */
             fx_path *c = &kids[nkids++];
             *c = *q;
-            c->w = q->w * a * k;
+            c->w = wt.mirror;
             c->bounces++;
             double dn = dot3(q->ray.d, n3);
             for (int j = 0; j < 3; j++) {
@@ -368,10 +358,10 @@ static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n
             c->ray.tf = INFINITY;
             c->ray.passing = 0;
         }
-        if (through > 0 && !ends) { /* on through the surface: from just past it, the same direction */
+        if (wt.through > 0) { /* on through the surface: from just past it, the same direction */
             fx_path *c = &kids[nkids++];
             *c = *q;
-            c->w = through;
+            c->w = wt.through;
             c->layers++;
             for (int j = 0; j < 3; j++)
                 c->ray.o[j] = p[j] - off * n3[j];
@@ -430,6 +420,18 @@ static int kernel_colors_hold(const iacsg_renderer *r, const iacsg_effects *e) {
            !transparent(r, e);
 }
 
+/* Whether the kernel's colour stands for a centre hit on `item` (a scene's; -1 a miss): the rig alone lights it
+ * (kernel_colors_hold but for the materials) and its material neither reflects nor lets light through, so its
+ * path would have no child and the host's colour would be the kernel's. The mirror's and the glass's other items
+ * then get no path at all. */
+static int item_keeps(const fx_frame *f, int item) {
+    const iacsg_effects *e = f->e;
+    if (item < 0 || !f->r->scene || e->shade != IACSG_SHADE_LIT || e->nlights != 0 || e->shadows)
+        return 0;
+    const fx_item *m = &f->r->fx->items[item];
+    return !(e->bounces > 0 && m->reflect > 0) && m->opacity >= 1;
+}
+
 /* The reflected rays a first-root path's path may list for a next launch: only off a transparent surface (off an
  * opaque one the path goes on in its lane), one per layer at most. */
 static int expr_kid_slots(const iacsg_effects *e) {
@@ -451,7 +453,9 @@ static size_t block_select(const fx_frame *f, const iacsg_frame *fr, const unsig
             for (int j = bj; j < bj + PACKET_H && j < row1; j++)
                 for (int i = bi; i < bi + PACKET_W && i < v->width; i++) {
                     int pixel = j * v->width + i;
-                    if (edge ? edge[pixel] : isinf(fr->depth[pixel]) ? background : !keep)
+                    int hit = !isinf(fr->depth[pixel]);
+                    if (edge ? edge[pixel]
+                             : !hit ? background : !keep && !item_keeps(f, fr->ids ? (int)fr->ids[pixel] : -1))
                         out[n++] = pixel;
                 }
     return n;
@@ -657,24 +661,38 @@ static int has_children(const iacsg_renderer *r, const iacsg_effects *e) {
     return transparent(r, e) || (e->bounces > 0 && reflects(r, e));
 }
 
-/* The centre paths of pixels[0 .. count) where none has a child, FX_CHUNK at a time, wholly on the device
- * (fx_scene_centre: their rays, shadow rays and colours); the host only encodes their colours. Their rays are the
- * camera kernel's, in the working precision (the host's were in double, rounded): a shading point, a shadow ray's
- * start may move by ulps. */
+/* Whether fx_scene_centre can make, trace and shade a segment path's children (lit, no shadows, at most one child
+ * a path: no material may both reflect and let light through). */
+static int children_on_device(const fx_frame *f) {
+    const iacsg_effects *e = f->e;
+    int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
+    return lit && !e->shadows && !(transparent(f->r, e) && e->bounces > 0 && reflects(f->r, e));
+}
+
+/* The centre paths of pixels[0 .. count) where none has a child, or children_on_device, FX_CHUNK at a time, on the
+ * device (fx_scene_centre: their rays, shadow rays, children and colours); the host only encodes their colours,
+ * and follows the children whose hits have children (run_paths). Their rays are the camera kernel's, in the
+ * working precision (the host's were in double, rounded): a shading point, a shadow ray's or a child's start may
+ * move by ulps. */
 static iacsg_status centre_on_device(fx_frame *f, iacsg_frame *frame, const int *pixels, size_t count,
                                      iacsg_error *err) {
     const iacsg_effects *e = f->e;
     int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
     float *out = reserve(&f->colors, (6 * FX_CHUNK + 1) * sizeof *out);
-    iacsg_status st = out ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    fx_path *rest = reserve(&f->rest, FX_CHUNK * sizeof *rest);
+    iacsg_status st = out && rest ? IACSG_OK
+                                  : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
     for (size_t k = 0; st == IACSG_OK && k < count; k += FX_CHUNK) {
-        size_t n = count - k < FX_CHUNK ? count - k : FX_CHUNK;
+        size_t n = count - k < FX_CHUNK ? count - k : FX_CHUNK, nrest = 0;
         st = fx_scene_centre(&f->tracer, f->block, pixels + k, n, frame, lit && e->shadows,
-                             FX_SHADOW_EPS_FACTOR * f->view->eps, f->palette, out, err);
-        for (size_t q = 0; st == IACSG_OK && q < n; q++) { /* a path's colour, all of its pixel's */
+                             FX_SHADOW_EPS_FACTOR * f->view->eps, f->palette, has_children(f->r, e), out, rest,
+                             &nrest, err);
+        for (size_t q = 0; st == IACSG_OK && q < n; q++) /* a path's colour, all of its pixel's but rest's */
             memcpy(frame->rgb + 3 * (size_t)pixels[k + q], out + 6 * q, 3 * sizeof(float));
+        if (st == IACSG_OK && nrest > 0)
+            st = run_paths(f, rest, nrest, err);
+        for (size_t q = 0; st == IACSG_OK && q < n; q++)
             fx_encode(frame->rgb, pixels[k + q]);
-        }
     }
     return st;
 }
@@ -699,7 +717,7 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
     for (int j = 0; j < f->view->height; j++)
         row_v[j] = image_v(f, j + 0.5);
     size_t count = block_select(f, frame, NULL, listed);
-    int on_device = !has_children(f->r, f->e);
+    int on_device = !has_children(f->r, f->e) || children_on_device(f);
     if (on_device)
         st = centre_on_device(f, frame, listed, count, err);
     for (size_t k = on_device ? count : 0; st == IACSG_OK && k < count;) {
@@ -811,8 +829,8 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
     if (st == IACSG_OK && left)
         st = r->scene ? apply_scene(&f, frame, err) : apply_expr(&f, frame, in_camera != NULL, err);
     free(f.palette);
-    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0],
-                      &f.kids[1],     &f.rays,        &f.hits,      &f.colors};
+    fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1],
+                      &f.rays,        &f.hits,        &f.colors,    &f.rest};
     for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
         free(bufs[k]->p);
     frame->secondary_rays = f.tracer.rays + camera_rays;

@@ -75,7 +75,8 @@ iacsg_status fx_tracer_open(fx_tracer *t, iacsg_renderer *r, const iacsg_view *v
             CLRT_CHECK(err, rc);
             fx->compact = clCreateKernel(r->program, "iacsg_scene_centre_compact", &rc);
             CLRT_CHECK(err, rc);
-            st = fx_scene_centre(t, none, NULL, 0, NULL, 0, 0, NULL, NULL, err);
+            size_t rest = 0;
+            st = fx_scene_centre(t, none, NULL, 0, NULL, 0, 0, NULL, 0, NULL, NULL, &rest, err);
         }
         r->build_seconds += render_now_seconds() - t0;
         if (st != IACSG_OK)
@@ -206,6 +207,14 @@ void fx_put_ray(const iacsg_renderer *r, void *reals, size_t i, const fx_ray *y)
     }
     for (int k = 0; k < EFFECTS_RAY_REALS; k++)
         ((float *)reals)[EFFECTS_RAY_REALS * i + (size_t)k] = (float)v[k];
+}
+
+fx_weights fx_path_weights(const fx_item *m, double w, int bounces, int layers, int max_bounces) {
+    double a = m->opacity, k = bounces < max_bounces ? m->reflect : 0, through = w * (1 - a);
+    int mirrored = k > 0 && w * a * k >= EFFECTS_MIN_WEIGHT;
+    int ends = through > 0 && (through < EFFECTS_MIN_WEIGHT || layers + 1 >= EFFECTS_MAX_LAYERS);
+    return (fx_weights){w * a * (1 - k), ends ? through : 0, mirrored ? w * a * k : 0,
+                        through > 0 && !ends ? through : 0};
 }
 
 iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err) {

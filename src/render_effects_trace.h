@@ -22,6 +22,25 @@ typedef struct {
     int region; /* a region (a volume: a ray passes through it) rather than a surface */
 } fx_item;
 
+/* A path of the segment path's effects: a ray of a pixel, the weight of its colour in the pixel's, the
+ * reflections and transparent layers it has taken, and its hit once traced. */
+typedef struct {
+    int pixel;
+    double w; /* the weight of its colour in the pixel's */
+    int bounces, layers;
+    fx_ray ray;
+    fx_hit hit;
+} fx_path;
+
+/* What a lit hit on material m gives a path of weight w that has taken `bounces` reflections (of at most
+ * max_bounces) and `layers` transparent layers: the weight of the hit's own colour; of its row's background where
+ * the path ends in a transparent hit (EFFECTS_MAX_LAYERS, EFFECTS_MIN_WEIGHT), else 0; and of its reflected and
+ * transmitted children (0: none). */
+typedef struct {
+    double shown, left, mirror, through;
+} fx_weights;
+fx_weights fx_path_weights(const fx_item *m, double w, int bounces, int layers, int max_bounces);
+
 /* What a renderer keeps for its effects (render_internal.h: r->fx), made at the first use. */
 struct render_fx {
     cl_kernel trace; /* iacsg_effects (kernels/effects.cl) or iacsg_scene_trace_rays */

@@ -295,6 +295,88 @@ TEST_FP(effects_scene_centre_on_device) {
     CHECK(off <= n / 100, "%ld of %ld pixels differ from the host's paths by more than 2e-3", off, n);
 }
 
+/* A reflecting ground's one bounce, its children leaves (every item opaque, no shadows), kept on the device
+ * (kernels/scene_centre.cl makes the reflected rays, fx_scene_centre traces and shades them) against the host's
+ * paths of the same scene with the ground of opacity 1 - 1e-6 (its transmitted rays' weight is under
+ * EFFECTS_MIN_WEIGHT: a colour within 1e-5): the ball is seen in the ground, the sky elsewhere. A pixel may differ
+ * by a reflected ray's rounding (from the device's float ray): at most 0.25 % of them by more than 2e-3 (the
+ * ball's image is 1.7 %); and the reflection must show (against the render without a bounce). */
+TEST_FP(effects_scene_reflect_on_device) {
+    static const char *ground[3] = {"material g = rgb(0.7, 0.7, 0.68) reflect 0.5",
+                                    "material g = rgb(0.7, 0.7, 0.68) reflect 0.5 opacity 0.999999",
+                                    "material g = rgb(0.7, 0.7, 0.68) reflect 0.5"};
+    iacsg_frame fr[3];
+    iacsg_view view = ground_view(96);
+    view.camera.eye[2] = 0.9; /* lower: the ball's image in the ground shows beside it */
+    for (int k = 0; k < 3; k++) {
+        iacsg_effects fx = {.bounces = k < 2, .nlights = 1};
+        fx.lights[0] = (iacsg_light){IACSG_LIGHT_POINT, {shadow_light[0], shadow_light[1], shadow_light[2]}, 0.9};
+        view.effects = &fx;
+        char text[400];
+        snprintf(text, sizeof text,
+                 "material m = rgb(0.8, 0.52, 0.28)\n%s\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                 "region b = ball : m\nregion f = z \\ ball : g\n",
+                 ground[k]);
+        render_scene_text(text, &view, &fr[k]);
+    }
+    long n = (long)view.width * view.height, off = 0, shown = 0, ball = 0;
+    for (long px = 0; px < n; px++) {
+        double most = 0, change = 0;
+        for (int c = 0; c < 3; c++) {
+            most = fmax(most, fabs(fr[0].rgb[3 * px + c] - fr[1].rgb[3 * px + c]));
+            change = fmax(change, fabs(fr[0].rgb[3 * px + c] - fr[2].rgb[3 * px + c]));
+        }
+        off += most > 2e-3;
+        shown += fr[0].ids[px] == 1 && change > 0.02;
+        ball += fr[0].ids[px] == 1 && fr[0].rgb[3 * px] > fr[0].rgb[3 * px + 2] + 0.05; /* the ball's orange in it */
+    }
+    for (int k = 0; k < 3; k++)
+        iacsg_frame_free(&fr[k]);
+    CHECK(shown > n / 4 && ball > n / 100, "%ld ground pixels reflect, %ld show the ball: the view does not test it",
+          shown, ball);
+    CHECK(off <= n / 400, "%ld of %ld pixels differ from the host's paths by more than 2e-3", off, n);
+    test_note("%ld ground pixels reflect, %ld of them the ball; %ld pixels off the host's", shown, ball, off);
+}
+
+/* Transparency on the device: a glass ball over a ground that lets light through too, no shadows. The centre paths
+ * and their layer rays through the ball go to the device (kernels/scene_centre.cl), the layer rays that meet the
+ * ground come back to the host's paths (a child with a child); against the host's paths of the same scene, made
+ * to take them by a reflecting region outside the bounds (a material that reflects with -bounces beside one that
+ * lets light through: at most one child a path no longer holds). At most 0.25 % of the pixels may differ by more
+ * than 2e-3 (a layer ray's start from the device's float hit), and the glass must show. */
+TEST_FP(effects_scene_glass_on_device) {
+    static const char *far[2] = {"", "region far = move(sphere(0.1), 0, 0, 9) : shiny\n"};
+    iacsg_frame fr[3];
+    iacsg_view view = ground_view(96);
+    iacsg_effects fx = {.bounces = 1, .nlights = 1};
+    fx.lights[0] = (iacsg_light){IACSG_LIGHT_POINT, {shadow_light[0], shadow_light[1], shadow_light[2]}, 0.9};
+    view.effects = &fx;
+    for (int k = 0; k < 3; k++) {
+        char text[600];
+        snprintf(text, sizeof text,
+                 "material glass = rgb(0.3, 0.6, 0.9) opacity %s\nmaterial clay = rgb(0.8, 0.52, 0.28) opacity 0.7\n"
+                 "material shiny = rgb(0.5, 0.5, 0.5) reflect 0.5\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                 "region b = ball : glass\nregion g = z \\ ball : clay\n%s",
+                 k < 2 ? "0.4" : "1", far[k == 1]);
+        render_scene_text(text, &view, &fr[k]);
+    }
+    long n = (long)view.width * view.height, off = 0, shown = 0;
+    for (long px = 0; px < n; px++) {
+        double most = 0, change = 0;
+        for (int c = 0; c < 3; c++) {
+            most = fmax(most, fabs(fr[0].rgb[3 * px + c] - fr[1].rgb[3 * px + c]));
+            change = fmax(change, fabs(fr[0].rgb[3 * px + c] - fr[2].rgb[3 * px + c]));
+        }
+        off += most > 2e-3;
+        shown += fr[0].ids[px] == 0 && change > 0.02;
+    }
+    for (int k = 0; k < 3; k++)
+        iacsg_frame_free(&fr[k]);
+    CHECK(shown > n / 20, "%ld ball pixels show what is behind: the view does not test it", shown);
+    CHECK(off <= n / 400, "%ld of %ld pixels differ from the host's paths by more than 2e-3", off, n);
+    test_note("%ld ball pixels show what is behind; %ld pixels off the host's", shown, off);
+}
+
 /* The unit sphere seen along -z, orthographic: the point (s, v) of the image plane is on it iff s^2 + v^2 < 1. */
 static iacsg_view sphere_ortho_view(int size) {
     iacsg_view v = {.width = size, .height = size, .eps = 0x1p-14,
