@@ -86,13 +86,12 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
     }
     int nlights = (int)fx[EFFECTS_NLIGHTS];
     for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
-        ia_realv seen = IAV_R(1); /* without shadows every light, as the host's paths had it */
-        if (shadows) {
-            __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * min(l, nlights - 1);
+        ia_realv seen = IAV_R(!shadows); /* without shadows every light, as the host's paths had it */
+        if (shadows && l < nlights) { /* a light past nlights is never seen (its rays would be empty) */
+            __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
             ia_realv towards[3], sd[3];
             shade_towards(params, L, p, towards);
-            ia_maskv ray = l < nlights ? hit & (nv[0] * towards[0] + nv[1] * towards[1] + nv[2] * towards[2] > 0)
-                                        : (ia_maskv)0;
+            ia_maskv ray = hit & (nv[0] * towards[0] + nv[1] * towards[1] + nv[2] * towards[2] > 0);
             ia_realv dist = shade_towards(params, L, so, sd);
             ia_real s_k[EFFECTS_RAY_REALS][IA_VW];
             for (int c = 0; c < 3; c++) {
@@ -105,13 +104,12 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
             ia_real live_k[IA_VW];
             IAV_STORE(seen, live_k);
             int live = 0;
-            for (int k = 0; k < IA_VW && first + k < n && l < nlights; k++) {
+            for (int k = 0; k < IA_VW && first + k < n; k++) {
                 live += live_k[k] != 0;
                 for (int c = 0; live_k[k] != 0 && c < EFFECTS_RAY_REALS; c++)
                     staged[EFFECTS_RAY_REALS * ((size_t)l * n + first + k) + c] = s_k[c][k];
             }
-            if (l < nlights)
-                counts[l * ((n + IA_VW - 1) / IA_VW) + first / IA_VW] = live;
+            counts[l * ((n + IA_VW - 1) / IA_VW) + first / IA_VW] = live;
         }
         float seen_k[IA_VW];
         IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_float, IA_VW)(seen), 0, seen_k);

@@ -95,6 +95,7 @@ typedef struct {
     fx_buf shadow_rays, shadow_hits, shadow_of, kids[2], rays, hits, colors, rest;
     double block[EFFECTS_COUNT]; /* the effects' parameters for the kernels (kernels/effects.h) */
     float *palette;              /* a scene's: each item's -shade ids colour, linear */
+    unsigned char *item_listed;  /* a scene's: 1 where a centre hit on the item gets a path (!item_keeps) */
 } fx_frame;
 
 /* Whether a material of the renderer's reflects light (an expression's: e->reflect). */
@@ -445,17 +446,21 @@ static int expr_kid_slots(const iacsg_effects *e) {
  * megapixel's 4 MB (its page faults) and a pass more, all on one CPU. */
 static size_t block_select(const fx_frame *f, const iacsg_frame *fr, const unsigned char *edge, int *out) {
     const iacsg_view *v = f->view;
-    int row0, row1, keep = kernel_colors_hold(f->r, f->e), background = f->e->background;
+    /* in locals, and item_keeps by its table: the stores to out may alias what f points to, and reloading it for
+     * each of a megapixel's hits was most of this pass */
+    int row0, row1, keep = kernel_colors_hold(f->r, f->e), background = f->e->background, width = v->width;
+    const float *depth = fr->depth, *ids = fr->ids;
+    const unsigned char *item_listed = ids ? f->item_listed : NULL; /* NULL: every hit, as item_keeps of -1 */
     traced_rows(v, &row0, &row1);
     size_t n = 0;
     for (int bj = row0; bj < row1; bj += PACKET_H)
-        for (int bi = 0; bi < v->width; bi += PACKET_W)
+        for (int bi = 0; bi < width; bi += PACKET_W)
             for (int j = bj; j < bj + PACKET_H && j < row1; j++)
-                for (int i = bi; i < bi + PACKET_W && i < v->width; i++) {
-                    int pixel = j * v->width + i;
-                    int hit = !isinf(fr->depth[pixel]);
+                for (int i = bi; i < bi + PACKET_W && i < width; i++) {
+                    int pixel = j * width + i;
                     if (edge ? edge[pixel]
-                             : !hit ? background : !keep && !item_keeps(f, fr->ids ? (int)fr->ids[pixel] : -1))
+                             : isinf(depth[pixel]) ? background
+                                                   : !keep && (!item_listed || item_listed[(int)ids[pixel]]))
                         out[n++] = pixel;
                 }
     return n;
@@ -825,10 +830,15 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
             st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
         for (int i = 0; st == IACSG_OK && i < nitems; i++)
             scene_palette(i, f.palette + 3 * i);
+        if (st == IACSG_OK && !(f.item_listed = malloc((size_t)nitems)))
+            st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+        for (int i = 0; st == IACSG_OK && i < nitems; i++)
+            f.item_listed[i] = !(r->fx && i < r->fx->nitems && item_keeps(&f, i));
     }
     if (st == IACSG_OK && left)
         st = r->scene ? apply_scene(&f, frame, err) : apply_expr(&f, frame, in_camera != NULL, err);
     free(f.palette);
+    free(f.item_listed);
     fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1],
                       &f.rays,        &f.hits,        &f.colors,    &f.rest};
     for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++)
