@@ -40,6 +40,24 @@ static iacsg_view ground_view(int size) {
     return v;
 }
 
+/* The orange ball above the ground of ground_view's scenes, the ground's material given as its `material g` line. */
+static void render_ball_over_ground(const char *ground, const iacsg_view *view, iacsg_frame *fr) {
+    char text[400];
+    snprintf(text, sizeof text,
+             "material m = rgb(0.8, 0.52, 0.28)\n%s\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+             "region b = ball : m\nregion f = z \\ ball : g\n",
+             ground);
+    render_scene_text(text, view, fr);
+}
+
+/* The largest difference between pixel px's colour channels in two frames. */
+static double colour_difference(const iacsg_frame *a, const iacsg_frame *b, long px) {
+    double most = 0;
+    for (int c = 0; c < 3; c++)
+        most = fmax(most, fabs(a->rgb[3 * px + c] - b->rgb[3 * px + c]));
+    return most;
+}
+
 static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* The distance from c to the segment from p to q. */
@@ -272,20 +290,11 @@ TEST_FP(effects_scene_centre_on_device) {
     iacsg_frame fr[2];
     iacsg_view view = ground_view(96);
     view.effects = &fx;
-    for (int k = 0; k < 2; k++) {
-        char text[400];
-        snprintf(text, sizeof text,
-                 "material m = rgb(0.8, 0.52, 0.28)\n%s\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
-                 "region b = ball : m\nregion f = z \\ ball : g\n",
-                 ground[k]);
-        render_scene_text(text, &view, &fr[k]);
-    }
+    for (int k = 0; k < 2; k++)
+        render_ball_over_ground(ground[k], &view, &fr[k]);
     long n = (long)view.width * view.height, off = 0, dark = 0, lit = 0;
     for (long px = 0; px < n; px++) {
-        double most = 0;
-        for (int c = 0; c < 3; c++)
-            most = fmax(most, fabs(fr[0].rgb[3 * px + c] - fr[1].rgb[3 * px + c]));
-        off += most > 2e-3;
+        off += colour_difference(&fr[0], &fr[1], px) > 2e-3;
         dark += fr[0].ids[px] == 1 && fr[0].rgb[3 * px] < 0.35;
         lit += fr[0].ids[px] == 1 && fr[0].rgb[3 * px] > 0.5;
     }
@@ -312,22 +321,12 @@ TEST_FP(effects_scene_reflect_on_device) {
         iacsg_effects fx = {.bounces = k < 2, .nlights = 1};
         fx.lights[0] = (iacsg_light){IACSG_LIGHT_POINT, {shadow_light[0], shadow_light[1], shadow_light[2]}, 0.9};
         view.effects = &fx;
-        char text[400];
-        snprintf(text, sizeof text,
-                 "material m = rgb(0.8, 0.52, 0.28)\n%s\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
-                 "region b = ball : m\nregion f = z \\ ball : g\n",
-                 ground[k]);
-        render_scene_text(text, &view, &fr[k]);
+        render_ball_over_ground(ground[k], &view, &fr[k]);
     }
     long n = (long)view.width * view.height, off = 0, shown = 0, ball = 0;
     for (long px = 0; px < n; px++) {
-        double most = 0, change = 0;
-        for (int c = 0; c < 3; c++) {
-            most = fmax(most, fabs(fr[0].rgb[3 * px + c] - fr[1].rgb[3 * px + c]));
-            change = fmax(change, fabs(fr[0].rgb[3 * px + c] - fr[2].rgb[3 * px + c]));
-        }
-        off += most > 2e-3;
-        shown += fr[0].ids[px] == 1 && change > 0.02;
+        off += colour_difference(&fr[0], &fr[1], px) > 2e-3;
+        shown += fr[0].ids[px] == 1 && colour_difference(&fr[0], &fr[2], px) > 0.02;
         ball += fr[0].ids[px] == 1 && fr[0].rgb[3 * px] > fr[0].rgb[3 * px + 2] + 0.05; /* the ball's orange in it */
     }
     for (int k = 0; k < 3; k++)
@@ -362,13 +361,8 @@ TEST_FP(effects_scene_glass_on_device) {
     }
     long n = (long)view.width * view.height, off = 0, shown = 0;
     for (long px = 0; px < n; px++) {
-        double most = 0, change = 0;
-        for (int c = 0; c < 3; c++) {
-            most = fmax(most, fabs(fr[0].rgb[3 * px + c] - fr[1].rgb[3 * px + c]));
-            change = fmax(change, fabs(fr[0].rgb[3 * px + c] - fr[2].rgb[3 * px + c]));
-        }
-        off += most > 2e-3;
-        shown += fr[0].ids[px] == 0 && change > 0.02;
+        off += colour_difference(&fr[0], &fr[1], px) > 2e-3;
+        shown += fr[0].ids[px] == 0 && colour_difference(&fr[0], &fr[2], px) > 0.02;
     }
     for (int k = 0; k < 3; k++)
         iacsg_frame_free(&fr[k]);
