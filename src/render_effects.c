@@ -114,10 +114,20 @@ static int transparent(const iacsg_renderer *r, const iacsg_effects *e) {
     return any;
 }
 
+/* Whether a path may have a child: a reflected ray, or one through a transparent hit. */
+static int has_children(const iacsg_renderer *r, const iacsg_effects *e) {
+    return transparent(r, e) || (e->bounces > 0 && reflects(r, e));
+}
+
+/* Whether the hits are lit (light.h's shading, in colour or by the normal's direction), not a preview. */
+static int lit_shading(const iacsg_effects *e) {
+    return e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
+}
+
 /* Whether the effects do anything: else the frame is the plain render, untouched. */
 static int effects_on(const iacsg_renderer *r, const iacsg_effects *e) {
     return e && (e->shade != IACSG_SHADE_LIT || e->background || e->nlights > 0 || e->shadows ||
-                 (e->bounces > 0 && reflects(r, e)) || transparent(r, e) || e->aa > 1);
+                 has_children(r, e) || e->aa > 1);
 }
 
 int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view) { return effects_on(r, view->effects); }
@@ -301,7 +311,7 @@ static iacsg_status shadow_fractions(fx_frame *f, const fx_path *paths, size_t n
 static iacsg_status shade_generation(fx_frame *f, const fx_path *paths, size_t n, fx_path *kids, size_t *nout,
                                      iacsg_error *err) {
     const iacsg_effects *e = f->e;
-    int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
+    int lit = lit_shading(e);
     fx_shade_in in;
     float *out = reserve(&f->colors, (6 * n + 1) * sizeof *out);
     iacsg_status st = out ? fx_shade_inputs(&f->tracer, n, &in, err)
@@ -414,23 +424,22 @@ static void traced_rows(const iacsg_view *v, int *row0, int *row1) {
     *row1 = v->row_count ? v->row_first + v->row_count : v->height;
 }
 
-/* Whether the host would light each centre hit exactly as the kernel did (kernels/light.h: the default rig, no
- * shadow, no reflection, no transparency), so that the kernel's colours stand. */
+/* Whether the kernel's default rig alone lights the hits as the host would (kernels/light.h): lit, no light of
+ * the command's or the scene's, no shadow. */
+static int rig_alone(const iacsg_effects *e) { return e->shade == IACSG_SHADE_LIT && e->nlights == 0 && !e->shadows; }
+
+/* Whether the host would light each centre hit exactly as the kernel did (the rig alone, no reflection, no
+ * transparency), so that the kernel's colours stand. */
 static int kernel_colors_hold(const iacsg_renderer *r, const iacsg_effects *e) {
-    return e->shade == IACSG_SHADE_LIT && e->nlights == 0 && !e->shadows && !(e->bounces > 0 && reflects(r, e)) &&
-           !transparent(r, e);
+    return rig_alone(e) && !has_children(r, e);
 }
 
-/* Whether the kernel's colour stands for a centre hit on `item` (a scene's; -1 a miss): the rig alone lights it
- * (kernel_colors_hold but for the materials) and its material neither reflects nor lets light through, so its
- * path would have no child and the host's colour would be the kernel's. The mirror's and the glass's other items
- * then get no path at all. */
-static int item_keeps(const fx_frame *f, int item) {
-    const iacsg_effects *e = f->e;
-    if (item < 0 || !f->r->scene || e->shade != IACSG_SHADE_LIT || e->nlights != 0 || e->shadows)
-        return 0;
-    const fx_item *m = &f->r->fx->items[item];
-    return !(e->bounces > 0 && m->reflect > 0) && m->opacity >= 1;
+/* Whether the kernel's colour stands for a scene's centre hit on item i: the rig alone lights it and its
+ * material neither reflects nor lets light through, so its path would have no child and the host's colour would
+ * be the kernel's. The mirror's and the glass's other items then get no path at all. */
+static int item_keeps(const fx_frame *f, int i) {
+    const fx_item *m = &f->r->fx->items[i];
+    return rig_alone(f->e) && !(f->e->bounces > 0 && m->reflect > 0) && m->opacity >= 1;
 }
 
 /* The reflected rays a first-root path's path may list for a next launch: only off a transparent surface (off an
@@ -450,7 +459,7 @@ static size_t block_select(const fx_frame *f, const iacsg_frame *fr, const unsig
      * each of a megapixel's hits was most of this pass */
     int row0, row1, keep = kernel_colors_hold(f->r, f->e), background = f->e->background, width = v->width;
     const float *depth = fr->depth, *ids = fr->ids;
-    const unsigned char *item_listed = ids ? f->item_listed : NULL; /* NULL: every hit, as item_keeps of -1 */
+    const unsigned char *item_listed = ids ? f->item_listed : NULL; /* NULL: every hit listed */
     traced_rows(v, &row0, &row1);
     size_t n = 0;
     for (int bj = row0; bj < row1; bj += PACKET_H)
@@ -661,16 +670,11 @@ static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, int in_camera, i
     return st;
 }
 
-/* Whether a segment path's path may have a child: a reflected ray, or one through a transparent hit. */
-static int has_children(const iacsg_renderer *r, const iacsg_effects *e) {
-    return transparent(r, e) || (e->bounces > 0 && reflects(r, e));
-}
-
 /* Whether fx_scene_centre can make, trace and shade a segment path's children (lit, no shadows, at most one child
  * a path: no material may both reflect and let light through). */
 static int children_on_device(const fx_frame *f) {
     const iacsg_effects *e = f->e;
-    int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
+    int lit = lit_shading(e);
     return lit && !e->shadows && !(transparent(f->r, e) && e->bounces > 0 && reflects(f->r, e));
 }
 
@@ -682,7 +686,7 @@ static int children_on_device(const fx_frame *f) {
 static iacsg_status centre_on_device(fx_frame *f, iacsg_frame *frame, const int *pixels, size_t count,
                                      iacsg_error *err) {
     const iacsg_effects *e = f->e;
-    int lit = e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;
+    int lit = lit_shading(e);
     float *out = reserve(&f->colors, (6 * FX_CHUNK + 1) * sizeof *out);
     fx_path *rest = reserve(&f->rest, FX_CHUNK * sizeof *rest);
     iacsg_status st = out && rest ? IACSG_OK

@@ -136,9 +136,7 @@ void fx_tracer_close(fx_tracer *t) {
 
 static void release_trace_buffers(fx_trace_buffers *b) {
     cl_mem all[] = {b->rays, b->t, b->normal, b->item, b->evals, b->passing};
-    for (int k = 0; k < 6; k++)
-        if (all[k])
-            clReleaseMemObject(all[k]);
+    fx_release_all(all, 6);
 }
 
 iacsg_status fx_launch_slices(cl_command_queue q, cl_kernel k, cl_uint first_arg, cl_int count, size_t slots,
@@ -358,11 +356,8 @@ iacsg_status fx_shade_launch(fx_tracer *t, const double *block, const cl_mem hit
     }
     if (st == IACSG_OK && out_mem)
         st = fx_sync_to_host(r->rt.queue, out_mem, 6 * n * sizeof(float), err);
-    for (int b = 0; b < 3; b++)
-        if (mem[b])
-            clReleaseMemObject(mem[b]);
-    if (out_mem)
-        clReleaseMemObject(out_mem);
+    fx_release_all(mem, 3);
+    fx_release_all(&out_mem, 1);
     return st;
 }
 
