@@ -494,6 +494,7 @@ int cli_render(int argc, char **argv) {
         return 1;
     }
     clrt_warm_start(); /* after the writer's and the job's forks; while the input is read, parsed and compiled */
+    cli_writer_prefault(writer, (size_t)o.view.width * (size_t)o.view.height * 3); /* the colours' bytes */
     if (!o.have_device)
         o.config.device = cli_job_device(job);
     for (int k = 0; k < CLI_MPI_IMAGES && st == IACSG_OK; k++)

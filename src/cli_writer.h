@@ -19,6 +19,10 @@ void cli_writer_check(cli_writer *w, const char *path);
 /* The answers to the questions asked so far: the first failure, or IACSG_OK. Waits for them. */
 iacsg_status cli_writer_checked(cli_writer *w, iacsg_error *err);
 
+/* Makes the first `bytes` of the shared memory a write copies pixels into resident now (an 8-bit image's are
+ * width x height x channels), so that the write does not fault them in. For the slack while OpenCL starts. */
+void cli_writer_prefault(cli_writer *w, size_t bytes);
+
 /* iacsg_image_write through the writer; waits until the file is written (or has failed). */
 iacsg_status cli_writer_write(cli_writer *w, const char *path, int width, int height, int channels,
                               const float *pixels, int as_float, iacsg_error *err);

@@ -1,8 +1,12 @@
 /* tests/t_image.c -- image files through OpenImageIO: formats by extension, float data kept in float files,
- * and the temporary-file rule: a failed write leaves no file and never touches an existing one. */
+ * and the temporary-file rule: a failed write leaves no file and never touches an existing one; the colours'
+ * conversion to bytes (src/image_bytes.c) as OpenImageIO would convert them. */
 #include "image.h"
+#include "image_bytes.h"
 #include "test.h"
+#include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -90,4 +94,59 @@ TEST(image_failed_write_keeps_existing_file) {
     CHECK(count_entries(dir) == 1, "the directory holds %d entries, expected only keep.png", count_entries(dir));
     static const char *const files[] = {"keep.png"};
     cleanup_dir(dir, files, 1);
+}
+
+/* The byte OpenImageIO stores for a display-encoded float: clamped to [0, 1] (NaN to 0), then v * 255 + 0.5 in
+ * float, each step rounded to nearest, truncated. Spelled here through double: the sum of two floats is exact
+ * there, and rounding it to float is the float sum. (Just below 0.5 / 255 that gives 1, not the 0 that rounding
+ * the product half up would: the float sum rounds 0.49999997 + 0.5 up to 1.) */
+static unsigned char expected_byte(float v) {
+    if (!(v > 0))
+        return 0;
+    if (v >= 1)
+        return 255;
+    volatile float p = v * 255.0f, q = (float)((double)p + 0.5);
+    return (unsigned char)floor(q);
+}
+
+static float float_of_bits(uint32_t u) {
+    float f;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+/* image_floats_to_bytes (the vector steps of 16 and the scalar tail) against expected_byte: every float within 300
+ * ulps of each rounding boundary (k - 0.5) / 255, a stride through all of [0, 1], the specials, at an unaligned
+ * start and a length that leaves a tail. */
+TEST(image_floats_to_bytes_match_rounding) {
+    enum { NEAR = 300, STRIDE = 251 };
+    size_t cap = 256 * (2 * NEAR + 1) + 0x3f800000u / STRIDE + 64, n = 0;
+    float *in = malloc((cap + 1) * sizeof *in);
+    unsigned char *out = malloc(cap);
+    CHECK(in && out, "out of memory");
+    const float specials[] = {NAN, -NAN, INFINITY, -INFINITY, -0.0f, 0.0f, -1.0f, 1.0f, 1.5f, 255.0f, FLT_MAX,
+                              -FLT_MAX, FLT_TRUE_MIN, FLT_MIN, 0.5f / 255, 254.5f / 255, 1 - FLT_EPSILON / 2};
+    for (size_t k = 0; k < sizeof specials / sizeof specials[0]; k++)
+        in[1 + n++] = specials[k];
+    for (int k = 1; k <= 256; k++) {
+        float b = (k - 0.5f) / 255;
+        uint32_t u;
+        memcpy(&u, &b, sizeof u);
+        for (int d = -NEAR; d <= NEAR; d++)
+            in[1 + n++] = float_of_bits(u + (uint32_t)d);
+    }
+    for (uint32_t u = 0; u < 0x3f800000u; u += STRIDE)
+        in[1 + n++] = float_of_bits(u);
+    if (n % 16 == 0)
+        in[1 + n++] = 0.25f; /* a tail for the scalar loop */
+    image_floats_to_bytes(in + 1, out, n);
+    size_t wrong = 0, first = 0;
+    for (size_t k = 0; k < n; k++)
+        if (out[k] != expected_byte(in[1 + k]) && wrong++ == 0)
+            first = k;
+    CHECK(wrong == 0, "%zu of %zu bytes differ, the first for %a: %d, expected %d", wrong, n, (double)in[1 + first],
+          out[first], expected_byte(in[1 + first]));
+    test_note("%zu floats", n);
+    free(in);
+    free(out);
 }
