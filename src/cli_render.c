@@ -14,6 +14,7 @@
 #include "ia/decimal.h"
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -313,6 +314,23 @@ const char *choose_bounds(render_options *o, const iacsg_scene *s, char *phrase,
     return "the default: no enclosing box could be found";
 }
 
+/* choose_bounds on a thread of its own while the renderer is made: the program does not depend on the bounds (they
+ * are the launch's parameters), and a surface's proof of its box took up to 70 ms of CPU (the Hijazi seed scenes
+ * without -bounds: the tangle | sphere, citrus | heart, the multiple unions), the time a cached program's build and
+ * OpenCL's start take on the other CPU. Both only read the scene. */
+typedef struct {
+    render_options *o;
+    const iacsg_scene *scene;
+    char phrase[256];
+    const char *which;
+} bounds_search;
+
+static void *bounds_search_run(void *arg) {
+    bounds_search *b = arg;
+    b->which = choose_bounds(b->o, b->scene, b->phrase, sizeof b->phrase);
+    return NULL;
+}
+
 /* -at defaults to the centre of the bounds; without -eye, -az/-el place the eye to see all of the bounds. A
  * BRL-CAD model is seen as rt sees it: orthographic, as high as the bounds' diagonal, unless -ortho or -fov. */
 void place_camera(render_options *o) {
@@ -507,18 +525,23 @@ int cli_render(int argc, char **argv) {
     if (st == IACSG_OK)
         st = load_input(&o, text, name, &scene, &err);
     if (st == IACSG_OK) {
-        char phrase[256];
-        const char *which = choose_bounds(&o, scene, phrase, sizeof phrase);
-        const double *b = o.view.bounds;
-        if (cli_job_rank(job) == 0)
-            printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], which);
-        place_camera(&o);
         if (cli_effects_from_scene(&o.effects, scene)) /* its lights, materials that reflect or are transparent */
             o.view.effects = &o.effects;
         if (o.view.effects && o.config.tape == IACSG_TAPE_AUTO) /* the effects' kernels call compiled code */
             o.config.tape = IACSG_TAPE_NEVER;
+        bounds_search search = {&o, scene, "", NULL};
+        pthread_t searching;
+        int apart = pthread_create(&searching, NULL, bounds_search_run, &search) == 0;
         /* regions or surfaces: the segment path; else the expression by the first-root path */
         st = iacsg_renderer_create_scene(scene, &o.config, &r, &err);
+        if (apart)
+            pthread_join(searching, NULL);
+        else
+            bounds_search_run(&search);
+        const double *b = o.view.bounds;
+        if (cli_job_rank(job) == 0)
+            printf("bounds %g,%g,%g,%g,%g,%g (%s)\n", b[0], b[1], b[2], b[3], b[4], b[5], search.which);
+        place_camera(&o);
     }
     o.view.no_depth = !o.depth_file; /* images nobody writes are not computed */
     o.view.no_normals = !o.normals_file;
