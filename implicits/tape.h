@@ -6,8 +6,10 @@
  * or undefined (tape_part_box: there the union does not need it, kernels/tape_eval.h skips it) -> the parts in
  * the Morton order of their boxes' centres, in up to TAPE_MAX_GROUPS groups of consecutive parts (the kernels'
  * per-tile masks, kernels/tile.h), each group with the hull of its parts' boxes -> per part, its reachable nodes
- * in index order lowered to instructions on register slots (a slot is freed after its last use) -> one array of
- * 32-bit words (the layout below), the reals in the working precision.
+ * in index order lowered to instructions on register slots (a slot is freed after its last use; the sqr of an
+ * operation that nothing else reads is folded into that operation's instruction) -> whether interval Newton may
+ * run on the tape (TAPE_W_NEWTON) -> one array of 32-bit words (the layout below), the reals in the working
+ * precision.
  *
  * Layout, in words (uint32): a header (TAPE_W_*), the first part of each group (groups + 1 entries from
  * TAPE_W_GROUP_TABLE), the index of each group's box (groups entries), the part table (TAPE_PART_WORDS a part:

@@ -50,8 +50,8 @@ char *tape_cl(void) {
         strbuf_printf(&b, ";\n");
     }
     strbuf_printf(&b, "    }\n    return iav_point(0); /* never: the host writes only these */\n}\n");
-    strbuf_printf(&b, "IAV_INLINE iav tape_apply_dt(uint op, iav A, iav B, int N, ia_real KB, iav R, iav DA, iav DB) {\n"
-                      "    (void)A, (void)B, (void)N, (void)KB, (void)R, (void)DB;\n    switch (op) {\n");
+    strbuf_printf(&b, "IAV_INLINE iav tape_apply_dt(uint op, iav A, iav B, int N, ia_real KB, iav R, iav DA, "
+                      "iav DB) {\n    (void)A, (void)B, (void)N, (void)KB, (void)R, (void)DB;\n    switch (op) {\n");
     for (int op = OP_NEG; op < OP_COUNT; op++) {
         strbuf_printf(&b, "    case %d: /* %s */\n        return ", op, dag_op_id(op));
         put_vector_template(&b, dag_ops[op].tderiv);
