@@ -660,6 +660,10 @@ static int newton_pays(const dag *d, const int *order, int count, int max_power)
     return 1;
 }
 
+int emit_newton_pays(const dag *d, const int *order, int count) {
+    return newton_pays(d, order, count, EMIT_NEWTON_MAX_POWER);
+}
+
 iacsg_status emit_cl(const dag *d, int root, const char *prefix, int march, char **source, iacsg_error *err) {
     *source = NULL;
     if (!valid_prefix(prefix))

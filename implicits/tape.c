@@ -117,8 +117,9 @@ typedef struct {
     int fp64;
     words code, reals;
     int nreals;
-    int *slot, *last_use, *used_as_interval; /* per node */
-    unsigned char *undefined;                /* per node, as emit.c's */
+    int *slot, *last_use, *used_as_interval, *uses; /* per node */
+    unsigned char *squared;   /* per node: its instruction also squares it (TAPE_THEN_SQR) */
+    unsigned char *undefined; /* per node, as emit.c's */
     int max_slots;
     int flagged; /* the part last lowered has an instruction that may be undefined */
 } builder;
@@ -174,8 +175,11 @@ static int lower_part(builder *b, const int *order, int count, int *result_slot)
         if (n->op < OP_NEG)
             continue;
         b->last_use[n->a] = k;
-        if (n->b >= 0)
+        b->uses[n->a]++;
+        if (n->b >= 0) {
             b->last_use[n->b] = k;
+            b->uses[n->b]++;
+        }
         unsigned inlined = inline_constant(d, n);
         if (n->b >= 0 && reads_b_interval(n->op) && inlined != TAPE_B_REAL)
             b->used_as_interval[n->b] = 1;
@@ -183,6 +187,15 @@ static int lower_part(builder *b, const int *order, int count, int *result_slot)
             b->used_as_interval[n->a] = 1;
     }
     b->used_as_interval[order[count - 1]] = 1; /* the part's value: a constant part needs its instruction */
+    for (int k = 0; k < count; k++) { /* sqr(a) of an operation a read by it alone: one instruction, a's */
+        const dag_node *n = &d->nodes[order[k]];
+        if (n->op != OP_SQR)
+            continue;
+        const dag_node *a = &d->nodes[n->a];
+        int a_folded = a->op == OP_SQR && b->squared[a->a]; /* a has no instruction of its own to square it */
+        if (a->op >= OP_NEG && !a_folded && b->uses[n->a] == 1 && !b->undefined[n->a] && !b->undefined[order[k]])
+            b->squared[n->a] = 1;
+    }
     _Static_assert(TAPE_SLOTS > 4 && TAPE_SLOTS <= 32, "the free slots are the bits of an unsigned");
     unsigned free_mask = (~0u >> (32 - TAPE_SLOTS)) & ~0xfu; /* slots 0-3: x, y, z, t */
     int instructions = 0, used = 4;
@@ -196,6 +209,10 @@ static int lower_part(builder *b, const int *order, int count, int *result_slot)
         }
         if (n->op == OP_CONST && !b->used_as_interval[i])
             continue; /* only read as KB */
+        if (n->op == OP_SQR && b->squared[n->a]) {
+            b->slot[i] = b->slot[n->a]; /* computed by a's instruction, in a's slot, read by none but this */
+            continue;
+        }
         int operands[2] = {n->op == OP_CONST ? -1 : n->a, n->op == OP_CONST ? -1 : n->b};
         for (int m = 0; m < 2; m++) /* free the operands' slots read for the last time: dst may take one */
             if (operands[m] >= 0 && b->last_use[operands[m]] == k && b->slot[operands[m]] >= 4)
@@ -212,7 +229,7 @@ static int lower_part(builder *b, const int *order, int count, int *result_slot)
         unsigned flags = (b->undefined[i] ? TAPE_UNDEFINED : 0) | (own_undefined(n) ? TAPE_OWN : 0) |
                          (n->op == OP_MIN && (b->undefined[n->a] || b->undefined[n->b]) ? TAPE_UNION : 0);
         b->flagged |= flags != 0;
-        flags |= inlined;
+        flags |= inlined | (b->squared[i] ? TAPE_THEN_SQR : 0);
         /* a quotient by a positive constant: a product by its reciprocals, as the compiled code (emit.c) */
         double recip[2];
         float frecip[2];
@@ -236,8 +253,10 @@ static int lower_part(builder *b, const int *order, int count, int *result_slot)
         words_put(&b->code, (unsigned)real);
         instructions++;
     }
-    for (int k = 0; k < count; k++)
-        b->used_as_interval[order[k]] = 0;
+    for (int k = 0; k < count; k++) {
+        b->used_as_interval[order[k]] = b->uses[order[k]] = 0;
+        b->squared[order[k]] = 0;
+    }
     b->max_slots = used > b->max_slots ? used : b->max_slots;
     *result_slot = b->slot[order[count - 1]];
     return instructions;
@@ -313,12 +332,19 @@ iacsg_status tape_build(const dag *d, int root, int fp64, iacsg_tape *out, iacsg
         nparts = parts ? 1 : -1;
     }
     size_t nodes = (size_t)root + 1;
-    builder b = {d, fp64, {0}, {0}, 0, malloc(nodes * sizeof(int)), malloc(nodes * sizeof(int)),
-                 calloc(nodes, sizeof(int)), calloc(nodes, 1), 0, 0};
+    builder b = {.d = d,
+                 .fp64 = fp64,
+                 .slot = malloc(nodes * sizeof(int)),
+                 .last_use = malloc(nodes * sizeof(int)),
+                 .used_as_interval = calloc(nodes, sizeof(int)),
+                 .uses = calloc(nodes, sizeof(int)),
+                 .squared = calloc(nodes, 1),
+                 .undefined = calloc(nodes, 1)};
     void *scratch = malloc(eval_scratch_size(root));
     unsigned *table = malloc(((size_t)(nparts > 0 ? nparts : 1)) * TAPE_PART_WORDS * sizeof *table);
     iacsg_status st = IACSG_OK;
-    if (nparts < 0 || !b.slot || !b.last_use || !b.used_as_interval || !b.undefined || !scratch || !table) {
+    if (nparts < 0 || !b.slot || !b.last_use || !b.used_as_interval || !b.uses || !b.squared || !b.undefined ||
+        !scratch || !table) {
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory building the tape");
         goto done;
     }
@@ -386,6 +412,7 @@ iacsg_status tape_build(const dag *d, int root, int fp64, iacsg_tape *out, iacsg
     }
     free(boxes);
     free(keys);
+    int newton = 1; /* every part defined everywhere, and Newton pays for it (emit.c) */
     for (int p = 0; p < nparts && st == IACSG_OK; p++) {
         int *part_order;
         int part_count = dag_reachable(d, parts[p], &part_order);
@@ -402,6 +429,7 @@ iacsg_status tape_build(const dag *d, int root, int fp64, iacsg_tape *out, iacsg
         }
         int first = out->instructions, result = 0;
         int n = lower_part(&b, part_order, part_count, &result);
+        newton &= n >= 0 && !b.flagged && emit_newton_pays(d, part_order, part_count);
         free(part_order);
         if (n < 0) {
             st = iacsg_error_set(err, IACSG_ERR_LIMIT, 0, 0,
@@ -430,6 +458,7 @@ iacsg_status tape_build(const dag *d, int root, int fp64, iacsg_tape *out, iacsg
         words_put(&all, (unsigned)(1 + 6 * (nparts + k)));
     all.w[TAPE_W_GROUPS] = (unsigned)g.count;
     all.w[TAPE_W_PARTS] = (unsigned)nparts;
+    all.w[TAPE_W_NEWTON] = (unsigned)newton;
     all.w[TAPE_W_PART_TABLE] = (unsigned)all.n;
     for (size_t k = 0; k < (size_t)nparts * TAPE_PART_WORDS; k++)
         words_put(&all, table[k]);
@@ -451,11 +480,14 @@ iacsg_status tape_build(const dag *d, int root, int fp64, iacsg_tape *out, iacsg
     out->groups = g.count;
     out->parts = nparts;
     out->max_slots = b.max_slots;
+    out->newton = newton;
 done:
     free(parts);
     free(b.slot);
     free(b.last_use);
     free(b.used_as_interval);
+    free(b.uses);
+    free(b.squared);
     free(b.undefined);
     free(b.code.w);
     free(b.reals.w);

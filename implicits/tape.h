@@ -6,8 +6,10 @@
  * or undefined (tape_part_box: there the union does not need it, kernels/tape_eval.h skips it) -> the parts in
  * the Morton order of their boxes' centres, in up to TAPE_MAX_GROUPS groups of consecutive parts (the kernels'
  * per-tile masks, kernels/tile.h), each group with the hull of its parts' boxes -> per part, its reachable nodes
- * in index order lowered to instructions on register slots (a slot is freed after its last use) -> one array of
- * 32-bit words (the layout below), the reals in the working precision.
+ * in index order lowered to instructions on register slots (a slot is freed after its last use; the sqr of an
+ * operation that nothing else reads is folded into that operation's instruction) -> whether interval Newton may
+ * run on the tape (TAPE_W_NEWTON) -> one array of 32-bit words (the layout below), the reals in the working
+ * precision.
  *
  * Layout, in words (uint32): a header (TAPE_W_*), the first part of each group (groups + 1 entries from
  * TAPE_W_GROUP_TABLE), the index of each group's box (groups entries), the part table (TAPE_PART_WORDS a part:
@@ -39,14 +41,20 @@
 /* The most segments whose lists one evaluation merges (kernels/params.h's SEGMENTS: src/render.c checks). */
 #define TAPE_MAX_SEGMENTS 16
 
-enum { TAPE_W_GROUPS = 0, TAPE_W_PARTS, TAPE_W_PART_TABLE, TAPE_W_CODE, TAPE_W_REALS, TAPE_W_GROUP_TABLE = 8 };
+/* TAPE_W_NEWTON: 1 when the kernels may refine roots by interval Newton on the tape (kernels/packet.h): no
+ * instruction of any part may be undefined (so every part is continuous, with its derivative along a ray in
+ * tape_apply_dt's enclosure) and Newton pays for every part (emit.c: emit_newton_pays). */
+enum { TAPE_W_GROUPS = 0, TAPE_W_PARTS, TAPE_W_PART_TABLE, TAPE_W_CODE, TAPE_W_REALS, TAPE_W_NEWTON,
+       TAPE_W_GROUP_TABLE = 8 };
 enum { TAPE_PART_WORDS = 4, TAPE_INSTR_WORDS = 4 };
 /* The op of an instruction that loads a constant (two reals: lo, hi) into its slot; the others are dag_op. */
 #define TAPE_OP_CONST OP_CONST
 /* Instruction flags: its value may be undefined (it computes the two flags of ia/vec.h), its own operation's
  * `undefined` column applies (ops.def; not for pown's positive powers), it is a union with a flagged operand,
- * its operand A or B is a constant read from its reals (lo, hi) rather than a slot. */
-enum { TAPE_UNDEFINED = 1, TAPE_OWN = 2, TAPE_UNION = 4, TAPE_A_REAL = 8, TAPE_B_REAL = 16 };
+ * its operand A or B is a constant read from its reals (lo, hi) rather than a slot, its value is then squared
+ * (the sqr of a value that nothing else reads, never undefined: the (x - a)^2 of a sphere in one dispatch of
+ * the interpreter instead of two, the same two operations). */
+enum { TAPE_UNDEFINED = 1, TAPE_OWN = 2, TAPE_UNION = 4, TAPE_A_REAL = 8, TAPE_B_REAL = 16, TAPE_THEN_SQR = 32 };
 
 typedef struct {
     unsigned *words;
@@ -55,6 +63,7 @@ typedef struct {
     int instructions;      /* over all parts */
     int max_slots;         /* the most slots a part uses */
     int bounded_parts;     /* parts whose box is finite on every side */
+    int newton;            /* as the header's TAPE_W_NEWTON */
 } iacsg_tape;
 
 /* The tape of the sub-DAG of root, its reals in double (fp64) or float. IACSG_ERR_LIMIT with a message when a

@@ -1,7 +1,8 @@
 /* implicits/tape_cl.c -- tape_cl: the expression-independent part of a tape program, written from ops.def as
  * emit.c writes the compiled code over lanes (each interval template with ia_ read as iav_, ia/vec.h), so an
  * interpreted operation is the very call a compiled one makes: tape_apply (an operation's value), tape_own_flags
- * (its `undefined` and `empty` columns), and the tape layout's numbers from tape.h. kernels/tape_eval.h runs the
+ * (its `undefined` and `empty` columns), tape_apply_dt (its derivative along a ray, the `tderiv` column, for
+ * interval Newton), and the tape layout's numbers from tape.h. kernels/tape_eval.h runs the
  * instructions with them. */
 #include "emit.h"
 #include "strbuf.h"
@@ -35,12 +36,13 @@ char *tape_cl(void) {
                       "#define TAPE_PART_WORDS %d\n#define TAPE_INSTR_WORDS %d\n#define TAPE_OP_CONST %d\n"
                       "#define TAPE_OP_MIN %d\n#define TAPE_UNDEFINED %d\n#define TAPE_OWN %d\n#define TAPE_UNION %d\n"
                       "#define TAPE_A_REAL %d\n#define TAPE_B_REAL %d\n#define TAPE_TILE_WORDS %d\n#define TAPE_TILE_RECORD %d\n"
-                      "#define TAPE_LIST_FULL %d\n#define TAPE_MAX_SEGMENTS %d\n",
+                      "#define TAPE_LIST_FULL %d\n#define TAPE_MAX_SEGMENTS %d\n#define TAPE_W_NEWTON %d\n"
+                      "#define TAPE_THEN_SQR %d\n#define TAPE_OP_SQR %d\n",
                   TAPE_MAX_GROUPS, TAPE_SLOTS, TAPE_W_GROUPS, TAPE_W_PARTS, TAPE_W_PART_TABLE, TAPE_W_CODE,
                   TAPE_W_REALS, TAPE_W_GROUP_TABLE, TAPE_PART_WORDS, TAPE_INSTR_WORDS, TAPE_OP_CONST, OP_MIN,
                   TAPE_UNDEFINED, TAPE_OWN, TAPE_UNION, TAPE_A_REAL, TAPE_B_REAL, TAPE_TILE_WORDS,
-                  TAPE_TILE_RECORD, TAPE_LIST_FULL, TAPE_MAX_SEGMENTS);
-    strbuf_printf(&b, "IA_FN iav tape_apply(uint op, iav A, iav B, int N, ia_real KB) {\n"
+                  TAPE_TILE_RECORD, TAPE_LIST_FULL, TAPE_MAX_SEGMENTS, TAPE_W_NEWTON, TAPE_THEN_SQR, OP_SQR);
+    strbuf_printf(&b, "IAV_INLINE iav tape_apply(uint op, iav A, iav B, int N, ia_real KB) {\n"
                       "    (void)B, (void)N, (void)KB;\n    switch (op) {\n");
     for (int op = OP_NEG; op < OP_COUNT; op++) {
         strbuf_printf(&b, "    case %d: /* %s */\n        return ", op, dag_op_id(op));
@@ -48,6 +50,14 @@ char *tape_cl(void) {
         strbuf_printf(&b, ";\n");
     }
     strbuf_printf(&b, "    }\n    return iav_point(0); /* never: the host writes only these */\n}\n");
+    strbuf_printf(&b, "IAV_INLINE iav tape_apply_dt(uint op, iav A, iav B, int N, ia_real KB, iav R, iav DA, "
+                      "iav DB) {\n    (void)A, (void)B, (void)N, (void)KB, (void)R, (void)DB;\n    switch (op) {\n");
+    for (int op = OP_NEG; op < OP_COUNT; op++) {
+        strbuf_printf(&b, "    case %d: /* %s */\n        return ", op, dag_op_id(op));
+        put_vector_template(&b, dag_ops[op].tderiv);
+        strbuf_printf(&b, ";\n");
+    }
+    strbuf_printf(&b, "    }\n    return iav_entire_where(iav_point(0), (ia_maskv)-1); /* never */\n}\n");
     strbuf_printf(&b, "IA_FN void tape_own_flags(uint op, iav A, iav B, int N, iav R, ia_maskv *u, ia_maskv *e) {\n"
                       "    (void)A, (void)B, (void)N, (void)R;\n    switch (op) {\n");
     for (int op = OP_NEG; op < OP_COUNT; op++) {

@@ -264,17 +264,51 @@ IA_FN void packet_advance_some(ia_maskv *searching, ia_maskv moving, ia_maskv do
  * evaluations per ray became 5.54 (~3 steps per hit) and the frame 49 -> 39 ms. With IA_FAST the same steps run
  * unrounded (not rigorous, as everything in that mode), so that the fast mode differs from the rigorous one only
  * in the rounding. Measured choices: 8, 32, 128 footprints gave 43, 39, 40 ms; below 64 leaves bisection is as
- * cheap. */
-#if defined(IACSG_FDV) && !defined(IACSG_TAPE) /* a tape has no derivative code */
+ * cheap. A tape's (1024 spheres of radius 0.08, ~55 footprints across, reference camera): 32 footprints, 32.13
+ * -> 28.28 evaluations per ray and no faster (a node that wide often holds the ray's closest approach to a
+ * centre, where the slope holds 0: the ray bisects from there, with the costlier mean value form); 8, 20.38 and
+ * ~10 % fewer kernel samples; 4 and 16 no better. */
+#if defined(IACSG_FDV) || defined(IACSG_TAPE) /* a tape's: tape_lists_dt, where its header allows (TAPE_W_NEWTON) */
 #define PACKET_NEWTON 1
 #endif
 #if (defined(IACSG_FDV) || defined(IACSG_FDV_MARCH)) && !defined(IACSG_TAPE) /* iacsg_Fdv, for march.h at least */
 #define PACKET_FDV 1
 #endif
+#ifdef IACSG_TAPE /* its unions' parts are small: see below */
+#define NEWTON_PIXELS 8
+#else
 #define NEWTON_PIXELS 32
+#endif
 #define NEWTON_MIN_LEAVES 64
 
 #ifdef PACKET_NEWTON
+/* F over the boxes of the segments [t.lo, t.hi] of the rays of the lanes of `live`, on their nodes (level, i), and
+ * in *slope the enclosure of its derivative along the rays there, for Newton and the mean value form: the
+ * compiled iacsg_Fdv; for a tape tape_lists_dt over the tile's lists, which also gives *at_m, F at the segments'
+ * midpoints over the same parts (the proofs need one function: kernels/tape_eval.h); where a list is full, the
+ * walk's F and the slope [-inf, +inf] (those lanes bisect). The compiled code's *at_m is the caller's. */
+IA_FN iav packet_Fd(PACKET_TAPE_PARAM const __global ulong *segment_groups, const ia_realv o[3], const ia_realv d[3],
+                    iav t, ia_maskv live, packet_int level, packet_index i, iav time, iav *slope, iav *at_m) {
+    iav x = packet_extent(o[0], d[0], t), y = packet_extent(o[1], d[1], t), z = packet_extent(o[2], d[2], t);
+    iav rates[3] = {iav_make(d[0], d[0]), iav_make(d[1], d[1]), iav_make(d[2], d[2])};
+#ifdef IACSG_TAPE
+    ia_realv m = t.lo * (ia_real)0.5 + t.hi * (ia_real)0.5; /* as the callers' midpoint */
+    iav tm = iav_make(m, m), f;
+    int first, last;
+    packet_segments(live, level, i, &first, &last);
+    if (tape_lists_dt(tape, (const __global ushort *)(segment_groups + SEGMENTS), first, last, live, x, y, z, time,
+                      rates, packet_extent(o[0], d[0], tm), packet_extent(o[1], d[1], tm),
+                      packet_extent(o[2], d[2], tm), &f, slope, at_m))
+        return f;
+    *slope = iav_entire_where(iav_point(0), (ia_maskv)-1);
+    *at_m = f = packet_F_nodes(tape, segment_groups, live, level, i, x, y, z, time);
+    return f;
+#else
+    (void)segment_groups, (void)live, (void)level, (void)i, (void)at_m;
+    return iacsg_Fdv(x, y, z, time, rates[0], rates[1], rates[2], slope);
+#endif
+}
+
 /* F over the boxes of the segments [t.lo, t.hi] of the rays, and for the lanes of `tangent` narrowed by the mean
  * value form F(m) + F'(t - m) (m the midpoint, F' = iacsg_Fdv's derivative along the ray over the box), where F'
  * is bounded: the same theorem as a Newton step's (above), so the true range of F over the segment lies in both,
@@ -284,16 +318,17 @@ IA_FN void packet_advance_some(ia_maskv *searching, ia_maskv moving, ia_maskv do
  * the surface (up to ~2200 evaluations a ray at eps 1e-5). An empty intersection is a proof of no root. Counts
  * the point evaluation; the caller counts the box's. */
 IA_FN iav packet_mean_value(PACKET_TAPE_PARAM const __global ulong *segment_groups, const ia_realv o[3],
-                            const ia_realv d[3], iav t, packet_int level, packet_index i, ia_maskv tangent, iav time,
-                            packet_index *evals) {
-    iav slope;
-    iav f = iacsg_Fdv(packet_extent(o[0], d[0], t), packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t), time,
-                      iav_make(d[0], d[0]), iav_make(d[1], d[1]), iav_make(d[2], d[2]), &slope);
+                            const ia_realv d[3], iav t, ia_maskv live, packet_int level, packet_index i,
+                            ia_maskv tangent, iav time, packet_index *evals) {
+    iav slope, fm;
+    iav f = packet_Fd(PACKET_TAPE_ARG segment_groups, o, d, t, live, level, i, time, &slope, &fm);
     ia_maskv use = tangent & isfinite(slope.lo) & isfinite(slope.hi); /* NaN is not finite: garbage lanes too */
     ia_realv m = t.lo * (ia_real)0.5 + t.hi * (ia_real)0.5;
     iav at_m = iav_make(m, m);
-    iav fm = packet_F(PACKET_TAPE_ARG packet_groups(segment_groups, use, level, i), packet_extent(o[0], d[0], at_m),
-                      packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
+#ifndef IACSG_TAPE
+    fm = packet_F(packet_groups(segment_groups, use, level, i), packet_extent(o[0], d[0], at_m),
+                  packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
+#endif
     PACKET_COUNT(*evals, use);
     /* lanes not using it multiply by 0: an infinite slope there would send every lane down iav_mul's slow path */
     iav form = iav_add(fm, iav_mul(iav__pick(iav_point(0), slope, use), iav_sub(t, at_m)));
@@ -315,6 +350,10 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
     ia_realv na = IAV_R(0), nb = IAV_R(0);
 #ifndef PACKET_NEWTON
     (void)footprint0, (void)footprint_t, (void)na, (void)nb, (void)bisect_only;
+#elif defined(IACSG_TAPE)
+    int newton_on = tape[TAPE_W_NEWTON]; /* (bisect_only, and so the mean value form, follow Newton's steps) */
+#else
+    int newton_on = 1;
 #endif
     while (iav_any(searching)) {
         ia_maskv bisecting = searching & ~newton;
@@ -336,7 +375,8 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
             ia_realv coarse = (ia_real)NEWTON_PIXELS * (footprint0 + a * footprint_t);
             ia_maskv tangent = live & bisect_only & (b - a <= coarse);
             if (iav_any(tangent))
-                f = packet_mean_value(PACKET_TAPE_ARG segment_groups, o, d, t, level, i, tangent, time, evals);
+                f = packet_mean_value(PACKET_TAPE_ARG segment_groups, o, d, t, live, level, i, tangent, time,
+                                      evals);
             else
 #endif
                 f = packet_F_nodes(PACKET_TAPE_ARG segment_groups, live, level, i, packet_extent(o[0], d[0], t),
@@ -345,8 +385,9 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
             ia_maskv zero = live & iav_contains_zero(f);
             ia_maskv leaf = zero & ((b - a <= eps) | (level == BISECT_MAX_LEVEL));
 #ifdef PACKET_NEWTON
-            ia_maskv refine =
-                zero & ~leaf & ~bisect_only & (b - a <= coarse) & (b - a >= (ia_real)NEWTON_MIN_LEAVES * eps);
+            ia_maskv refine = newton_on ? zero & ~leaf & ~bisect_only & (b - a <= coarse) &
+                                              (b - a >= (ia_real)NEWTON_MIN_LEAVES * eps)
+                                        : (ia_maskv)0;
             newton |= refine;
             na = select(na, a, refine);
             nb = select(nb, b, refine);
@@ -362,9 +403,8 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
 #ifdef PACKET_NEWTON
         ia_maskv stepping = searching & newton;
         if (newton_turn) {
-            iav t = iav_make(na, nb), slope;
-            iav f = iacsg_Fdv(packet_extent(o[0], d[0], t), packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t),
-                              time, iav_make(d[0], d[0]), iav_make(d[1], d[1]), iav_make(d[2], d[2]), &slope);
+            iav t = iav_make(na, nb), slope, fm;
+            iav f = packet_Fd(PACKET_TAPE_ARG segment_groups, o, d, t, stepping, level, i, time, &slope, &fm);
             PACKET_COUNT(*evals, stepping);
             ia_maskv zero = stepping & iav_contains_zero(f);
             ia_maskv leaf = zero & (nb - na <= eps);
@@ -375,9 +415,10 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
             if (iav_any(step)) {
                 ia_realv m = na * (ia_real)0.5 + nb * (ia_real)0.5;
                 iav at_m = iav_make(m, m);
-                iav fm = packet_F_live(PACKET_TAPE_ARG packet_groups(segment_groups, step, level, i), step,
-                                       packet_extent(o[0], d[0], at_m),
-                                  packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
+#ifndef IACSG_TAPE /* a tape's came with f, over the same parts */
+                fm = packet_F_live(packet_groups(segment_groups, step, level, i), step, packet_extent(o[0], d[0], at_m),
+                                   packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
+#endif
                 PACKET_COUNT(*evals, step);
                 /* lanes not stepping divide by 1: a pole there would send every lane down iav_div's slow path */
                 iav n = iav_sub(at_m, iav_div(fm, iav__pick(iav_point(1), slope, step)));

@@ -17,8 +17,12 @@
  * segments their nodes overlap, merged, and fall back to the groups where a list overflowed (tape.h:
  * TAPE_TILE_RECORD). Never-miss as above: a part left out is > 0 or not the min wherever the rays look.
  *
+ * Newton (tape_part_dt, tape_lists_dt): on a tape whose parts are all defined everywhere (TAPE_W_NEWTON), the
+ * walk's interval Newton and mean value form (packet.h) take the union's derivative along the rays over one set
+ * of parts, the lists' with skipping, and its value at the midpoints over the same set.
+ *
  * Private memory: TAPE_SLOTS intervals over lanes and two flags each (tape.h: 8 KiB in float, 16 KiB in
- * double); the tile pass's lists, 16-bit indices and a lower bound each over the lanes (1.5 KiB in float, 2.4
+ * double), and with the derivative TAPE_SLOTS intervals more (4 KiB, 8 KiB); the tile pass's lists, 16-bit indices and a lower bound each over the lanes (1.5 KiB in float, 2.4
  * KiB in double); no recursion. */
 #ifndef KERNELS_TAPE_EVAL_H
 #define KERNELS_TAPE_EVAL_H
@@ -31,17 +35,25 @@ IA_FN const __global ia_real *tape_reals(tape_ptr tape) {
 }
 
 /* Part p of the tape over the lanes' boxes, read as the union reads it (through iav_or_outside where it may
- * be undefined). */
-IA_FN iav tape_part(tape_ptr tape, uint p, iav x, iav y, iav z, iav t) {
+ * be undefined); with `slope` (NULL or not at each call, so the compiler keeps a copy of each), also the
+ * enclosure of its derivative along the rays over those boxes in *slope, the boxes moving at the rates d[0..2]
+ * (t not; constants do not move): the `tderiv` column (tape_apply_dt) as the compiled iacsg_Fdv computes it,
+ * only for parts with no instruction that may be undefined (TAPE_W_NEWTON: their flags are not looked at). */
+IAV_INLINE iav tape_part_body(tape_ptr tape, uint p, iav x, iav y, iav z, iav t, const iav *d, iav *slope) {
     const __global uint *part = tape + tape[TAPE_W_PART_TABLE] + TAPE_PART_WORDS * p;
     const __global uint *code = tape + tape[TAPE_W_CODE] + TAPE_INSTR_WORDS * part[0];
     const __global ia_real *reals = tape_reals(tape);
-    iav v[TAPE_SLOTS];
+    iav v[TAPE_SLOTS], dv[TAPE_SLOTS], still = iav_point(0);
     ia_maskv u[TAPE_SLOTS], e[TAPE_SLOTS];
     v[0] = x;
     v[1] = y;
     v[2] = z;
     v[3] = t;
+    if (slope) {
+        for (int k = 0; k < 3; k++)
+            dv[k] = d[k];
+        dv[3] = still;
+    }
     for (int k = 0; k < 4; k++)
         u[k] = e[k] = (ia_maskv)0;
     int flagged = part[2] >> 17; /* any instruction may be undefined: else no flag is read or written */
@@ -69,6 +81,18 @@ IA_FN iav tape_part(tape_ptr tape, uint p, iav x, iav y, iav z, iav t) {
                 }
             }
         }
+        iav D = still;
+        if (slope && op != TAPE_OP_CONST) /* a unary operation's DB (slot 0's) is not read */
+            D = tape_apply_dt(op, A, B, (int)code[2], reals[code[3]], R, (flags & TAPE_A_REAL) ? still : dv[a],
+                              (flags & TAPE_B_REAL) ? still : dv[b]);
+        if (flags & TAPE_THEN_SQR) {
+            iav S = tape_apply(TAPE_OP_SQR, R, R, 0, 0);
+            if (slope)
+                D = tape_apply_dt(TAPE_OP_SQR, R, R, 0, 0, S, D, D);
+            R = S;
+        }
+        if (slope)
+            dv[dst] = D;
         v[dst] = R;
         if (flagged) {
             u[dst] = ru;
@@ -76,7 +100,18 @@ IA_FN iav tape_part(tape_ptr tape, uint p, iav x, iav y, iav z, iav t) {
         }
     }
     uint result = part[2] & 0xffff;
+    if (slope)
+        *slope = dv[result];
     return (part[2] >> 16 & 1) ? iav_or_outside(v[result], u[result], e[result]) : v[result];
+}
+
+IA_FN iav tape_part(tape_ptr tape, uint p, iav x, iav y, iav z, iav t) {
+    return tape_part_body(tape, p, x, y, z, t, 0, 0);
+}
+
+/* tape_part and its derivative along the rays d (tape_part_body). */
+IA_FN iav tape_part_dt(tape_ptr tape, uint p, iav x, iav y, iav z, iav t, const iav d[3], iav *slope) {
+    return tape_part_body(tape, p, x, y, z, t, d, slope);
 }
 
 /* The hull of the boxes of the lanes of `live`: x0, y0, z0, x1, y1, z1 (NaN where none, which meets nothing). */
@@ -188,38 +223,85 @@ IA_FN void tape_tile_parts(tape_ptr tape, ulong among, iav x, iav y, iav z, iav 
     }
 }
 
-/* The union of the parts of the tile's lists for segments first..last of the frame's tree (`records`: the
- * tile's first, tape_tile_parts), each part once (the lists are in increasing order: merged); with `skip`, those
- * whose box meets none of the boxes of the lanes of `live` left out as in tape_group (lane by lane only: a list
- * is short, and the lanes' hull costs more than the tests it would spare). Returns 0 when a list is full (the
- * caller takes the groups instead), else 1 with the union in *r. */
-IA_FN int tape_lists(tape_ptr tape, const __global ushort *records, int first, int last, int skip, ia_maskv live,
-                     iav x, iav y, iav z, iav t, iav *r) {
+/* The parts of the tile's lists for segments first..last of the frame's tree (`records`: the tile's first,
+ * tape_tile_parts), each once: the lists are in increasing order, merged. */
+typedef struct {
+    const __global ushort *records;
+    int first, last;
     uint at[TAPE_MAX_SEGMENTS]; /* each list's next entry */
+} tape_merge;
+
+/* 0 when a list is full (the caller takes the groups instead). */
+IA_FN int tape_merge_open(tape_merge *m, const __global ushort *records, int first, int last) {
+    m->records = records;
+    m->first = first;
+    m->last = last;
     for (int s = first; s <= last; s++) {
         if (records[TAPE_TILE_RECORD * s] == TAPE_LIST_FULL)
             return 0;
-        at[s] = 1;
+        m->at[s] = 1;
     }
+    return 1;
+}
+
+/* The next part, TAPE_LIST_FULL after the last. */
+IA_FN uint tape_merge_next(tape_merge *m) {
+    uint p = TAPE_LIST_FULL; /* the least next entry of the lists, above every index */
+    for (int s = m->first; s <= m->last; s++) {
+        const __global ushort *list = m->records + TAPE_TILE_RECORD * s;
+        if (m->at[s] <= list[0])
+            p = min(p, (uint)list[m->at[s]]);
+    }
+    for (int s = m->first; s <= m->last; s++) {
+        const __global ushort *list = m->records + TAPE_TILE_RECORD * s;
+        m->at[s] += m->at[s] <= list[0] && list[m->at[s]] == p;
+    }
+    return p;
+}
+
+/* The union of the parts of the tile's lists for segments first..last (tape_merge); with `skip`, those whose box
+ * meets none of the boxes of the lanes of `live` left out as in tape_group (lane by lane only: a list is short,
+ * and the lanes' hull costs more than the tests it would spare). Returns 0 when a list is full (the caller
+ * takes the groups instead), else 1 with the union in *r. */
+IA_FN int tape_lists(tape_ptr tape, const __global ushort *records, int first, int last, int skip, ia_maskv live,
+                     iav x, iav y, iav z, iav t, iav *r) {
+    tape_merge m;
+    if (!tape_merge_open(&m, records, first, last))
+        return 0;
     const __global ia_real *reals = tape_reals(tape);
     const __global uint *parts = tape + tape[TAPE_W_PART_TABLE];
     *r = iav_point(IA_INF);
-    while (1) {
-        uint p = TAPE_LIST_FULL; /* the least next entry of the lists, above every index */
-        for (int s = first; s <= last; s++) {
-            const __global ushort *list = records + TAPE_TILE_RECORD * s;
-            if (at[s] <= list[0])
-                p = min(p, (uint)list[at[s]]);
-        }
-        if (p == TAPE_LIST_FULL)
-            return 1;
-        for (int s = first; s <= last; s++) {
-            const __global ushort *list = records + TAPE_TILE_RECORD * s;
-            at[s] += at[s] <= list[0] && list[at[s]] == p;
-        }
+    for (uint p; (p = tape_merge_next(&m)) != TAPE_LIST_FULL;)
         if (!skip || tape_box_meets_lanes(reals + parts[TAPE_PART_WORDS * p + 3], live, x, y, z))
             *r = iav_min(*r, tape_part(tape, p, x, y, z, t));
+    return 1;
+}
+
+/* For interval Newton and the mean value form (kernels/packet.h), on a tape with TAPE_W_NEWTON: tape_lists with
+ * skipping over the boxes (x, y, z, t), and over the same parts the enclosure of the union's derivative along the
+ * rays d over those boxes (*slope: Clarke's generalized one at the min's kinks, iav_dmin) and the union at the
+ * points (xm, ym, zm) of those boxes (*at_m). One set of parts for the three, so that they are one function's,
+ * which the mean value theorem needs: a min of parts, each continuous with its derivative in tape_part_dt's
+ * enclosure. That function has the union's roots on the boxes: a part left out is > 0 or not the min there. */
+IA_FN int tape_lists_dt(tape_ptr tape, const __global ushort *records, int first, int last, ia_maskv live, iav x,
+                        iav y, iav z, iav t, const iav d[3], iav xm, iav ym, iav zm, iav *r, iav *slope,
+                        iav *at_m) {
+    tape_merge m;
+    if (!tape_merge_open(&m, records, first, last))
+        return 0;
+    const __global ia_real *reals = tape_reals(tape);
+    const __global uint *parts = tape + tape[TAPE_W_PART_TABLE];
+    *r = *at_m = iav_point(IA_INF);
+    *slope = iav_point(0); /* the identity's: read by iav_dmin only where a part may be +inf */
+    for (uint p; (p = tape_merge_next(&m)) != TAPE_LIST_FULL;) {
+        if (!tape_box_meets_lanes(reals + parts[TAPE_PART_WORDS * p + 3], live, x, y, z))
+            continue;
+        iav dp, v = tape_part_dt(tape, p, x, y, z, t, d, &dp);
+        *slope = iav_dmin(*r, v, *slope, dp);
+        *r = iav_min(*r, v);
+        *at_m = iav_min(*at_m, tape_part(tape, p, xm, ym, zm, t));
     }
+    return 1;
 }
 
 #endif

@@ -33,8 +33,9 @@ static iacsg_status create_interpreted(const iacsg_expr *e, const iacsg_render_c
         r->tape = clCreateBuffer(r->rt.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                                  tape.count * sizeof(unsigned), tape.words, &rc);
         snprintf(r->program_note, sizeof r->program_note,
-                 "interpreted (tape: %d parts in %d groups, %d instructions, %d registers, %d parts boxed)",
-                 tape.parts, tape.groups, tape.instructions, tape.max_slots, tape.bounded_parts);
+                 "interpreted (tape: %d parts in %d groups, %d instructions, %d registers, %d parts boxed%s)",
+                 tape.parts, tape.groups, tape.instructions, tape.max_slots, tape.bounded_parts,
+                 tape.newton ? ", Newton" : "");
         if (rc != CL_SUCCESS) {
             st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "the tape's buffer (%zu bytes): OpenCL error %d",
                                  tape.count * sizeof(unsigned), (int)rc);
