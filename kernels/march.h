@@ -110,8 +110,9 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         *hit_lo = select(*hit_lo, a, leaf);
         *hit_hi = select(*hit_hi, b, leaf);
         hit |= leaf;
-        /* what follows for the lanes whose step failed is skipped where every lane's held (most packet steps of
-         * the rays that leave the scene): the values of the lanes that go on are the same */
+        /* the failed lanes' part and shorter step (and above, their crossing and monotone tests) are worked out
+         * only where some lane's step failed: most packet steps of the rays that leave the scene hold in every
+         * lane (one bounce's effects_march, CPU samples: 680 -> 529; shadows 540 -> 418) */
         ia_maskv failed = going & ~whole, part = (ia_maskv)0;
         ia_realv r = IAV_R(0), c = a;
         if (iav_any(failed)) { /* the part [a, c] the form excludes 0 from: F(a) + F' x is off 0 for x < F(a) / |F'| */
