@@ -1,9 +1,11 @@
 /* tests/t_render_effects_fp.c -- the ray-tracing effects (src/render_effects.c) against exact geometry, in float
- * and double: every pixel's shadow state, a mirror's reflected silhouette, a transparent layer's composite, and
- * -aa's edges and interiors. The scenes are spheres and planes, whose hits, shadows and reflections are solved
- * exactly on the host for the device's own float rays (t_render_util.h). */
+ * and double: every pixel's shadow state, a mirror's reflected silhouette, a transparent layer's composite,
+ * -aa's edges and interiors, and secondary rays traced alone against in a packet. The scenes are spheres and
+ * planes, whose hits, shadows and reflections are solved exactly on the host for the device's own float rays
+ * (t_render_util.h). */
 #include "t_render_util.h"
 #include "iacsg.h"
+#include "render_effects_trace.h" /* fx_trace: secondary rays traced alone or in packets */
 
 #ifdef IA_FP64
 #define FP64 1
@@ -264,6 +266,71 @@ TEST_FP(effects_shadow_boundary_regions) {
 TEST_FP(effects_shadow_boundary_disjoint) {
     check_scene_shadows("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
                         "region b = ball : m\nregion g = z \\ ball : m\n");
+}
+
+/* A secondary ray's march (kernels/march.h: effects_march, which skips the failed steps' work in packet steps
+ * where every lane's step held) does not depend on the rays beside it in its packet: 16 rays off the ball of the
+ * disjoint regions above, half up and away (their steps hold), half down to the ground or grazing the ball (their
+ * steps fail, shrink or cross the ground), traced in one packet and each alone, give the same hits and as many
+ * evaluations. Skipping either part of that work where only some lanes held fails it. */
+TEST_FP(effects_march_lanes_alone) {
+    iacsg_error err = {0};
+    iacsg_scene *s = NULL;
+    CHECK(iacsg_scene_parse("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                            "region b = ball : m\nregion g = z \\ ball : m\n",
+                            "<test>", &s, &err) == IACSG_OK,
+          "%s", err.message);
+    iacsg_render_config config = {.fp64 = FP64, .stats = 1};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_scene(s, &config, &r, &err);
+    iacsg_scene_destroy(s);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    iacsg_view view = ground_view(32);
+    iacsg_frame fr = {0};
+    st = iacsg_render(r, &view, &fr, &err); /* the frame's scene data, which the trace kernel reads */
+    fx_tracer t;
+    if (st == IACSG_OK)
+        st = fx_tracer_open(&t, r, &view, &err);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    fx_ray rays[16];
+    for (int k = 0; k < 16; k++) { /* from 1e-3 off the ball, around it (every 2 pi / 16) */
+        double a = 0.39269908169872414 * k, u[3] = {cos(a) * 0.8, sin(a) * 0.8, k % 2 ? 0.6 : -0.6};
+        double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        /* up and away; steeply down to the ground or along the ball; or down a long way (its first step holds,
+         * the next crosses the ground while the rays going up hold theirs) */
+        double up = k % 2 ? 1 : k % 4 ? -0.2 : -0.9;
+        double d[3] = {u[0] / len + 0.3 * (k % 3), u[1] / len, up};
+        double dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int c = 0; c < 3; c++) {
+            rays[k].o[c] = (c == 2 ? 0.6 : 0) + 0.501 * u[c] / len;
+            rays[k].d[c] = d[c] / dl;
+        }
+        rays[k].tn = 0;
+        rays[k].tf = 100;
+        rays[k].passing = 0;
+    }
+    fx_hit together[16], alone, alone_differ = {0};
+    st = fx_trace(&t, rays, 16, view.eps, 0, together, &err);
+    double packet_evals = t.evals, lone_evals = 0;
+    int hits = 0, differ = -1;
+    for (int k = 0; k < 16 && st == IACSG_OK; k++) {
+        double before = t.evals;
+        st = fx_trace(&t, &rays[k], 1, view.eps, 0, &alone, &err);
+        lone_evals += t.evals - before;
+        hits += together[k].item >= 0;
+        if (differ < 0 && (alone.t != together[k].t || alone.item != together[k].item)) {
+            differ = k;
+            alone_differ = alone;
+        }
+    }
+    fx_tracer_close(&t);
+    iacsg_frame_free(&fr);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    CHECK(differ < 0, "ray %d: alone t %.17g item %d, in the packet t %.17g item %d", differ, alone_differ.t,
+          alone_differ.item, together[differ < 0 ? 0 : differ].t, together[differ < 0 ? 0 : differ].item);
+    CHECK(hits >= 4 && hits <= 12, "%d of the 16 rays hit: not a mixed packet", hits);
+    CHECK(lone_evals == packet_evals, "evaluations: %.0f alone, %.0f in one packet", lone_evals, packet_evals);
 }
 
 /* The same with the ground's function z (2 + cos x), the same solid and normals, whose cosine leaves the union
