@@ -192,6 +192,24 @@ IA_FN int prim_segments_frame(int type, const ia_real *p, const ia_interval a[3]
                                  r1.lo > 0 ? 1 : r1.hi < 0 ? -1 : 0, ta, width);
 }
 
+/* The changes over [ta, tend] of a convex solid whose pieces left the span s (no NaN): OUT all along where it
+ * holds nothing of the range. Always 1 (one evaluation). */
+IA_FN int prim_segments_convex(const prim_segments_span *s, ia_real ta, ia_real tend, ia_real e[4],
+                               kernel_u32 *evals) {
+    ia_real plo = fmax(s->plo, ta), phi = fmin(s->phi, tend);
+    *evals += 1;
+    if (!(plo < phi)) { /* out all along */
+        e[0] = e[1] = e[2] = e[3] = ta;
+        return 1;
+    }
+    ia_real ilo = fmax(s->ilo, plo), ihi = fmin(s->ihi, phi);
+    e[0] = plo;
+    e[1] = ilo < ihi ? ilo : phi;
+    e[2] = ilo < ihi ? ihi : phi;
+    e[3] = phi;
+    return 1;
+}
+
 /* ---- the quartics: a torus and a general tgc. Along the ray each is a polynomial of degree 4 in u = t - ta,
  * q(u) = sum c_k u^k, with intervals c_k holding the exact coefficients, negative inside. The solver walks the
  * nodes of [lo, hi] (traverse.h's tree) in ray order: over a node q's Taylor form at its midpoint decides IN or OUT;
@@ -489,28 +507,21 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
     }
     if (s.nan || bound.nan)
         return 0;
+    if (!quartic)
+        return prim_segments_convex(&s, ta, tend, e, evals);
     ia_real plo = fmax(fmax(s.plo, bound.plo), ta), phi = fmin(fmin(s.phi, bound.phi), tend);
     if (!(plo < phi)) { /* out all along */
         *evals += 1;
         e[0] = e[1] = e[2] = e[3] = ta;
         return 1;
     }
-    if (quartic) {
-        prim_quartet q = {{phi, phi, phi, phi}, 0, phi, s.ilo, s.ihi};
-        if (!prim_quartic_solve(&q, type, p, p, 0, o, d, b, plo, phi, eps, evals))
-            return 0;
-        for (int k = 0; k < 4; k++)
-            e[k] = q.e[k];
-        *resume = q.resume;
-        return q.stage == 5 ? 2 : 1;
-    }
-    *evals += 1;
-    ia_real ilo = fmax(s.ilo, plo), ihi = fmin(s.ihi, phi);
-    e[0] = plo;
-    e[1] = ilo < ihi ? ilo : phi;
-    e[2] = ilo < ihi ? ihi : phi;
-    e[3] = phi;
-    return 1;
+    prim_quartet q = {{phi, phi, phi, phi}, 0, phi, s.ilo, s.ihi};
+    if (!prim_quartic_solve(&q, type, p, p, 0, o, d, b, plo, phi, eps, evals))
+        return 0;
+    for (int k = 0; k < 4; k++)
+        e[k] = q.e[k];
+    *resume = q.resume;
+    return q.stage == 5 ? 2 : 1;
 }
 
 /* Whether no ray o + t d with o and d in the boxes `o` and `d` (a packet's beam, bvh.h) meets the solid for t in
