@@ -3,9 +3,10 @@
  * direction and so each plane's n.d, prim_segments.h's direction terms).
  *
  *   segments_lanes_start(l, o): at a packet, its rays' origins (lane k: ray k) and an empty table;
- *   segments_lanes_fill(l, k, type, p, dir): solid k's span (prim_segments_span) along every lane's ray, into the
- *     table's slot of k: each plane's c = n.o - d in lanes, its root -c / n.d and the span's bounds (0 where a plane
- *     may be parallel to the rays: its piece then depends on each ray's range, and the scalar code solves it);
+ *   segments_lanes_fill(l, k, type, p, d, dir, known): solid k's span (prim_segments_span) along every lane's ray,
+ *     into the table's slot of k: each plane's c = n.o - d in lanes, its root -c / n.d and the span's bounds (0
+ *     where a plane may be parallel to the rays: its piece then depends on each ray's range, and the scalar code
+ *     solves it);
  *   segments_lanes_changes(l, k, ta, tend, e, evals): lane l->lane's changes over [ta, tend] from the table, as
  *     prim_segments gives them (prim_segments_convex), or 0 where a bound was NaN (the walk bisects).
  *
@@ -15,8 +16,8 @@
  *
  * Bit for bit the scalar code's: each lane runs prim_segments_plane's operations on its ray in the same order
  * (ia_mul_r, ia_add, ia_sub, ia_div_one_signed, then fmax and fmin, which are exact and commute), with ia/vec.h's
- * widening, which is ia/round.h's; so images, depths and counts are the scalar path's (tests/t_render_scene_fp.c
- * renders with and without it).
+ * widening, which is ia/round.h's; so images, depths and counts are the scalar path's (tests/t_brlcad_lanes.c
+ * renders with and without the lanes: IACSG_SEGMENTS_LANES=0 builds the program without them).
  */
 #ifndef KERNELS_SEGMENTS_LANES_H
 #define KERNELS_SEGMENTS_LANES_H
