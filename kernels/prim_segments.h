@@ -192,6 +192,24 @@ IA_FN int prim_segments_frame(int type, const ia_real *p, const ia_interval a[3]
                                  r1.lo > 0 ? 1 : r1.hi < 0 ? -1 : 0, ta, width);
 }
 
+/* The changes over [ta, tend] of a convex solid whose pieces left the span s (no NaN): OUT all along where it
+ * holds nothing of the range. Always 1 (one evaluation). */
+IA_FN int prim_segments_convex(const prim_segments_span *s, ia_real ta, ia_real tend, ia_real e[4],
+                               kernel_u32 *evals) {
+    ia_real plo = fmax(s->plo, ta), phi = fmin(s->phi, tend);
+    *evals += 1;
+    if (!(plo < phi)) { /* out all along */
+        e[0] = e[1] = e[2] = e[3] = ta;
+        return 1;
+    }
+    ia_real ilo = fmax(s->ilo, plo), ihi = fmin(s->ihi, phi);
+    e[0] = plo;
+    e[1] = ilo < ihi ? ilo : phi;
+    e[2] = ilo < ihi ? ihi : phi;
+    e[3] = phi;
+    return 1;
+}
+
 /* ---- the quartics: a torus and a general tgc. Along the ray each is a polynomial of degree 4 in u = t - ta,
  * q(u) = sum c_k u^k, with intervals c_k holding the exact coefficients, negative inside. The solver walks the
  * nodes of [lo, hi] (traverse.h's tree) in ray order: over a node q's Taylor form at its midpoint decides IN or OUT;
@@ -283,15 +301,73 @@ IA_FN ia_interval prim_quartic_taylor(const ia_interval d[5], ia_interval h, ia_
     return ia_add(ia_add(d[0], ia_mul(h2, ia_add(d[2], ia_mul(h2, d[4])))), ia_mul(h, ia_add(d[1], ia_mul(h2, d[3]))));
 }
 
-/* A node [tlo, thi] (u range [r0, r1]) over which q' is dq, excluding 0: Newton narrows the root, each step with
- * q' over the narrowed range where that excludes 0, and the node goes to the quartet as the part before the root,
- * the root's BOUNDARY and the part after it. */
+/* The root of q in the u range [r0, r1] over which q' excludes 0 (rising: q' > 0), bracketed around a float
+ * Newton's estimate x (the coefficients' midpoints, no rounding control): where q's enclosures at the two points
+ * x -+ h have opposite strict signs in q's direction, the exact q has a root between them (it is continuous), the
+ * node's only one (it is monotone there), and the exact q has the sign before the root on the node's part before
+ * the first point, the other after the second. h starts at 2 ulps of t (ta: where u is 0), or where q's
+ * enclosure's width at x over q's float slope there says q's sign shows, and doubles per try. 1 with the bracket in [*a, *b]; 2 with *a = *b = r0 where q has its sign after the root at r0 (so all over
+ * the node: no root in it), or = r1 where it has its sign before at r1; 0 where nothing is proven (coefficients
+ * too loose there), and interval Newton narrows it. Two point evaluations a try, where a Newton step is a Taylor form's
+ * shift and enclosure: truck's tori (11) were a fifth of its render. */
+#define PRIM_QUARTIC_FLOAT_STEPS 8
+#define PRIM_QUARTIC_BRACKET_TRIES 3
+IA_FN int prim_quartic_bracket(const ia_interval c[5], ia_interval dq, ia_real ta, ia_real r0, ia_real r1, ia_real *a,
+                               ia_real *b, kernel_u32 *evals) {
+    int rising = dq.lo > 0;
+    ia_real m[5], x = r0 * (ia_real)0.5 + r1 * (ia_real)0.5, df = 0;
+    for (int k = 0; k < 5; k++)
+        m[k] = c[k].lo * (ia_real)0.5 + c[k].hi * (ia_real)0.5;
+    for (int it = 0; it < PRIM_QUARTIC_FLOAT_STEPS; it++) {
+        ia_real f = m[4];
+        df = 0;
+        for (int j = 3; j >= 0; j--) {
+            df = df * x + f;
+            f = f * x + m[j];
+        }
+        ia_real step = f / df;
+        if (!isfinite(step))
+            break;
+        x = fmin(fmax(x - step, r0), r1);
+        if (fabs(step) <= (fabs(ta) + fabs(x)) * IA_REAL_EPS)
+            break;
+    }
+    if (x == r0 || x == r1) { /* the root not in the node: all after it where q has that sign at r0, ... */
+        ia_interval end = prim_quartic_at(c, x);
+        int after = rising ? end.lo > 0 : end.hi < 0, before = rising ? end.hi < 0 : end.lo > 0;
+        *evals += 1;
+        if (x == r0 ? after : before) {
+            *a = *b = x;
+            return 2;
+        }
+    }
+    ia_interval at = prim_quartic_at(c, x); /* |q| exceeds its enclosure's width about that far from the root */
+    ia_real h = fmax((fabs(ta) + fabs(x)) * 2 * IA_REAL_EPS, (ia_real)0.625 * (at.hi - at.lo) / fabs(df));
+    *evals += 1;
+    if (!(h * 4 < r1 - r0)) /* no narrower than the node: the coefficients are too loose here */
+        return 0;
+    for (int tries = 0; tries < PRIM_QUARTIC_BRACKET_TRIES; tries++, h *= 2) {
+        ia_real lo = fmax(x - h, r0), hi = fmin(x + h, r1);
+        ia_interval before = prim_quartic_at(c, lo), after = prim_quartic_at(c, hi);
+        *evals += 1;
+        if (rising ? before.hi < 0 && after.lo > 0 : before.lo > 0 && after.hi < 0) {
+            *a = lo;
+            *b = hi;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* A node [tlo, thi] (u range [r0, r1]) over which q' is dq, excluding 0: the root bracketed (prim_quartic_bracket)
+ * or, where that fails, narrowed by Newton, each step with q' over the narrowed range where that excludes 0; the
+ * node goes to the quartet as the part before the root, the root's BOUNDARY and the part after it. */
 IA_FN void prim_quartic_newton(prim_quartet *q, const ia_interval c[5], ia_interval dq, ia_real ta, ia_real tlo,
                                ia_real thi, ia_real r0, ia_real r1, kernel_u32 *evals) {
     int before = dq.lo > 0 ? SCENE_IN : SCENE_OUT;
     ia_real u0 = r0, u1 = r1;
-    int none = 0;
-    for (int it = 0; it < PRIM_QUARTIC_NEWTON; it++) {
+    int bracketed = prim_quartic_bracket(c, dq, ta, r0, r1, &r0, &r1, evals), none = bracketed == 2;
+    for (int it = 0; it < PRIM_QUARTIC_NEWTON && !bracketed; it++) {
         ia_real m = r0 * (ia_real)0.5 + r1 * (ia_real)0.5;
         ia_interval d[5], slope;
         prim_quartic_shift(c, m, d);
@@ -489,28 +565,21 @@ IA_FN int prim_segments(int type, const ia_real *p, const ia_real o[3], const ia
     }
     if (s.nan || bound.nan)
         return 0;
+    if (!quartic)
+        return prim_segments_convex(&s, ta, tend, e, evals);
     ia_real plo = fmax(fmax(s.plo, bound.plo), ta), phi = fmin(fmin(s.phi, bound.phi), tend);
     if (!(plo < phi)) { /* out all along */
         *evals += 1;
         e[0] = e[1] = e[2] = e[3] = ta;
         return 1;
     }
-    if (quartic) {
-        prim_quartet q = {{phi, phi, phi, phi}, 0, phi, s.ilo, s.ihi};
-        if (!prim_quartic_solve(&q, type, p, p, 0, o, d, b, plo, phi, eps, evals))
-            return 0;
-        for (int k = 0; k < 4; k++)
-            e[k] = q.e[k];
-        *resume = q.resume;
-        return q.stage == 5 ? 2 : 1;
-    }
-    *evals += 1;
-    ia_real ilo = fmax(s.ilo, plo), ihi = fmin(s.ihi, phi);
-    e[0] = plo;
-    e[1] = ilo < ihi ? ilo : phi;
-    e[2] = ilo < ihi ? ihi : phi;
-    e[3] = phi;
-    return 1;
+    prim_quartet q = {{phi, phi, phi, phi}, 0, phi, s.ilo, s.ihi};
+    if (!prim_quartic_solve(&q, type, p, p, 0, o, d, b, plo, phi, eps, evals))
+        return 0;
+    for (int k = 0; k < 4; k++)
+        e[k] = q.e[k];
+    *resume = q.resume;
+    return q.stage == 5 ? 2 : 1;
 }
 
 /* Whether no ray o + t d with o and d in the boxes `o` and `d` (a packet's beam, bvh.h) meets the solid for t in

@@ -64,8 +64,9 @@ typedef struct {
 /* The rays of the packet of pixels from (i0, j0) (camera_ray), their directions' reciprocals (ik, for the BVH),
  * and where they meet the bounds (meets[k] 1, over [tn[k], tf[k]]: camera_clip); a pixel outside the image or the
  * band's rows meets nothing. In SIMD lanes (packet_camera.h, bit for bit the scalar functions' results) where the
- * program has them, else one by one. */
-static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, int i0, int j0,
+ * program has them, else one by one. Returns whether any ray meets the bounds (from the lanes' mask: meets[]
+ * read back as a vector right after its stores in parts was a store-forwarding stall, 2 % of truck's render). */
+static int scene_packet_rays(__constant ia_real *params, const scene_frame *f, int i0, int j0,
                               ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real ik[3][PACKET_LANES],
                               ia_real tn[PACKET_LANES], ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES]) {
     int ortho = f->flags & RENDER_ORTHO, width = f->width, height = f->height;
@@ -83,7 +84,9 @@ static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, 
     IAV_STORE(t_near, tn);
     IAV_STORE(t_far, tf);
     IAV_STORE(select(IAV_R(0), IAV_R(1), in), meets);
+    return iav_any(in);
 #else
+    int any = 0;
     for (int k = 0; k < PACKET_LANES; k++) {
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
         ia_real o[3], d[3];
@@ -94,7 +97,9 @@ static void scene_packet_rays(__constant ia_real *params, const scene_frame *f, 
             dk[c][k] = d[c];
             ik[c][k] = (ia_real)1 / d[c];
         }
+        any |= meets[k] != 0;
     }
+    return any;
 #endif
 }
 
@@ -209,11 +214,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         scene_block(params, f->flags, i0, j0, width, height, f->items, f->nodes, time, starts, view);
     ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
     ia_real meets[PACKET_LANES];
-    scene_packet_rays(params, f, i0, j0, ok, dk, ik, tn, tf, meets);
-    int any = 0;
-    for (int k = 0; k < PACKET_LANES; k++)
-        any |= meets[k] != 0;
-    if (!any) {
+    if (!scene_packet_rays(params, f, i0, j0, ok, dk, ik, tn, tf, meets)) {
         scene_packet_empty(params, f, i0, j0, only, block_evals);
         return;
     }
@@ -237,6 +238,10 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     for (int k = 0; k < PACKET_LANES; k++)
         if (i0 + k % PACKET_W < width && j0 + k / PACKET_W < f->row_end && meets[k] != 0)
             bvh_beam_add_lane(&beam, ok, dk, ik, k, tn[k], tf[k]);
+#ifdef SEGMENTS_LANES
+    if (ray->walks.lanes)
+        segments_lanes_start(ray->walks.lanes, ok);
+#endif
     view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
     view->cut = view->ncut >= 0 ? cut : 0;
     scene_beam_drop_out(&beam, view, cut);
@@ -255,6 +260,10 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         rows[k] = (float)min(j, height - 1);
         weave_hit hit = {0, -1, -1, -1};
         ray->evals = ray->segments = ray->partitions = 0;
+#ifdef SEGMENTS_LANES
+        if (ray->walks.lanes)
+            ray->walks.lanes->lane = k;
+#endif
         ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
         bvh_ray br = bvh_ray_lane(dk, ik, k);
         int found = 0, claimed = 0; /* claimed: at the union's leaf (scene_union_claim), or overflowing */
@@ -327,6 +336,15 @@ static void scene_tiles(__constant ia_real *params, const scene_frame *f, int tx
 #endif
 }
 
+/* A work-item's table of its packet's planar solids solved in lanes (segments_lanes.h), where the program has them. */
+#ifdef SEGMENTS_LANES
+#define SCENE_LANES_DECLARE(name) segments_lanes name
+#define SCENE_LANES_OF(name) (&(name))
+#else
+#define SCENE_LANES_DECLARE(name) (void)0
+#define SCENE_LANES_OF(name) 0
+#endif
+
 /* A work-item's ray state over its slice `slot` of the per-ray buffers; dirs: where an orthographic view's rays,
  * which share their direction, keep the primitives' work on it. */
 static scene_ray scene_slot_ray(__global const uint *nodes, __global const int *items,
@@ -334,7 +352,7 @@ static scene_ray scene_slot_ray(__global const uint *nodes, __global const int *
                                 __global int *cand_solid, __global ia_real *cand_range, __global ia_real *cand_pos,
                                 __global int *cand_level, __global bisect_index *cand_index, __global int *cand_newton,
                                 __global ia_real *cand_newton_t, int cand_cap, __global uchar *state, int nsolids,
-                                size_t slot, int flags, prim_dirs *dirs) {
+                                size_t slot, int flags, prim_dirs *dirs, segments_lanes *lanes) {
     size_t first = slot * (size_t)cand_cap;
     for (int k = 0; k < PRIM_DIRS_SLOTS; k++)
         dirs->solid[k] = -1;
@@ -344,7 +362,8 @@ static scene_ray scene_slot_ray(__global const uint *nodes, __global const int *
                      solid_items,
                      {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first,
                       cand_index + first, cand_newton + first, cand_newton_t + 2 * first,
-                      flags & RENDER_ORTHO ? dirs : 0},
+                      flags & RENDER_ORTHO ? dirs : 0,
+                      flags & RENDER_ORTHO ? lanes : 0},
                      cand_cap,
                      0,
                      0,
@@ -377,9 +396,10 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, 0};
     prim_dirs dirs; /* every ray of an orthographic view has the same direction */
+    SCENE_LANES_DECLARE(lanes);
     scene_ray ray = scene_slot_ray(nodes, items, solid_items_start, solid_items, cand_solid, cand_range, cand_pos,
                                    cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
-                                   flags, &dirs);
+                                   flags, &dirs, SCENE_LANES_OF(lanes));
     scene_frame f = {flags, width, height, row_end, items, nodes, albedo, rgb, depth, normal, ids,
                      overlap, counts, overflow, noverflow, -1};
     scene_tile tiles[PACKET_LANES];
@@ -436,9 +456,10 @@ __kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, 
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     scene_view view = {bvh_box, bvh_link, nbvh, surfaces, nsurfaces, params[PARAM_EPS], time, 0};
     prim_dirs dirs;
+    SCENE_LANES_DECLARE(lanes);
     scene_ray ray = scene_slot_ray(nodes, items, solid_items_start, solid_items, cand_solid, cand_range, cand_pos,
                                    cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
-                                   flags, &dirs);
+                                   flags, &dirs, SCENE_LANES_OF(lanes));
     scene_frame f = {flags, width, height, height, items, nodes, albedo, rgb, depth, normal, ids,
                      overlap, counts, overflow, noverflow, 0};
     int bx = block[SCENE_SAMPLES_BX] * SCENE_BLOCK, by = block[SCENE_SAMPLES_BY] * SCENE_BLOCK;

@@ -27,6 +27,7 @@
 #include "traverse.h"
 #include "scene_data.h"
 #include "prim_segments.h"
+#include "segments_lanes.h"
 #if !IA_DEVICE
 #include <string.h>
 #endif
@@ -44,6 +45,7 @@ typedef struct {
     KERNEL_GLOBAL int *newton;       /* -1, or level << 2 | state before the root (see segments_newton) */
     KERNEL_GLOBAL ia_real *newton_t; /* the interval N holding the roots of that node */
     prim_dirs *dirs; /* the solids' direction terms where every ray has the same direction (prim_segments.h), or 0 */
+    segments_lanes *lanes; /* with dirs, the packet's planar solids solved in lanes (segments_lanes.h), or 0 */
 } segments_walks;
 
 #define SEGMENTS_CLOSING (-1)
@@ -82,21 +84,9 @@ IA_FN ia_real segments_real_of(bisect_index b) {
 #define SEGMENTS_PARAM_REALS PRIM_SEGMENTS_REALS
 #endif
 
-/* Solves candidate c's solid in closed form over [ta, tend] where it has one, keeping the changes (and where it may
- * be in again after them, newton[c] = 1 and in index[c] the point to solve again from, to the end); 0 when it must
- * bisect. */
-IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real ta,
-                                ia_real tend, ia_real eps, kernel_u32 *evals) {
-    ia_real p[SEGMENTS_PARAM_REALS], e[4], resume = tend;
-    int k = w->solid[c], type = scene_solid_P(k, p, SEGMENTS_PARAM_REALS), slot = k % PRIM_DIRS_SLOTS;
-    int kept = w->dirs && (type == PRIM_HALF || type == PRIM_ARB8 || type == PRIM_ELL || type == PRIM_TGC ||
-                           type == PRIM_EHY || type == PRIM_TOR); /* the types with direction terms */
-    int known = kept && w->dirs->solid[slot] == k;
-    int r = type < 0 ? 0
-                     : prim_segments(type, p, o, d, ta, tend, eps, e, &resume, evals, kept ? w->dirs->v[slot] : 0,
-                                     known);
-    if (kept)
-        w->dirs->solid[slot] = k;
+/* Keeps a solve's result r (prim_segments) with its changes e and the point to solve again from in candidate c's
+ * walk; returns whether there is one (r > 0). */
+IA_FN int segments_closed_keep(const segments_walks *w, int c, int r, const ia_real e[4], ia_real resume) {
     if (r == 0)
         return 0;
     w->level[c] = SEGMENTS_CLOSED;
@@ -107,6 +97,38 @@ IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[
     w->newton_t[2 * c] = e[2];
     w->newton_t[2 * c + 1] = e[3];
     return 1;
+}
+
+/* Solves candidate c's solid in closed form over [ta, tend] where it has one, keeping the changes (and where it may
+ * be in again after them, newton[c] = 1 and in index[c] the point to solve again from, to the end); 0 when it must
+ * bisect. A packet's planar solid is solved for all its rays at once where its walks have the lanes. */
+IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real ta,
+                                ia_real tend, ia_real eps, kernel_u32 *evals) {
+    ia_real p[SEGMENTS_PARAM_REALS], e[4], resume = tend;
+    int k = w->solid[c];
+#ifdef SEGMENTS_LANES
+    if (w->lanes && segments_lanes_holds(w->lanes, k) && w->lanes->solved[k % SEGMENTS_LANES_SLOTS])
+        return segments_closed_keep(w, c, segments_lanes_changes(w->lanes, k, ta, tend, e, evals), e, resume);
+#endif
+    int type = scene_solid_P(k, p, SEGMENTS_PARAM_REALS), slot = k % PRIM_DIRS_SLOTS;
+    int kept = w->dirs && (type == PRIM_HALF || type == PRIM_ARB8 || type == PRIM_ELL || type == PRIM_TGC ||
+                           type == PRIM_EHY || type == PRIM_TOR); /* the types with direction terms */
+    int known = kept && w->dirs->solid[slot] == k;
+#ifdef SEGMENTS_LANES
+    if (w->lanes && kept && (type == PRIM_HALF || type == PRIM_ARB8) && !segments_lanes_holds(w->lanes, k)) {
+        int solved = segments_lanes_fill(w->lanes, k, type, p, d, w->dirs->v[slot], known);
+        w->dirs->solid[slot] = k;
+        if (solved)
+            return segments_closed_keep(w, c, segments_lanes_changes(w->lanes, k, ta, tend, e, evals), e, resume);
+        known = 1;
+    }
+#endif
+    int r = type < 0 ? 0
+                     : prim_segments(type, p, o, d, ta, tend, eps, e, &resume, evals, kept ? w->dirs->v[slot] : 0,
+                                     known);
+    if (kept)
+        w->dirs->solid[slot] = k;
+    return segments_closed_keep(w, c, r, e, resume);
 }
 
 /* Whether solid k is proven out along every ray of a packet's beam (o and d: the hulls of its origins and

@@ -48,10 +48,14 @@ iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out
 iacsg_status render_build(iacsg_renderer *r, const char *const *sources, size_t count, const char *kernel,
                           iacsg_error *err) {
     char options[512];
-    iacsg_status st = clrt_ia_options(&r->rt, r->config.fp64, r->config.fast, options, sizeof options - 32, err);
+    iacsg_status st = clrt_ia_options(&r->rt, r->config.fp64, r->config.fast, options, sizeof options - 64, err);
     if (st != IACSG_OK)
         return st;
-    snprintf(options + strlen(options), 32, " -D IA_VW=%d%s", PACKET_LANES, r->config.stats ? " -D KERNEL_STATS" : "");
+    /* IACSG_SEGMENTS_LANES=0: the segment path's planar solids solved ray by ray, not in a packet's lanes
+     * (kernels/segments_lanes.h; tests/t_brlcad_lanes.c compares the two, and A/B timings take it) */
+    const char *lanes = getenv("IACSG_SEGMENTS_LANES");
+    snprintf(options + strlen(options), 64, " -D IA_VW=%d%s%s", PACKET_LANES, r->config.stats ? " -D KERNEL_STATS" : "",
+             lanes && strcmp(lanes, "0") == 0 ? " -D SEGMENTS_LANES_OFF" : "");
     double t0 = render_now_seconds();
     st = clrt_build(&r->rt, sources, count, options, &r->program, err);
     r->build_seconds += render_now_seconds() - t0;

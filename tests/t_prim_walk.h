@@ -358,7 +358,7 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
     ia_real range[2] = {ta, w}, pos[1], newton_t[2];
     int solid[1] = {0}, level[1], newton[1];
     bisect_index index[1];
-    segments_walks walk = {solid, range, pos, level, index, newton, newton_t, 0};
+    segments_walks walk = {solid, range, pos, level, index, newton, newton_t, 0, 0};
     segments_start(&walk, 0);
     ia_real end = node_bound(ta, w, 0, 1);
     ld cross[REF_MAX_CROSSINGS];

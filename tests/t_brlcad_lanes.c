@@ -1,0 +1,178 @@
+/* tests/t_brlcad_lanes.c -- a packet's planar solids solved in SIMD lanes (kernels/segments_lanes.h) against the
+ * same solids solved ray by ray (the program built with IACSG_SEGMENTS_LANES=0): ids, depth and colour bit for bit,
+ * orthographic views of truck's 125 arbs and of random rotated boxes cut from each other, from random directions
+ * and along the axes (faces parallel to the rays: those solids go to the scalar code). A wrong lane (another ray's
+ * origin, a bound rounded the other way) moves a depth by an ulp at least, or a claim. */
+#include "implicits/brlcad.h"
+#include "implicits/scene.h"
+#include "render.h"
+#include "test.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SIZE 64  /* pixels a side */
+#define VIEWS 6  /* the first three along the axes, the others random */
+#define BOXES 12 /* in the random database */
+
+static double uniform(test_rng_t *r, double lo, double hi) { return lo + (hi - lo) * test_rand_unit(r); }
+
+static brlcad_model model_of(const char *text, const char *object) {
+    brlcad_db *db = NULL;
+    iacsg_error err = {0};
+    brlcad_model m;
+    CHECK(brlcad_db_read(text, strlen(text), &db, &err) == IACSG_OK, "read: line %d: %s", err.line, err.message);
+    iacsg_status st = brlcad_model_build(db, &object, 1, &m, &err);
+    brlcad_db_destroy(db);
+    CHECK(st == IACSG_OK, "build: %s", err.message);
+    return m;
+}
+
+/* BOXES boxes, each rotated about a random axis, as v5 arb8s; regions box_k - box_{k+1} and their union. */
+static char *random_boxes(test_rng_t *r) {
+    size_t cap = 64 * 1024, n = 0;
+    char *text = malloc(cap);
+    CHECK(text, "out of memory");
+    for (int b = 0; b < BOXES; b++) {
+        double centre[3], half[3], axis[3], len = 0, angle = uniform(r, 0, acos(-1));
+        for (int c = 0; c < 3; c++) {
+            centre[c] = uniform(r, -400, 400);
+            half[c] = uniform(r, 20, 200);
+            axis[c] = uniform(r, -1, 1);
+            len += axis[c] * axis[c];
+        }
+        len = sqrt(len);
+        n += (size_t)snprintf(text + n, cap - n, "put {s%d} arb8", b);
+        for (int v = 0; v < 8; v++) { /* Rodrigues' rotation of the corner's offset */
+            int top = v >= 4, x = v % 4 == 1 || v % 4 == 2, y = v % 4 >= 2;
+            double q[3] = {x ? half[0] : -half[0], y ? half[1] : -half[1], top ? half[2] : -half[2]}, k[3], p[3];
+            for (int c = 0; c < 3; c++)
+                k[c] = axis[c] / len;
+            double kq = k[0] * q[0] + k[1] * q[1] + k[2] * q[2];
+            double cross[3] = {k[1] * q[2] - k[2] * q[1], k[2] * q[0] - k[0] * q[2], k[0] * q[1] - k[1] * q[0]};
+            for (int c = 0; c < 3; c++)
+                p[c] = centre[c] + q[c] * cos(angle) + cross[c] * sin(angle) + k[c] * kq * (1 - cos(angle));
+            n += (size_t)snprintf(text + n, cap - n, " V%d {%.17g %.17g %.17g}", v + 1, p[0], p[1], p[2]);
+        }
+        n += (size_t)snprintf(text + n, cap - n, "\n");
+    }
+    for (int b = 0; b < BOXES; b++)
+        n += (size_t)snprintf(text + n, cap - n, "put {r%d} comb region yes tree {- {l s%d} {l s%d}}\n", b, b,
+                              (b + 1) % BOXES);
+    char tree[4096] = "{l r0}", wider[4096]; /* ((r0 u r1) u r2) u ... */
+    for (int b = 1; b < BOXES; b++) {
+        snprintf(wider, sizeof wider, "{u %s {l r%d}}", tree, b);
+        memcpy(tree, wider, sizeof tree);
+    }
+    n += (size_t)snprintf(text + n, cap - n, "put {all} comb region no tree %s\n", tree);
+    CHECK(n < cap, "the database overflows");
+    return text;
+}
+
+/* Renders views[v] (azimuth, elevation in degrees) of the model into ids, depth and rgb (SIZE x SIZE each, rgb 3
+ * floats a pixel), the program built with or without the lanes. Returns the pixels hit over all views. */
+static int render_views(const brlcad_model *m, double views[VIEWS][2], int lanes, float *ids, float *depth,
+                        float *rgb) {
+    if (lanes)
+        unsetenv("IACSG_SEGMENTS_LANES");
+    else
+        setenv("IACSG_SEGMENTS_LANES", "0", 1);
+    iacsg_render_config config = {0};
+    iacsg_renderer *r = NULL;
+    iacsg_error err = {0};
+    CHECK(iacsg_renderer_create_scene(m->scene, &config, &r, &err) == IACSG_OK, "renderer: %s", err.message);
+    unsetenv("IACSG_SEGMENTS_LANES");
+    double bounds[6], at[3], radius = 0, deg = acos(-1) / 180;
+    CHECK(brlcad_scene_bounds(m->scene, bounds), "no bounded solid");
+    for (int c = 0; c < 3; c++) {
+        at[c] = (bounds[c] + bounds[c + 3]) / 2;
+        radius += (bounds[c + 3] - bounds[c]) * (bounds[c + 3] - bounds[c]) / 4;
+    }
+    radius = sqrt(radius);
+    int hits = 0, pixels = SIZE * SIZE;
+    for (int v = 0; v < VIEWS; v++) {
+        iacsg_view view = {0};
+        memcpy(view.bounds, bounds, sizeof bounds);
+        double az = views[v][0] * deg, el = views[v][1] * deg;
+        double dir[3] = {cos(el) * cos(az), cos(el) * sin(az), sin(el)};
+        for (int c = 0; c < 3; c++) {
+            view.camera.at[c] = at[c];
+            view.camera.eye[c] = at[c] + 4 * radius * dir[c];
+        }
+        view.camera.up[fabs(dir[2]) > 0.9 ? 1 : 2] = 1;
+        view.camera.ortho_height = 2 * radius;
+        view.width = view.height = SIZE;
+        view.eps = 0x1p-16;
+        iacsg_frame fr = {0};
+        CHECK(iacsg_render(r, &view, &fr, &err) == IACSG_OK, "render: %s", err.message);
+        memcpy(ids + v * pixels, fr.ids, pixels * sizeof *ids);
+        memcpy(depth + v * pixels, fr.depth, pixels * sizeof *depth);
+        memcpy(rgb + 3 * v * pixels, fr.rgb, 3 * pixels * sizeof *rgb);
+        for (int p = 0; p < pixels; p++)
+            hits += fr.ids[p] >= 0;
+        iacsg_frame_free(&fr);
+    }
+    iacsg_renderer_destroy(r);
+    return hits;
+}
+
+/* The model's views with and without the lanes: the same bits in every output. */
+static void check_same(const brlcad_model *m, double views[VIEWS][2], const char *what) {
+    size_t pixels = (size_t)VIEWS * SIZE * SIZE;
+    float *ids[2], *depth[2], *rgb[2];
+    int hits[2];
+    for (int lanes = 0; lanes < 2; lanes++) {
+        ids[lanes] = malloc(pixels * sizeof(float));
+        depth[lanes] = malloc(pixels * sizeof(float));
+        rgb[lanes] = malloc(3 * pixels * sizeof(float));
+        CHECK(ids[lanes] && depth[lanes] && rgb[lanes], "out of memory");
+        hits[lanes] = render_views(m, views, lanes, ids[lanes], depth[lanes], rgb[lanes]);
+    }
+    long differ = 0;
+    for (size_t p = 0; p < pixels; p++)
+        differ += memcmp(&ids[0][p], &ids[1][p], sizeof(float)) != 0 ||
+                  memcmp(&depth[0][p], &depth[1][p], sizeof(float)) != 0 ||
+                  memcmp(&rgb[0][3 * p], &rgb[1][3 * p], 3 * sizeof(float)) != 0;
+    test_note("%s: %d of %zu pixels hit, %ld differ between the lanes and the scalar solves", what, hits[1], pixels,
+              differ);
+    CHECK(hits[1] > (int)(pixels / 20), "%s: too few pixels hit (%d) for the comparison to say much", what, hits[1]);
+    CHECK(differ == 0 && hits[0] == hits[1], "%s: %ld pixels differ with the lanes", what, differ);
+    for (int lanes = 0; lanes < 2; lanes++) {
+        free(ids[lanes]);
+        free(depth[lanes]);
+        free(rgb[lanes]);
+    }
+}
+
+static void random_views(test_rng_t *r, double views[VIEWS][2]) {
+    static const double axes[3][2] = {{0, 0}, {90, 0}, {0, 90}};
+    for (int v = 0; v < VIEWS; v++) {
+        views[v][0] = v < 3 ? axes[v][0] : uniform(r, 0, 360);
+        views[v][1] = v < 3 ? axes[v][1] : uniform(r, -89, 89);
+    }
+}
+
+TEST(brlcad_lanes_truck_match_scalar) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/tests/data/brlcad/truck.asc", test_source_dir());
+    char *text = test_read_file(path, NULL);
+    CHECK(text, "cannot read %s", path);
+    brlcad_model m = model_of(text, "g4");
+    double views[VIEWS][2];
+    random_views(test_rng(), views);
+    check_same(&m, views, "truck");
+    brlcad_model_free(&m);
+    free(text);
+}
+
+TEST(brlcad_lanes_rotated_boxes_match_scalar) {
+    test_rng_t *r = test_rng();
+    char *text = random_boxes(r);
+    brlcad_model m = model_of(text, "all");
+    double views[VIEWS][2];
+    random_views(r, views);
+    check_same(&m, views, "rotated boxes");
+    brlcad_model_free(&m);
+    free(text);
+}
