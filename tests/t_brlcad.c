@@ -3,23 +3,12 @@
  * answer is known: GIFT precedence, v5 trees, push-down, matrices, invented regions, air, colours, parameters. */
 #include "implicits/brlcad.h"
 #include "implicits/scene.h"
+#include "t_brlcad_model.h"
 #include "test.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* The model of a database text (all top objects when objects is NULL); the test fails on an error. */
-static brlcad_model model_of(const char *text, const char *const *objects, int nobjects) {
-    brlcad_db *db = NULL;
-    iacsg_error err = {0};
-    brlcad_model m;
-    CHECK(brlcad_db_read(text, strlen(text), &db, &err) == IACSG_OK, "read: line %d: %s", err.line, err.message);
-    iacsg_status st = brlcad_model_build(db, objects, nobjects, &m, &err);
-    brlcad_db_destroy(db);
-    CHECK(st == IACSG_OK, "build: %s", err.message);
-    return m;
-}
 
 static brlcad_model model_of_file(const char *file, const char *const *objects, int nobjects) {
     char path[4096];

@@ -8,6 +8,7 @@
 #include "implicits/brlcad.h"
 #include "implicits/scene.h"
 #include "render.h"
+#include "t_brlcad_model.h"
 #include "test.h"
 #include <math.h>
 #include <stdio.h>
@@ -47,17 +48,6 @@ static char *bed_database(double lift) {
                  "put {tray} comb region yes tree {l c}\n"
                  "put {bed} comb region no tree {u {l walls} {l tray}}\n");
     return text;
-}
-
-static brlcad_model model_of(const char *text, const char *object) {
-    brlcad_db *db = NULL;
-    iacsg_error err = {0};
-    brlcad_model m;
-    CHECK(brlcad_db_read(text, strlen(text), &db, &err) == IACSG_OK, "read: line %d: %s", err.line, err.message);
-    iacsg_status st = brlcad_model_build(db, &object, 1, &m, &err);
-    brlcad_db_destroy(db);
-    CHECK(st == IACSG_OK, "build: %s", err.message);
-    return m;
 }
 
 static int item_named(const brlcad_model *m, const char *name) {
@@ -103,7 +93,7 @@ static const double bed_centre[3] = {3000, 0, 1384.3};
 
 TEST(brlcad_coincident_faces_show_what_lies_behind) {
     char *text = bed_database(0);
-    brlcad_model m = model_of(text, "bed");
+    brlcad_model m = model_of(text, (const char *const[]){"bed"}, 1);
     for (int fp64 = 0; fp64 < 2; fp64++) {
         int tray = pixels_showing(&m, bed_centre, 400, fp64, item_named(&m, "/bed/tray"));
         CHECK(tray == SIZE * SIZE, "%s: the tray in %d of %d pixels (the walls' sliver of no volume in the others)",
@@ -118,7 +108,7 @@ TEST(brlcad_coincident_faces_show_what_lies_behind) {
 TEST(brlcad_thin_slab_above_the_tolerance_is_shown) {
     for (int fp64 = 0; fp64 < 2; fp64++) {
         char *text = bed_database(fp64 ? 1.2 * BRLCAD_DIST_TOL : 0.05);
-        brlcad_model m = model_of(text, "bed");
+        brlcad_model m = model_of(text, (const char *const[]){"bed"}, 1);
         int walls = pixels_showing(&m, bed_centre, 400, fp64, item_named(&m, "/bed/walls"));
         CHECK(walls == SIZE * SIZE, "%s: the walls' slab in %d of %d pixels", fp64 ? "double" : "float", walls,
               SIZE * SIZE);
@@ -134,7 +124,7 @@ TEST(brlcad_truck_bed_is_whole) {
     snprintf(path, sizeof path, "%s/tests/data/brlcad/truck.asc", test_source_dir());
     char *text = test_read_file(path, NULL);
     CHECK(text, "cannot read %s", path);
-    brlcad_model m = model_of(text, "g4");
+    brlcad_model m = model_of(text, (const char *const[]){"g4"}, 1);
     static const double centre[3] = {3100, 0, 1384.3};
     int plate = pixels_showing(&m, centre, 400, 0, item_named(&m, "/g4/r136"));
     CHECK(plate == SIZE * SIZE, "r136 in %d of %d pixels", plate, SIZE * SIZE);

@@ -6,6 +6,7 @@
 #include "implicits/brlcad.h"
 #include "implicits/scene.h"
 #include "render.h"
+#include "t_brlcad_model.h"
 #include "test.h"
 #include <math.h>
 #include <stdio.h>
@@ -17,17 +18,6 @@
 #define BOXES 12 /* in the random database */
 
 static double uniform(test_rng_t *r, double lo, double hi) { return lo + (hi - lo) * test_rand_unit(r); }
-
-static brlcad_model model_of(const char *text, const char *object) {
-    brlcad_db *db = NULL;
-    iacsg_error err = {0};
-    brlcad_model m;
-    CHECK(brlcad_db_read(text, strlen(text), &db, &err) == IACSG_OK, "read: line %d: %s", err.line, err.message);
-    iacsg_status st = brlcad_model_build(db, &object, 1, &m, &err);
-    brlcad_db_destroy(db);
-    CHECK(st == IACSG_OK, "build: %s", err.message);
-    return m;
-}
 
 /* BOXES boxes, each rotated about a random axis, as v5 arb8s; regions box_k - box_{k+1} and their union. */
 static char *random_boxes(test_rng_t *r) {
@@ -158,7 +148,7 @@ TEST(brlcad_lanes_truck_match_scalar) {
     snprintf(path, sizeof path, "%s/tests/data/brlcad/truck.asc", test_source_dir());
     char *text = test_read_file(path, NULL);
     CHECK(text, "cannot read %s", path);
-    brlcad_model m = model_of(text, "g4");
+    brlcad_model m = model_of(text, (const char *const[]){"g4"}, 1);
     double views[VIEWS][2];
     random_views(test_rng(), views);
     check_same(&m, views, "truck");
@@ -169,7 +159,7 @@ TEST(brlcad_lanes_truck_match_scalar) {
 TEST(brlcad_lanes_rotated_boxes_match_scalar) {
     test_rng_t *r = test_rng();
     char *text = random_boxes(r);
-    brlcad_model m = model_of(text, "all");
+    brlcad_model m = model_of(text, (const char *const[]){"all"}, 1);
     double views[VIEWS][2];
     random_views(r, views);
     check_same(&m, views, "rotated boxes");

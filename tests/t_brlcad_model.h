@@ -1,0 +1,20 @@
+/* tests/t_brlcad_model.h -- what the BRL-CAD tests share: the model of a database text (all its top objects when
+ * objects is NULL), read and built as the command does; the test fails on an error. */
+#ifndef T_BRLCAD_MODEL_H
+#define T_BRLCAD_MODEL_H
+#include "implicits/brlcad.h"
+#include "test.h"
+#include <string.h>
+
+static inline brlcad_model model_of(const char *text, const char *const *objects, int nobjects) {
+    brlcad_db *db = NULL;
+    iacsg_error err = {0};
+    brlcad_model m;
+    CHECK(brlcad_db_read(text, strlen(text), &db, &err) == IACSG_OK, "read: line %d: %s", err.line, err.message);
+    iacsg_status st = brlcad_model_build(db, objects, nobjects, &m, &err);
+    brlcad_db_destroy(db);
+    CHECK(st == IACSG_OK, "build: %s", err.message);
+    return m;
+}
+
+#endif
