@@ -10,16 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static brlcad_model model_of_file(const char *file, const char *const *objects, int nobjects) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/tests/data/brlcad/%s", test_source_dir(), file);
-    char *text = test_read_file(path, NULL);
-    CHECK(text, "cannot read %s", path);
-    brlcad_model m = model_of(text, objects, nobjects);
-    free(text);
-    return m;
-}
-
 /* The README's per-scene table: top objects, instances, regions (air regions are left out: m35's 44). */
 TEST(brlcad_counts_of_the_seven_scenes) {
     static const struct {

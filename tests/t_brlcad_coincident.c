@@ -120,14 +120,9 @@ TEST(brlcad_thin_slab_above_the_tolerance_is_shown) {
 /* truck's bed, 400 mm of its middle seen as rt sees it: r136's top plate, where r150's walls (s150 - s151, a common
  * bottom on that plate) have nothing. */
 TEST(brlcad_truck_bed_is_whole) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/tests/data/brlcad/truck.asc", test_source_dir());
-    char *text = test_read_file(path, NULL);
-    CHECK(text, "cannot read %s", path);
-    brlcad_model m = model_of(text, (const char *const[]){"g4"}, 1);
+    brlcad_model m = model_of_file("truck.asc", (const char *const[]){"g4"}, 1);
     static const double centre[3] = {3100, 0, 1384.3};
     int plate = pixels_showing(&m, centre, 400, 0, item_named(&m, "/g4/r136"));
     CHECK(plate == SIZE * SIZE, "r136 in %d of %d pixels", plate, SIZE * SIZE);
     brlcad_model_free(&m);
-    free(text);
 }

@@ -144,16 +144,11 @@ static void random_views(test_rng_t *r, double views[VIEWS][2]) {
 }
 
 TEST(brlcad_lanes_truck_match_scalar) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/tests/data/brlcad/truck.asc", test_source_dir());
-    char *text = test_read_file(path, NULL);
-    CHECK(text, "cannot read %s", path);
-    brlcad_model m = model_of(text, (const char *const[]){"g4"}, 1);
+    brlcad_model m = model_of_file("truck.asc", (const char *const[]){"g4"}, 1);
     double views[VIEWS][2];
     random_views(test_rng(), views);
     check_same(&m, views, "truck");
     brlcad_model_free(&m);
-    free(text);
 }
 
 TEST(brlcad_lanes_rotated_boxes_match_scalar) {
