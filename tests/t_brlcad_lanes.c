@@ -50,11 +50,14 @@ static char *random_boxes(test_rng_t *r) {
     for (int b = 0; b < BOXES; b++)
         n += (size_t)snprintf(text + n, cap - n, "put {r%d} comb region yes tree {- {l s%d} {l s%d}}\n", b, b,
                               (b + 1) % BOXES);
-    char tree[4096] = "{l r0}", wider[4096]; /* ((r0 u r1) u r2) u ... */
-    for (int b = 1; b < BOXES; b++) {
-        snprintf(wider, sizeof wider, "{u %s {l r%d}}", tree, b);
-        memcpy(tree, wider, sizeof tree);
-    }
+    char tree[1024]; /* ((r0 u r1) u r2) u ...: "{u " BOXES - 1 times, "{l r0}", then " {l rB}}" for each B > 0 */
+    size_t t = 0;
+    for (int b = 1; b < BOXES; b++)
+        t += (size_t)snprintf(tree + t, sizeof tree - t, "{u ");
+    t += (size_t)snprintf(tree + t, sizeof tree - t, "{l r0}");
+    for (int b = 1; b < BOXES; b++)
+        t += (size_t)snprintf(tree + t, sizeof tree - t, " {l r%d}}", b);
+    CHECK(t < sizeof tree, "the union's tree overflows");
     n += (size_t)snprintf(text + n, cap - n, "put {all} comb region no tree %s\n", tree);
     CHECK(n < cap, "the database overflows");
     return text;
