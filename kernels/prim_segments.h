@@ -306,10 +306,11 @@ IA_FN ia_interval prim_quartic_taylor(const ia_interval d[5], ia_interval h, ia_
  * x -+ h have opposite strict signs in q's direction, the exact q has a root between them (it is continuous), the
  * node's only one (it is monotone there), and the exact q has the sign before the root on the node's part before
  * the first point, the other after the second. h starts at 2 ulps of t (ta: where u is 0), or where q's
- * enclosure's width at x over q's float slope there says q's sign shows, and doubles per try. 1 with the bracket in [*a, *b]; 2 with *a = *b = r0 where q has its sign after the root at r0 (so all over
- * the node: no root in it), or = r1 where it has its sign before at r1; 0 where nothing is proven (coefficients
- * too loose there), and interval Newton narrows it. Two point evaluations a try, where a Newton step is a Taylor form's
- * shift and enclosure: truck's tori (11) were a fifth of its render. */
+ * enclosure's width at x over q's float slope there says q's sign shows, and doubles per try. 1 with the bracket
+ * in [*a, *b]; 2 with *a = *b = r0 where q has its sign after the root at r0 (so all over the node: no root in
+ * it), or = r1 where it has its sign before at r1; 0 where nothing is proven (coefficients too loose there), and
+ * interval Newton narrows it. Two point evaluations a try, where a Newton step is a Taylor form's shift and
+ * enclosure: truck's tori (11) were a fifth of its render. */
 #define PRIM_QUARTIC_FLOAT_STEPS 8
 #define PRIM_QUARTIC_BRACKET_TRIES 3
 IA_FN int prim_quartic_bracket(const ia_interval c[5], ia_interval dq, ia_real ta, ia_real r0, ia_real r1, ia_real *a,

@@ -22,8 +22,8 @@
  * of parts, the lists' with skipping, and its value at the midpoints over the same set.
  *
  * Private memory: TAPE_SLOTS intervals over lanes and two flags each (tape.h: 8 KiB in float, 16 KiB in
- * double), and with the derivative TAPE_SLOTS intervals more (4 KiB, 8 KiB); the tile pass's lists, 16-bit indices and a lower bound each over the lanes (1.5 KiB in float, 2.4
- * KiB in double); no recursion. */
+ * double), and with the derivative TAPE_SLOTS intervals more (4 KiB, 8 KiB); the tile pass's lists, 16-bit
+ * indices and a lower bound each over the lanes (1.5 KiB in float, 2.4 KiB in double); no recursion. */
 #ifndef KERNELS_TAPE_EVAL_H
 #define KERNELS_TAPE_EVAL_H
 #if defined(IACSG_TAPE) && IA_DEVICE && defined(IA_VW)

@@ -308,7 +308,8 @@ TEST_FP(scene_trace_spheres) {
         for (int a = 0; a < 3; a++)
             d[a] /= sqrt(len);
         scene_ray ray = {t.nodes, t.items, t.solid_items_start, t.solid_items,
-                         {solid, range, pos, level, index, newton, newton_t, 0, 0}, N, 0, 0, state, 0, 0, 0, 0, 0, 0, 0};
+                         {solid, range, pos, level, index, newton, newton_t, 0, 0}, N, 0, 0, state,
+                         0, 0, 0, 0, 0, 0, 0};
         weave_hit hit = {0, -1, -1, -1};
         int found = scene_trace_ray(&v, &ray, o, d, 0, 8, &hit);
         long double lo[3] = {o[0], o[1], o[2]}, ld[3] = {d[0], d[1], d[2]}, first = INFINITY, a, b;
