@@ -15,6 +15,7 @@
 #include "kernels/params.h"
 #include "t_expr_oracle.h"
 #include "t_lanes_run.h"
+#include "t_tape_pack.h"
 #include "render.h"
 #include <math.h>
 #include <stdio.h>
@@ -185,11 +186,7 @@ TEST_FP(tape_matches_compiled) {
         CHECK(tape_build(&exprs[i]->simple, exprs[i]->root, FP64, &tape, &err) == IACSG_OK, "'%s': %s", texts[i],
               err.message);
         skipping += tape.bounded_parts;
-        at[i] = (unsigned)words;
-        tapes = realloc(tapes, (words + tape.count + 1) * sizeof *tapes);
-        CHECK(tapes != NULL, "out of memory");
-        memcpy(tapes + words, tape.words, tape.count * sizeof *tapes);
-        words += tape.count + tape.count % 2; /* the next tape's doubles start on an even word */
+        at[i] = tape_pack(&tapes, &words, &tape);
         tape_free(&tape);
         if (i >= n)
             continue; /* a union in groups: its compiled code would define IACSG_GROUPS */

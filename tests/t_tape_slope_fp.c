@@ -11,6 +11,7 @@
 #include "kernels/params.h"
 #include "t_expr_oracle.h"
 #include "t_lanes_run.h"
+#include "t_tape_pack.h"
 #include "render.h"
 #include <math.h>
 #include <stdio.h>
@@ -114,11 +115,7 @@ TEST_FP(tape_slope_encloses) {
         const unsigned *code = tape.words + tape.words[TAPE_W_CODE];
         for (int k = 0; k < tape.instructions; k++)
             squared += (code[TAPE_INSTR_WORDS * k] >> 8 & TAPE_THEN_SQR) != 0;
-        at[i] = (unsigned)words;
-        tapes = realloc(tapes, (words + tape.count + 1) * sizeof *tapes);
-        CHECK(tapes != NULL, "out of memory");
-        memcpy(tapes + words, tape.words, tape.count * sizeof *tapes);
-        words += tape.count + tape.count % 2; /* the next tape's doubles start on an even word */
+        at[i] = tape_pack(&tapes, &words, &tape);
         tape_free(&tape);
     }
     size_t items = (size_t)UNIONS * ITEMS, q = items * PACKET_LANES;
