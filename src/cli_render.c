@@ -386,8 +386,10 @@ static iacsg_status write_frame(cli_writer *writer, const render_options *o, con
     return IACSG_OK;
 }
 
-/* write_seconds: the frame's images from host memory to their files (conversion, encoding, rename). */
-static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const iacsg_scene *s, double write_seconds) {
+/* read_seconds: the input read and parsed into its scene (a BRL-CAD database: its tree and primitives placed);
+ * write_seconds: the frame's images from host memory to their files (conversion, encoding, rename). */
+static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const iacsg_scene *s, double read_seconds,
+                        double write_seconds) {
     printf("device: %s\n", iacsg_renderer_device_name(r));
     printf("rays: %lld\n", fr->rays);
     printf("interval evaluations per ray: mean %.2f, max %u\n", fr->evals_mean, fr->evals_max);
@@ -409,6 +411,7 @@ static void print_stats(const iacsg_renderer *r, const iacsg_frame *fr, const ia
                fr->secondary_evals_mean);
     if (s->nitems == 0) /* the first-root path */
         printf("program: %s\n", iacsg_renderer_program(r));
+    printf("read: %.3f s\n", read_seconds);
     printf("kernel build: %.3f s\n", iacsg_renderer_build_seconds(r));
     printf("render: %.3f s\n", fr->render_seconds);
     printf("write: %.3f s\n", write_seconds);
@@ -494,7 +497,9 @@ int cli_render(int argc, char **argv) {
     if (rc)
         return rc;
     const char *name;
+    double read_started = now_seconds(), read_seconds;
     char *text = read_input(o.input, &name);
+    read_seconds = now_seconds() - read_started;
     if (!text)
         return 1;
     iacsg_error err = {0};
@@ -522,8 +527,11 @@ int cli_render(int argc, char **argv) {
         }
     if (st == IACSG_OK && name == o.input) /* a scene file */
         st = check_outputs_spare_input(o.input, outputs, &err);
-    if (st == IACSG_OK)
+    if (st == IACSG_OK) {
+        read_started = now_seconds();
         st = load_input(&o, text, name, &scene, &err);
+        read_seconds += now_seconds() - read_started;
+    }
     if (st == IACSG_OK) {
         if (cli_effects_from_scene(&o.effects, scene)) /* its lights, materials that reflect or are transparent */
             o.view.effects = &o.effects;
@@ -573,7 +581,7 @@ int cli_render(int argc, char **argv) {
         if (st == IACSG_OK && cli_job_writes_frames(job))
             st = write_frame(writer, &o, &fr, item.frame, &err);
         if (st == IACSG_OK && o.config.stats)
-            print_stats(r, &fr, scene, now_seconds() - written);
+            print_stats(r, &fr, scene, read_seconds, now_seconds() - written);
     }
     iacsg_frame_free(&fr);
     const iacsg_frame *whole = st == IACSG_OK ? cli_job_gathered(job) : NULL;

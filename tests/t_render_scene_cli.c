@@ -58,7 +58,7 @@ TEST(render_scene_cli_ids) {
     char *out = test_read_file(path, NULL);
     CHECK(out && strstr(out, "(proven to enclose the solids)") && strstr(out, "segments per ray: mean") &&
               strstr(out, "partitions per ray: mean") && strstr(out, "overlaps: 0 partitions") &&
-              strstr(out, "per-ray buffers:"),
+              strstr(out, "per-ray buffers:") && strstr(out, "\nread: ") && strstr(out, "\nkernel build: "),
           "output: %s", out ? out : "(none)");
     free(out);
     test_note("%d background, %d body, %d plug pixels", count[0], count[1], count[2]);
