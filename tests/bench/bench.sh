@@ -138,7 +138,7 @@ measure() {
     # untimed: the second build of a program saves its binary (src/clrt_cache.c), which costs PoCL seconds once,
     # within the run (IACSG_CACHE_SAVE=wait above)
     [ "$M_OK" = 1 ] && run_once "$dir" "$WORK/run.log" "$@"
-    : >"$WORK/b" ; : >"$WORK/r" ; : >"$WORK/w" ; : >"$WORK/c" ; : >"$WORK/wr"
+    : >"$WORK/b" ; : >"$WORK/r" ; : >"$WORK/w" ; : >"$WORK/c" ; : >"$WORK/wr" ; : >"$WORK/rd"
     k=0
     while [ "$M_OK" = 1 ] && [ $k -lt "$n" ]; do
         run_once "$dir" "$WORK/run.log" "$@" || { M_OK=0; M_ERR=$(failure "$WORK/run.log"); }
@@ -147,6 +147,8 @@ measure() {
         field "$WORK/run.log" "wall_us:" >>"$WORK/w"
         field "$WORK/run.log" "cpu_s:" >>"$WORK/c"
         field "$WORK/run.log" "write:" >>"$WORK/wr"
+        field "$WORK/run.log" "read:" >>"$WORK/rd"
+        [ -n "${BETWEEN:-}" ] && $BETWEEN # a peer's run in turn with ours (suite_brlcad.sh)
         k=$((k + 1))
     done
     M_BUILD=$(median <"$WORK/b")
@@ -156,8 +158,9 @@ measure() {
     M_WALL=$(median <"$WORK/w")
     M_CPU=$(median <"$WORK/c")
     M_WRITE=$(median <"$WORK/wr")
+    M_READ=$(median <"$WORK/rd")
     rm -rf "$dir"
-    [ "$M_OK" = 1 ] || { M_BUILD=- M_RENDER=- M_RMIN=- M_RMAX=- M_WALL=- M_CPU=-; }
+    [ "$M_OK" = 1 ] || { M_BUILD=- M_RENDER=- M_RMIN=- M_RMAX=- M_WALL=- M_CPU=- M_READ=-; }
     # milliseconds for the tables
     R_MS=$(ms_of_s "$M_RENDER") RMIN_MS=$(ms_of_s "$M_RMIN") RMAX_MS=$(ms_of_s "$M_RMAX") R1_MS=$(ms_of_s "$M_RENDER1")
     B_MS=$(ms_of_s "$M_BUILD") B1_MS=$(ms_of_s "$M_BUILD1")
