@@ -33,10 +33,7 @@ static ia_maskv scene_rays_root(const ia_realv o[3], const ia_realv d[3], ia_rea
     if (march)
         hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, whether, time, lo, hi, counts);
 #endif
-    ia_real far[IA_VW], w = 0;
-    IAV_STORE(select(IAV_R(0), b, walking), far);
-    for (int k = 0; k < IA_VW; k++)
-        w = fmax(w, far[k]);
+    ia_real w = march_farthest(b, walking);
     if (iav_any(walking)) /* a tree as long as the farthest ray; Newton from any node */
         hit |= packet_first_root(0, o, d, 0, w, (packet_int)0, (packet_index)0, a, b, walking, eps, IA_INF, 0, time,
                                  lo, hi, counts);
@@ -309,7 +306,9 @@ __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *
     }
     for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* shade_effects reads the first nlights */
         vis[l] = l < nlights ? select(IAV_R(0), IAV_LOAD(seen_k[l]), hit) : IAV_R(0);
-    shade_effects(params, fx, p, t, nv, d, vis, albedo, IAV_LOAD(specular_k), IAV_LOAD(shininess_k), id_rgb, lin);
+    ia_real units[EFFECTS_MAX_LIGHTS][3];
+    shade_light_units(params, fx, units);
+    shade_effects(fx, units, p, t, nv, d, vis, albedo, IAV_LOAD(specular_k), IAV_LOAD(shininess_k), id_rgb, lin);
     float top[3], bottom[3];
     for (int c = 0; c < 3; c++) {
         top[c] = (float)fx[EFFECTS_BG_TOP + c];
