@@ -42,10 +42,7 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
     ia_realv lo = IAV_R(0), hi = IAV_R(0);
     ia_real time = params[PARAM_TIME_LO];
     iav times = iav_const(time, params[PARAM_TIME_HI]);
-    ia_real far[IA_VW], w = 0;
-    IAV_STORE(select(IAV_R(0), t_far, searching), far);
-    for (int k = 0; k < IA_VW; k++)
-        w = fmax(w, far[k]);
+    ia_real w = march_farthest(t_far, searching);
     ia_maskv hit = (ia_maskv)0;
 #ifdef PACKET_NEWTON
     ia_maskv marching = searching & (leaving > 0);
@@ -70,6 +67,18 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
     return hit;
 }
 
+/* The background (the effects' block fx: top and bottom colours) of rows `row` of `height`, linear. */
+static void effects_background(__constant ia_real *fx, ia_realv row, int height, shade_colorv bg[3]) {
+    float top[3], bottom[3];
+    for (int c = 0; c < 3; c++) {
+        top[c] = (float)fx[EFFECTS_BG_TOP + c];
+        bottom[c] = (float)fx[EFFECTS_BG_BOTTOM + c];
+    }
+    shade_background(IAV_CAT(convert_float, IA_VW)(row), height, top, bottom, bg);
+    for (int c = 0; c < 3; c++)
+        bg[c] *= bg[c];
+}
+
 /* acc += w c in the lanes of `on`. */
 static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shade_colorv c[3]) {
     IAV_CAT(int, IA_VW) lanes = IAV_CAT(convert_int, IA_VW)(on) != 0;
@@ -89,16 +98,8 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
                           ia_maskv hit, ia_realv t, ia_realv n[3], ia_realv through, ia_realv layers,
                           ia_realv bounces, __global ia_real *kids, int kid_slots, int first, int nk[IA_VW],
                           shade_colorv acc[3], packet_index *rays, packet_index *evals) {
-    /* the background of the pixels' rows, linear */
     shade_colorv bg[3];
-    float top[3], bottom[3];
-    for (int c = 0; c < 3; c++) {
-        top[c] = (float)fx[EFFECTS_BG_TOP + c];
-        bottom[c] = (float)fx[EFFECTS_BG_BOTTOM + c];
-    }
-    shade_background(IAV_CAT(convert_float, IA_VW)(row), height, top, bottom, bg);
-    for (int c = 0; c < 3; c++)
-        bg[c] *= bg[c];
+    effects_background(fx, row, height, bg);
     int shade = (int)fx[EFFECTS_SHADE], nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
     shade_colorv albedo[3], id_rgb[3];
     for (int c = 0; c < 3; c++) {
@@ -106,6 +107,8 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
         id_rgb[c] = (shade_colorv)(float)fx[EFFECTS_ID_RGB + c];
     }
     ia_real a = fx[EFFECTS_OPACITY], max_bounces = fx[EFFECTS_BOUNCES], eps = params[PARAM_EPS];
+    ia_real units[EFFECTS_MAX_LIGHTS][3];
+    shade_light_units(params, fx, units);
     while (1) { /* one transparent layer a turn */
         effects_add(acc, live & ~hit, through, bg);
         live &= hit;
@@ -121,7 +124,7 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
         for (int l = 0; l < nlights; l++) {
             __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
             ia_realv towards[3];
-            shade_towards(params, L, p, towards);
+            shade_towards(L, units[l], p, towards);
             ia_maskv ray = live & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
             vis[l] = select(IAV_R(0), IAV_R(1), ray);
             ia_realv so[3], sd[3], sp = off, sn[3] = {n[0], n[1], n[2]};
@@ -130,7 +133,7 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
             for (int layer = 0; shadows && shade < EFFECTS_SHADE_NORMALS && iav_any(ray); layer++) {
                 for (int c = 0; c < 3; c++) /* off the surface it leaves, on the light's side */
                     so[c] = select(so[c], so[c] + sp * sn[c], ray);
-                ia_realv dist = shade_towards(params, L, so, sd), st;
+                ia_realv dist = shade_towards(L, units[l], so, sd), st;
                 ia_maskv blocked = effects_trace(params, all_groups, so, sd, IAV_R(0), dist, ray, sp, eps, footprint,
                                                  a >= 1, &st, a < 1, sn, rays, evals);
                 vis[l] = select(vis[l], vis[l] * (1 - a), blocked);
@@ -144,7 +147,7 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
             }
         }
         shade_colorv lin[3];
-        shade_effects(params, fx, p, t, n, d, vis, albedo, IAV_R(fx[EFFECTS_SPECULAR]), IAV_R(fx[EFFECTS_SHININESS]),
+        shade_effects(fx, units, p, t, n, d, vis, albedo, IAV_R(fx[EFFECTS_SPECULAR]), IAV_R(fx[EFFECTS_SHININESS]),
                       id_rgb, lin);
         if (shade >= EFFECTS_SHADE_NORMALS) { /* the previews: unlit, opaque */
             effects_add(acc, live, through, lin);
@@ -154,13 +157,15 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
         ia_realv k = select(IAV_R(0), IAV_R(fx[EFFECTS_REFLECT]), bounces < max_bounces);
         effects_add(acc, live, through * (a * (1 - k)), lin);
         ia_maskv mirror = live & (k > 0) & (through * (a * k) >= (ia_real)EFFECTS_MIN_WEIGHT);
-        ia_realv r[3]; /* the mirror direction */
-        ia_realv dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-        for (int c = 0; c < 3; c++)
-            r[c] = d[c] - 2 * dn * n[c];
-        ia_realv len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-        for (int c = 0; c < 3; c++)
-            r[c] = r[c] / len;
+        ia_realv r[3] = {IAV_R(0), IAV_R(0), IAV_R(0)}; /* the mirror direction, where some lane reflects */
+        if (iav_any(mirror)) {
+            ia_realv dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+            for (int c = 0; c < 3; c++)
+                r[c] = d[c] - 2 * dn * n[c];
+            ia_realv len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+            for (int c = 0; c < 3; c++)
+                r[c] = r[c] / len;
+        }
         if (a >= 1) { /* opaque: the reflected ray goes on in this lane, from off the surface */
             through = through * k;
             live = mirror;
@@ -226,6 +231,26 @@ __attribute__((noinline)) static void effects_centre(__constant ia_real *params,
                                                      const ia_realv o_ray[3], const ia_realv d_ray[3],
                                                      ia_realv hit_lo, const ia_realv n_hit[3], shade_colorv color[3],
                                                      packet_index *rays, packet_index *evals) {
+    shade_colorv acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
+    if (!iav_any(live & hit)) { /* the background alone, as effects_paths gives it, without reading the rays: a
+                                 * packet the tile pass proved empty has them zeroed in halves just before this
+                                 * call, and loading them whole waited for those stores (a fifth of this
+                                 * function's CPU samples) */
+        shade_colorv bg[3];
+        effects_background(fx, packet_to_real(row), height, bg);
+        effects_add(acc, live, IAV_R(1), bg);
+        for (int c = 0; c < 3; c++)
+            color[c] = sqrt(fmin(fmax(acc[c], 0.0f), 1.0f));
+        return;
+    }
+    ia_realv o[3], d[3], n[3], t = hit_lo;
+    for (int c = 0; c < 3; c++) {
+        o[c] = o_ray[c];
+        d[c] = d_ray[c];
+        n[c] = n_hit[c];
+    }
+#ifdef IA_FP64 /* in float both roundings are the identity: no copy through memory lane by lane (a third of this
+                * function's CPU samples, the loads of the copy waiting on the caller's stores) */
     ia_real start[IA_VW], t_k[IA_VW], n_k[3][IA_VW];
     float n_f[3][IA_VW];
     IAV_STORE(hit_lo, start);
@@ -236,18 +261,15 @@ __attribute__((noinline)) static void effects_centre(__constant ia_real *params,
         for (int c = 0; c < 3; c++)
             n_k[c][k] = (ia_real)n_f[c][k];
     }
-    ia_realv o[3], d[3], n[3];
-    for (int c = 0; c < 3; c++) {
-        o[c] = o_ray[c];
-        d[c] = d_ray[c];
+    t = IAV_LOAD(t_k);
+    for (int c = 0; c < 3; c++)
         n[c] = IAV_LOAD(n_k[c]);
-    }
-    shade_colorv acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
+#endif
     int nk[IA_VW];
     for (int q = 0; q < IA_VW; q++)
         nk[q] = 0;
-    effects_paths(params, fx, all_groups, footprint, packet_to_real(row), height, o, d, live, live & hit,
-                  IAV_LOAD(t_k), n, IAV_R(1), IAV_R(0), IAV_R(0), 0, 0, 0, nk, acc, rays, evals);
+    effects_paths(params, fx, all_groups, footprint, packet_to_real(row), height, o, d, live, live & hit, t, n,
+                  IAV_R(1), IAV_R(0), IAV_R(0), 0, 0, 0, nk, acc, rays, evals);
     for (int c = 0; c < 3; c++)
         color[c] = sqrt(fmin(fmax(acc[c], 0.0f), 1.0f));
 }

@@ -123,12 +123,27 @@ IA_FN void shade_lit_materials(const KERNEL_CONSTANT ia_real *p, ia_maskv surfac
  * not from the hit (shadow rays), the material's highlight weight and exponent; the default rig is the plain
  * render's key and fill lights (EFFECTS_LIGHT_CAMERA), so that without shadows a hit gets the plain colour. */
 
-/* The unit directions l from points p towards light L (EFFECTS_LIGHT_REALS reals of the effects' block), and
- * returns the distances to it (+inf for a light at infinity). */
-IA_FN ia_realv shade_towards(const KERNEL_CONSTANT ia_real *params, const KERNEL_CONSTANT ia_real *L,
-                             const ia_realv p[3], ia_realv l[3]) {
-    int kind = (int)L[EFFECTS_LIGHT_KIND];
-    if (kind == EFFECTS_LIGHT_POINT) {
+/* The unit direction of each light of the effects' block at infinity (a camera light's from the camera, a dir
+ * light's as the host made it; a point light's entry is not set), once a work-item: worked out at each shading of
+ * each light, a camera light's scalars were stored and read back at once (a store-forwarding stall: a quarter of
+ * effects_centre's CPU samples with the default rig). */
+IA_FN void shade_light_units(const KERNEL_CONSTANT ia_real *params, const KERNEL_CONSTANT ia_real *fx,
+                             ia_real u[EFFECTS_MAX_LIGHTS][3]) {
+    for (int l = 0; l < (int)fx[EFFECTS_NLIGHTS]; l++) {
+        const KERNEL_CONSTANT ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
+        if ((int)L[EFFECTS_LIGHT_KIND] == EFFECTS_LIGHT_CAMERA)
+            shade_light_direction(params, L[EFFECTS_LIGHT_XYZ], L[EFFECTS_LIGHT_XYZ + 1], u[l]);
+        else
+            for (int k = 0; k < 3; k++)
+                u[l][k] = L[EFFECTS_LIGHT_XYZ + k];
+    }
+}
+
+/* The unit directions l from points p towards light L (EFFECTS_LIGHT_REALS reals of the effects' block; `unit` its
+ * direction where it is at infinity, shade_light_units), and returns the distances to it (+inf at infinity). */
+IA_FN ia_realv shade_towards(const KERNEL_CONSTANT ia_real *L, const ia_real unit[3], const ia_realv p[3],
+                             ia_realv l[3]) {
+    if ((int)L[EFFECTS_LIGHT_KIND] == EFFECTS_LIGHT_POINT) {
         for (int k = 0; k < 3; k++)
             l[k] = L[EFFECTS_LIGHT_XYZ + k] - p[k];
         ia_realv dist = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
@@ -136,11 +151,8 @@ IA_FN ia_realv shade_towards(const KERNEL_CONSTANT ia_real *params, const KERNEL
             l[k] = l[k] / dist;
         return dist;
     }
-    ia_real u[3];
-    if (kind == EFFECTS_LIGHT_CAMERA)
-        shade_light_direction(params, L[EFFECTS_LIGHT_XYZ], L[EFFECTS_LIGHT_XYZ + 1], u);
     for (int k = 0; k < 3; k++)
-        l[k] = IAV_R(kind == EFFECTS_LIGHT_CAMERA ? u[k] : L[EFFECTS_LIGHT_XYZ + k]); /* the host made it unit */
+        l[k] = IAV_R(unit[k]);
     return IAV_R(IA_INF);
 }
 
@@ -163,12 +175,12 @@ IA_FN void shade_lit_linear(const shade_colorv albedo[3], ia_realv specular, ia_
 
 /* The effects' colours (linear) of hits at points p, at depths t along view directions d, with unit normals n
  * facing them, by the effects' block fx (kernels/effects.h): the previews (-shade normals, depth, ids: id_rgb,
- * linear), or lit: albedo (-shade gradient: the normal's direction), specular and shininess, under each light l,
- * of which the fraction vis[l] reaches the hit (shadow rays). */
-IA_FN void shade_effects(const KERNEL_CONSTANT ia_real *params, const KERNEL_CONSTANT ia_real *fx, const ia_realv p[3],
-                         ia_realv t, const ia_realv n[3], const ia_realv d[3], const ia_realv vis[EFFECTS_MAX_LIGHTS],
-                         const shade_colorv albedo[3], ia_realv specular, ia_realv shininess,
-                         const shade_colorv id_rgb[3], shade_colorv lin[3]) {
+ * linear), or lit: albedo (-shade gradient: the normal's direction), specular and shininess, under each light l
+ * (units: shade_light_units'), of which the fraction vis[l] reaches the hit (shadow rays). */
+IA_FN void shade_effects(const KERNEL_CONSTANT ia_real *fx, const ia_real units[EFFECTS_MAX_LIGHTS][3],
+                         const ia_realv p[3], ia_realv t, const ia_realv n[3], const ia_realv d[3],
+                         const ia_realv vis[EFFECTS_MAX_LIGHTS], const shade_colorv albedo[3], ia_realv specular,
+                         ia_realv shininess, const shade_colorv id_rgb[3], shade_colorv lin[3]) {
     int shade = (int)fx[EFFECTS_SHADE];
     if (shade >= EFFECTS_SHADE_NORMALS) {
         ia_real span = fx[EFFECTS_DEPTH_HI] - fx[EFFECTS_DEPTH_LO];
@@ -184,7 +196,7 @@ IA_FN void shade_effects(const KERNEL_CONSTANT ia_real *params, const KERNEL_CON
     for (int l = 0; l < (int)fx[EFFECTS_NLIGHTS]; l++) {
         const KERNEL_CONSTANT ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
         ia_realv towards[3], nl, nh;
-        shade_towards(params, L, p, towards);
+        shade_towards(L, units[l], p, towards);
         shade_light(n, d, towards, &nl, &nh);
         diffuse += select(IAV_R(0), vis[l] * (L[EFFECTS_LIGHT_INTENSITY] * nl), vis[l] > 0);
         highlight += select(IAV_R(0), vis[l] * (L[EFFECTS_LIGHT_HIGHLIGHT] * shade_highlight(nh, shininess)),

@@ -17,6 +17,20 @@ static ia_realv effects_offset(ia_real eps, const ia_realv p[3], ia_realv t) {
     return 4 * eps + (ia_real)4e-6 * (1 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]) + fabs(t));
 }
 
+/* The farthest end t of the rays of `lanes` (0 where there is none), by a tree of halves: stored and read back
+ * lane by lane, the loads waited on the store's pieces (a third of effects_trace's CPU samples with transparency). */
+static ia_real march_farthest(ia_realv t, ia_maskv lanes) {
+    ia_realv v = select(IAV_R(0), t, lanes);
+#if IA_VW == 16
+    __typeof__(v.lo) v8 = fmax(v.lo, v.hi);
+#else
+    ia_realv v8 = v;
+#endif
+    __typeof__(v8.lo) v4 = fmax(v8.lo, v8.hi);
+    __typeof__(v4.lo) v2 = fmax(v4.lo, v4.hi);
+    return fmax((ia_real)0, fmax(v2.x, v2.y)); /* fmax passes NaN lanes over, as the loop did */
+}
+
 #ifdef PACKET_FDV
 /* A secondary ray starts next to a surface it leaves (or crosses): bisection must halve its first nodes down to
  * its distance from that surface before one excludes it, some 2 log2(length / distance) evaluations, and then

@@ -85,14 +85,16 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
                 kids[EFFECTS_RAY_REALS * (size_t)(first + k) + c] = kid_k[c][k];
     }
     int nlights = (int)fx[EFFECTS_NLIGHTS];
-    for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
+    ia_real units[EFFECTS_MAX_LIGHTS][3];
+    shade_light_units(params, fx, units);
+    for (int l = 0; l < nlights; l++) { /* a light past nlights is never read (iacsg_scene_shade: shade_effects) */
         ia_realv seen = IAV_R(!shadows); /* without shadows every light, as the host's paths had it */
-        if (shadows && l < nlights) { /* a light past nlights is never seen (its rays would be empty) */
+        if (shadows) {
             __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
             ia_realv towards[3], sd[3];
-            shade_towards(params, L, p, towards);
+            shade_towards(L, units[l], p, towards);
             ia_maskv ray = hit & (nv[0] * towards[0] + nv[1] * towards[1] + nv[2] * towards[2] > 0);
-            ia_realv dist = shade_towards(params, L, so, sd);
+            ia_realv dist = shade_towards(L, units[l], so, sd);
             ia_real s_k[EFFECTS_RAY_REALS][IA_VW];
             for (int c = 0; c < 3; c++) {
                 IAV_STORE(so[c], s_k[c]);

@@ -33,10 +33,7 @@ static ia_maskv scene_rays_root(const ia_realv o[3], const ia_realv d[3], ia_rea
     if (march)
         hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, whether, time, lo, hi, counts);
 #endif
-    ia_real far[IA_VW], w = 0;
-    IAV_STORE(select(IAV_R(0), b, walking), far);
-    for (int k = 0; k < IA_VW; k++)
-        w = fmax(w, far[k]);
+    ia_real w = march_farthest(b, walking);
     if (iav_any(walking)) /* a tree as long as the farthest ray; Newton from any node */
         hit |= packet_first_root(0, o, d, 0, w, (packet_int)0, (packet_index)0, a, b, walking, eps, IA_INF, 0, time,
                                  lo, hi, counts);
@@ -257,14 +254,18 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
  * fraction of each light that reaches it (EFFECTS_MAX_LIGHTS floats) and its pixel's row; shadow_item, where not
  * NULL (every item opaque: kernels/scene_centre.cl), the items that the shadow rays met, that towards light l from
  * hit i at shadow_slot[l n + i] (where vis_in is not 0), a light being seen only where its ray met nothing (-1).
- * Out per hit, 6 floats: its colour (a miss: the background) and the background of its row, both linear. */
+ * Out per hit, 6 floats: its colour (a miss: the background) and the background of its row, both linear; or, where
+ * rgb is not NULL (the centre paths have no child: kernels/scene_centre.cl), hit i's colour display-encoded (gamma 2,
+ * clamped to [0, 1], as the host's fx_encode) straight into its pixel pixels[i] of the frame rgb, so that no host pass
+ * copies and encodes them (the segment path's shadowed frame: ~70 CPU samples of fx_encode on one CPU). */
 __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *fx, __global const float *materials,
                                 __global const float *palette, int height, __global const ia_real *rays,
                                 __global const ia_real *hit_t, __global const float *hit_n,
                                 __global const int *hit_item, __global const float *vis_in,
                                 __global const int *rows, int n, __global float *out,
-                                __global const int *shadow_item, __global const int *shadow_slot) {
-    int first = (int)get_global_id(0) * IA_VW;
+                                __global const int *shadow_item, __global const int *shadow_slot,
+                                __global const int *pixels, __global float *rgb) {
+    int first = (int)get_global_id(0) * IA_VW, nlights = (int)fx[EFFECTS_NLIGHTS];
     if (first >= n)
         return;
     ia_real o_k[3][IA_VW], d_k[3][IA_VW], n_k[3][IA_VW], t_k[IA_VW], on_k[IA_VW], row_k[IA_VW];
@@ -286,7 +287,7 @@ __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *
         row_k[k] = (ia_real)rows[i];
         specular_k[k] = m[SCENE_MATERIAL_SPECULAR];
         shininess_k[k] = m[SCENE_MATERIAL_SHININESS];
-        for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) {
+        for (int l = 0; l < nlights; l++) {
             float v = vis_in[EFFECTS_MAX_LIGHTS * i + l];
             seen_k[l][k] = v != 0 && shadow_item && shadow_item[shadow_slot[(size_t)l * n + i]] != -1 ? 0 : v;
         }
@@ -303,9 +304,11 @@ __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *
         albedo[c] = IAV_CAT(vload, IA_VW)(0, albedo_k[c]);
         id_rgb[c] = IAV_CAT(vload, IA_VW)(0, id_k[c]);
     }
-    for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++)
-        vis[l] = select(IAV_R(0), IAV_LOAD(seen_k[l]), hit);
-    shade_effects(params, fx, p, t, nv, d, vis, albedo, IAV_LOAD(specular_k), IAV_LOAD(shininess_k), id_rgb, lin);
+    for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* shade_effects reads the first nlights */
+        vis[l] = l < nlights ? select(IAV_R(0), IAV_LOAD(seen_k[l]), hit) : IAV_R(0);
+    ia_real units[EFFECTS_MAX_LIGHTS][3];
+    shade_light_units(params, fx, units);
+    shade_effects(fx, units, p, t, nv, d, vis, albedo, IAV_LOAD(specular_k), IAV_LOAD(shininess_k), id_rgb, lin);
     float top[3], bottom[3];
     for (int c = 0; c < 3; c++) {
         top[c] = (float)fx[EFFECTS_BG_TOP + c];
@@ -316,11 +319,18 @@ __kernel void iacsg_scene_shade(__constant ia_real *params, __constant ia_real *
     float colour[3][IA_VW], back[3][IA_VW];
     for (int c = 0; c < 3; c++) {
         bg[c] *= bg[c];
-        IAV_CAT(vstore, IA_VW)(select(bg[c], lin[c], on), 0, colour[c]);
+        shade_colorv shown = select(bg[c], lin[c], on);
+        if (rgb) /* clamped as fx_encode clamps (fmax takes 0 over NaN) */
+            shown = sqrt(fmin(fmax(shown, 0.0f), 1.0f));
+        IAV_CAT(vstore, IA_VW)(shown, 0, colour[c]);
         IAV_CAT(vstore, IA_VW)(bg[c], 0, back[c]);
     }
     for (int k = 0; k < IA_VW && first + k < n; k++)
         for (int c = 0; c < 3; c++) {
+            if (rgb) {
+                rgb[3 * (size_t)pixels[first + k] + c] = colour[c][k];
+                continue;
+            }
             out[6 * (first + k) + c] = colour[c][k];
             out[6 * (first + k) + 3 + c] = back[c][k];
         }

@@ -679,8 +679,9 @@ static int children_on_device(const fx_frame *f) {
 }
 
 /* The centre paths of pixels[0 .. count) where none has a child, or children_on_device, FX_CHUNK at a time, on the
- * device (fx_scene_centre: their rays, shadow rays, children and colours); the host only encodes their colours,
- * and follows the children whose hits have children (run_paths). Their rays are the camera kernel's, in the
+ * device (fx_scene_centre: their rays, shadow rays, children and colours, display-encoded into the frame where no
+ * path has a child); the host only sums and encodes the colours of paths with children, and follows the children
+ * whose hits have children (run_paths). Their rays are the camera kernel's, in the
  * working precision (the host's were in double, rounded): a shading point, a shadow ray's or a child's start may
  * move by ulps. */
 static iacsg_status centre_on_device(fx_frame *f, iacsg_frame *frame, const int *pixels, size_t count,
@@ -691,11 +692,15 @@ static iacsg_status centre_on_device(fx_frame *f, iacsg_frame *frame, const int 
     fx_path *rest = reserve(&f->rest, FX_CHUNK * sizeof *rest);
     iacsg_status st = out && rest ? IACSG_OK
                                   : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects");
+    int children = has_children(f->r, e);
     for (size_t k = 0; st == IACSG_OK && k < count; k += FX_CHUNK) {
         size_t n = count - k < FX_CHUNK ? count - k : FX_CHUNK, nrest = 0;
+        /* without children the device encodes the colours into the frame itself */
         st = fx_scene_centre(&f->tracer, f->block, pixels + k, n, frame, lit && e->shadows,
-                             FX_SHADOW_EPS_FACTOR * f->view->eps, f->palette, has_children(f->r, e), out, rest,
+                             FX_SHADOW_EPS_FACTOR * f->view->eps, f->palette, children, children ? out : NULL, rest,
                              &nrest, err);
+        if (!children)
+            continue;
         for (size_t q = 0; st == IACSG_OK && q < n; q++) /* a path's colour, all of its pixel's but rest's */
             memcpy(frame->rgb + 3 * (size_t)pixels[k + q], out + 6 * q, 3 * sizeof(float));
         if (st == IACSG_OK && nrest > 0)

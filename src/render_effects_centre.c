@@ -129,7 +129,7 @@ static iacsg_status centre_kids(fx_tracer *t, const double *block, const cl_mem 
         st = fx_launch_scene(t, r->fx->trace, &b, (cl_int)n, eps_real, 0, err);
     const cl_mem kid_hits[6] = {kids, kh[0], kh[1], kh[2], hits[4], hits[5]};
     if (st == IACSG_OK)
-        st = fx_shade_launch(t, block, kid_hits, NULL, NULL, n, palette, kid_out, err);
+        st = fx_shade_launch(t, block, kid_hits, NULL, NULL, n, palette, kid_out, NULL, NULL, err);
     if (st == IACSG_OK && (rc = read_back(r->rt.queue, kh[2], bytes[2], &back[0])) != CL_SUCCESS)
         st = clrt_record(err, rc, "the children's items", __func__, __LINE__);
     const cl_int *kid_item = back[0];
@@ -249,8 +249,18 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
     }
     if (st == IACSG_OK && n == 0 && clFinish(r->rt.queue) != CL_SUCCESS)
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clFinish after iacsg_scene_centre failed");
+    cl_mem rgb = NULL; /* without children, the colours go display-encoded into the frame (out NULL) */
+    if (st == IACSG_OK && n > 0 && !out) {
+        rgb = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, 3 * area * sizeof(float),
+                             frame->rgb, &rc);
+        if (rc != CL_SUCCESS)
+            st = clrt_record(err, rc, "clCreateBuffer(centre)", __func__, __LINE__);
+    }
     if (st == IACSG_OK && n > 0)
-        st = fx_shade_launch(t, block, hits, m > 0 ? sh[3] : NULL, stage[2], n, palette, out, err);
+        st = fx_shade_launch(t, block, hits, m > 0 ? sh[3] : NULL, stage[2], n, palette, out, in[0], rgb, err);
+    if (st == IACSG_OK && rgb)
+        st = fx_sync_to_host(r->rt.queue, rgb, 3 * area * sizeof(float), err);
+    fx_release_all(&rgb, 1);
     if (st == IACSG_OK && m > 0 && r->config.stats)
         st = count_centre_rays(t, sh[4], (size_t)m, (size_t)m, err);
     *nrest = 0;

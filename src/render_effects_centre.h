@@ -6,7 +6,8 @@
 
 /* The segment path's centre paths of pixels[0 .. n), wholly on the device (kernels/scene_centre.cl): their camera
  * rays and hits (the frame's depth, normals and ids), with `shadows` their shadow rays (leaves eps wide) traced,
- * then their colours (iacsg_scene_shade) into out, 6 floats a path as fx_scene_shade's. block: the effects'
+ * then their colours (iacsg_scene_shade) into out, 6 floats a path as fx_scene_shade's, or (out NULL, without
+ * `children`) display-encoded into their pixels of frame->rgb, as fx_encode encodes. block: the effects'
  * parameters (EFFECTS_COUNT, kernels/effects.h). Without `children` no path may have a child (every item opaque,
  * no reflected ray). With `children` (lit, no shadows, at most one child a path: no item both reflects with
  * -bounces and lets light through), each hit's child (its reflected ray, or its ray on through a transparent hit)

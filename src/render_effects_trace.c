@@ -309,9 +309,11 @@ iacsg_status fx_shade_inputs(fx_tracer *t, size_t n, fx_shade_in *in, iacsg_erro
 
 /* Launches iacsg_scene_shade over the n hits whose arrays are hits[0 .. 6) (rays, depths, normals, items, light
  * fractions, rows: device buffers; n 0: none, a launch that only compiles it), shadow_item and shadow_slot (or
- * NULL) its arguments; their colours into out (6 floats a hit). */
+ * NULL) its arguments; their colours into out (6 floats a hit), or where out is NULL display-encoded into their
+ * pixels (pixels: device buffer) of the frame rgb (a device buffer over the host's frame). */
 iacsg_status fx_shade_launch(fx_tracer *t, const double *block, const cl_mem hits[6], cl_mem shadow_item,
-                             cl_mem shadow_slot, size_t n, const float *palette, float *out, iacsg_error *err) {
+                             cl_mem shadow_slot, size_t n, const float *palette, float *out, cl_mem pixels, cl_mem rgb,
+                             iacsg_error *err) {
     iacsg_renderer *r = t->r;
     size_t rb = fx_real_bytes(r), nitems = r->fx->nitems > 0 ? (size_t)r->fx->nitems : 1;
     cl_mem mem[3] = {0}; /* block, materials, palette */
@@ -328,7 +330,7 @@ iacsg_status fx_shade_launch(fx_tracer *t, const double *block, const cl_mem hit
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
     }
-    if (st == IACSG_OK && n > 0) {
+    if (st == IACSG_OK && n > 0 && out) {
         out_mem = clCreateBuffer(r->rt.context, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, 6 * n * sizeof(float), out,
                                  &rc);
         if (rc != CL_SUCCESS)
@@ -338,8 +340,8 @@ iacsg_status fx_shade_launch(fx_tracer *t, const double *block, const cl_mem hit
     cl_int height = t->view->height, count = (cl_int)n;
     const cl_mem *args[] = {&t->params, &mem[0], &mem[1], &mem[2], NULL,     &hits[0], &hits[1],
                             &hits[2],   &hits[3], &hits[4], &hits[5], NULL,    &out_mem, &shadow_item,
-                            &shadow_slot};
-    for (cl_uint a = 0; a < 15 && st == IACSG_OK; a++) {
+                            &shadow_slot, &pixels, &rgb};
+    for (cl_uint a = 0; a < 17 && st == IACSG_OK; a++) {
         rc = a == 4 ? clSetKernelArg(k, a, sizeof height, &height)
              : a == 11 ? clSetKernelArg(k, a, sizeof count, &count)
                        : clSetKernelArg(k, a, sizeof(cl_mem), *args[a] ? args[a] : NULL);
@@ -382,7 +384,7 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in
             st = clrt_record(err, rc, "clCreateBuffer(iacsg_scene_shade)", __func__, __LINE__);
     }
     if (st == IACSG_OK)
-        st = fx_shade_launch(t, block, hits, NULL, NULL, n, palette, out, err);
+        st = fx_shade_launch(t, block, hits, NULL, NULL, n, palette, out, NULL, NULL, err);
     fx_release_all(hits, 6);
     return st;
 }

@@ -143,7 +143,8 @@ iacsg_status fx_scene_shade(fx_tracer *t, const double *block, const fx_shade_in
 
 /* Shared with render_effects_centre.c. The device buffers of one trace call; the scene's trace kernel k over n rays
  * (render_effects_trace.c: its launches); the bytes of fx_shade_in's arrays for n hits; iacsg_scene_shade over n
- * hits in device buffers (shadow_item and shadow_slot: the centre paths' shadow rays, or NULL); buffers released. */
+ * hits in device buffers (shadow_item and shadow_slot: the centre paths' shadow rays, or NULL), into out or, out
+ * NULL, display-encoded into their pixels of the frame rgb; buffers released. */
 typedef struct fx_trace_buffers {
     cl_mem rays, t, normal, item, evals, passing;
 } fx_trace_buffers;
@@ -151,7 +152,8 @@ iacsg_status fx_launch_scene(fx_tracer *t, cl_kernel k, const fx_trace_buffers *
                              cl_int whether, iacsg_error *err);
 void fx_shade_parts(const iacsg_renderer *r, size_t n, size_t bytes[6]);
 iacsg_status fx_shade_launch(fx_tracer *t, const double *block, const cl_mem hits[6], cl_mem shadow_item,
-                             cl_mem shadow_slot, size_t n, const float *palette, float *out, iacsg_error *err);
+                             cl_mem shadow_slot, size_t n, const float *palette, float *out, cl_mem pixels, cl_mem rgb,
+                             iacsg_error *err);
 void fx_release_all(cl_mem *mem, int count);
 
 #endif
