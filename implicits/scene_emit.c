@@ -67,10 +67,11 @@ static int group_has_expression(const iacsg_scene *s, int g) {
 static void emit_dispatcher(strbuf *b, const iacsg_scene *s, int which, int prim_room) {
     const char *name = dispatched[which].name, *type = dispatched[which].type, *params = dispatched[which].params;
     const char *args = dispatched[which].args, *otherwise = dispatched[which].otherwise;
-    int nsolids = s->nsolids, groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP;
+    int nsolids = s->nsolids, groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP, expressions = 0;
     for (int g = 0; g < groups; g++) {
         if (!group_has_expression(s, g))
             continue;
+        expressions = 1;
         strbuf_printf(b, "__attribute__((noinline)) %s scene_g%d_%s(int k, %s) {\n    switch (k) {\n", type, g, name,
                       params);
         for (int k = g * SCENE_EMIT_GROUP; k < nsolids && k < (g + 1) * SCENE_EMIT_GROUP; k++)
@@ -88,12 +89,12 @@ static void emit_dispatcher(strbuf *b, const iacsg_scene *s, int which, int prim
                       args);
     else
         strbuf_printf(b, "    (void)q;\n");
-    if (groups > 0)
+    if (expressions)
         strbuf_printf(b, "    switch (k / %d) {\n", SCENE_EMIT_GROUP);
     for (int g = 0; g < groups; g++)
         if (group_has_expression(s, g))
             strbuf_printf(b, "    case %d: return scene_g%d_%s(k, %s);\n", g, g, name, args);
-    strbuf_printf(b, "%s    %s\n}\n", groups > 0 ? "    }\n" : "", otherwise);
+    strbuf_printf(b, "%s    %s\n}\n", expressions ? "    }\n" : "", otherwise);
 }
 
 /* The room the dispatchers give a primitive's parameters (0 without primitives): an arb8's, the most of the types
