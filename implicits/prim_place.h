@@ -2,7 +2,7 @@
  * of its inclusion functions (kernels/prim.h) as double intervals holding the exact values that the database's
  * numbers and its matrix define, and a proven world box.
  *
- *   scene_prim (database layout, mat) --prim_place--> prim_placed --> scene_emit.c's literals, scene_tables.c's box
+ *   scene_prim (database layout, mat) --prim_place--> prim_placed --> scene_prims.c's table, scene_tables.c's box
  *   (brlcad_tree.c keeps each primitive's placement once made, prim_keep: the later calls copy it)
  */
 #ifndef IMPLICITS_PRIM_PLACE_H

@@ -1,33 +1,35 @@
-/* implicits/scene_emit.c -- see scene_emit.h. Each dispatcher is a switch over groups of SCENE_EMIT_GROUP solids,
- * each group a function of its own (not inlined) holding a switch over its solids, whose code is inlined there:
- * inlined wherever the kernels call the dispatchers, 1000 spheres took minutes to build. The build costs about
- * 30 ms of CPU per sphere (PoCL, LLVM 15). scene_solid_Fd, each solid's value and derivative along a ray
- * (P_Fd, which the compiler emits under IACSG_SCALAR_FD), is for the walks' interval Newton (kernels/segments.h,
- * surface.h: SCENE_SOLID_FD), only in scenes of at most SCENE_EMIT_FD_MAX_SOLIDS solids: it saves a quarter to a
- * third of the evaluations, but for 1000 spheres the build took 73 s instead of 15-19 s. Outside 0..nsolids-1 the
- * enclosures are everything, which rejects nothing (and stops Newton: its derivative is unbounded).
+/* implicits/scene_emit.c -- see scene_emit.h. Each dispatcher sends a primitive to prim.h's functions and an
+ * expression to its group's function: the solids in groups of SCENE_EMIT_GROUP, each group holding an expression a
+ * function of its own (not inlined) with a switch over its expressions, whose code is inlined there: inlined
+ * wherever the kernels call the dispatchers, 1000 spheres took minutes to build. The build costs about 30 ms of CPU
+ * per sphere (PoCL, LLVM 15). scene_solid_Fd, each solid's value and derivative along a ray (P_Fd, which the
+ * compiler emits under IACSG_SCALAR_FD), is for the walks' interval Newton (kernels/segments.h, surface.h:
+ * SCENE_SOLID_FD), only in scenes of at most SCENE_EMIT_FD_MAX_SOLIDS solids: it saves a quarter to a third of the
+ * evaluations, but for 1000 spheres the build took 73 s instead of 15-19 s. Outside 0..nsolids-1 the enclosures
+ * are everything, which rejects nothing (and stops Newton: its derivative is unbounded).
  *
- * A BRL-CAD primitive (scene_solid.prim) is no compiled expression: its parameters, placed in the world as
- * intervals (prim_place.c), are stored into a private array by its group's scene_gG_P (as double and as float
- * literals, under #ifdef IA_FP64), and its group's dispatchers call kernels/prim.h's with them, which the program
- * holds once (src/render_scene.c puts them before the solids): a primitive has no functions of its own. That cost
- * about 2.5-3 ms of build per solid here when each had its three functions (1000 arbs or ells, medians of 3 on a
- * loaded machine; dispatching by group cut havoc's first build from 19 to 13 s), against ~30 ms for an expression; with Fd too (a scene of primitives only) the build took 25 % longer for 19 % fewer
- * evaluations and no faster frame, so the limit counts all solids. scene_solid_P hands a primitive's type and
- * parameters to the walks' closed forms (kernels/prim_segments.h), with SCENE_SOLID_PIPES where a pipe's need more
- * room.
+ * A BRL-CAD primitive (scene_solid.prim) is no code in the program: its type and parameters, placed in the world as
+ * intervals, are in a device buffer (implicits/scene_prims.c, kernels/scene_prims.h's layout), which every
+ * dispatcher takes (q), and a primitive goes to kernels/prim.h's functions (held once by the program:
+ * src/render_scene.c puts them before the solids) with its parameters copied from it (scene_prim_F, _f_grad, _Fd,
+ * out of line). So a scene of primitives only has a program that depends on neither their values nor their count:
+ * only on whether it has pipes (SCENE_SOLID_PIPES, and the room for the longest, a power of two), whether it has at
+ * most SCENE_EMIT_FD_MAX_SOLIDS solids (SCENE_SOLID_FD) and its distance tolerance; one cached build serves all such
+ * models. (Emitted as literals, stores into a private array per solid, havoc's ~200,000 cost its first build 13 s and
+ * every cached one the bitcode's parse, 47 ms: tests/bench/NOTES.md.) With Fd too (a scene of primitives only) the
+ * build took 25 % longer for 19 % fewer evaluations and no faster frame, so the limit counts all solids.
  *
  * Small scenes of regions also get the regions' union in SIMD lanes (SCENE_REGIONS_UNION, kernels/scene_union.h's
  * pre-pass), and SCENE_REGIONS_DISJOINT where no two regions can be in at one point (regions_disjoint), with the
- * solids in lanes too (emit_solids_in_lanes). A scene's distance tolerance is SCENE_DIST_TOL (kernels/weave.h's
- * zones); such a scene is not claimed at the union's leaf, which fuses nothing. */
+ * solids in lanes too (emit_solids_in_lanes): only scenes of expressions, compiled code anyway. A scene's distance
+ * tolerance is SCENE_DIST_TOL (kernels/weave.h's zones); such a scene is not claimed at the union's leaf, which
+ * fuses nothing. */
 #include "scene_emit.h"
 #include "emit.h"
 #include "expr_internal.h"
-#include "ia/flush.h"
-#include "prim_place.h"
+#include "kernels/prim.h"
+#include "scene_prims.h"
 #include "strbuf.h"
-#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,136 +53,64 @@ static const struct {
      "prim_Fd(type, p, x, y, z, dx, dy, dz, dt)"},
 };
 
-/* A group's primitives have no functions of their own: after the cases of its expressions, the group function
- * fetches solid k's parameters (scene_gG_P: -1 for a solid that is no primitive) into room for the group's largest
- * (prim_reals[g] reals, 0 when it has none) and calls prim.h's. */
-static void emit_dispatcher(strbuf *b, const iacsg_scene *s, int which, const int *prim_reals) {
+/* Whether group g (solids g SCENE_EMIT_GROUP on) holds an expression: only those have a group function. */
+static int group_has_expression(const iacsg_scene *s, int g) {
+    for (int k = g * SCENE_EMIT_GROUP; k < s->nsolids && k < (g + 1) * SCENE_EMIT_GROUP; k++)
+        if (!s->solids[k].prim)
+            return 1;
+    return 0;
+}
+
+/* The dispatcher scene_solid_<which>(q, k, ...): a primitive (the table q says which solids are, kernels/
+ * scene_prims.h) through scene_prim_<which>, which copies its parameters into room for the scene's largest
+ * (prim_room reals, 0 without primitives) and calls prim.h's; an expression through its group's function. */
+static void emit_dispatcher(strbuf *b, const iacsg_scene *s, int which, int prim_room) {
     const char *name = dispatched[which].name, *type = dispatched[which].type, *params = dispatched[which].params;
     const char *args = dispatched[which].args, *otherwise = dispatched[which].otherwise;
-    int nsolids = s->nsolids, groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP;
+    int nsolids = s->nsolids, groups = (nsolids + SCENE_EMIT_GROUP - 1) / SCENE_EMIT_GROUP, expressions = 0;
     for (int g = 0; g < groups; g++) {
+        if (!group_has_expression(s, g))
+            continue;
+        expressions = 1;
         strbuf_printf(b, "__attribute__((noinline)) %s scene_g%d_%s(int k, %s) {\n    switch (k) {\n", type, g, name,
                       params);
         for (int k = g * SCENE_EMIT_GROUP; k < nsolids && k < (g + 1) * SCENE_EMIT_GROUP; k++)
             if (!s->solids[k].prim)
                 strbuf_printf(b, "    case %d: return scene_s%d_%s(%s);\n", k, k, name, args);
-        strbuf_printf(b, "    }\n");
-        if (prim_reals[g] > 0)
-            strbuf_printf(b, "    ia_real p[%d];\n    int type = scene_g%d_P(k, p, %d);\n    if (type >= 0)\n"
-                             "        return %s;\n", prim_reals[g], g, prim_reals[g], dispatched[which].prim_call);
-        strbuf_printf(b, "    %s\n}\n", otherwise);
+        strbuf_printf(b, "    }\n    %s\n}\n", otherwise);
     }
-    strbuf_printf(b, "IA_FN %s scene_solid_%s(int k, %s) {\n    switch (k / %d) {\n", type, name, params,
-                  SCENE_EMIT_GROUP);
+    if (prim_room > 0)
+        strbuf_printf(b, "__attribute__((noinline)) %s scene_prim_%s(scene_prims q, int k, %s) {\n"
+                         "    ia_real p[%d];\n    int type = scene_solid_P(q, k, p, %d);\n    return %s;\n}\n",
+                      type, name, params, prim_room, prim_room, dispatched[which].prim_call);
+    strbuf_printf(b, "IA_FN %s scene_solid_%s(scene_prims q, int k, %s) {\n", type, name, params);
+    if (prim_room > 0)
+        strbuf_printf(b, "    if (scene_prims_type(q, k) >= 0)\n        return scene_prim_%s(q, k, %s);\n", name,
+                      args);
+    else
+        strbuf_printf(b, "    (void)q;\n");
+    if (expressions)
+        strbuf_printf(b, "    switch (k / %d) {\n", SCENE_EMIT_GROUP);
     for (int g = 0; g < groups; g++)
-        strbuf_printf(b, "    case %d: return scene_g%d_%s(k, %s);\n", g, g, name, args);
-    strbuf_printf(b, "    }\n    %s\n}\n", otherwise);
+        if (group_has_expression(s, g))
+            strbuf_printf(b, "    case %d: return scene_g%d_%s(k, %s);\n", g, g, name, args);
+    strbuf_printf(b, "%s    %s\n}\n", expressions ? "    }\n" : "", otherwise);
 }
 
-/* scene_solid_P(k, p, cap): solid k's primitive type, its parameters stored into p, or -1 when it is no primitive
- * or they need more than cap reals (kernels/segments.h's closed forms; SCENE_SOLID_PRIMS says it is there). */
-static void emit_parameters_dispatcher(strbuf *b, const iacsg_scene *s) {
-    int pipes = 0;
+/* The room the dispatchers give a primitive's parameters (0 without primitives): an arb8's, the most of the types
+ * but a pipe's, or for a scene with pipes the power of two that holds its longest, so that models of the same kinds
+ * mostly share a program. *pipes: whether it has any (SCENE_SOLID_PIPES). */
+static iacsg_status primitives_room(const iacsg_scene *s, int *room, int *pipes, iacsg_error *err) {
+    size_t count;
+    int most;
+    iacsg_status st = scene_prims_table(s, 0, NULL, &count, &most, err);
+    *pipes = 0;
     for (int k = 0; k < s->nsolids; k++)
-        pipes |= s->solids[k].prim && s->solids[k].prim->type == SCENE_PRIM_PIPE;
-    if (pipes) /* the walks' room for a pipe's parameters (kernels/segments.h) */
-        strbuf_printf(b, "#define SCENE_SOLID_PIPES 1\n");
-    strbuf_printf(b, "#define SCENE_SOLID_PRIMS 1\nIA_FN int scene_solid_P(int k, ia_real *p, int cap) {\n"
-                     "    switch (k / %d) {\n", SCENE_EMIT_GROUP);
-    for (int g = 0; g * SCENE_EMIT_GROUP < s->nsolids; g++) {
-        int any = 0;
-        for (int k = g * SCENE_EMIT_GROUP; k < s->nsolids && k < (g + 1) * SCENE_EMIT_GROUP; k++)
-            any |= s->solids[k].prim != NULL;
-        if (any)
-            strbuf_printf(b, "    case %d: return scene_g%d_P(k, p, cap);\n", g, g);
-    }
-    strbuf_printf(b, "    }\n    return -1;\n}\n");
-}
-
-/* See scene_emit.h (printf's %a took 106 ms of havoc's command: some 200,000 literals). */
-int scene_emit_hex(double x, char out[32]) {
-    static const char digits[] = "0123456789abcdef";
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    int n = 0, biased = (int)(bits >> 52 & 0x7ff), e = biased ? biased - 1023 : -1022;
-    uint64_t mantissa = bits & ((UINT64_C(1) << 52) - 1);
-    if (bits >> 63)
-        out[n++] = '-';
-    out[n++] = '0';
-    out[n++] = 'x';
-    out[n++] = biased ? '1' : '0';
-    if (mantissa) {
-        out[n++] = '.';
-        for (int shift = 48; shift >= 0; shift -= 4)
-            out[n++] = digits[mantissa >> shift & 15];
-        while (out[n - 1] == '0')
-            n--;
-    } else if (!biased) {
-        e = 0;
-    }
-    out[n++] = 'p';
-    out[n++] = e < 0 ? '-' : '+';
-    e = e < 0 ? -e : e;
-    char rev[4];
-    int k = 0;
-    do {
-        rev[k++] = (char)('0' + e % 10);
-        e /= 10;
-    } while (e);
-    while (k)
-        out[n++] = rev[--k];
-    return n;
-}
-
-/* A bound as a literal of each precision, the program's float and double variants of the parameters (in p[0] and
- * p[1], under #ifdef IA_FP64, so that the preprocessor skips the other instead of expanding a macro per literal):
- * the double itself, and its float rounded outward (down for a lower bound); either moved out of the subnormals
- * (ia/flush.h). */
-static void emit_bound(strbuf p[2], double x, int upper) {
-    float f = prim_float_bound(x, upper);
-    for (int fp64 = 0; fp64 < 2; fp64++) {
-        double v = fp64 ? (upper ? ia_flush_hi_d(x) : ia_flush_lo_d(x)) : (double)f;
-        char text[32];
-        int n = isinf(v) ? snprintf(text, sizeof text, "%sINFINITY", v < 0 ? "-" : "") : scene_emit_hex(v, text);
-        if (!fp64 && !isinf(v))
-            text[n++] = 'f';
-        strbuf_append(&p[fp64], text, (size_t)n);
-    }
-}
-
-/* Text for both variants of the parameters. */
-static void emit_both(strbuf p[2], const char *text) {
-    for (int fp64 = 0; fp64 < 2; fp64++)
-        strbuf_append(&p[fp64], text, strlen(text));
-}
-
-/* A primitive: its placed parameters as stores into p, the case k of its group's scene_gG_P, which returns its
- * type (stores, not an initialised array, which compilers put in __constant memory, 64 KB on some GPUs); the
- * dispatchers call kernels/prim.h's out-of-line functions with them. *reals: the room they need. */
-static iacsg_status emit_primitive(strbuf params[2], const scene_solid *solid, int k, int *reals, iacsg_error *err) {
-    prim_placed placed;
-    iacsg_status st = prim_place(solid->prim, solid->name, &placed, err);
-    if (st != IACSG_OK)
-        return st;
-    int nreal = 2 * placed.n, padded = (nreal + 7) / 8 * 8;
-    char text[96];
-    snprintf(text, sizeof text, "    case %d:\n        if (cap < %d)\n            return -1;\n", k, padded);
-    emit_both(params, text);
-    for (int i = 0; i < padded; i++) {
-        if (i % 8 == 0)
-            emit_both(params, "        vstore8((prim_real8)(");
-        if (i < nreal)
-            emit_bound(params, i % 2 ? placed.hi[i / 2] : placed.lo[i / 2], i % 2);
-        else
-            emit_both(params, "0");
-        snprintf(text, sizeof text, i % 8 == 7 ? "), %d, p);\n" : ", ", i / 8);
-        emit_both(params, text);
-    }
-    snprintf(text, sizeof text, "        return %d;\n", placed.type);
-    emit_both(params, text);
-    *reals = padded;
-    prim_placed_free(&placed);
-    return IACSG_OK;
+        *pipes |= s->solids[k].prim && s->solids[k].prim->type == SCENE_PRIM_PIPE;
+    *room = most == 0 ? 0 : 2 * PRIM_ARB8_N;
+    while (*pipes && *room < most)
+        *room *= 2;
+    return st;
 }
 
 /* The union of the regions as one expression (kernels/render_scene.cl's pre-pass), over the regions' trees:
@@ -287,51 +217,32 @@ static iacsg_status emit_solids_in_lanes(strbuf *b, const iacsg_scene *s, iacsg_
 
 iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err) {
     *source = NULL;
-    strbuf b = {0}, params[2] = {{0}, {0}}, code = {0}, dispatch = {0};
-    int with_fd = s->nsolids <= SCENE_EMIT_FD_MAX_SOLIDS, open_group = -1;
-    strbuf_printf(&b, "/* generated by iacsg: the %d solids of a scene */\n#define IACSG_SCALAR_CODE 1\n%s", s->nsolids,
+    strbuf b = {0}, code = {0};
+    int with_fd = s->nsolids <= SCENE_EMIT_FD_MAX_SOLIDS, prim_room = 0, pipes = 0;
+    strbuf_printf(&b, "/* generated by iacsg: a scene's solids */\n#define IACSG_SCALAR_CODE 1\n%s",
                   with_fd ? "#define IACSG_SCALAR_FD 1\n#define SCENE_SOLID_FD 1\n" : "");
     if (s->dist_tol > 0)
         strbuf_printf(&b, "#define SCENE_DIST_TOL %.17g\n", s->dist_tol);
-    int *prim_reals = calloc((size_t)(s->nsolids / SCENE_EMIT_GROUP + 1), sizeof(int));
-    iacsg_status st = prim_reals ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory generating code");
+    iacsg_status st = primitives_room(s, &prim_room, &pipes, err);
+    if (prim_room > 0) /* kernels/segments.h's closed forms; with pipes, its room for their parameters */
+        strbuf_printf(&b, "#define SCENE_SOLID_PRIMS 1\n%s", pipes ? "#define SCENE_SOLID_PIPES 1\n" : "");
     for (int k = 0; st == IACSG_OK && k < s->nsolids; k++) {
+        if (s->solids[k].prim)
+            continue;
         char prefix[32], *text = NULL;
         snprintf(prefix, sizeof prefix, "scene_s%d", k);
-        if (s->solids[k].prim && open_group != k / SCENE_EMIT_GROUP) { /* the group's parameter function */
-            if (open_group >= 0)
-                emit_both(params, "    }\n    return -1;\n}\n");
-            open_group = k / SCENE_EMIT_GROUP;
-            char head[128];
-            snprintf(head, sizeof head,
-                     "__attribute__((noinline)) int scene_g%d_P(int k, ia_real *p, int cap) {\n    switch (k) {\n",
-                     open_group);
-            emit_both(params, head);
-        }
-        int reals = 0;
-        st = s->solids[k].prim ? emit_primitive(params, &s->solids[k], k, &reals, err)
-                               : iacsg_expr_emit_cl(s->solids[k].expr, prefix, &text, err);
-        if (reals > prim_reals[k / SCENE_EMIT_GROUP])
-            prim_reals[k / SCENE_EMIT_GROUP] = reals;
+        st = iacsg_expr_emit_cl(s->solids[k].expr, prefix, &text, err);
         if (text)
             strbuf_printf(&code, "%s", text);
         free(text);
     }
-    if (open_group >= 0) {
-        emit_both(params, "    }\n    return -1;\n}\n");
-        emit_parameters_dispatcher(&dispatch, s);
-    }
-    char *params32 = strbuf_finish(&params[0]), *params64 = strbuf_finish(&params[1]);
-    char *dispatch_text = strbuf_finish(&dispatch), *code_text = strbuf_finish(&code), *vector = NULL;
+    char *code_text = strbuf_finish(&code), *vector = NULL;
     if (st == IACSG_OK)
         st = emit_regions_union(s, &vector, err);
     if (st == IACSG_OK) {
-        if (params64 && params32)
-            strbuf_printf(&b, "#ifdef IA_FP64\n%s#else\n%s#endif\n%s", params64, params32,
-                          dispatch_text ? dispatch_text : "");
         strbuf_printf(&b, "%s", code_text ? code_text : "");
         for (size_t which = 0; which < sizeof dispatched / sizeof dispatched[0] - !with_fd; which++)
-            emit_dispatcher(&b, s, (int)which, prim_reals);
+            emit_dispatcher(&b, s, (int)which, prim_room);
         /* last: without IACSG_SCALAR_CODE the program holds kernels/packet.h and tile.h */
         int disjoint = vector && !(s->dist_tol > 0) && regions_disjoint(s); /* a claim at the leaf fuses nothing */
         if (vector)
@@ -342,10 +253,6 @@ iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err
         if (vector)
             strbuf_printf(&b, "#undef IACSG_FDV\n#undef IACSG_FDV_MARCH\n%s", vector);
     }
-    free(prim_reals);
-    free(params32);
-    free(params64);
-    free(dispatch_text);
     free(code_text);
     free(vector);
     *source = strbuf_finish(&b);

@@ -1,11 +1,11 @@
-/* implicits/scene_emit.h -- the OpenCL C of a scene's solids for the segment path: each solid k's functions
- * (iacsg_expr_emit_cl with the prefix scene_s<k>, or for a BRL-CAD primitive calls of kernels/prim.h's functions
- * with its placed parameters; a primitive that describes no solid is IACSG_ERR_ARG, prim_place.c's message) and
- * dispatchers over the solid's number,
- *   IA_FN ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t);
- *   IA_FN ia_real scene_solid_f_grad(int k, ia_real x, ia_real y, ia_real z, ia_real t,
+/* implicits/scene_emit.h -- the OpenCL C of a scene's solids for the segment path: each expression solid k's
+ * functions (iacsg_expr_emit_cl with the prefix scene_s<k>; a BRL-CAD primitive has none: its parameters are in the
+ * table q, implicits/scene_prims.h, and it goes to kernels/prim.h's functions; a primitive that describes no solid is
+ * IACSG_ERR_ARG, prim_place.c's message) and dispatchers over the solid's number,
+ *   IA_FN ia_interval scene_solid_F(scene_prims q, int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t);
+ *   IA_FN ia_real scene_solid_f_grad(scene_prims q, int k, ia_real x, ia_real y, ia_real z, ia_real t,
  *                                    ia_real *gx, ia_real *gy, ia_real *gz);
- *   IA_FN ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t,
+ *   IA_FN ia_interval scene_solid_Fd(scene_prims q, int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t,
  *                                    ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt);
  * (the value and the derivative along a ray, [-inf, +inf] where an operation may be undefined, for interval
  * Newton; where the program defines SCENE_SOLID_FD: scenes of at most 64 solids, for the build time), which
@@ -17,9 +17,5 @@
 
 /* The source, malloc'ed (the caller free()s *source). */
 iacsg_status scene_emit_cl(const iacsg_scene *s, char **source, iacsg_error *err);
-
-/* A finite double as the exact C hexadecimal literal that printf's "%a" writes (glibc's form: 0x1.8p+1, 0x0p+0,
- * subnormals as 0x0.xp-1022), without printf. Returns its length (at most 24). */
-int scene_emit_hex(double x, char out[32]);
 
 #endif

@@ -2,11 +2,11 @@
  * implicit f (f < 0 inside) over a box, f and its gradient at a point (the normal), and Fd, F with the derivative
  * along a ray's direction (the walks' interval Newton). Written in the subset of C11 and OpenCL C of ia/, so the
  * host tests run the device's code. The scene program calls them out of line (prim_F, prim_f_grad, prim_Fd, one
- * copy per program), each solid only storing its parameters into a private array (scene_emit.c): a primitive costs
- * its scene a case of stores to build (a few ms with PoCL), not a compiled function (about 30 ms).
+ * copy per program), with a solid's parameters copied from the scene's table of primitives (kernels/scene_prims.h,
+ * a device buffer): a primitive costs its scene's program nothing, whatever the model.
  *
  *   implicits/prim_place.c: database parameters and matrix --> world parameters as intervals (outward) -->
- *   implicits/scene_emit.c: stores of literals per solid --> prim_F / prim_f_grad / prim_Fd here
+ *   implicits/scene_prims.c: the table, reals of the program's precision --> scene_solid_P's copy --> prim_F here
  *
  * Parameters. p holds intervals as lo, hi pairs (prim_iv), each holding the exact real number the placement
  * defines from the database's numbers, so F over a box holds f of the primitive exactly as the database defines
@@ -59,14 +59,6 @@
 #define PRIM_TOR 4
 #define PRIM_EHY 5
 #define PRIM_PIPE 6
-
-#if IA_DEVICE /* the scene program stores parameters 8 at a time */
-#ifdef IA_FP64
-typedef double8 prim_real8;
-#else
-typedef float8 prim_real8;
-#endif
-#endif
 
 #define PRIM_ARB_PLANES 6
 /* The number of intervals of each type's parameters (a pipe's depend on its parts). */

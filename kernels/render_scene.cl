@@ -25,9 +25,9 @@
 #include "scene_union.h"
 
 /* The unit normal at o + t d of the solid: its gradient (scene_solid_f_grad). */
-static void scene_gradient(int solid, const ia_real o[3], const ia_real d[3], ia_real t, ia_real time,
+static void scene_gradient(scene_prims q, int solid, const ia_real o[3], const ia_real d[3], ia_real t, ia_real time,
                            ia_real g[3]) {
-    scene_solid_f_grad(solid, o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2], time, &g[0], &g[1], &g[2]);
+    scene_solid_f_grad(q, solid, o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2], time, &g[0], &g[1], &g[2]);
 }
 
 /* The block passes over the rays of the packet of pixels from (i0, j0), one per surface (surface.h): sets where
@@ -35,14 +35,14 @@ static void scene_gradient(int solid, const ia_real o[3], const ia_real d[3], ia
  * statistics. (The same for the regions' solids, a pass proving where none can be other than OUT so that the
  * weaves start there, saved evaluations but no time: Fig. 2 as regions, 1000 spheres; BENCHMARKS.md.) */
 static kernel_u32 scene_block(__constant ia_real *params, int flags, int i0, int j0, int width, int height,
-                              __global const int *items, __global const uint *nodes, ia_interval time,
-                              surface_start starts[SURFACE_BLOCK_MAX], scene_view *view) {
+                              __global const int *items, __global const uint *nodes, scene_prims prims,
+                              ia_interval time, surface_start starts[SURFACE_BLOCK_MAX], scene_view *view) {
     int i1 = min(i0 + PACKET_W, width) - 1, j1 = min(j0 + PACKET_H, height) - 1;
     kernel_u32 evals = 0;
     for (int s = 0; s < min(view->nsurfaces, SURFACE_BLOCK_MAX); s++) {
         __global const int *it = items + SCENE_ITEM_INTS * view->surfaces[s];
         surface_block(params, flags & RENDER_ORTHO, i0, i1, j0, j1, width, height, it[SCENE_ITEM_SOLID],
-                      it[SCENE_ITEM_ROOT], nodes, time, &starts[s], &evals);
+                      it[SCENE_ITEM_ROOT], nodes, prims, time, &starts[s], &evals);
     }
     view->starts = starts;
     return (evals + PACKET_LANES - 1) / PACKET_LANES;
@@ -106,7 +106,7 @@ static int scene_packet_rays(__constant ia_real *params, const scene_frame *f, i
 /* Drops from the packet's cut the solids proven out along every ray of its beam over the beam's range in their
  * boxes (segments_beam_out: each ray's range there is within it, and outside its box a solid is out), so that
  * its rays neither test nor solve them. */
-static void scene_beam_drop_out(const bvh_beam *beam, scene_view *view, int cut[BVH_CUT_MAX]) {
+static void scene_beam_drop_out(scene_prims prims, const bvh_beam *beam, scene_view *view, int cut[BVH_CUT_MAX]) {
 #ifdef SCENE_SOLID_PRIMS
     ia_interval o[3], d[3];
     for (int c = 0; c < 3; c++) {
@@ -117,12 +117,13 @@ static void scene_beam_drop_out(const bvh_beam *beam, scene_view *view, int cut[
         int solid = view->link[2 * cut[j] + SCENE_BVH_SOLID];
         ia_real ta, tend;
         if (solid >= 0 && bvh_beam_range(beam, view->box, cut[j], &ta, &tend) &&
-            segments_beam_out(solid, o, d, ta, tend))
+            segments_beam_out(prims, solid, o, d, ta, tend))
             cut[j] = cut[--view->ncut];
         else
             j++;
     }
 #else
+    (void)prims;
     (void)beam;
     (void)view;
     (void)cut;
@@ -211,7 +212,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     surface_start starts[SURFACE_BLOCK_MAX];
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     kernel_u32 block_evals =
-        scene_block(params, f->flags, i0, j0, width, height, f->items, f->nodes, time, starts, view);
+        scene_block(params, f->flags, i0, j0, width, height, f->items, f->nodes, ray->walks.prims, time, starts, view);
     ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
     ia_real meets[PACKET_LANES];
     if (!scene_packet_rays(params, f, i0, j0, ok, dk, ik, tn, tf, meets)) {
@@ -244,7 +245,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
 #endif
     view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
     view->cut = view->ncut >= 0 ? cut : 0;
-    scene_beam_drop_out(&beam, view, cut);
+    scene_beam_drop_out(ray->walks.prims, &beam, view, cut);
 #ifndef SCENE_UNION_PREPASS
     if (view->ncut == 0 && view->nsurfaces == 0) { /* no ray meets a solid's box (bvh_beam_cut) */
         scene_packet_empty(params, f, i0, j0, only, block_evals);
@@ -283,8 +284,8 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         }
         on[k] = found;
         ia_real gradient[3] = {0, 0, 0};
-        if (found)
-            scene_gradient(hit.solid, o, d, hit.t, params[PARAM_TIME_LO], gradient); /* a point for shading */
+        if (found) /* at a point, for shading */
+            scene_gradient(ray->walks.prims, hit.solid, o, d, hit.t, params[PARAM_TIME_LO], gradient);
         for (int c = 0; c < 3; c++) {
             gk[c][k] = gradient[c];
             color[c][k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_RGB + c] : 0;
@@ -352,7 +353,7 @@ static scene_ray scene_slot_ray(__global const uint *nodes, __global const int *
                                 __global int *cand_solid, __global ia_real *cand_range, __global ia_real *cand_pos,
                                 __global int *cand_level, __global bisect_index *cand_index, __global int *cand_newton,
                                 __global ia_real *cand_newton_t, int cand_cap, __global uchar *state, int nsolids,
-                                size_t slot, int flags, prim_dirs *dirs, segments_lanes *lanes) {
+                                size_t slot, int flags, prim_dirs *dirs, segments_lanes *lanes, scene_prims prims) {
     size_t first = slot * (size_t)cand_cap;
     for (int k = 0; k < PRIM_DIRS_SLOTS; k++)
         dirs->solid[k] = -1;
@@ -363,7 +364,8 @@ static scene_ray scene_slot_ray(__global const uint *nodes, __global const int *
                      {cand_solid + first, cand_range + 2 * first, cand_pos + first, cand_level + first,
                       cand_index + first, cand_newton + first, cand_newton_t + 2 * first,
                       flags & RENDER_ORTHO ? dirs : 0,
-                      flags & RENDER_ORTHO ? lanes : 0},
+                      flags & RENDER_ORTHO ? lanes : 0,
+                      prims},
                      cand_cap,
                      0,
                      0,
@@ -388,7 +390,8 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                  __global ia_real *cand_newton_t, int cand_cap, __global uchar *state, int nsolids,
                                  __global float *rgb, __global float *depth, __global float *normal,
                                  __global float *ids, __global int *overlap, __global uint *counts,
-                                 __global int *overflow, __global int *noverflow, int row_end) {
+                                 __global int *overflow, __global int *noverflow, int row_end,
+                                 __global const ia_real *prims) {
     size_t slot = get_global_id(1) * get_global_size(0) + get_global_id(0);
     int bx = (int)get_global_id(0) * SCENE_BLOCK, by = (block_row0 + (int)get_global_id(1)) * SCENE_BLOCK;
     if (!pixels && (bx >= width || by >= height))
@@ -399,7 +402,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
     SCENE_LANES_DECLARE(lanes);
     scene_ray ray = scene_slot_ray(nodes, items, solid_items_start, solid_items, cand_solid, cand_range, cand_pos,
                                    cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
-                                   flags, &dirs, SCENE_LANES_OF(lanes));
+                                   flags, &dirs, SCENE_LANES_OF(lanes), prims);
     scene_frame f = {flags, width, height, row_end, items, nodes, albedo, rgb, depth, normal, ids,
                      overlap, counts, overflow, noverflow, -1};
     scene_tile tiles[PACKET_LANES];
@@ -447,7 +450,7 @@ __kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, 
                                          __global ia_real *cand_range, __global ia_real *cand_pos,
                                          __global int *cand_level, __global bisect_index *cand_index,
                                          __global int *cand_newton, __global ia_real *cand_newton_t, int cand_cap,
-                                         __global uchar *state, int nsolids) {
+                                         __global uchar *state, int nsolids, __global const ia_real *prims) {
     size_t slot = get_global_id(0);
     int listed = first_block + (int)slot;
     if (listed >= nblocks)
@@ -459,7 +462,7 @@ __kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, 
     SCENE_LANES_DECLARE(lanes);
     scene_ray ray = scene_slot_ray(nodes, items, solid_items_start, solid_items, cand_solid, cand_range, cand_pos,
                                    cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
-                                   flags, &dirs, SCENE_LANES_OF(lanes));
+                                   flags, &dirs, SCENE_LANES_OF(lanes), prims);
     scene_frame f = {flags, width, height, height, items, nodes, albedo, rgb, depth, normal, ids,
                      overlap, counts, overflow, noverflow, 0};
     int bx = block[SCENE_SAMPLES_BX] * SCENE_BLOCK, by = block[SCENE_SAMPLES_BY] * SCENE_BLOCK;

@@ -151,7 +151,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
                                      __global ia_real *cand_range, __global ia_real *cand_pos, __global int *cand_level,
                                      __global bisect_index *cand_index, __global int *cand_newton,
                                      __global ia_real *cand_newton_t, int cand_cap, __global uchar *state,
-                                     int nstates, int whether) {
+                                     int nstates, __global const ia_real *prims, int whether) {
     size_t slot = get_global_id(0);
     int first = first_ray + PACKET_LANES * (int)slot;
     if (first >= nrays)
@@ -164,7 +164,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
                    .solid_items_start = solid_items_start,
                    .solid_items = solid_items,
                    .walks = {cand_solid + c0, cand_range + 2 * c0, cand_pos + c0, cand_level + c0, cand_index + c0,
-                             cand_newton + c0, cand_newton_t + 2 * c0},
+                             cand_newton + c0, cand_newton_t + 2 * c0, 0, 0, prims},
                    .cand_cap = cand_cap,
                    .state = state + slot * (size_t)nstates};
     ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], ik[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
@@ -238,7 +238,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
             evals[ray] = r.evals + from_evals[k];
         ia_real g[3] = {0, 0, 0};
         if (found && hit.solid >= 0)
-            scene_solid_f_grad(hit.solid, o[0] + hit.t * d[0], o[1] + hit.t * d[1], o[2] + hit.t * d[2],
+            scene_solid_f_grad(prims, hit.solid, o[0] + hit.t * d[0], o[1] + hit.t * d[1], o[2] + hit.t * d[2],
                                params[PARAM_TIME_LO], &g[0], &g[1], &g[2]);
         ia_real len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), facing = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
         int ok_g = len > 0 && isfinite(len);

@@ -39,9 +39,10 @@ IA_FN int scene_trace_surfaces(const scene_view *v, scene_ray *r, const ia_real 
         ia_real lo, hi, end = found ? hit->t : tf;
         int solid = it[SCENE_ITEM_SOLID], cond = it[SCENE_ITEM_ROOT];
         if ((v->starts && s < SURFACE_BLOCK_MAX
-                 ? surface_first_root_from(&v->starts[s], o, d, tn, end, v->eps, solid, cond, r->nodes, v->time, &lo,
-                                           &hi, &r->evals)
-                 : surface_first_root(o, d, tn, end, v->eps, solid, cond, r->nodes, v->time, &lo, &hi, &r->evals)) &&
+                 ? surface_first_root_from(&v->starts[s], o, d, tn, end, v->eps, solid, cond, r->nodes,
+                                           r->walks.prims, v->time, &lo, &hi, &r->evals)
+                 : surface_first_root(o, d, tn, end, v->eps, solid, cond, r->nodes, r->walks.prims, v->time, &lo,
+                                      &hi, &r->evals)) &&
             (!found || lo < hit->t)) {
             found = 1;
             hit->t = lo;

@@ -20,12 +20,14 @@
  * cone's side line) it bisects.
  *
  * Needs scene_solid_F (src/render_scene.c's program, or the host tests' own), and with SCENE_SOLID_PRIMS (a scene
- * with primitives) scene_solid_P: a solid's primitive type and parameters (implicits/scene_emit.c).
+ * with primitives) scene_solid_P: a solid's primitive type and parameters (kernels/scene_prims.h), each from the
+ * scene's table of primitives, which the walks keep (prims).
  */
 #ifndef KERNELS_SEGMENTS_H
 #define KERNELS_SEGMENTS_H
 #include "traverse.h"
 #include "scene_data.h"
+#include "scene_prims.h"
 #include "prim_segments.h"
 #include "segments_lanes.h"
 #if !IA_DEVICE
@@ -46,6 +48,7 @@ typedef struct {
     KERNEL_GLOBAL ia_real *newton_t; /* the interval N holding the roots of that node */
     prim_dirs *dirs; /* the solids' direction terms where every ray has the same direction (prim_segments.h), or 0 */
     segments_lanes *lanes; /* with dirs, the packet's planar solids solved in lanes (segments_lanes.h), or 0 */
+    scene_prims prims;     /* the scene's primitives (kernels/scene_prims.h), for the solids' dispatchers */
 } segments_walks;
 
 #define SEGMENTS_CLOSING (-1)
@@ -110,7 +113,7 @@ IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[
     if (w->lanes && segments_lanes_holds(w->lanes, k) && w->lanes->solved[k % SEGMENTS_LANES_SLOTS])
         return segments_closed_keep(w, c, segments_lanes_changes(w->lanes, k, ta, tend, e, evals), e, resume);
 #endif
-    int type = scene_solid_P(k, p, SEGMENTS_PARAM_REALS), slot = k % PRIM_DIRS_SLOTS;
+    int type = scene_solid_P(w->prims, k, p, SEGMENTS_PARAM_REALS), slot = k % PRIM_DIRS_SLOTS;
     int kept = w->dirs && (type == PRIM_HALF || type == PRIM_ARB8 || type == PRIM_ELL || type == PRIM_TGC ||
                            type == PRIM_EHY || type == PRIM_TOR); /* the types with direction terms */
     int known = kept && w->dirs->solid[slot] == k;
@@ -133,9 +136,10 @@ IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[
 
 /* Whether solid k is proven out along every ray of a packet's beam (o and d: the hulls of its origins and
  * directions) over [ta, tend] (prim_segments_beam_out); 0 where not proven. */
-IA_FN int segments_beam_out(int k, const ia_interval o[3], const ia_interval d[3], ia_real ta, ia_real tend) {
+IA_FN int segments_beam_out(scene_prims q, int k, const ia_interval o[3], const ia_interval d[3], ia_real ta,
+                            ia_real tend) {
     ia_real p[SEGMENTS_PARAM_REALS];
-    int type = scene_solid_P(k, p, SEGMENTS_PARAM_REALS);
+    int type = scene_solid_P(q, k, p, SEGMENTS_PARAM_REALS);
     return type >= 0 && prim_segments_beam_out(type, p, o, d, ta, tend);
 }
 
@@ -201,14 +205,14 @@ IA_FN int segments_leaf_level(ia_real width, ia_real eps) {
 IA_FN int segments_newton(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real lo,
                           ia_real hi, int level, ia_interval time, kernel_u32 *evals) {
     ia_interval t = ia_make(lo, hi), slope;
-    scene_solid_Fd(w->solid[c], ray_extent(o[0], d[0], t), ray_extent(o[1], d[1], t), ray_extent(o[2], d[2], t),
-                   time, ia_point(d[0]), ia_point(d[1]), ia_point(d[2]), &slope);
+    scene_solid_Fd(w->prims, w->solid[c], ray_extent(o[0], d[0], t), ray_extent(o[1], d[1], t),
+                   ray_extent(o[2], d[2], t), time, ia_point(d[0]), ia_point(d[1]), ia_point(d[2]), &slope);
     *evals += 1;
     if (!newton_slope_usable(slope))
         return -1;
     ia_real m = lo * (ia_real)0.5 + hi * (ia_real)0.5;
     ia_interval at = ia_point(m);
-    ia_interval fm = scene_solid_F(w->solid[c], ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at),
+    ia_interval fm = scene_solid_F(w->prims, w->solid[c], ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at),
                                    ray_extent(o[2], d[2], at), time);
     *evals += 1;
     ia_interval n = ia_sub(at, ia_div(fm, slope));
@@ -272,7 +276,7 @@ IA_FN int segments_step(const segments_walks *w, int c, const ia_real o[3], cons
             }
         }
         ia_interval t = ia_make(lo, hi);
-        ia_interval f = scene_solid_F(w->solid[c], ray_extent(o[0], d[0], t), ray_extent(o[1], d[1], t),
+        ia_interval f = scene_solid_F(w->prims, w->solid[c], ray_extent(o[0], d[0], t), ray_extent(o[1], d[1], t),
                                       ray_extent(o[2], d[2], t), time);
         *evals += 1;
         s = segments_state(f, hi - lo, eps, level);

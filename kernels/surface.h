@@ -22,8 +22,9 @@
  * less than the enclosures' width, or a point within a leaf of the condition's boundary, may be a hit (as the
  * first-root path may hit a surface it only grazes).
  *
- * Needs the emitted dispatcher over the scene's solids,
- *     ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t),
+ * Needs the emitted dispatcher over the scene's solids, which takes the scene's table of primitives q
+ * (kernels/scene_prims.h; every function here passes it on),
+ *     ia_interval scene_solid_F(scene_prims q, int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t),
  * and, where SCENE_SOLID_FD is defined, scene_solid_Fd (the value and the derivative along a direction), declared
  * before this header (tests/t_render_surface_kernel_fp.c defines its own). The hit is shaded with the
  * surface solid's gradient, turned to face the eye, by the renderer that calls this.
@@ -34,6 +35,7 @@
 #include "params.h"
 #include "tile_rays.h"
 #include "traverse.h"
+#include "scene_prims.h"
 
 /* The value of a condition over a box: a set of the truth values it may take there. */
 #define SURFACE_MAY_HOLD 1
@@ -56,14 +58,14 @@ IA_FN int surface_not(int v) { return (v & SURFACE_MAY_HOLD) << 1 | (v & SURFACE
  * scene_solid_F. The nodes are visited from the last back to the root, so both children of a node are done
  * before it; the finished subtrees' values wait on a stack of 2-bit entries in one 64-bit word, the left child
  * (visited last) on top. The scene refuses a condition deeper than CSG_STACK_MAX (csg_stack_need). */
-IA_FN int surface_condition(const KERNEL_GLOBAL kernel_u32 *nodes, int root, int last, const ia_interval box[3],
-                            ia_interval time, kernel_u32 *evals) {
+IA_FN int surface_condition(const KERNEL_GLOBAL kernel_u32 *nodes, scene_prims q, int root, int last,
+                            const ia_interval box[3], ia_interval time, kernel_u32 *evals) {
     kernel_u64 stack = 0;
     for (int k = last; k >= root; k--) {
         kernel_u32 node = nodes[k];
         int op = CSG_NODE_OP(node), v;
         if (op == CSG_INSIDE || op == CSG_OUTSIDE) {
-            v = surface_compare(op, scene_solid_F((int)CSG_NODE_ARG(node), box[0], box[1], box[2], time));
+            v = surface_compare(op, scene_solid_F(q, (int)CSG_NODE_ARG(node), box[0], box[1], box[2], time));
             *evals += 1;
         } else {
             int left = (int)(stack & 3);
@@ -90,11 +92,11 @@ IA_FN int surface_condition(const KERNEL_GLOBAL kernel_u32 *nodes, int root, int
  * in f, and the condition may hold), and, through *proven, whether the condition is certain on it (see
  * surface_walk). */
 IA_FN int surface_keeps(ia_interval f, const ia_interval box[3], int level, int *proven, int condition, int last,
-                        const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time, kernel_u32 *evals) {
+                        const KERNEL_GLOBAL kernel_u32 *nodes, scene_prims q, ia_interval time, kernel_u32 *evals) {
     *evals += 1;
     if (!ia_contains_zero(f))
         return 0;
-    int holds = level > *proven ? SURFACE_CERTAIN : surface_condition(nodes, condition, last, box, time, evals);
+    int holds = level > *proven ? SURFACE_CERTAIN : surface_condition(nodes, q, condition, last, box, time, evals);
     if (holds == SURFACE_CERTAIN && level < *proven)
         *proven = level;
     return holds & SURFACE_MAY_HOLD;
@@ -127,13 +129,14 @@ typedef struct {
  * which also gave the node's F: surface_node): 0 when it holds no root, else 1, with N stored where D excludes 0
  * (intersected with an enclosing node's N: both hold). */
 IA_FN int surface_newton_step(surface_newton *n, int level, const ia_real o[3], const ia_real d[3], ia_real lo,
-                              ia_real hi, ia_interval slope, int solid, ia_interval time, kernel_u32 *evals) {
+                              ia_real hi, ia_interval slope, scene_prims q, int solid, ia_interval time,
+                              kernel_u32 *evals) {
     *evals += 1;
     ia_real m = lo * (ia_real)0.5 + hi * (ia_real)0.5;
     ia_interval at = ia_point(m);
     ia_interval fm = !newton_slope_usable(slope)
                          ? ia_empty()
-                         : scene_solid_F(solid, ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at),
+                         : scene_solid_F(q, solid, ray_extent(o[0], d[0], at), ray_extent(o[1], d[1], at),
                                          ray_extent(o[2], d[2], at), time);
     if (ia_is_empty(fm)) /* D holds 0 or is unbounded, or f is undefined at m: nothing learnt */
         return 1;
@@ -155,7 +158,7 @@ IA_FN int surface_newton_step(surface_newton *n, int level, const ia_real o[3], 
 /* Whether the walk may keep the node [lo, hi] at `level` (clipped to the ray's part, nonempty). */
 IA_FN int surface_node(const ia_real o[3], const ia_real d[3], ia_real lo, ia_real hi, int level, ia_real eps,
                        int *proven, surface_newton *n, int solid, int condition, int last,
-                       const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time, kernel_u32 *evals) {
+                       const KERNEL_GLOBAL kernel_u32 *nodes, scene_prims q, ia_interval time, kernel_u32 *evals) {
     int wide = hi - lo > eps && level < BISECT_MAX_LEVEL;
 #ifdef SURFACE_NEWTON
     if (n->level >= 0 && level > n->level) { /* inside the node whose N is kept */
@@ -172,16 +175,16 @@ IA_FN int surface_node(const ia_real o[3], const ia_real d[3], ia_real lo, ia_re
     /* where a kept node would take a Newton step, F comes with D from one call (sharing its sines' and cosines'
      * reductions: implicits/emit.c), not from two */
     int newton = wide && hi - lo <= SURFACE_NEWTON_LEAVES * eps;
-    ia_interval slope, f = newton ? scene_solid_Fd(solid, box[0], box[1], box[2], time, ia_point(d[0]), ia_point(d[1]),
-                                                   ia_point(d[2]), &slope)
-                                  : scene_solid_F(solid, box[0], box[1], box[2], time);
-    int keep = surface_keeps(f, box, level, proven, condition, last, nodes, time, evals);
+    ia_interval slope, f = newton ? scene_solid_Fd(q, solid, box[0], box[1], box[2], time, ia_point(d[0]),
+                                                   ia_point(d[1]), ia_point(d[2]), &slope)
+                                  : scene_solid_F(q, solid, box[0], box[1], box[2], time);
+    int keep = surface_keeps(f, box, level, proven, condition, last, nodes, q, time, evals);
     if (keep && newton)
-        keep = surface_newton_step(n, level, o, d, lo, hi, slope, solid, time, evals);
+        keep = surface_newton_step(n, level, o, d, lo, hi, slope, q, solid, time, evals);
 #else
     (void)n, (void)wide;
-    int keep = surface_keeps(scene_solid_F(solid, box[0], box[1], box[2], time), box, level, proven, condition, last,
-                             nodes, time, evals);
+    int keep = surface_keeps(scene_solid_F(q, solid, box[0], box[1], box[2], time), box, level, proven, condition, last,
+                             nodes, q, time, evals);
 #endif
     return keep;
 }
@@ -195,8 +198,8 @@ IA_FN int surface_node(const ia_real o[3], const ia_real d[3], ia_real lo, ia_re
  * level or above, traverse.h's node_next); so with a Newton node's N. */
 IA_FN int surface_walk(const ia_real o[3], const ia_real d[3], ia_real t0, ia_real w, int level, bisect_index i,
                        ia_real t_near, ia_real t_far, ia_real eps, int solid, int condition,
-                       const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time, ia_real *hit_lo, ia_real *hit_hi,
-                       kernel_u32 *evals) {
+                       const KERNEL_GLOBAL kernel_u32 *nodes, scene_prims q, ia_interval time, ia_real *hit_lo,
+                       ia_real *hit_hi, kernel_u32 *evals) {
     int last = condition >= 0 ? csg_tree_last(nodes, condition) : -1, unproven = surface_unproven(condition);
     int proven = unproven;
     surface_newton n = {-1, 0, 0};
@@ -206,8 +209,8 @@ IA_FN int surface_walk(const ia_real o[3], const ia_real d[3], ia_real t0, ia_re
             return 0;
         ia_real lo = fmax(start, t_near), hi = fmin(node_bound(t0, w, level, i + 1), t_far);
         /* (a node that ends before t_near is not kept) */
-        int keep = lo <= hi && surface_node(o, d, lo, hi, level, eps, &proven, &n, solid, condition, last, nodes, time,
-                                              evals);
+        int keep = lo <= hi &&
+                   surface_node(o, d, lo, hi, level, eps, &proven, &n, solid, condition, last, nodes, q, time, evals);
         if (keep && (hi - lo <= eps || level == BISECT_MAX_LEVEL)) {
             *hit_lo = lo;
             *hit_hi = hi;
@@ -229,12 +232,12 @@ IA_FN int surface_walk(const ia_real o[3], const ia_real d[3], ia_real t0, ia_re
 
 /* surface_walk over the ray's own tree, [t_near, t_near + w] with w the width rounded up. */
 IA_FN int surface_first_root(const ia_real o[3], const ia_real d[3], ia_real t_near, ia_real t_far, ia_real eps,
-                             int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time,
-                             ia_real *hit_lo, ia_real *hit_hi, kernel_u32 *evals) {
+                             int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, scene_prims q,
+                             ia_interval time, ia_real *hit_lo, ia_real *hit_hi, kernel_u32 *evals) {
     if (!(t_near <= t_far))
         return 0;
-    return surface_walk(o, d, t_near, ia_hi(t_far - t_near), 0, 0, t_near, t_far, eps, solid, condition, nodes,
-                        time, hit_lo, hit_hi, evals);
+    return surface_walk(o, d, t_near, ia_hi(t_far - t_near), 0, 0, t_near, t_far, eps, solid, condition, nodes, q, time,
+                        hit_lo, hit_hi, evals);
 }
 
 /* Coarse to fine, as kernels/tile.h does for the first-root path: the first node of the frame's tree
@@ -243,8 +246,8 @@ IA_FN int surface_first_root(const ia_real o[3], const ia_real d[3], ia_real t_n
  * shrink the box much: `spread` is the block's angular size, or its linear size when orthographic) or eps.
  * Returns 0 when there is none (no ray of the block can hit the surface), else 1 with the node. */
 IA_FN int surface_block_start(const tile_rays *r, ia_real spread, int ortho, ia_real t0, ia_real w, ia_real eps,
-                              int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time,
-                              int *level, bisect_index *i, kernel_u32 *evals) {
+                              int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, scene_prims q,
+                              ia_interval time, int *level, bisect_index *i, kernel_u32 *evals) {
     int last = condition >= 0 ? csg_tree_last(nodes, condition) : -1, unproven = surface_unproven(condition);
     int proven = unproven;
     *level = 0;
@@ -253,8 +256,8 @@ IA_FN int surface_block_start(const tile_rays *r, ia_real spread, int ortho, ia_
         ia_real lo = node_bound(t0, w, *level, *i), hi = node_bound(t0, w, *level, *i + 1);
         ia_interval box[3];
         tile_box(r, ia_make(lo, hi), box);
-        if (surface_keeps(scene_solid_F(solid, box[0], box[1], box[2], time), box, *level, &proven, condition, last,
-                          nodes, time, evals)) {
+        if (surface_keeps(scene_solid_F(q, solid, box[0], box[1], box[2], time), box, *level, &proven, condition, last,
+                          nodes, q, time, evals)) {
             if (hi - lo <= fmax(ortho ? spread : spread * hi, eps) || *level == BISECT_MAX_LEVEL)
                 return 1;
             *level += 1;
@@ -281,14 +284,14 @@ typedef struct {
 
 /* The start of the rays of pixels i0..i1 x j0..j1 (in the image) of the frame of parameter block p. */
 IA_FN void surface_block(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, int i1, int j0, int j1, int width,
-                         int height, int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes,
+                         int height, int solid, int condition, const KERNEL_GLOBAL kernel_u32 *nodes, scene_prims q,
                          ia_interval time, surface_start *start, kernel_u32 *evals) {
     tile_rays rays;
     tile_rays_of(p, ortho, i0, i1, j0, j1, width, height, &rays);
-    ia_real spread = fmax(camera_s(p, i1, width) - camera_s(p, i0, width),
-                          camera_v(p, j0, height) - camera_v(p, j1, height));
+    ia_real spread =
+        fmax(camera_s(p, i1, width) - camera_s(p, i0, width), camera_v(p, j0, height) - camera_v(p, j1, height));
     frame_root(p, &start->t0, &start->w);
-    if (!surface_block_start(&rays, spread, ortho, start->t0, start->w, p[PARAM_EPS], solid, condition, nodes, time,
+    if (!surface_block_start(&rays, spread, ortho, start->t0, start->w, p[PARAM_EPS], solid, condition, nodes, q, time,
                              &start->level, &start->i, evals))
         start->level = -1;
 }
@@ -296,13 +299,13 @@ IA_FN void surface_block(const KERNEL_CONSTANT ia_real *p, int ortho, int i0, in
 /* surface_walk for one ray of the block, on its part [t_near, t_far] inside the frame's root. */
 IA_FN int surface_first_root_from(const surface_start *start, const ia_real o[3], const ia_real d[3], ia_real t_near,
                                   ia_real t_far, ia_real eps, int solid, int condition,
-                                  const KERNEL_GLOBAL kernel_u32 *nodes, ia_interval time, ia_real *hit_lo,
-                                  ia_real *hit_hi, kernel_u32 *evals) {
+                                  const KERNEL_GLOBAL kernel_u32 *nodes, scene_prims q, ia_interval time,
+                                  ia_real *hit_lo, ia_real *hit_hi, kernel_u32 *evals) {
     if (start->level < 0 || !(t_near <= t_far))
         return 0;
     bisect_index i = node_at(start->t0, start->w, start->level, t_near);
-    return surface_walk(o, d, start->t0, start->w, start->level, i > start->i ? i : start->i, t_near, t_far, eps,
-                        solid, condition, nodes, time, hit_lo, hit_hi, evals);
+    return surface_walk(o, d, start->t0, start->w, start->level, i > start->i ? i : start->i, t_near, t_far, eps, solid,
+                        condition, nodes, q, time, hit_lo, hit_hi, evals);
 }
 
 #endif

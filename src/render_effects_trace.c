@@ -168,7 +168,7 @@ iacsg_status fx_launch_scene(fx_tracer *t, cl_kernel k, const fx_trace_buffers *
             st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     if (st == IACSG_OK && (clSetKernelArg(k, 2, sizeof n, &n) != CL_SUCCESS ||
                            clSetKernelArg(k, 4, fx_real_bytes(r), eps_real) != CL_SUCCESS ||
-                           clSetKernelArg(k, 29, sizeof whether, &whether) != CL_SUCCESS))
+                           clSetKernelArg(k, 30, sizeof whether, &whether) != CL_SUCCESS))
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     if (st == IACSG_OK) /* argument 3: the launch's first ray */
         st = fx_launch_slices(r->rt.queue, k, 3, packets, slots, PACKET_LANES,

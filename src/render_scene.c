@@ -1,7 +1,9 @@
 /* src/render_scene.c -- the segment path (kernels/render_scene.cl): a renderer for a scene's regions and
  * surfaces. One program per scene: the ia/ headers, the solids' code (implicits/scene_emit.c) and the segment
- * path's kernels (BRL-CAD's primitives, kernels/prim.h, come before the solids, which call them). The scene's
- * tables (src/scene_tables.c) live on the device for the renderer's life.
+ * path's kernels (BRL-CAD's primitives, kernels/prim.h and scene_prims.h, come before the solids, which call them).
+ * The scene's tables (src/scene_tables.c) and its primitives' types and parameters (implicits/scene_prims.c, in the
+ * program's precision: no literals in the program, so that models of the same kinds share one cached build) live
+ * on the device for the renderer's life.
  *
  * A frame: the bands of rows, each one launch with a packet of 4x4 pixels per work-item and a slice of the
  * per-ray buffers per work-item (kernels/scene_data.h); then the rays that met more boxes than the buffers have
@@ -11,6 +13,7 @@
 #include "render_internal.h"
 #include "implicits/scene.h"
 #include "implicits/scene_emit.h"
+#include "implicits/scene_prims.h"
 #include "kernels/params.h"
 #include "kernels/scene_data.h"
 #include "scene_tables.h"
@@ -29,6 +32,7 @@ _Static_assert(IACSG_ROW_ALIGN % SCENE_BLOCK == 0, "iacsg_view.row_first is alig
 struct render_scene {
     scene_tables t;
     cl_mem nodes, items, solid_items_start, solid_items, surfaces, albedo, bvh_link;
+    cl_mem prims; /* kernels/scene_prims.h */
 };
 
 /* An OpenCL buffer holding a copy of `bytes` bytes (at least one byte, so that empty tables are buffers too). */
@@ -45,7 +49,8 @@ static cl_mem table_buffer(iacsg_renderer *r, const void *data, size_t bytes, ia
 void render_scene_free(render_scene *s) {
     if (!s)
         return;
-    cl_mem all[] = {s->nodes, s->items, s->solid_items_start, s->solid_items, s->surfaces, s->albedo, s->bvh_link};
+    cl_mem all[] = {s->nodes,    s->items,  s->solid_items_start, s->solid_items,
+                    s->surfaces, s->albedo, s->bvh_link,          s->prims};
     for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
         if (all[k])
             clReleaseMemObject(all[k]);
@@ -53,8 +58,20 @@ void render_scene_free(render_scene *s) {
     free(s);
 }
 
-static iacsg_status upload_tables(iacsg_renderer *r, render_scene *s, iacsg_error *err) {
+static size_t real_size(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
+
+/* The tables, and the primitives' in the program's precision. */
+static iacsg_status upload_tables(iacsg_renderer *r, render_scene *s, const iacsg_scene *scene, iacsg_error *err) {
     const scene_tables *t = &s->t;
+    void *prims = NULL;
+    size_t nprims = 0;
+    int most = 0;
+    iacsg_status st = scene_prims_table(scene, r->config.fp64, &prims, &nprims, &most, err);
+    if (st == IACSG_OK && !(s->prims = table_buffer(r, prims, nprims * real_size(r), err)))
+        st = IACSG_ERR_OPENCL;
+    free(prims);
+    if (st != IACSG_OK)
+        return st;
     cl_mem *dst[] = {&s->nodes, &s->items, &s->solid_items_start, &s->solid_items, &s->surfaces, &s->albedo,
                      &s->bvh_link};
     const void *src[] = {t->nodes, t->items, t->solid_items_start, t->solid_items, t->surfaces, t->albedo,
@@ -91,8 +108,6 @@ static void release_scene_buffers(scene_buffers *b) {
             *all[k] = NULL;
         }
 }
-
-static size_t real_size(const iacsg_renderer *r) { return r->config.fp64 ? sizeof(double) : sizeof(float); }
 
 /* The bytes of a candidate's walk (kernels/segments.h): solid, range, position, level, index and Newton's N. */
 static size_t candidate_bytes(const iacsg_renderer *r) {
@@ -162,7 +177,7 @@ static iacsg_status set_scene_args(iacsg_renderer *r, const iacsg_view *view, co
                 {29, sizeof(cl_mem), b->normal ? &b->normal : NULL},
                 {30, sizeof(cl_mem), b->ids ? &b->ids : NULL},
                 {31, sizeof(cl_mem), &b->overlap},     {32, sizeof(cl_mem), b->counts ? &b->counts : NULL},
-                {35, sizeof row_end, &row_end}};
+                {35, sizeof row_end, &row_end},       {36, sizeof(cl_mem), &s->prims}};
     for (size_t a = 0; a < sizeof args / sizeof args[0]; a++)
         CLRT_CHECK(err, clSetKernelArg(k, (cl_uint)args[a].index, args[a].size, args[a].value));
     return IACSG_OK;
@@ -228,7 +243,7 @@ iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_rende
     st = render_build(r, sources, 4, "iacsg_render_scene", err);
     free(solids_cl);
     if (st == IACSG_OK)
-        st = upload_tables(r, r->scene, err);
+        st = upload_tables(r, r->scene, s, err);
     if (st == IACSG_OK)
         st = render_effects_keep_scene(r, s, err);
     return render_finish(r, st, scene_compile_now, out, err);
@@ -483,9 +498,10 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
 }
 
 /* The effects' trace kernel (kernels/scene_effects.cl, src/render_effects.c) gets the scene from argument `first`
- * on: the tables, the view's BVH boxes, and per-ray buffers for at most *slots work-items (fewer when they would
- * pass the launch budget; *slots is set to the count) with room for every solid, so that no ray overflows. The
- * frame's buffers go to *held, released by render_scene_trace_release. */
+ * on: the tables, the view's BVH boxes, per-ray buffers for at most *slots work-items (fewer when they would
+ * pass the launch budget; *slots is set to the count) with room for every solid, so that no ray overflows, then the
+ * primitives' table (kernels/scene_prims.h). The frame's buffers go to *held, released by
+ * render_scene_trace_release. */
 iacsg_status render_scene_trace_args(iacsg_renderer *r, const iacsg_view *view, cl_kernel k, cl_uint first,
                                      size_t *slots, void **held, iacsg_error *err) {
     render_scene *s = r->scene;
@@ -505,7 +521,7 @@ iacsg_status render_scene_trace_args(iacsg_renderer *r, const iacsg_view *view, 
     const void *args[] = {&b->box,        &s->bvh_link,   &nbvh,        &s->nodes,       &s->items,
                           &s->solid_items_start, &s->solid_items, &s->surfaces, &nsurfaces, &b->cand_solid,
                           &b->cand_range, &b->cand_pos,   &b->cand_level, &b->cand_index, &b->cand_newton,
-                          &b->cand_newton_t, &cap,        &b->state,    &nstates};
+                          &b->cand_newton_t, &cap,        &b->state,    &nstates,      &s->prims};
     for (cl_uint a = 0; a < sizeof args / sizeof args[0]; a++) {
         int is_int = args[a] == &nbvh || args[a] == &nsurfaces || args[a] == &cap || args[a] == &nstates;
         CLRT_CHECK(err, clSetKernelArg(k, first + a, is_int ? sizeof(cl_int) : sizeof(cl_mem), args[a]));

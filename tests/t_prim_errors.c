@@ -118,31 +118,3 @@ TEST(prim_float_bound_outward) {
           "subnormal bounds: [%a, %a] and [%a, %a]", (double)prim_float_bound(1e-40, 0),
           (double)prim_float_bound(1e-40, 1), (double)prim_float_bound(-1e-40, 0), (double)prim_float_bound(-1e-40, 1));
 }
-
-/* The emitter's hexadecimal literals (scene_emit_hex) are printf's "%a", byte for byte, and read back exactly:
- * random doubles of every binade, floats, subnormals, zeros, powers of two. */
-TEST(prim_hex_literals_are_printfs) {
-    test_rng_t *rng = test_rng();
-    long n = test_iters(100000);
-    for (long k = 0; k < n; k++) {
-        uint64_t bits = test_rand_u64(rng);
-        double x;
-        memcpy(&x, &bits, sizeof x);
-        if (k % 5 == 1)
-            x = (double)(float)ldexp(test_rand_unit(rng), (int)(bits % 300) - 150);
-        else if (k % 5 == 2)
-            x = ldexp(k % 2 ? -1.0 : 1.0, (int)(bits % 2098) - 1074); /* powers of two, subnormal ones too */
-        else if (k == 3)
-            x = 0.0;
-        else if (k == 8)
-            x = -0.0;
-        if (!isfinite(x))
-            continue;
-        char mine[32], theirs[48];
-        int len = scene_emit_hex(x, mine);
-        mine[len] = 0;
-        snprintf(theirs, sizeof theirs, "%a", x);
-        CHECK(strcmp(mine, theirs) == 0, "%s, printf %s", mine, theirs);
-        CHECK(strtod(mine, NULL) == x && signbit(strtod(mine, NULL)) == signbit(x), "%s does not read back", mine);
-    }
-}

@@ -5,6 +5,7 @@
  * around the ray; n from the reference's hits of two neighbouring rays). A pixel whose answer changes when its ray
  * moves by the margin (a silhouette, a graze, two surfaces that close) is counted as ambiguous and skipped. */
 #include "implicits/prim_place.h"
+#include "implicits/scene_emit.h"
 #include "t_prim_ref.h"
 #include "t_render_util.h"
 
@@ -100,56 +101,69 @@ static int clip_ld(const double b[6], const ld o[3], const ld d[3], ld *t0, ld *
     return *t0 < *t1;
 }
 
-TEST_FP(prim_render_every_type) {
-    static prim_scene ps;
-    ps.scene = scene_create();
-    double mat[16];
+/* The scene's primitives, solid k of the first arrangement each: type, parameters, and placement (placement()'s
+ * axis, cosine, position and scale). */
+static const struct {
+    scene_prim_type type;
+    int n;
+    double q[24], axis[4], at[3], scale;
+} prim_specs[PR_SOLIDS] = {
     /* 0 half: a floor z < -1.75, tilted */
-    placement(1, 0, 0, 0.995, (double[]){0, 0, 0}, 1, mat);
-    add_prim(&ps, 0, SCENE_PRIM_HALF, (double[]){0, 0, 1, -1.75}, 4, mat);
+    {SCENE_PRIM_HALF, 4, {0, 0, 1, -1.75}, {1, 0, 0, 0.995}, {0, 0, 0}, 1},
     /* 1 arb8: a frustum of a box */
-    placement(0.3, 1, 0.2, 0.8, (double[]){-1.1, -0.9, -0.6}, 1.25, mat);
-    add_prim(&ps, 1, SCENE_PRIM_ARB8,
-             (double[]){-0.5, -0.5, -0.5, 0.5, -0.5, -0.5, 0.5, 0.5, -0.5, -0.5, 0.5, -0.5, -0.25, -0.25, 0.5,
-                        0.25, -0.25, 0.5, 0.25, 0.25, 0.5, -0.25, 0.25, 0.5},
-             24, mat);
+    {SCENE_PRIM_ARB8, 24, {-0.5, -0.5, -0.5, 0.5, -0.5, -0.5, 0.5, 0.5, -0.5, -0.5, 0.5, -0.5, -0.25, -0.25, 0.5, 0.25,
+                           -0.25, 0.5, 0.25, 0.25, 0.5, -0.25, 0.25, 0.5},
+     {0.3, 1, 0.2, 0.8}, {-1.1, -0.9, -0.6}, 1.25},
     /* 2 ell */
-    placement(1, 1, 0, 0.6, (double[]){1.1, -0.9, -0.8}, 1, mat);
-    add_prim(&ps, 2, SCENE_PRIM_ELL, (double[]){0, 0, 0, 0.7, 0, 0, 0, 0.45, 0, 0, 0, 0.3}, 12, mat);
+    {SCENE_PRIM_ELL, 12, {0, 0, 0, 0.7, 0, 0, 0, 0.45, 0, 0, 0, 0.3}, {1, 1, 0, 0.6}, {1.1, -0.9, -0.8}, 1},
     /* 3 tgc: sheared, elliptical, top axes 1.5 and 0.5 of the base's */
-    placement(0, 1, 1, 0.9, (double[]){-0.2, 0.9, -1.2}, 1, mat);
-    add_prim(&ps, 3, SCENE_PRIM_TGC, (double[]){0, 0, 0, 0.3, 0.2, 1.2, 0.4, 0, 0, 0, 0.3, 0, 0.6, 0, 0, 0, 0.15, 0}, 18,
-             mat);
+    {SCENE_PRIM_TGC, 18, {0, 0, 0, 0.3, 0.2, 1.2, 0.4, 0, 0, 0, 0.3, 0, 0.6, 0, 0, 0, 0.15, 0}, {0, 1, 1, 0.9},
+     {-0.2, 0.9, -1.2}, 1},
     /* 4 tor */
-    placement(1, 0, 0.5, 0.5, (double[]){1.0, 0.8, 0.4}, 0.8, mat);
-    add_prim(&ps, 4, SCENE_PRIM_TOR, (double[]){0, 0, 0, 0, 0, 2, 0.8, 0.25}, 8, mat);
+    {SCENE_PRIM_TOR, 8, {0, 0, 0, 0, 0, 2, 0.8, 0.25}, {1, 0, 0.5, 0.5}, {1.0, 0.8, 0.4}, 0.8},
     /* 5 ehy */
-    placement(0, 0, 1, 0.7, (double[]){-1.2, 1.0, 0.7}, 1, mat);
-    add_prim(&ps, 5, SCENE_PRIM_EHY, (double[]){0, 0, 0, 0, 0, -1.2, 1, 0, 0, 0.6, 0.35, 0.3}, 12, mat);
+    {SCENE_PRIM_EHY, 12, {0, 0, 0, 0, 0, -1.2, 1, 0, 0, 0.6, 0.35, 0.3}, {0, 0, 1, 0.7}, {-1.2, 1.0, 0.7}, 1},
     /* 6 pipe: a bore, two bends, a diameter change */
-    placement(0, 0, 1, 1, (double[]){-0.3, -0.2, 0.9}, 1, mat);
-    add_prim(&ps, 6, SCENE_PRIM_PIPE,
-             (double[]){-1.5, -1, 0, 0.4, 0.25, 0.5, -1.5, 0.8, 0, 0.4, 0.25, 0.5, 0.5, 0.8, 0.4, 0.5, 0.3, 0.6, 1.5, -0.6,
-                        0.4, 0.3, 0, 0.5},
-             24, mat);
+    {SCENE_PRIM_PIPE, 24, {-1.5, -1, 0, 0.4, 0.25, 0.5, -1.5, 0.8, 0, 0.4, 0.25, 0.5, 0.5, 0.8, 0.4, 0.5, 0.3, 0.6, 1.5,
+                           -0.6, 0.4, 0.3, 0, 0.5},
+     {0, 0, 1, 1}, {-0.3, -0.2, 0.9}, 1},
     /* 7, 8: an arb4 and a sphere bitten out of it */
-    placement(0, 0, 1, 1, (double[]){0.1, -0.2, -1.6}, 1, mat);
-    add_prim(&ps, 7, SCENE_PRIM_ARB8,
-             (double[]){-0.5, -0.5, 0, 0.5, -0.5, 0, 0, 0.5, 0, 0, 0.5, 0, 0, 0, 0.75, 0, 0, 0.75, 0, 0, 0.75, 0, 0, 0.75},
-             24, mat);
-    placement(0, 0, 1, 1, (double[]){0.1, -0.2, -0.9}, 1, mat);
-    add_prim(&ps, 8, SCENE_PRIM_ELL, (double[]){0, 0, 0, 0.3, 0, 0, 0, 0.3, 0, 0, 0, 0.3}, 12, mat);
-    for (uint32_t k = 0; k < 7; k++)
-        add_region(&ps, (uint32_t[]){CSG_NODE(CSG_INSIDE, k)}, 1);
-    add_region(&ps, (uint32_t[]){CSG_NODE(CSG_DIFFERENCE, 2), CSG_NODE(CSG_INSIDE, 7), CSG_NODE(CSG_INSIDE, 8)}, 3);
+    {SCENE_PRIM_ARB8, 24, {-0.5, -0.5, 0, 0.5, -0.5, 0, 0, 0.5, 0, 0, 0.5, 0, 0, 0, 0.75, 0, 0, 0.75, 0, 0, 0.75, 0, 0,
+                           0.75},
+     {0, 0, 1, 1}, {0.1, -0.2, -1.6}, 1},
+    {SCENE_PRIM_ELL, 12, {0, 0, 0, 0.3, 0, 0, 0, 0.3, 0, 0, 0, 0.3}, {0, 0, 1, 1}, {0.1, -0.2, -0.9}, 1},
+};
 
+/* The scene of prim_specs with spec j as solid at[j], moved by `shift` (the half-space too), its regions in the same
+ * order whatever the arrangement: each of the first seven solids, then the arb4 less the sphere. */
+static void build_scene(prim_scene *ps, const int at[PR_SOLIDS], const double shift[3]) {
+    ps->scene = scene_create();
+    for (int k = 0; k < PR_SOLIDS; k++) {
+        int j = 0;
+        while (at[j] != k)
+            j++;
+        double mat[16], to[3];
+        for (int c = 0; c < 3; c++)
+            to[c] = prim_specs[j].at[c] + shift[c];
+        placement(prim_specs[j].axis[0], prim_specs[j].axis[1], prim_specs[j].axis[2], prim_specs[j].axis[3], to,
+                  prim_specs[j].scale, mat);
+        add_prim(ps, k, prim_specs[j].type, prim_specs[j].q, prim_specs[j].n, mat);
+    }
+    for (int j = 0; j < 7; j++)
+        add_region(ps, (uint32_t[]){CSG_NODE(CSG_INSIDE, (uint32_t)at[j])}, 1);
+    add_region(ps, (uint32_t[]){CSG_NODE(CSG_DIFFERENCE, 2), CSG_NODE(CSG_INSIDE, (uint32_t)at[7]),
+                                CSG_NODE(CSG_INSIDE, (uint32_t)at[8])}, 3);
+}
+
+/* Renders the scene and checks every pixel against the reference. */
+static void check_render(prim_scene *ps) {
     iacsg_view view = {.width = PR_SIZE, .height = PR_SIZE, .eps = PR_EPS,
                        .camera = {.eye = {2.5, -6, 3.5}, .at = {0, 0, -0.4}, .up = {0, 0, 1}, .fov = 40},
                        .bounds = {-2.5, -2.5, -2, 2.5, 2.5, 2}};
     iacsg_render_config config = {.fp64 = PR_FP64};
     iacsg_error err = {0};
     iacsg_renderer *r = NULL;
-    CHECK(iacsg_renderer_create_scene(ps.scene, &config, &r, &err) == IACSG_OK, "%s", err.message);
+    CHECK(iacsg_renderer_create_scene(ps->scene, &config, &r, &err) == IACSG_OK, "%s", err.message);
     iacsg_frame fr;
     iacsg_status st = iacsg_render(r, &view, &fr, &err);
     iacsg_renderer_destroy(r);
@@ -163,7 +177,7 @@ TEST_FP(prim_render_every_type) {
             double od[3], dd[3];
             pixel_ray(p, &view, i, j, od, dd);
             ld o[3] = {od[0], od[1], od[2]}, d[3] = {dd[0], dd[1], dd[2]}, t0, t1, ts = INFINITY;
-            int solid = -1, id = clip_ld(view.bounds, o, d, &t0, &t1) ? ref_first(&ps, o, d, t0, t1, &ts, &solid) : -1;
+            int solid = -1, id = clip_ld(view.bounds, o, d, &t0, &t1) ? ref_first(ps, o, d, t0, t1, &ts, &solid) : -1;
             /* the same for rays moved by the margin across the ray: a different answer makes the pixel ambiguous */
             ld u[3] = {d[1], -d[0], 0}, v[3], hit[2][3];
             if (fabsl(d[2]) > 0.9L)
@@ -176,7 +190,7 @@ TEST_FP(prim_render_every_type) {
                 ld q[3], a0, a1, tq = INFINITY;
                 for (int c = 0; c < 3; c++)
                     q[c] = o[c] + (side & 1 ? -1 : 1) * PR_MARGIN * (side < 2 ? u[c] : v[c]);
-                int sq = -1, idq = clip_ld(view.bounds, q, d, &a0, &a1) ? ref_first(&ps, q, d, a0, a1, &tq, &sq) : -1;
+                int sq = -1, idq = clip_ld(view.bounds, q, d, &a0, &a1) ? ref_first(ps, q, d, a0, a1, &tq, &sq) : -1;
                 stable = idq == id && sq == solid && (id < 0 || fabsl(tq - ts) < 50 * PR_MARGIN);
                 if (side % 2 == 0)
                     for (int c = 0; c < 3; c++)
@@ -215,11 +229,40 @@ TEST_FP(prim_render_every_type) {
             worst = fmax(worst, early);
         }
     iacsg_frame_free(&fr);
-    iacsg_scene_destroy(ps.scene);
     test_note("%d pixels, %ld ambiguous; pixels per region: half %ld, arb8 %ld, ell %ld, tgc %ld, tor %ld, ehy %ld, pipe "
               "%ld, arb4 - ell %ld; depth at most %.2f k eps early",
               PR_SIZE * PR_SIZE, ambiguous, seen[0], seen[1], seen[2], seen[3], seen[4], seen[5], seen[6], seen[7], worst);
     for (int k = 0; k < 8; k++)
         CHECK(seen[k] > 20, "region %d was checked on %ld pixels only", k, seen[k]);
     CHECK(ambiguous < PR_SIZE * PR_SIZE / 8, "%ld ambiguous pixels, too many to trust the test", ambiguous);
+}
+
+TEST_FP(prim_render_every_type) {
+    static prim_scene ps;
+    build_scene(&ps, (const int[PR_SOLIDS]){0, 1, 2, 3, 4, 5, 6, 7, 8}, (const double[3]){0, 0, 0});
+    check_render(&ps);
+    iacsg_scene_destroy(ps.scene);
+}
+
+/* A model's primitives are data (implicits/scene_prims.c), not code: another arrangement of the same kinds, the
+ * solids in the reverse order, moved, and one more solid, has the very program of the first (so that one cached
+ * build serves both) and renders right with it: no solid reads another's parameters. */
+TEST_FP(prim_render_same_kinds_share_the_program) {
+    static prim_scene first, other;
+    build_scene(&first, (const int[PR_SOLIDS]){0, 1, 2, 3, 4, 5, 6, 7, 8}, (const double[3]){0, 0, 0});
+    build_scene(&other, (const int[PR_SOLIDS]){8, 7, 6, 5, 4, 3, 2, 1, 0}, (const double[3]){0.15, -0.1, 0.05});
+    double mat[16];
+    placement(0, 0, 1, 1, (const double[3]){2, 2, 1.5}, 1, mat); /* in no region */
+    iacsg_error err = {0};
+    CHECK(scene_add_primitive(other.scene, NULL, SCENE_PRIM_ELL, prim_specs[8].q, 12, mat, &err) == PR_SOLIDS,
+          "scene_add_primitive: %s", err.message);
+    char *a = NULL, *b = NULL;
+    CHECK(scene_emit_cl(first.scene, &a, &err) == IACSG_OK && scene_emit_cl(other.scene, &b, &err) == IACSG_OK, "%s",
+          err.message);
+    CHECK(strcmp(a, b) == 0, "two models of the same kinds have different programs");
+    free(a);
+    free(b);
+    check_render(&other);
+    iacsg_scene_destroy(first.scene);
+    iacsg_scene_destroy(other.scene);
 }

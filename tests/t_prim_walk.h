@@ -23,34 +23,25 @@
 #define T_PRIM_WALK_H
 #include "implicits/prim_place.h"
 #include "kernels/prim.h"
+#include "kernels/scene_prims.h"
 #include "t_prim_ref.h"
 #include "test.h"
 #include <stdio.h>
 
 static int host_type;
-static ia_real *host_params;
+static ia_real *host_params, *host_table;
 
-/* The device's dispatchers for one primitive solid. */
-static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
-    (void)k, (void)t;
+/* The device's dispatchers for one primitive solid (the walks' closed forms read its parameters from the scene's
+ * table, host_table, through kernels/scene_prims.h's scene_solid_P, as the device does). */
+static ia_interval scene_solid_F(scene_prims q, int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    (void)q, (void)k, (void)t;
     return prim_F(host_type, host_params, x, y, z);
 }
 #ifdef SCENE_SOLID_FD
-static ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx,
-                                  ia_interval dy, ia_interval dz, ia_interval *dt) {
-    (void)k, (void)t;
+static ia_interval scene_solid_Fd(scene_prims q, int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t,
+                                  ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
+    (void)q, (void)k, (void)t;
     return prim_Fd(host_type, host_params, x, y, z, dx, dy, dz, dt);
-}
-#endif
-
-#ifdef SCENE_SOLID_PRIMS
-static int host_nreals;
-static int scene_solid_P(int k, ia_real *p, int cap) {
-    (void)k;
-    if (cap < host_nreals)
-        return -1;
-    memcpy(p, host_params, sizeof(ia_real) * (size_t)host_nreals);
-    return host_type;
 }
 #endif
 
@@ -358,7 +349,7 @@ static void check_ray(const scene_prim *sp, double scale, const test_ray *ray, i
     ia_real range[2] = {ta, w}, pos[1], newton_t[2];
     int solid[1] = {0}, level[1], newton[1];
     bisect_index index[1];
-    segments_walks walk = {solid, range, pos, level, index, newton, newton_t, 0, 0};
+    segments_walks walk = {solid, range, pos, level, index, newton, newton_t, 0, 0, host_table};
     segments_start(&walk, 0);
     ia_real end = node_bound(ta, w, 0, 1);
     ld cross[REF_MAX_CROSSINGS];
@@ -435,6 +426,20 @@ static ia_real *params_of(const prim_placed *pl) {
 #endif
     }
     return p;
+}
+
+/* The scene's table of primitives (kernels/scene_prims.h) holding the one solid, solid 0, as the device reads it. */
+static ia_real *table_of(int type, const ia_real *params, int nreal) {
+    int at = SCENE_PRIMS_HEADER + SCENE_PRIMS_ENTRY, padded = (nreal + SCENE_PRIMS_ALIGN - 1) / SCENE_PRIMS_ALIGN *
+                                                              SCENE_PRIMS_ALIGN;
+    ia_real *t = calloc((size_t)(at + padded), sizeof *t);
+    CHECK(t, "out of memory");
+    t[0] = 1;
+    t[SCENE_PRIMS_HEADER] = (ia_real)type;
+    t[SCENE_PRIMS_HEADER + 1] = (ia_real)at;
+    t[SCENE_PRIMS_HEADER + 2] = (ia_real)padded;
+    memcpy(t + at, params, sizeof *t * (size_t)nreal);
+    return t;
 }
 
 /* The t range of the ray in the box (long double, rounded outward); 0 when it misses. */
@@ -567,9 +572,7 @@ static void run_type(int type, int variants, const char *name) {
                 box[c] = mat[4 * c + 3] - 8 * scale, box[c + 3] = mat[4 * c + 3] + 8 * scale;
         host_type = pl.type;
         host_params = params_of(&pl);
-#ifdef SCENE_SOLID_PRIMS
-        host_nreals = 2 * pl.n;
-#endif
+        host_table = table_of(pl.type, host_params, 2 * pl.n);
         ia_real eps = (ia_real)(1e-3 * scale);
         for (long k = 0; k < per_prim; k++) {
             double target[3], axis[3], dir[3], dl = 0;
@@ -599,6 +602,7 @@ static void run_type(int type, int variants, const char *name) {
             closed_of_closable += closable && tl.closed > closed;
         }
         free(host_params);
+        free(host_table);
         prim_placed_free(&pl);
     }
     test_note("%s: %ld rays, %.1f evaluations per ray; %ld boundary leaves, at most %.2f eps from a crossing, %ld "

@@ -11,6 +11,7 @@
  * - The evaluation stack's bound: a chain of CSG_STACK_MAX comparisons is evaluated right, one more is refused
  *   when the scene is built, with the surface's place when it comes from the language.
  */
+#include "kernels/scene_prims.h"
 #include "t_scene_ref.h"
 
 /* The solids the kernel calls scene_solid_F on (their numbers are reals of the working precision, so the long
@@ -19,8 +20,8 @@
 static ref_solid solids[MAX_SOLIDS];
 
 /* The inclusion function the kernel calls: each variable occurs once per term, so it is tight over a box. */
-static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
-    (void)t;
+static ia_interval scene_solid_F(scene_prims q, int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    (void)q, (void)t;
     const ref_solid *s = &solids[k];
     ia_interval p[3] = {x, y, z}, f = ia_point(0);
     for (int c = 0; c < 3; c++) {
@@ -45,8 +46,8 @@ static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interva
  * three pieces' (Clarke's generalised derivative of the max lies in it, and the mean value theorem holds with
  * it). */
 #define SCENE_SOLID_FD 1
-static ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t, ia_interval dx,
-                                  ia_interval dy, ia_interval dz, ia_interval *dt) {
+static ia_interval scene_solid_Fd(scene_prims q, int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t,
+                                  ia_interval dx, ia_interval dy, ia_interval dz, ia_interval *dt) {
     const ref_solid *s = &solids[k];
     ia_interval p[3] = {x, y, z}, v[3] = {dx, dy, dz}, der = ia_point(0);
     for (int c = 0; c < 3; c++) {
@@ -61,7 +62,7 @@ static ia_interval scene_solid_Fd(int k, ia_interval x, ia_interval y, ia_interv
         }
     }
     *dt = der;
-    return scene_solid_F(k, x, y, z, t);
+    return scene_solid_F(q, k, x, y, z, t);
 }
 
 #include "kernels/surface.h"
@@ -203,7 +204,7 @@ TEST_FP(render_surface_condition_encloses_points) {
             ia_real a = uniform(rng, -2, 2), w = uniform(rng, 0, test_rand_unit(rng) < 0.5 ? 0.05 : 1);
             box[c] = ia_make(a, a + w);
         }
-        int v = surface_condition(scene->nodes, root, csg_tree_last(scene->nodes, root), box, ia_point(0), &evals);
+        int v = surface_condition(scene->nodes, 0, root, csg_tree_last(scene->nodes, root), box, ia_point(0), &evals);
         holds += v == SURFACE_MAY_HOLD, fails += v == SURFACE_MAY_FAIL, undecided += v == 3;
         for (int s = 0; s < 8; s++) {
             long double p[3];
@@ -279,7 +280,7 @@ static void check_surface_ray(const iacsg_scene *scene, int nsolids, int conditi
                               const ia_real d[3], ia_real t_near, ia_real t_far, surface_tally *tally) {
     ia_real lo = 0, hi = 0;
     kernel_u32 evals = 0;
-    int hit = surface_first_root(o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes, ia_point(0), &lo,
+    int hit = surface_first_root(o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes, 0, ia_point(0), &lo,
                                  &hi, &evals);
     check_surface_hit(scene, nsolids, condition, o, d, t_near, t_far, hit, lo, hi, tally);
 }
@@ -366,13 +367,13 @@ TEST_FP(render_surface_block_start) {
         p[PARAM_EPS] = SURFACE_EPS;
         int i0 = 4 * (int)(test_rand_u64(rng) % 16), j0 = 4 * (int)(test_rand_u64(rng) % 16);
         surface_start start;
-        surface_block(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, 0, condition, scene->nodes, ia_point(0), &start,
+        surface_block(p, ortho, i0, i0 + 3, j0, j0 + 3, 64, 64, 0, condition, scene->nodes, 0, ia_point(0), &start,
                       &evals);
         empty += start.level < 0;
         for (int k = 0; k < 16; k++) {
             ia_real o[3], d[3], t_near = uniform(rng, 0, 1), t_far = uniform(rng, 6, 9), lo = 0, hi = 0;
             camera_ray(p, ortho, i0 + k % 4, j0 + k / 4, 64, 64, o, d);
-            int hit = surface_first_root_from(&start, o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes,
+            int hit = surface_first_root_from(&start, o, d, t_near, t_far, SURFACE_EPS, 0, condition, scene->nodes, 0,
                                               ia_point(0), &lo, &hi, &evals);
             skipped += start.level > 0 ? start.level : 0;
             check_surface_hit(scene, nsolids, condition, o, d, t_near, t_far, hit, lo, hi, &tally);
@@ -426,7 +427,7 @@ TEST_FP(render_surface_condition_stack_bound) {
             signed char sign[2] = {(signed char)sx, (signed char)sy};
             int want = scene_tree_eval(scene, fits, sign) ? SURFACE_MAY_HOLD : SURFACE_MAY_FAIL;
             int got =
-                surface_condition(scene->nodes, fits, csg_tree_last(scene->nodes, fits), box, ia_point(0), &evals);
+                surface_condition(scene->nodes, 0, fits, csg_tree_last(scene->nodes, fits), box, ia_point(0), &evals);
             CHECK(got == want, "quadrant %d: the chain gives %d, the reference %d", q, got, want);
         }
     }

@@ -10,6 +10,7 @@
  *   in long double: never after the first point of a region, never a miss.
  */
 #include "implicits/scene.h"
+#include "kernels/scene_prims.h"
 #include "scene_tables.h"
 #include "test.h"
 #include <math.h>
@@ -27,7 +28,8 @@ static const iacsg_scene *host_scene;
 
 /* The device's scene_solid_F, by the host evaluator over the same box (its bounds are reals of the working
  * precision, so exact doubles). */
-static ia_interval scene_solid_F(int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+static ia_interval scene_solid_F(scene_prims q, int k, ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
+    (void)q;
     double lo[3] = {x.lo, y.lo, z.lo}, hi[3] = {x.hi, y.hi, z.hi}, out[2];
     iacsg_error err = {0};
     if (iacsg_expr_eval_box(host_scene->solids[k].expr, FP64, lo, hi, t.lo, out, &err) != IACSG_OK)
@@ -73,7 +75,7 @@ static int repeats(const uint32_t *nodes, int n, const unsigned char *state) {
 static scene_ray partition_of(const scene_tables *t, int *solid, int n, unsigned char *state) {
     for (int k = 0; k < n; k++)
         solid[k] = k;
-    scene_ray r = {t->nodes, t->items, t->solid_items_start, t->solid_items, {solid, 0, 0, 0, 0, 0, 0, 0, 0},
+    scene_ray r = {t->nodes, t->items, t->solid_items_start, t->solid_items, {solid, 0, 0, 0, 0, 0, 0, 0, 0, 0},
                    n, n, n, state, 0, 0, 0, 0, 0, 0, 0};
     return r;
 }
@@ -308,7 +310,7 @@ TEST_FP(scene_trace_spheres) {
         for (int a = 0; a < 3; a++)
             d[a] /= sqrt(len);
         scene_ray ray = {t.nodes, t.items, t.solid_items_start, t.solid_items,
-                         {solid, range, pos, level, index, newton, newton_t, 0, 0}, N, 0, 0, state,
+                         {solid, range, pos, level, index, newton, newton_t, 0, 0, 0}, N, 0, 0, state,
                          0, 0, 0, 0, 0, 0, 0};
         weave_hit hit = {0, -1, -1, -1};
         int found = scene_trace_ray(&v, &ray, o, d, 0, 8, &hit);
