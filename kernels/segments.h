@@ -141,6 +141,12 @@ IA_FN int segments_beam_out(int k, const ia_interval o[3], const ia_interval d[3
     return type >= 0 && prim_segments_beam_out(type, p, o, d, ta, tend);
 }
 
+/* A closed-form walk's change j (segments_closed_keep), read alone: a pair read back just after the keep's scalar
+ * stores waits for them to retire (a store-forwarding stall, 3.5 % of scene_packet on operators). */
+IA_FN ia_real segments_closed_change(const segments_walks *w, int c, int j) {
+    return j < 2 ? w->range[2 * c + j] : w->newton_t[2 * c + j - 2];
+}
+
 /* A closed-form walk's step: the state from pos[c] on, after the changes at or before it (OUT, BOUNDARY, IN,
  * BOUNDARY, OUT), and pos[c] on to the next change. Past the last change of a solid that may be in again, OUT up
  * to the point to solve again from, and there it solves again, to the end of the solid's own bounding sphere
@@ -149,9 +155,8 @@ IA_FN int segments_beam_out(int k, const ia_interval o[3], const ia_interval d[3
 IA_FN int segments_closed_step(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real eps,
                                kernel_u32 *evals) {
     for (int pass = 0;; pass++) {
-        ia_real e[4] = {w->range[2 * c], w->range[2 * c + 1], w->newton_t[2 * c], w->newton_t[2 * c + 1]};
         int j = 0;
-        while (j < 4 && e[j] <= w->pos[c])
+        while (j < 4 && segments_closed_change(w, c, j) <= w->pos[c])
             j++;
         if (j == 4 && w->newton[c] == 1) {
             ia_real resume = segments_real_of(w->index[c]);
@@ -165,7 +170,7 @@ IA_FN int segments_closed_step(const segments_walks *w, int c, const ia_real o[3
             w->pos[c] = IA_INF;
             return SCENE_BOUNDARY;
         }
-        w->pos[c] = j < 4 ? e[j] : IA_INF;
+        w->pos[c] = j < 4 ? segments_closed_change(w, c, j) : IA_INF;
         return j == 2 ? SCENE_IN : j & 1 ? SCENE_BOUNDARY : SCENE_OUT;
     }
 }
