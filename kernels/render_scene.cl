@@ -240,7 +240,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
             bvh_beam_add_lane(&beam, ok, dk, ik, k, tn[k], tf[k]);
 #ifdef SEGMENTS_LANES
     if (ray->walks.lanes)
-        segments_lanes_start(ray->walks.lanes, ok, ik, tn, from, view->box, view->link, view->nodes);
+        segments_lanes_start(ray->walks.lanes, ok, ik, tn, from, tf, view->box, view->link, view->nodes);
 #endif
     view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
     view->cut = view->ncut >= 0 ? cut : 0;

@@ -3,9 +3,9 @@
  * direction and so each plane's n.d, prim_segments.h's direction terms). Its ells, quadric tgcs and ehys:
  * segments_lanes_frame.h, into the same table.
  *
- *   segments_lanes_start(l, o, inv, tn, from, box, link, nodes): at a packet, its rays' origins (lane k: ray k),
- *     reciprocal directions and where their BVH walks start (fmax(tn, from): scene_trace.h's b.tn), the BVH, and
- *     an empty table;
+ *   segments_lanes_start(l, o, inv, tn, from, tf, box, link, nodes): at a packet, its rays' origins (lane k: ray
+ *     k), reciprocal directions and where their BVH walks start and end (fmax(tn, from) and tf: scene_trace.h's
+ *     b.tn, b.tf), the BVH, and an empty table;
  *   segments_lanes_fill(l, k, type, p, d, dir, known): solid k's span (prim_segments_span) along every lane's ray,
  *     into the table's slot of k: each plane's c = n.o - d in lanes, its root -c / n.d and the span's bounds (0
  *     where a plane may be parallel to the rays: its piece then depends on each ray's range, and the scalar code
@@ -45,7 +45,7 @@ typedef struct segments_lanes segments_lanes; /* (segments.h's walks point to on
 
 struct segments_lanes {
     ia_realv o[3], inv[3]; /* the packet's origins and reciprocal directions */
-    ia_realv tn;           /* where their BVH walks start */
+    ia_realv tn, tf;       /* where their BVH walks start and end */
     const KERNEL_GLOBAL ia_real *box; /* the BVH (bvh.h), and after its links each solid's leaf */
     const KERNEL_GLOBAL int *link;
     int nodes;
@@ -56,13 +56,14 @@ struct segments_lanes {
 };
 
 IA_FN void segments_lanes_start(segments_lanes *l, ia_real o[3][IA_VW], ia_real inv[3][IA_VW], ia_real tn[IA_VW],
-                                ia_real from[IA_VW], const KERNEL_GLOBAL ia_real *box, const KERNEL_GLOBAL int *link,
-                                int nodes) {
+                                ia_real from[IA_VW], ia_real tf[IA_VW], const KERNEL_GLOBAL ia_real *box,
+                                const KERNEL_GLOBAL int *link, int nodes) {
     for (int c = 0; c < 3; c++) {
         l->o[c] = IAV_LOAD(o[c]);
         l->inv[c] = IAV_LOAD(inv[c]);
     }
     l->tn = fmax(IAV_LOAD(tn), IAV_LOAD(from));
+    l->tf = IAV_LOAD(tf);
     l->box = box;
     l->link = link;
     l->nodes = nodes;

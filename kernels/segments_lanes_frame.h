@@ -26,6 +26,10 @@
 #include "segments_lanes.h"
 #ifdef SEGMENTS_LANES
 
+/* The fewest rays of a packet that must meet a frame solid's leaf for the lanes to solve it: a solve in lanes costs
+ * a few scalar ones (truck's small tgcs, met by a few rays a packet, were slower in lanes). */
+#define SEGMENTS_LANES_FRAME_RAYS 4
+
 /* Each lane's span (prim_segments_span) and the lanes where a bound was NaN. */
 typedef struct {
     ia_realv plo, phi, ilo, ihi;
@@ -145,19 +149,25 @@ IA_FN int segments_lanes_pieces(segments_lanes_span *s, int type, const ia_real 
 }
 
 /* Each lane's entry into node k's box as bvh_node_clip gives it from the lane's walk start (garbage in a lane that
- * misses the box, whose ray never solves the solid from there); 0 where a ray divides (bvh_ray's `divide`). */
+ * misses the box, whose ray never solves the solid from there), and how many lanes meet the box; -1 where a ray
+ * divides (bvh_ray's `divide`). */
 IA_FN int segments_lanes_entry(const segments_lanes *l, int k, const ia_real d[3], ia_realv *te) {
+    ia_realv tx = l->tf;
+    ia_maskv off = tx != tx; /* (none) */
     *te = l->tn;
     for (int c = 0; c < 3; c++) {
-        if (d[c] == 0)
+        ia_realv lo = IAV_R(l->box[6 * k + c]), hi = IAV_R(l->box[6 * k + 3 + c]);
+        if (d[c] == 0) {
+            off = off | (l->o[c] < lo) | (l->o[c] > hi);
             continue;
+        }
         if (!isfinite((ia_real)1 / d[c]))
-            return 0;
-        ia_realv a = (IAV_R(l->box[6 * k + c]) - l->o[c]) * l->inv[c];
-        ia_realv b = (IAV_R(l->box[6 * k + 3 + c]) - l->o[c]) * l->inv[c];
+            return -1;
+        ia_realv a = (lo - l->o[c]) * l->inv[c], b = (hi - l->o[c]) * l->inv[c];
         *te = fmax(*te, iav_lo_k(fmin(a, b), BVH_SLAB_ULPS));
+        tx = fmin(tx, iav_hi_k(fmax(a, b), BVH_SLAB_ULPS));
     }
-    return 1;
+    return iav_count(!off & (*te <= tx));
 }
 
 /* An ell's, a quadric tgc's or an ehy's slot for every lane (type, parameters p, direction terms as
@@ -171,7 +181,7 @@ IA_FN int segments_lanes_fill_frame(segments_lanes *l, int k, int type, const ia
     l->solid[slot] = k;
     l->solved[slot] = SEGMENTS_LANES_SCALAR;
     ia_realv ta;
-    if (leaf < 0 || !segments_lanes_entry(l, leaf, d, &ta))
+    if (leaf < 0 || segments_lanes_entry(l, leaf, d, &ta) < SEGMENTS_LANES_FRAME_RAYS)
         return 0;
     iav x[3], q[3], a[3];
     for (int c = 0; c < 3; c++) { /* ray_extent at the point ta, less P */
