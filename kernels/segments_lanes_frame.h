@@ -7,7 +7,8 @@
  *     1. planar types: segments_lanes_fill; frame types, where the pieces' shape is one for every ray (a tgc's
  *        alpha and beta close, its slab's planes not along the rays), on:
  *     2. each lane's range start, its ray's entry into the solid's BVH leaf as bvh_push computes it
- *        (bvh_node_clip: the same products, roundings and maxima; the leaf from the table after the BVH's links);
+ *        (bvh_node_clip: the same products, roundings and maxima; the leaf from the table after the BVH's links),
+ *        and on only where SEGMENTS_LANES_FRAME_RAYS lanes at least meet the leaf;
  *     3. prim_segments' frame s = G (x - P) at that point, and prim_segments_frame's pieces from it, each operation
  *        the scalar one in every lane (ia/vec.h's, which round as ia/round.h), the quadric's branches selected per
  *        lane; a lane whose quadric the scalar code would not solve this way (A may be 0, a bound not finite, a
