@@ -214,7 +214,7 @@ IA_FN int bvh_cut_lanes_fill(bvh_cut_lanes *cl, const KERNEL_GLOBAL ia_real *box
         ov[c] = IAV_LOAD(o[c]);
         dv[c] = IAV_LOAD(d[c]);
         iv[c] = IAV_LOAD(inv[c]);
-        divide = divide | (dv[c] != 0 & !isfinite(iv[c]));
+        divide = divide | ((dv[c] != 0) & !isfinite(iv[c]));
     }
     if (iav_any(divide))
         return 0;
