@@ -48,7 +48,7 @@ TAPE_KERNEL_SOURCES = kernels/tape_eval.h $(filter-out kernels/march.h kernels/e
 SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernels/packet_camera.h kernels/traverse.h \
                        kernels/csg_node.h \
                        kernels/scene_data.h kernels/bvh.h kernels/prim_segments.h kernels/prim_pipe_segments.h \
-                       kernels/segments_lanes.h kernels/segments.h \
+                       kernels/segments_lanes.h kernels/segments_lanes_frame.h kernels/segments.h \
                        kernels/classify.h kernels/weave.h kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h \
                        kernels/effects.h kernels/light.h kernels/packet.h kernels/tile.h kernels/scene_union.h kernels/render_scene.cl \
                        kernels/march.h kernels/scene_effects.cl kernels/scene_centre.cl

@@ -195,8 +195,51 @@ IA_FN int bvh_beam_cut(const bvh_beam *m, const KERNEL_GLOBAL ia_real *box, cons
     return n;
 }
 
+/* A packet's rays against the entries of its cut, each lane's range in each entry's box as bvh_node_clip gives it
+ * (te > tx where the lane's ray misses the box): the packet's rays test the cut in SIMD lanes, once, not one by
+ * one (bvh_cut_lanes_fill). */
+typedef struct {
+    ia_real te[BVH_CUT_MAX][PACKET_LANES], tx[BVH_CUT_MAX][PACKET_LANES];
+} bvh_cut_lanes;
+
+#if IA_DEVICE && defined(IA_VW)
+/* Every lane's ray (origins o, directions d, reciprocals inv, over [tn, tf]) against the ncut entries of cut,
+ * bvh_node_clip's operations in the same order in each lane; 0 where a lane's ray divides (bvh_ray's `divide`). */
+IA_FN int bvh_cut_lanes_fill(bvh_cut_lanes *cl, const KERNEL_GLOBAL ia_real *box, const int *cut, int ncut,
+                             ia_real o[3][PACKET_LANES], ia_real d[3][PACKET_LANES], ia_real inv[3][PACKET_LANES],
+                             ia_realv tn, ia_realv tf) {
+    ia_realv ov[3], dv[3], iv[3];
+    ia_maskv divide = tn != tn; /* (none) */
+    for (int c = 0; c < 3; c++) {
+        ov[c] = IAV_LOAD(o[c]);
+        dv[c] = IAV_LOAD(d[c]);
+        iv[c] = IAV_LOAD(inv[c]);
+        divide = divide | ((dv[c] != 0) & !isfinite(iv[c]));
+    }
+    if (iav_any(divide))
+        return 0;
+    for (int j = 0; j < ncut; j++) {
+        ia_realv te = tn, tx = tf;
+        ia_maskv miss = divide;
+        for (int c = 0; c < 3; c++) {
+            ia_realv lo = IAV_R(box[6 * cut[j] + c]), hi = IAV_R(box[6 * cut[j] + 3 + c]);
+            ia_realv a = (lo - ov[c]) * iv[c], b = (hi - ov[c]) * iv[c];
+            ia_maskv along = dv[c] == 0;
+            miss = miss | (along & ((ov[c] < lo) | (ov[c] > hi)));
+            te = select(fmax(te, iav_lo_k(fmin(a, b), BVH_SLAB_ULPS)), te, along);
+            tx = select(fmin(tx, iav_hi_k(fmax(a, b), BVH_SLAB_ULPS)), tx, along);
+        }
+        miss = miss | (te > tx);
+        IAV_STORE(select(te, IAV_R(IA_INF), miss), cl->te[j]);
+        IAV_STORE(select(tx, IAV_R(-IA_INF), miss), cl->tx[j]);
+    }
+    return 1;
+}
+#endif
+
 /* A ray against the BVH: the tables, the ray and its part [tn, tf] in the bounds; where cut is not 0, its packet's
- * cut (ncut entries, bvh_beam_cut) stands for the top-level nodes. */
+ * cut (ncut entries, bvh_beam_cut) stands for the top-level nodes, and where cut_lanes is not 0, lane `lane` of it
+ * is the ray's range in each of them. */
 typedef struct {
     const KERNEL_GLOBAL ia_real *box;
     const KERNEL_GLOBAL int *link;
@@ -206,16 +249,15 @@ typedef struct {
     ia_real tn, tf;
     const int *cut;
     int ncut;
+    const bvh_cut_lanes *cut_lanes;
+    int lane;
 } bvh_walk;
 
 /* Adds node k to the ray's pending entries solid[], range[] (*count of them) if the ray meets its box: a leaf as
- * its solid, an inner node as -(k + 1), with the start and width (rounded up) of the ray's range in the box.
- * Returns 0 when there is no room (cap). */
-IA_FN int bvh_push(const bvh_walk *b, int k, KERNEL_GLOBAL int *solid, KERNEL_GLOBAL ia_real *range, int *count,
-                   int cap) {
-    ia_real te, tx;
-    if (!bvh_node_clip(b->box, k, b->r, b->o, b->d, b->tn, b->tf, &te, &tx))
-        return 1;
+ * its solid, an inner node as -(k + 1), with the start and width (rounded up) of the ray's range [te, tx] in the
+ * box (bvh_push_range: where the range is known). Returns 0 when there is no room (cap). */
+IA_FN int bvh_push_range(const bvh_walk *b, int k, ia_real te, ia_real tx, KERNEL_GLOBAL int *solid,
+                         KERNEL_GLOBAL ia_real *range, int *count, int cap) {
     if (*count == cap)
         return 0;
     int leaf = b->link[2 * k + SCENE_BVH_SOLID];
@@ -225,14 +267,25 @@ IA_FN int bvh_push(const bvh_walk *b, int k, KERNEL_GLOBAL int *solid, KERNEL_GL
     *count += 1;
     return 1;
 }
+IA_FN int bvh_push(const bvh_walk *b, int k, KERNEL_GLOBAL int *solid, KERNEL_GLOBAL ia_real *range, int *count,
+                   int cap) {
+    ia_real te, tx;
+    return !bvh_node_clip(b->box, k, b->r, b->o, b->d, b->tn, b->tf, &te, &tx) ||
+           bvh_push_range(b, k, te, tx, solid, range, count, cap);
+}
 
 /* The top-level nodes the ray meets (the unbounded solids' leaves, then the root of the bounded ones), or its
- * packet's cut's entries that it meets. */
+ * packet's cut's entries that it meets (from its lane of the packet's, where the walk has them). */
 IA_FN int bvh_roots(const bvh_walk *b, KERNEL_GLOBAL int *solid, KERNEL_GLOBAL ia_real *range, int *count, int cap) {
     if (b->cut) {
-        for (int j = 0; j < b->ncut; j++)
-            if (!bvh_push(b, b->cut[j], solid, range, count, cap))
+        for (int j = 0; j < b->ncut; j++) {
+            const bvh_cut_lanes *cl = b->cut_lanes;
+            if (cl ? !(cl->te[j][b->lane] > cl->tx[j][b->lane]) &&
+                         !bvh_push_range(b, b->cut[j], cl->te[j][b->lane], cl->tx[j][b->lane], solid, range, count,
+                                         cap)
+                   : !bvh_push(b, b->cut[j], solid, range, count, cap))
                 return 0;
+        }
         return 1;
     }
     for (int k = 0; k < b->nodes; k = b->link[2 * k + SCENE_BVH_SKIP])

@@ -241,11 +241,16 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
             bvh_beam_add_lane(&beam, ok, dk, ik, k, tn[k], tf[k]);
 #ifdef SEGMENTS_LANES
     if (ray->walks.lanes)
-        segments_lanes_start(ray->walks.lanes, ok);
+        segments_lanes_start(ray->walks.lanes, ok, ik, tn, from, tf, view->box, view->link, view->nodes);
 #endif
     view->ncut = bvh_beam_cut(&beam, view->box, view->link, view->nodes, cut);
     view->cut = view->ncut >= 0 ? cut : 0;
     scene_beam_drop_out(ray->walks.prims, &beam, view, cut);
+    bvh_cut_lanes cut_lanes;
+    view->cut_lanes = view->ncut > 0 && bvh_cut_lanes_fill(&cut_lanes, view->box, cut, view->ncut, ok, dk, ik,
+                                                           fmax(IAV_LOAD(tn), IAV_LOAD(from)), IAV_LOAD(tf))
+                          ? &cut_lanes
+                          : 0;
 #ifndef SCENE_UNION_PREPASS
     if (view->ncut == 0 && view->nsurfaces == 0) { /* no ray meets a solid's box (bvh_beam_cut) */
         scene_packet_empty(params, f, i0, j0, only, block_evals);
@@ -261,6 +266,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         rows[k] = (float)min(j, height - 1);
         weave_hit hit = {0, -1, -1, -1};
         ray->evals = ray->segments = ray->partitions = 0;
+        view->lane = k;
 #ifdef SEGMENTS_LANES
         if (ray->walks.lanes)
             ray->walks.lanes->lane = k;

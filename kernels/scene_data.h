@@ -43,7 +43,8 @@ enum { SCENE_SAMPLES_BX = 0, SCENE_SAMPLES_BY = 1, SCENE_SAMPLES_MASK = 2, SCENE
 /* The BVH over the solids' boxes, in preorder: node k has a box (6 reals, x0 y0 z0 x1 y1 z1, rounded outward)
  * and two ints: the node that follows its subtree (where a ray that misses the box goes on), and the solid of a
  * leaf (-1 for an inner node). A solid whose inside reaches beyond its box, or that has no proven box, has an
- * infinite one: every ray evaluates it all along. */
+ * infinite one: every ray evaluates it all along. After the nodes' links, one int per solid: its leaf (-1 where
+ * none: a solid of no region), for a packet's lanes (segments_lanes_frame.h). */
 #define SCENE_BVH_SKIP 0
 #define SCENE_BVH_SOLID 1
 

@@ -26,6 +26,8 @@ typedef struct {
     const surface_start *starts; /* the first SURFACE_BLOCK_MAX surfaces' block starts (surface.h), or 0 */
     const int *cut;              /* the ray's packet's cut of the BVH (bvh.h's bvh_beam_cut), or 0 */
     int ncut;
+    const bvh_cut_lanes *cut_lanes; /* the packet's rays against it, or 0; the ray is lane `lane` of them */
+    int lane;
 } scene_view;
 
 #define SCENE_TRACE_OVERFLOW (-1)
@@ -71,6 +73,8 @@ IA_FN int scene_trace_ray_from(const scene_view *v, scene_ray *r, const ia_real 
     b.tf = tf;
     b.cut = v->cut;
     b.ncut = v->ncut;
+    b.cut_lanes = v->cut_lanes;
+    b.lane = v->lane;
     r->deep = from > tn;
     r->deep_from = from;
     r->deep_eps = v->eps;

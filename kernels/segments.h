@@ -29,7 +29,7 @@
 #include "scene_data.h"
 #include "scene_prims.h"
 #include "prim_segments.h"
-#include "segments_lanes.h"
+#include "segments_lanes_frame.h"
 #if !IA_DEVICE
 #include <string.h>
 #endif
@@ -104,31 +104,33 @@ IA_FN int segments_closed_keep(const segments_walks *w, int c, int r, const ia_r
 
 /* Solves candidate c's solid in closed form over [ta, tend] where it has one, keeping the changes (and where it may
  * be in again after them, newton[c] = 1 and in index[c] the point to solve again from, to the end); 0 when it must
- * bisect. A packet's planar solid is solved for all its rays at once where its walks have the lanes. */
+ * bisect. A packet's planar solid, ell, quadric tgc or ehy is solved for all its rays at once where its walks have
+ * the lanes. */
 IA_FN int segments_closed_solve(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real ta,
                                 ia_real tend, ia_real eps, kernel_u32 *evals) {
     ia_real p[SEGMENTS_PARAM_REALS], e[4], resume = tend;
-    int k = w->solid[c];
+    int k = w->solid[c], r;
 #ifdef SEGMENTS_LANES
-    if (w->lanes && segments_lanes_holds(w->lanes, k) && w->lanes->solved[k % SEGMENTS_LANES_SLOTS])
-        return segments_closed_keep(w, c, segments_lanes_changes(w->lanes, k, ta, tend, e, evals), e, resume);
+    r = w->lanes && segments_lanes_holds(w->lanes, k) ? segments_lanes_changes(w->lanes, k, ta, tend, e, evals) : -1;
+    if (r >= 0)
+        return segments_closed_keep(w, c, r, e, resume);
 #endif
     int type = scene_solid_P(w->prims, k, p, SEGMENTS_PARAM_REALS), slot = k % PRIM_DIRS_SLOTS;
     int kept = w->dirs && (type == PRIM_HALF || type == PRIM_ARB8 || type == PRIM_ELL || type == PRIM_TGC ||
                            type == PRIM_EHY || type == PRIM_TOR); /* the types with direction terms */
     int known = kept && w->dirs->solid[slot] == k;
 #ifdef SEGMENTS_LANES
-    if (w->lanes && kept && (type == PRIM_HALF || type == PRIM_ARB8) && !segments_lanes_holds(w->lanes, k)) {
-        int solved = segments_lanes_fill(w->lanes, k, type, p, d, w->dirs->v[slot], known);
+    if (w->lanes && kept && segments_lanes_fits(type) && !segments_lanes_holds(w->lanes, k)) {
+        segments_lanes_fill_solid(w->lanes, k, type, p, d, w->dirs->v[slot], known);
         w->dirs->solid[slot] = k;
-        if (solved)
-            return segments_closed_keep(w, c, segments_lanes_changes(w->lanes, k, ta, tend, e, evals), e, resume);
         known = 1;
+        r = segments_lanes_changes(w->lanes, k, ta, tend, e, evals);
+        if (r >= 0)
+            return segments_closed_keep(w, c, r, e, resume);
     }
 #endif
-    int r = type < 0 ? 0
-                     : prim_segments(type, p, o, d, ta, tend, eps, e, &resume, evals, kept ? w->dirs->v[slot] : 0,
-                                     known);
+    r = type < 0 ? 0
+                 : prim_segments(type, p, o, d, ta, tend, eps, e, &resume, evals, kept ? w->dirs->v[slot] : 0, known);
     if (kept)
         w->dirs->solid[slot] = k;
     return segments_closed_keep(w, c, r, e, resume);
@@ -143,6 +145,12 @@ IA_FN int segments_beam_out(scene_prims q, int k, const ia_interval o[3], const 
     return type >= 0 && prim_segments_beam_out(type, p, o, d, ta, tend);
 }
 
+/* A closed-form walk's change j (segments_closed_keep), read alone: a pair read back just after the keep's scalar
+ * stores waits for them to retire (a store-forwarding stall, 3.5 % of scene_packet on operators). */
+IA_FN ia_real segments_closed_change(const segments_walks *w, int c, int j) {
+    return j < 2 ? w->range[2 * c + j] : w->newton_t[2 * c + j - 2];
+}
+
 /* A closed-form walk's step: the state from pos[c] on, after the changes at or before it (OUT, BOUNDARY, IN,
  * BOUNDARY, OUT), and pos[c] on to the next change. Past the last change of a solid that may be in again, OUT up
  * to the point to solve again from, and there it solves again, to the end of the solid's own bounding sphere
@@ -151,9 +159,8 @@ IA_FN int segments_beam_out(scene_prims q, int k, const ia_interval o[3], const 
 IA_FN int segments_closed_step(const segments_walks *w, int c, const ia_real o[3], const ia_real d[3], ia_real eps,
                                kernel_u32 *evals) {
     for (int pass = 0;; pass++) {
-        ia_real e[4] = {w->range[2 * c], w->range[2 * c + 1], w->newton_t[2 * c], w->newton_t[2 * c + 1]};
         int j = 0;
-        while (j < 4 && e[j] <= w->pos[c])
+        while (j < 4 && segments_closed_change(w, c, j) <= w->pos[c])
             j++;
         if (j == 4 && w->newton[c] == 1) {
             ia_real resume = segments_real_of(w->index[c]);
@@ -167,7 +174,7 @@ IA_FN int segments_closed_step(const segments_walks *w, int c, const ia_real o[3
             w->pos[c] = IA_INF;
             return SCENE_BOUNDARY;
         }
-        w->pos[c] = j < 4 ? e[j] : IA_INF;
+        w->pos[c] = j < 4 ? segments_closed_change(w, c, j) : IA_INF;
         return j == 2 ? SCENE_IN : j & 1 ? SCENE_BOUNDARY : SCENE_OUT;
     }
 }

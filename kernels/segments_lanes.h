@@ -1,8 +1,11 @@
 /* kernels/segments_lanes.h -- a packet's planar solids (a half, an arb8) solved along its IA_VW rays at once, one
  * SIMD lane per ray (OpenCL C, a program with IA_VW and primitives; an orthographic view, whose rays share their
- * direction and so each plane's n.d, prim_segments.h's direction terms).
+ * direction and so each plane's n.d, prim_segments.h's direction terms). Its ells, quadric tgcs and ehys:
+ * segments_lanes_frame.h, into the same table.
  *
- *   segments_lanes_start(l, o): at a packet, its rays' origins (lane k: ray k) and an empty table;
+ *   segments_lanes_start(l, o, inv, tn, from, tf, box, link, nodes): at a packet, its rays' origins (lane k: ray
+ *     k), reciprocal directions and where their BVH walks start and end (fmax(tn, from) and tf: scene_trace.h's
+ *     b.tn, b.tf), the BVH, and an empty table;
  *   segments_lanes_fill(l, k, type, p, d, dir, known): solid k's span (prim_segments_span) along every lane's ray,
  *     into the table's slot of k: each plane's c = n.o - d in lanes, its root -c / n.d and the span's bounds (0
  *     where a plane may be parallel to the rays: its piece then depends on each ray's range, and the scalar code
@@ -29,20 +32,41 @@ typedef struct segments_lanes segments_lanes; /* (segments.h's walks point to on
 /* Solids kept per packet, by their number modulo this (a packet's rays reach a few arbs each). */
 #define SEGMENTS_LANES_SLOTS 16
 
-/* lane's span of the solid in a slot: plo, phi, ilo, ihi (plo NaN where a bound was) */
-#define SEGMENTS_LANES_BOUNDS 4
+/* A lane's span of the solid in a slot: plo, phi, ilo, ihi (plo NaN where a bound was), and for a frame type the
+ * range start it was solved from (SEGMENTS_LANES_FROM, the lane's entry into the solid's BVH leaf: NaN where the
+ * scalar code solves that lane). */
+#define SEGMENTS_LANES_BOUNDS 5
+#define SEGMENTS_LANES_FROM 4
+
+/* solved[]: how a slot's solid is solved */
+#define SEGMENTS_LANES_SCALAR 0 /* by the scalar code (a plane along the rays, a general tgc) */
+#define SEGMENTS_LANES_PLANES 1 /* in lanes, over any range */
+#define SEGMENTS_LANES_FRAME 2  /* in lanes from each lane's SEGMENTS_LANES_FROM (a quadric expanded there) */
 
 struct segments_lanes {
-    ia_realv o[3]; /* the packet's origins */
-    int lane;      /* the ray being traced */
+    ia_realv o[3], inv[3]; /* the packet's origins and reciprocal directions */
+    ia_realv tn, tf;       /* where their BVH walks start and end */
+    const KERNEL_GLOBAL ia_real *box; /* the BVH (bvh.h), and after its links each solid's leaf */
+    const KERNEL_GLOBAL int *link;
+    int nodes;
+    int lane; /* the ray being traced */
     int solid[SEGMENTS_LANES_SLOTS]; /* -1: empty */
-    int solved[SEGMENTS_LANES_SLOTS]; /* 0: the scalar code solves that solid (a plane along the rays) */
+    int solved[SEGMENTS_LANES_SLOTS];
     ia_real span[SEGMENTS_LANES_SLOTS][SEGMENTS_LANES_BOUNDS][IA_VW];
 };
 
-IA_FN void segments_lanes_start(segments_lanes *l, ia_real o[3][IA_VW]) {
-    for (int c = 0; c < 3; c++)
+IA_FN void segments_lanes_start(segments_lanes *l, ia_real o[3][IA_VW], ia_real inv[3][IA_VW], ia_real tn[IA_VW],
+                                ia_real from[IA_VW], ia_real tf[IA_VW], const KERNEL_GLOBAL ia_real *box,
+                                const KERNEL_GLOBAL int *link, int nodes) {
+    for (int c = 0; c < 3; c++) {
         l->o[c] = IAV_LOAD(o[c]);
+        l->inv[c] = IAV_LOAD(inv[c]);
+    }
+    l->tn = fmax(IAV_LOAD(tn), IAV_LOAD(from));
+    l->tf = IAV_LOAD(tf);
+    l->box = box;
+    l->link = link;
+    l->nodes = nodes;
     for (int s = 0; s < SEGMENTS_LANES_SLOTS; s++)
         l->solid[s] = -1;
 }
@@ -77,7 +101,7 @@ IA_FN int segments_lanes_fill(segments_lanes *l, int k, int type, const ia_real 
         along |= !(b[j].lo > 0 || b[j].hi < 0);
     }
     l->solid[slot] = k;
-    l->solved[slot] = !along;
+    l->solved[slot] = along ? SEGMENTS_LANES_SCALAR : SEGMENTS_LANES_PLANES;
     if (along)
         return 0;
     ia_realv plo = IAV_R(-IA_INF), phi = IAV_R(IA_INF), ilo = IAV_R(-IA_INF), ihi = IAV_R(IA_INF);
@@ -103,11 +127,19 @@ IA_FN int segments_lanes_fill(segments_lanes *l, int k, int type, const ia_real 
     return 1;
 }
 
-/* Lane l->lane's changes of solid k (solved in its slot) over [ta, tend] into e (prim_segments_convex); 0 where a
- * bound was NaN. */
+/* Lane l->lane's changes of solid k (held in its slot) over [ta, tend] into e (prim_segments_convex); 0 where a
+ * bound was NaN; -1 where the scalar code solves it (the slot says so, or a frame type's lane was solved from
+ * another range start than ta: its quadric's expansion point, so the roots' rounding, would differ). */
 IA_FN int segments_lanes_changes(const segments_lanes *l, int k, ia_real ta, ia_real tend, ia_real e[4],
                                  kernel_u32 *evals) {
-    int slot = k % SEGMENTS_LANES_SLOTS, n = l->lane;
+    int slot = k % SEGMENTS_LANES_SLOTS, n = l->lane, solved = l->solved[slot];
+    if (solved == SEGMENTS_LANES_SCALAR)
+        return -1;
+    if (solved == SEGMENTS_LANES_FRAME) {
+        ia_real from = l->span[slot][SEGMENTS_LANES_FROM][n]; /* bit for bit ta (not -0 for 0) */
+        if (!(from == ta && signbit(from) == signbit(ta)))
+            return -1;
+    }
     prim_segments_span s = {l->span[slot][0][n], l->span[slot][1][n], l->span[slot][2][n], l->span[slot][3][n], 0};
     if (isnan(s.plo))
         return 0;

@@ -82,7 +82,7 @@ static iacsg_status upload_tables(iacsg_renderer *r, render_scene *s, const iacs
                       sizeof(int) * (size_t)t->solid_items_start[t->nsolids],
                       sizeof(int) * (size_t)t->nsurfaces,
                       SCENE_MATERIAL_FLOATS * sizeof(float) * (size_t)t->nitems,
-                      2 * sizeof(int) * (size_t)t->nbvh};
+                      sizeof(int) * (2 * (size_t)t->nbvh + (size_t)t->nsolids)};
     for (size_t k = 0; k < sizeof dst / sizeof dst[0]; k++)
         if (!(*dst[k] = table_buffer(r, src[k], bytes[k], err)))
             return IACSG_ERR_OPENCL;

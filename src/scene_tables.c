@@ -240,7 +240,7 @@ static int bvh_of(const iacsg_scene *s, const unsigned char *used, scene_tables 
     keyed *scratch = malloc(sizeof(keyed) * (size_t)(s->nsolids + 1));
     double *after = malloc(sizeof(double) * (size_t)(s->nsolids + 1));
     t->bvh_box = malloc(12 * sizeof(double) * (size_t)(s->nsolids + 1));
-    t->bvh_link = malloc(4 * sizeof(int) * (size_t)(s->nsolids + 1));
+    t->bvh_link = malloc(5 * sizeof(int) * (size_t)(s->nsolids + 1)); /* the nodes', then the solids' leaves */
     int ok = boxes && bounded && scratch && after && t->bvh_box && t->bvh_link, nbounded = 0;
     prove_boxes(s, used);
     for (int k = 0; ok && k < s->nsolids; k++) {
@@ -260,6 +260,11 @@ static int bvh_of(const iacsg_scene *s, const unsigned char *used, scene_tables 
         bvh_builder b = {boxes, t, scratch, after};
         bvh_build(&b, bounded, nbounded);
     }
+    for (int k = 0; ok && k < s->nsolids; k++)
+        t->bvh_link[2 * t->nbvh + k] = -1;
+    for (int node = 0; ok && node < t->nbvh; node++)
+        if (t->bvh_link[2 * node + SCENE_BVH_SOLID] >= 0)
+            t->bvh_link[2 * t->nbvh + t->bvh_link[2 * node + SCENE_BVH_SOLID]] = node;
     free(boxes);
     free(bounded);
     free(scratch);

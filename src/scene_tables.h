@@ -18,7 +18,7 @@ typedef struct {
     int nsolids;
     int nbvh;
     double *bvh_box; /* 6 per node: x0 y0 z0 x1 y1 z1 (infinite for unbounded solids) */
-    int *bvh_link;   /* 2 per node: SCENE_BVH_SKIP, SCENE_BVH_SOLID */
+    int *bvh_link;   /* 2 per node: SCENE_BVH_SKIP, SCENE_BVH_SOLID; then per solid its leaf (-1: none) */
     uint32_t *nodes;
     int nnodes;
     int *items; /* SCENE_ITEM_INTS per item */

@@ -1,8 +1,10 @@
-/* tests/t_brlcad_lanes.c -- a packet's planar solids solved in SIMD lanes (kernels/segments_lanes.h) against the
- * same solids solved ray by ray (the program built with IACSG_SEGMENTS_LANES=0): ids, depth and colour bit for bit,
- * orthographic views of truck's 125 arbs and of random rotated boxes cut from each other, from random directions
- * and along the axes (faces parallel to the rays: those solids go to the scalar code). A wrong lane (another ray's
- * origin, a bound rounded the other way) moves a depth by an ulp at least, or a claim. */
+/* tests/t_brlcad_lanes.c -- a packet's solids solved in SIMD lanes (kernels/segments_lanes.h: halves and arb8s;
+ * segments_lanes_frame.h: ells, quadric tgcs, ehys) against the same solids solved ray by ray (the program built with
+ * IACSG_SEGMENTS_LANES=0): ids, depth and colour bit for bit, orthographic views of truck's 125 arbs, of
+ * operators' ells and ehys, and of random rotated boxes and quadrics cut from each other, from random directions and
+ * along the axes (faces parallel to the rays: those solids go to the scalar code; rays along an axis: bvh_node_clip's
+ * axes where d is 0). A wrong lane (another ray's origin or range start, a bound rounded the other way, a root's
+ * branch taken wrongly) moves a depth by an ulp at least, or a claim. */
 #include "implicits/brlcad.h"
 #include "implicits/scene.h"
 #include "render.h"
@@ -19,47 +21,118 @@
 
 static double uniform(test_rng_t *r, double lo, double hi) { return lo + (hi - lo) * test_rand_unit(r); }
 
+/* v rotated about the unit axis k by angle (Rodrigues' formula) into out. */
+static void rotate(const double k[3], double angle, const double v[3], double out[3]) {
+    double kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    double cross[3] = {k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]};
+    for (int c = 0; c < 3; c++)
+        out[c] = v[c] * cos(angle) + cross[c] * sin(angle) + k[c] * kv * (1 - cos(angle));
+}
+
+/* A random rotation (unit axis k, angle) and a centre. */
+static void random_placement(test_rng_t *r, double k[3], double *angle, double centre[3]) {
+    double len = 0;
+    *angle = uniform(r, 0, acos(-1));
+    for (int c = 0; c < 3; c++) {
+        centre[c] = uniform(r, -400, 400);
+        k[c] = uniform(r, -1, 1);
+        len += k[c] * k[c];
+    }
+    for (int c = 0; c < 3; c++)
+        k[c] /= sqrt(len);
+}
+
+/* " NAME {x y z}": v rotated (k, angle), plus `at` where it is not 0, into text at *n. */
+static void put_vector(char *text, size_t cap, size_t *n, const char *name, const double k[3], double angle,
+                       const double v[3], const double *at) {
+    double p[3];
+    rotate(k, angle, v, p);
+    for (int c = 0; at && c < 3; c++)
+        p[c] += at[c];
+    *n += (size_t)snprintf(text + *n, cap - *n, " %s {%.17g %.17g %.17g}", name, p[0], p[1], p[2]);
+}
+
+/* Regions r_k = s_k - s_{k+1} of `solids` solids and "all", their union, into text at *n. */
+static void put_regions(char *text, size_t cap, size_t *n, int solids) {
+    for (int b = 0; b < solids; b++)
+        *n += (size_t)snprintf(text + *n, cap - *n, "put {r%d} comb region yes tree {- {l s%d} {l s%d}}\n", b, b,
+                               (b + 1) % solids);
+    char tree[1024]; /* ((r0 u r1) u r2) u ...: "{u " solids - 1 times, "{l r0}", then " {l rB}}" for each B > 0 */
+    size_t t = 0;
+    for (int b = 1; b < solids; b++)
+        t += (size_t)snprintf(tree + t, sizeof tree - t, "{u ");
+    t += (size_t)snprintf(tree + t, sizeof tree - t, "{l r0}");
+    for (int b = 1; b < solids; b++)
+        t += (size_t)snprintf(tree + t, sizeof tree - t, " {l r%d}}", b);
+    CHECK(t < sizeof tree, "the union's tree overflows");
+    *n += (size_t)snprintf(text + *n, cap - *n, "put {all} comb region no tree %s\n", tree);
+    CHECK(*n < cap, "the database overflows");
+}
+
 /* BOXES boxes, each rotated about a random axis, as v5 arb8s; regions box_k - box_{k+1} and their union. */
 static char *random_boxes(test_rng_t *r) {
     size_t cap = 64 * 1024, n = 0;
     char *text = malloc(cap);
     CHECK(text, "out of memory");
     for (int b = 0; b < BOXES; b++) {
-        double centre[3], half[3], axis[3], len = 0, angle = uniform(r, 0, acos(-1));
-        for (int c = 0; c < 3; c++) {
-            centre[c] = uniform(r, -400, 400);
+        double centre[3], half[3], k[3], angle;
+        random_placement(r, k, &angle, centre);
+        for (int c = 0; c < 3; c++)
             half[c] = uniform(r, 20, 200);
-            axis[c] = uniform(r, -1, 1);
-            len += axis[c] * axis[c];
-        }
-        len = sqrt(len);
         n += (size_t)snprintf(text + n, cap - n, "put {s%d} arb8", b);
-        for (int v = 0; v < 8; v++) { /* Rodrigues' rotation of the corner's offset */
+        for (int v = 0; v < 8; v++) {
             int top = v >= 4, x = v % 4 == 1 || v % 4 == 2, y = v % 4 >= 2;
-            double q[3] = {x ? half[0] : -half[0], y ? half[1] : -half[1], top ? half[2] : -half[2]}, k[3], p[3];
-            for (int c = 0; c < 3; c++)
-                k[c] = axis[c] / len;
-            double kq = k[0] * q[0] + k[1] * q[1] + k[2] * q[2];
-            double cross[3] = {k[1] * q[2] - k[2] * q[1], k[2] * q[0] - k[0] * q[2], k[0] * q[1] - k[1] * q[0]};
-            for (int c = 0; c < 3; c++)
-                p[c] = centre[c] + q[c] * cos(angle) + cross[c] * sin(angle) + k[c] * kq * (1 - cos(angle));
-            n += (size_t)snprintf(text + n, cap - n, " V%d {%.17g %.17g %.17g}", v + 1, p[0], p[1], p[2]);
+            double q[3] = {x ? half[0] : -half[0], y ? half[1] : -half[1], top ? half[2] : -half[2]};
+            char name[4];
+            snprintf(name, sizeof name, "V%d", v + 1);
+            put_vector(text, cap, &n, name, k, angle, q, centre);
         }
         n += (size_t)snprintf(text + n, cap - n, "\n");
     }
-    for (int b = 0; b < BOXES; b++)
-        n += (size_t)snprintf(text + n, cap - n, "put {r%d} comb region yes tree {- {l s%d} {l s%d}}\n", b, b,
-                              (b + 1) % BOXES);
-    char tree[1024]; /* ((r0 u r1) u r2) u ...: "{u " BOXES - 1 times, "{l r0}", then " {l rB}}" for each B > 0 */
-    size_t t = 0;
-    for (int b = 1; b < BOXES; b++)
-        t += (size_t)snprintf(tree + t, sizeof tree - t, "{u ");
-    t += (size_t)snprintf(tree + t, sizeof tree - t, "{l r0}");
-    for (int b = 1; b < BOXES; b++)
-        t += (size_t)snprintf(tree + t, sizeof tree - t, " {l r%d}}", b);
-    CHECK(t < sizeof tree, "the union's tree overflows");
-    n += (size_t)snprintf(text + n, cap - n, "put {all} comb region no tree %s\n", tree);
-    CHECK(n < cap, "the database overflows");
+    put_regions(text, cap, &n, BOXES);
+    return text;
+}
+
+/* BOXES quadrics in turn an ell, a tgc whose alpha and beta agree (a truncated elliptic cone) and an ehy, each
+ * rotated about a random axis; regions s_k - s_{k+1} and their union. */
+static char *random_quadrics(test_rng_t *r) {
+    size_t cap = 64 * 1024, n = 0;
+    char *text = malloc(cap);
+    CHECK(text, "out of memory");
+    for (int b = 0; b < BOXES; b++) {
+        double centre[3], k[3], angle, a = uniform(r, 40, 200), bl = uniform(r, 40, 200), h = uniform(r, 60, 300);
+        random_placement(r, k, &angle, centre);
+        double ea[3] = {a, 0, 0}, eb[3] = {0, bl, 0}, eh[3] = {0, 0, h}, base[3] = {0, 0, -h / 2}, v[3];
+        rotate(k, angle, base, v);
+        for (int c = 0; c < 3; c++)
+            v[c] += centre[c];
+        if (b % 3 == 0) {
+            double ec[3] = {0, 0, uniform(r, 40, 200)};
+            n += (size_t)snprintf(text + n, cap - n, "put {s%d} ell", b);
+            put_vector(text, cap, &n, "V", k, angle, (double[3]){0, 0, 0}, centre);
+            put_vector(text, cap, &n, "A", k, angle, ea, 0);
+            put_vector(text, cap, &n, "B", k, angle, eb, 0);
+            put_vector(text, cap, &n, "C", k, angle, ec, 0);
+        } else if (b % 3 == 1) {
+            double s = uniform(r, 0.2, 1.5), ec[3] = {s * a, 0, 0}, ed[3] = {0, s * bl, 0};
+            n += (size_t)snprintf(text + n, cap - n, "put {s%d} tgc", b);
+            put_vector(text, cap, &n, "V", k, angle, (double[3]){0, 0, 0}, v);
+            put_vector(text, cap, &n, "H", k, angle, eh, 0);
+            put_vector(text, cap, &n, "A", k, angle, ea, 0);
+            put_vector(text, cap, &n, "B", k, angle, eb, 0);
+            put_vector(text, cap, &n, "C", k, angle, ec, 0);
+            put_vector(text, cap, &n, "D", k, angle, ed, 0);
+        } else {
+            double unit[3] = {1, 0, 0}, r2 = uniform(r, 30, a);
+            n += (size_t)snprintf(text + n, cap - n, "put {s%d} ehy", b);
+            put_vector(text, cap, &n, "V", k, angle, (double[3]){0, 0, 0}, v);
+            put_vector(text, cap, &n, "H", k, angle, eh, 0);
+            put_vector(text, cap, &n, "A", k, angle, unit, 0);
+            n += (size_t)snprintf(text + n, cap - n, " r_1 %.17g r_2 %.17g c %.17g", a, r2, uniform(r, 5, 100));
+        }
+        n += (size_t)snprintf(text + n, cap - n, "\n");
+    }
+    put_regions(text, cap, &n, BOXES);
     return text;
 }
 
@@ -161,6 +234,25 @@ TEST(brlcad_lanes_rotated_boxes_match_scalar) {
     double views[VIEWS][2];
     random_views(r, views);
     check_same(&m, views, "rotated boxes");
+    brlcad_model_free(&m);
+    free(text);
+}
+
+TEST(brlcad_lanes_operators_match_scalar) {
+    brlcad_model m = model_of_file("operators.asc", (const char *const[]){"operators"}, 1);
+    double views[VIEWS][2];
+    random_views(test_rng(), views);
+    check_same(&m, views, "operators");
+    brlcad_model_free(&m);
+}
+
+TEST(brlcad_lanes_rotated_quadrics_match_scalar) {
+    test_rng_t *r = test_rng();
+    char *text = random_quadrics(r);
+    brlcad_model m = model_of(text, (const char *const[]){"all"}, 1);
+    double views[VIEWS][2];
+    random_views(r, views);
+    check_same(&m, views, "rotated quadrics");
     brlcad_model_free(&m);
     free(text);
 }

@@ -298,7 +298,7 @@ TEST_FP(scene_trace_spheres) {
     unsigned char state[N] = {0};
     for (int k = 0; k < 6 * t.nbvh; k++)
         box[k] = (ia_real)t.bvh_box[k]; /* the spheres' boxes are dyadic with few bits: exact */
-    scene_view v = {box, t.bvh_link, t.nbvh, t.surfaces, 0, (ia_real)0x1p-12, {0, 0}, 0, 0, 0};
+    scene_view v = {box, t.bvh_link, t.nbvh, t.surfaces, 0, (ia_real)0x1p-12, {0, 0}, 0, 0, 0, 0, 0};
     long rays = test_iters(3000), hits = 0, near = 0;
     for (long it = 0; it < rays; it++) {
         ia_real o[3], d[3], len = 0;
@@ -428,7 +428,7 @@ TEST_FP(scene_bvh_beam_cut) {
             ia_real ra[4 * N + 4], rb[4 * N + 4];
             bvh_ray r = bvh_ray_lane(d, inv, k);
             ia_real ok[3] = {o[0][k], o[1][k], o[2][k]}, dk[3] = {d[0][k], d[1][k], d[2][k]};
-            bvh_walk b = {box, t.bvh_link, t.nbvh, &r, ok, dk, tn[k], tf[k], 0, 0};
+            bvh_walk b = {box, t.bvh_link, t.nbvh, &r, ok, dk, tn[k], tf[k], 0, 0, 0, 0};
             int na = bvh_leaves(&b, sa, ra, 2 * N + 2);
             b.cut = cut;
             b.ncut = ncut;
