@@ -219,40 +219,29 @@ static void random_views(test_rng_t *r, double views[VIEWS][2]) {
     }
 }
 
-TEST(brlcad_lanes_truck_match_scalar) {
-    brlcad_model m = model_of_file("truck.asc", (const char *const[]){"g4"}, 1);
+/* A sample model's object, and a random model (make's text, every top object), from VIEWS random views. */
+static void check_model_file(const char *file, const char *object) {
+    brlcad_model m = model_of_file(file, (const char *const[]){object}, 1);
     double views[VIEWS][2];
     random_views(test_rng(), views);
-    check_same(&m, views, "truck");
+    check_same(&m, views, file);
     brlcad_model_free(&m);
 }
-
-TEST(brlcad_lanes_rotated_boxes_match_scalar) {
+static void check_random_model(char *(*make)(test_rng_t *), const char *what) {
     test_rng_t *r = test_rng();
-    char *text = random_boxes(r);
+    char *text = make(r);
     brlcad_model m = model_of(text, (const char *const[]){"all"}, 1);
     double views[VIEWS][2];
     random_views(r, views);
-    check_same(&m, views, "rotated boxes");
+    check_same(&m, views, what);
     brlcad_model_free(&m);
     free(text);
 }
 
-TEST(brlcad_lanes_operators_match_scalar) {
-    brlcad_model m = model_of_file("operators.asc", (const char *const[]){"operators"}, 1);
-    double views[VIEWS][2];
-    random_views(test_rng(), views);
-    check_same(&m, views, "operators");
-    brlcad_model_free(&m);
-}
+TEST(brlcad_lanes_truck_match_scalar) { check_model_file("truck.asc", "g4"); }
 
-TEST(brlcad_lanes_rotated_quadrics_match_scalar) {
-    test_rng_t *r = test_rng();
-    char *text = random_quadrics(r);
-    brlcad_model m = model_of(text, (const char *const[]){"all"}, 1);
-    double views[VIEWS][2];
-    random_views(r, views);
-    check_same(&m, views, "rotated quadrics");
-    brlcad_model_free(&m);
-    free(text);
-}
+TEST(brlcad_lanes_rotated_boxes_match_scalar) { check_random_model(random_boxes, "rotated boxes"); }
+
+TEST(brlcad_lanes_operators_match_scalar) { check_model_file("operators.asc", "operators"); }
+
+TEST(brlcad_lanes_rotated_quadrics_match_scalar) { check_random_model(random_quadrics, "rotated quadrics"); }
