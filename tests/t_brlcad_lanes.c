@@ -83,7 +83,7 @@ static char *random_boxes(test_rng_t *r) {
         for (int v = 0; v < 8; v++) {
             int top = v >= 4, x = v % 4 == 1 || v % 4 == 2, y = v % 4 >= 2;
             double q[3] = {x ? half[0] : -half[0], y ? half[1] : -half[1], top ? half[2] : -half[2]};
-            char name[4];
+            char name[16];
             snprintf(name, sizeof name, "V%d", v + 1);
             put_vector(text, cap, &n, name, k, angle, q, centre);
         }
