@@ -25,10 +25,10 @@
 /* The first hits of the rays o + t d of the lanes of `on` in [tn, tf] within the bounds, with leaves of width eps
  * and interval Newton from nodes no wider than 32 `newton` (packet.h): the start of the hit leaf in *t (+inf on a
  * miss) and, where `normals`, the unit normal there facing the ray in n. With `whether` (no normals), a hit's *t
- * may be the start of a longer part of the ray that certainly holds the first root (effects_march). A ray that starts next to a surface
- * (`leaving`, its distance from it) first leaves it by effects_leave. The tree is [0, w], w the farthest end of
- * the packet's rays (so no level of it is spent on a node that holds a whole ray). Counts the rays and their
- * evaluations (KERNEL_STATS). */
+ * may be the start of a longer part of the ray that certainly holds the first root (effects_march). A ray that
+ * starts next to a surface (`leaving`, its distance from it) first leaves it by effects_leave. The tree is [0, w],
+ * w the farthest end of the packet's rays (so no level of it is spent on a node that holds a whole ray). Counts
+ * the rays and their evaluations (KERNEL_STATS). */
 static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *all_groups, const ia_realv o[3],
                               const ia_realv d[3], ia_realv tn, ia_realv tf, ia_maskv on, ia_realv leaving,
                               ia_real eps, ia_real newton, int whether, ia_realv *t, int normals, ia_realv n[3],
