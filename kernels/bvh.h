@@ -203,8 +203,27 @@ typedef struct {
 } bvh_cut_lanes;
 
 #if IA_DEVICE && defined(IA_VW)
-/* Every lane's ray (origins o, directions d, reciprocals inv, over [tn, tf]) against the ncut entries of cut,
- * bvh_node_clip's operations in the same order in each lane; 0 where a lane's ray divides (bvh_ray's `divide`). */
+/* bvh_node_clip in each lane: lane k's ray (o, d, reciprocal inv; none divides) clipped from [tn, tf] to node
+ * k's box in [*te, *tx], the same operations in the same order; the lanes whose ray misses the box (the parallel
+ * ones outside its slab, or *te > *tx). */
+IA_FN ia_maskv bvh_node_clip_lanes(const KERNEL_GLOBAL ia_real *box, int k, const ia_realv o[3], const ia_realv d[3],
+                                   const ia_realv inv[3], ia_realv tn, ia_realv tf, ia_realv *te, ia_realv *tx) {
+    ia_maskv miss = tn != tn; /* (none) */
+    *te = tn;
+    *tx = tf;
+    for (int c = 0; c < 3; c++) {
+        ia_realv lo = IAV_R(box[6 * k + c]), hi = IAV_R(box[6 * k + 3 + c]);
+        ia_realv a = (lo - o[c]) * inv[c], b = (hi - o[c]) * inv[c];
+        ia_maskv along = d[c] == 0;
+        miss = miss | (along & ((o[c] < lo) | (o[c] > hi)));
+        *te = select(fmax(*te, iav_lo_k(fmin(a, b), BVH_SLAB_ULPS)), *te, along);
+        *tx = select(fmin(*tx, iav_hi_k(fmax(a, b), BVH_SLAB_ULPS)), *tx, along);
+    }
+    return miss | (*te > *tx);
+}
+
+/* Every lane's ray (origins o, directions d, reciprocals inv, over [tn, tf]) against the ncut entries of cut
+ * (bvh_node_clip_lanes); 0 where a lane's ray divides (bvh_ray's `divide`). */
 IA_FN int bvh_cut_lanes_fill(bvh_cut_lanes *cl, const KERNEL_GLOBAL ia_real *box, const int *cut, int ncut,
                              ia_real o[3][PACKET_LANES], ia_real d[3][PACKET_LANES], ia_real inv[3][PACKET_LANES],
                              ia_realv tn, ia_realv tf) {
@@ -219,17 +238,8 @@ IA_FN int bvh_cut_lanes_fill(bvh_cut_lanes *cl, const KERNEL_GLOBAL ia_real *box
     if (iav_any(divide))
         return 0;
     for (int j = 0; j < ncut; j++) {
-        ia_realv te = tn, tx = tf;
-        ia_maskv miss = divide;
-        for (int c = 0; c < 3; c++) {
-            ia_realv lo = IAV_R(box[6 * cut[j] + c]), hi = IAV_R(box[6 * cut[j] + 3 + c]);
-            ia_realv a = (lo - ov[c]) * iv[c], b = (hi - ov[c]) * iv[c];
-            ia_maskv along = dv[c] == 0;
-            miss = miss | (along & ((ov[c] < lo) | (ov[c] > hi)));
-            te = select(fmax(te, iav_lo_k(fmin(a, b), BVH_SLAB_ULPS)), te, along);
-            tx = select(fmin(tx, iav_hi_k(fmax(a, b), BVH_SLAB_ULPS)), tx, along);
-        }
-        miss = miss | (te > tx);
+        ia_realv te, tx;
+        ia_maskv miss = bvh_node_clip_lanes(box, cut[j], ov, dv, iv, tn, tf, &te, &tx);
         IAV_STORE(select(te, IAV_R(IA_INF), miss), cl->te[j]);
         IAV_STORE(select(tx, IAV_R(-IA_INF), miss), cl->tx[j]);
     }

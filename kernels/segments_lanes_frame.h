@@ -153,22 +153,14 @@ IA_FN int segments_lanes_pieces(segments_lanes_span *s, int type, const ia_real 
  * misses the box, whose ray never solves the solid from there), and how many lanes meet the box; -1 where a ray
  * divides (bvh_ray's `divide`). */
 IA_FN int segments_lanes_entry(const segments_lanes *l, int k, const ia_real d[3], ia_realv *te) {
-    ia_realv tx = l->tf;
-    ia_maskv off = tx != tx; /* (none) */
-    *te = l->tn;
+    ia_realv dv[3], tx;
     for (int c = 0; c < 3; c++) {
-        ia_realv lo = IAV_R(l->box[6 * k + c]), hi = IAV_R(l->box[6 * k + 3 + c]);
-        if (d[c] == 0) {
-            off = off | (l->o[c] < lo) | (l->o[c] > hi);
-            continue;
-        }
-        if (!isfinite((ia_real)1 / d[c]))
+        if (d[c] != 0 && !isfinite((ia_real)1 / d[c]))
             return -1;
-        ia_realv a = (lo - l->o[c]) * l->inv[c], b = (hi - l->o[c]) * l->inv[c];
-        *te = fmax(*te, iav_lo_k(fmin(a, b), BVH_SLAB_ULPS));
-        tx = fmin(tx, iav_hi_k(fmax(a, b), BVH_SLAB_ULPS));
+        dv[c] = IAV_R(d[c]);
     }
-    return iav_count(!off & (*te <= tx));
+    ia_maskv miss = bvh_node_clip_lanes(l->box, k, l->o, dv, l->inv, l->tn, l->tf, te, &tx);
+    return iav_count(!miss & (*te <= tx)); /* (not a lane whose range is NaN) */
 }
 
 /* An ell's, a quadric tgc's or an ehy's slot for every lane (type, parameters p, direction terms as
