@@ -3,6 +3,7 @@
  * process that writes the entry and trims the directory (clrt_cache_save_deferred). */
 #define _GNU_SOURCE /* mkostemp, utimensat, nice */
 #include "clrt_cache.h"
+#include "clrt_pocl.h"
 #include "iacsg.h"
 #include "detach.h"
 #include "digest.h"
@@ -204,9 +205,10 @@ static void trim(const char *dir) {
 }
 
 /* Whether the entry's program was built before (its marker, KEY.seen, exists); makes the marker if not. Where
- * the driver compiles at the first launch, only a program built a second time is saved: PoCL compiles every kernel of the program anew for a binary (for any
- * work-group size), which cost ~4 s for the reference view's program, more than the 2-3 s of its first build, and
- * would double the first run of every expression tried once. */
+ * the driver compiles at the first launch, only a program built a second time is saved: PoCL compiles every
+ * kernel of the program anew for a binary (for any work-group size), which cost ~4 s for the reference view's
+ * program, more than the 2-3 s of its first build, and would double the first run of every expression tried
+ * once. */
 static int seen_before(const char *path, const char *dir) {
     char marker[sizeof ((clrt_cache_entry *)0)->path + 8];
     snprintf(marker, sizeof marker, "%.*s.seen", (int)(strlen(path) - 4), path);
@@ -222,7 +224,7 @@ static int seen_before(const char *path, const char *dir) {
     return 0;
 }
 
-/* Writes the program's binary as the entry (the binary's query is what costs). */
+/* Writes the program's binary as the entry (the binary's query is what costs), PoCL's without its bitcode. */
 static void save(const clrt_cache_entry *entry, cl_program program) {
     char dir[sizeof entry->path];
     snprintf(dir, sizeof dir, "%s", entry->path);
@@ -237,6 +239,7 @@ static void save(const clrt_cache_entry *entry, cl_program program) {
     int fd = -1;
     if (bin && clGetProgramInfo(program, CL_PROGRAM_BINARIES, sizeof bins, bins, NULL) == CL_SUCCESS &&
         make_dirs(dir) == 0 && (fd = mkostemp(tmp, O_CLOEXEC)) >= 0) {
+        size = clrt_pocl_binary_without_ir(bin, size);
         entry_header h;
         memset(&h, 0, sizeof h);
         memcpy(h.magic, CACHE_MAGIC, sizeof h.magic);
@@ -271,7 +274,8 @@ void clrt_cache_store(const clrt_cache_entry *entry, cl_program program, int com
     char dir[sizeof entry->path];
     snprintf(dir, sizeof dir, "%s", entry->path);
     *strrchr(dir, '/') = '\0';
-    if ((compiled || seen_before(entry->path, dir)) && deferred.count < MAX_DEFERRED && clRetainProgram(program) == CL_SUCCESS) {
+    if ((compiled || seen_before(entry->path, dir)) && deferred.count < MAX_DEFERRED &&
+        clRetainProgram(program) == CL_SUCCESS) {
         deferred.entries[deferred.count] = *entry;
         deferred.programs[deferred.count++] = program;
     }

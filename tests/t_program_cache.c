@@ -1,7 +1,8 @@
 /* tests/t_program_cache.c -- the cache of program binaries (src/clrt_cache.c): a program built a second time is
- * saved (by the detached saver, which the tests wait for), at its first build where the driver compiles there, the next build loads it (and the kernel computes the
- * same), a damaged entry is refused and removed and the program still builds from source, and a cache directory
- * that cannot be made costs nothing but the cache. */
+ * saved (by the detached saver, which the tests wait for), at its first build where the driver compiles there,
+ * the next build loads it (and the kernel computes the same; PoCL's entry without the program's bitcode), a
+ * damaged entry is refused and removed and the program still builds from source, and a cache directory that
+ * cannot be made costs nothing but the cache. */
 #define _GNU_SOURCE /* utimes, usleep */
 #include "clrt.h"
 #include "clrt_cache.h"
@@ -100,6 +101,12 @@ TEST(program_cache_saves_then_loads) {
     int saved = the_entry(dir, entry, sizeof entry);
     int second = build_and_run(salt, 0);
     int now_saved = save_and_wait(dir, entry, sizeof entry);
+    size_t bytes = 0;
+    char *saved_bytes = now_saved == 1 ? test_read_file(entry, &bytes) : NULL;
+    int bitcode = 0; /* PoCL's LLVM IR, which the cache leaves out (src/clrt_pocl.h) */
+    for (size_t k = 0; saved_bytes && k + 4 <= bytes && !bitcode; k++)
+        bitcode = memcmp(saved_bytes + k, "BC\xc0\xde", 4) == 0;
+    free(saved_bytes);
     struct timeval old[2] = {{946684800, 0}, {946684800, 0}}; /* 2000-01-01: a hit makes it recent */
     utimes(entry, old);
     int third = build_and_run(salt, 0);
@@ -110,6 +117,7 @@ TEST(program_cache_saves_then_loads) {
     CHECK(saved == 0, "the first build saved an entry (%d)", saved);
     CHECK(now_saved == 1, "the second build saved %d entries", now_saved);
     CHECK(touched, "the third build did not use the entry");
+    CHECK(!bitcode, "the entry holds LLVM bitcode");
     test_remove_dir(dir);
 }
 
