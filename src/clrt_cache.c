@@ -16,7 +16,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define CACHE_MAGIC "iacsg program binary 1\n"
+/* Format 2: PoCL's binaries without their bitcode (src/clrt_pocl.h); the key hashes it, so format 1's entries are
+ * never looked up again and age out of the directory. */
+#define CACHE_MAGIC "iacsg program binary 2\n"
 enum { CACHE_MAX_BYTES = 256 << 20, CACHE_MAX_FILES = 4096 };
 
 typedef struct {
