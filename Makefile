@@ -208,7 +208,7 @@ bench: deps
 # libFuzzer over the lexer, parser and compiler, seeded from examples/ and tests/data/fuzz/. New crashes land in
 # build-fuzz/crash-*: copy each into tests/data/fuzz/ so that every `make test` replays it.
 FUZZ_SECONDS ?= 60
-FUZZ_SRC = tests/fuzz/fuzz_expr.c tests/expr_exercise.c $(wildcard implicits/*.c) ia/decimal.c src/error.c src/clrt.c src/clrt_cache.c src/detach.c src/digest.c src/version.c
+FUZZ_SRC = tests/fuzz/fuzz_expr.c tests/expr_exercise.c $(wildcard implicits/*.c) ia/decimal.c src/error.c src/clrt.c src/clrt_cache.c src/clrt_pocl.c src/detach.c src/digest.c src/version.c
 build-fuzz/fuzz_expr: $(FUZZ_SRC) $(BUILD)/embedded_ia.c
 	@mkdir -p $(dir $@)
 	clang -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -I. -Isrc \
