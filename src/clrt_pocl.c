@@ -4,6 +4,7 @@
  *   header: "poclbin\0", device id u64, version u32, kernels u32, flags u64, root entries u32, build hash char[41]
  *   root entry: its bytes u64, then files: name length u32, name, content length u32, content
  *   kernel: record bytes u64, files' bytes u64, argument info bytes u32, name length u32, name, ... */
+#define _GNU_SOURCE /* memmem */
 #include "clrt_pocl.h"
 #include <stdint.h>
 #include <stdio.h>
@@ -44,10 +45,7 @@ static int has_file_named(const unsigned char *hay, size_t len, const char *need
     unsigned char key[4 + 2 * KERNEL_NAME_MAX + 16];
     write_le(key, n, 4);
     memcpy(key + 4, needle, n);
-    for (size_t at = 0; at + 4 + n <= len; at++)
-        if (memcmp(hay + at, key, 4 + n) == 0)
-            return 1;
-    return 0;
+    return memmem(hay, len, key, 4 + n) != NULL;
 }
 
 /* Whether each of the `kernels` records from `at` to the end has the file NAME/0-0-0/NAME.so, and they end at `end`. */

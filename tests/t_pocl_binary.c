@@ -2,6 +2,7 @@
  * builds without the LLVM IR and runs every kernel at local sizes its binary has no specialised function for; a
  * binary it does not know (other drivers', truncated, another format version, a kernel without its generic
  * function, more than one root file) is left byte for byte as it was. */
+#define _GNU_SOURCE /* memmem */
 #include "clrt.h"
 #include "clrt_pocl.h"
 #include "test.h"
@@ -61,13 +62,6 @@ static size_t binary_of(clrt *rt, int salt, unsigned char **bin) {
 
 static int is_pocl(const clrt *rt) { return strstr(rt->platform_name, "Portable Computing Language") != NULL; }
 
-static int contains(const unsigned char *hay, size_t n, const char *needle, size_t len) {
-    for (size_t k = 0; k + len <= n; k++)
-        if (memcmp(hay + k, needle, len) == 0)
-            return 1;
-    return 0;
-}
-
 /* Whether clrt_pocl_binary_without_ir leaves a copy of the n bytes alone (the copy exactly n bytes long, so that
  * the sanitizers see a read past it). */
 static int left_alone(const unsigned char *bytes, size_t n) {
@@ -95,7 +89,7 @@ TEST(pocl_binary_without_ir_builds_and_runs) {
                 clBuildProgram(p, 1, &rt.device, "", NULL, NULL) == CL_SUCCESS;
     for (size_t local = 1; built && local <= IDS; local *= 2) /* 2, 4 and 8: no specialised function */
         runs = runs && run_kernels(&rt, p, local, salt);
-    int bitcode = bin && contains(bin, stripped, "BC\xc0\xde", 4);
+    int bitcode = bin && memmem(bin, stripped, "BC\xc0\xde", 4) != NULL;
     if (p)
         clReleaseProgram(p);
     free(bin);
