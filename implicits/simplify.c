@@ -1,6 +1,7 @@
 /* implicits/simplify.c -- stage 4 (see simplify.h). Its dump is dag_dump of the result. */
 #include "simplify.h"
 #include "eval.h"
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -69,10 +70,116 @@ static int constant_between(dag *d, const char *lo, const char *hi, iacsg_error 
     return folded(d, r64, r32, err);
 }
 
+static int make(dag *d, int op, int a, int b, int n, iacsg_error *err);
+
+/* ---- squares completed in sums ---- */
+
+typedef struct {
+    int node, sign; /* sign * node; node -1: a term taken into a square */
+} term;
+
+enum { SUM_TERMS_MAX = 64 }; /* larger sums are left as they are (each + of a chain flattens the chain below it) */
+
+/* Appends the terms of sign * node i to t[0..n) through + - neg and the constants of +r: the new count, or -1 past
+ * SUM_TERMS_MAX. */
+static int sum_terms(const dag *d, int i, int sign, term *t, int n) {
+    const dag_node *N = &d->nodes[i];
+    if (n < 0)
+        return -1;
+    switch (N->op) {
+    case OP_ADD: case OP_ADD_R: return sum_terms(d, N->b, sign, t, sum_terms(d, N->a, sign, t, n));
+    case OP_SUB: return sum_terms(d, N->b, -sign, t, sum_terms(d, N->a, sign, t, n));
+    case OP_NEG: return sum_terms(d, N->a, -sign, t, n);
+    }
+    if (n >= SUM_TERMS_MAX)
+        return -1;
+    t[n] = (term){i, sign};
+    return n + 1;
+}
+
+/* The point coefficient c of u in term t (t = c u: u itself, or u * c), or 0. */
+static double linear_in(const dag *d, term t, int u) {
+    const dag_node *N = &d->nodes[t.node];
+    if (t.node == u)
+        return t.sign;
+    return N->op == OP_MUL_R && N->a == u ? t.sign * point_value(d, N->b) : 0;
+}
+
+/* The point coefficient q of u^2 in term t (t = q u^2: u^2 itself, or u^2 * q), u in *u; or 0. */
+static double square_in(const dag *d, term t, int *u) {
+    const dag_node *N = &d->nodes[t.node];
+    if (N->op == OP_MUL_R && d->nodes[N->a].op == OP_SQR) {
+        *u = d->nodes[N->a].a;
+        return t.sign * point_value(d, N->b);
+    }
+    *u = N->a;
+    return N->op == OP_SQR ? t.sign : 0;
+}
+
+/* One pair q u^2 + c u of the terms (q, c points, h = c / 2q exact in both precisions) as q (u + h)^2, and the
+ * constant -q h^2 appended: u then occurs once, so the pair's enclosure is its exact range over u's where
+ * q u^2 + c u overestimates it (the tangle's x^4 - 5x^2 = (x^2 - 2.5)^2 - 6.25: over x in [1, 2], [-19, 11]
+ * against [-6.25, -4]; near its surface its terms and their roundings are a tenth as large too). 1 when one was
+ * found, 0 when none, -1 on error. */
+static int complete_one(dag *d, term *t, int n, iacsg_error *err) {
+    for (int i = 0; i < n; i++) {
+        int u;
+        double q = square_in(d, t[i], &u);
+        for (int j = 0; j < n && q != 0; j++) {
+            double c = j == i ? 0 : linear_in(d, t[j], u), h = c / (2 * q);
+            if (c == 0 || !isfinite(h) || fma(h, 2 * q, -c) != 0 || (double)(float)h != h || fabs(h) < FLT_MIN)
+                continue; /* (a float subnormal would be flushed in the kernels) */
+            int k = dag_add_real(d, h, err), p = k < 0 ? -1 : dag_add_real(d, q, err), m = -1;
+            int shifted = p < 0 ? -1 : make(d, OP_ADD, u, k, 0, err);
+            int square = shifted < 0 ? -1 : make(d, OP_SQR, shifted, -1, 0, err);
+            int scaled = square < 0 ? -1 : make(d, OP_MUL, square, p, 0, err);
+            int h2 = scaled < 0 ? -1 : make(d, OP_SQR, k, -1, 0, err);
+            int constant = h2 < 0 || (m = dag_add_real(d, -q, err)) < 0 ? -1 : make(d, OP_MUL, h2, m, 0, err);
+            if (constant < 0)
+                return -1;
+            t[i] = (term){scaled, 1};
+            t[j] = (term){constant, 1};
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The sum a + b (op OP_ADD) or a - b (OP_SUB) with squares completed (complete_one) where its terms hold such
+ * pairs, rebuilt in the terms' order with its constants folded into one at the end (also where it holds two
+ * constants and no pair); -2 where it holds neither (the caller then makes the node as it is). */
+static int complete_squares(dag *d, int op, int a, int b, iacsg_error *err) {
+    term t[SUM_TERMS_MAX];
+    if (d->nodes[a].op == OP_CONST && d->nodes[b].op == OP_CONST) /* folded by make */
+        return -2;
+    int n = sum_terms(d, b, op == OP_SUB ? -1 : 1, t, sum_terms(d, a, 1, t, 0)), found = 0, r = 0, nconst = 0;
+    while (n > 0 && (r = complete_one(d, t, n, err)) == 1)
+        found = 1;
+    for (int k = 0; k < n; k++)
+        nconst += d->nodes[t[k].node].op == OP_CONST;
+    if (r < 0)
+        return -1;
+    if (n <= 0 || (!found && nconst < 2))
+        return -2;
+    int sum = -1, constants = -1;
+    for (int pass = 0; pass < 2; pass++) /* the variable terms, then the constants */
+        for (int k = 0; k < n; k++) {
+            if ((d->nodes[t[k].node].op == OP_CONST) != pass)
+                continue;
+            int *acc = pass ? &constants : &sum;
+            *acc = *acc >= 0   ? make(d, t[k].sign > 0 ? OP_ADD : OP_SUB, *acc, t[k].node, 0, err)
+                   : t[k].sign > 0 ? t[k].node
+                                   : make(d, OP_NEG, t[k].node, -1, 0, err);
+            if (*acc < 0)
+                return -1;
+        }
+    return sum < 0 ? constants : constants < 0 ? sum : make(d, OP_ADD, sum, constants, 0, err);
+}
+
 /* The node op(a, b, n), rewritten by the rules of simplify.h. The rules shrink the expression, but for one: an
  * even power a^2k becomes (a^k)^2, the same enclosure with as many roundings, so that x^4 shares the x^2 that
  * x^4 - 5x^2 computes anyway (the tangle: 3 of its 16 interval operations). The recursion is a few levels deep
- * (16 for the largest exponent). */
+ * (16 for the largest exponent; complete_squares adds a few: the sums it builds hold no pair). */
 static int make(dag *d, int op, int a, int b, int n, iacsg_error *err) {
     if ((op == OP_ADD || op == OP_MUL || op == OP_MIN || op == OP_MAX) && b < a) {
         int swap = a; /* commutative: one order, so that x*y and y*x are one node (ia/ is symmetric here) */
@@ -80,13 +187,15 @@ static int make(dag *d, int op, int a, int b, int n, iacsg_error *err) {
         b = swap;
     }
     const dag_node *A = a >= 0 ? &d->nodes[a] : NULL;
-    int a_op = A ? A->op : -1;
+    int a_op = A ? A->op : -1, r;
     switch (op) {
     case OP_NEG:
         if (a_op == OP_NEG)
             return A->a;
         break;
     case OP_ADD:
+        if ((r = complete_squares(d, op, a, b, err)) != -2)
+            return r;
         if (a == b) { /* x + x = 2x, one exact scaling */
             int two = dag_add_real(d, 2, err);
             return two < 0 ? -1 : make(d, OP_MUL_R, a, two, 0, err);
@@ -101,6 +210,8 @@ static int make(dag *d, int op, int a, int b, int n, iacsg_error *err) {
             return make(d, OP_ADD_R, b, a, 0, err);
         break;
     case OP_SUB:
+        if ((r = complete_squares(d, op, a, b, err)) != -2)
+            return r;
         if (point_is(d, b, 0))
             return a;
         if (point_is(d, a, 0))

@@ -221,6 +221,13 @@ const char *const expr_every_op_texts[] = {
 };
 const int expr_every_op_count = (int)(sizeof expr_every_op_texts / sizeof expr_every_op_texts[0]);
 
+/* Sums the simplifier rewrites (implicits/simplify.c: squares completed, constants folded together), so that the
+ * oracle (the expression as written) checks the rewritten code's enclosures. */
+static const char *const rewritten_texts[] = {
+    "x^4 - 5*x^2 + y", "x*x - 3*x + 1 + z", "2*x^2 + x - y*y", "y - x^2 + 0.75*x", "8*x^4 - 8*x^2 + 1 - z",
+    "z + sqr(x + y) - 0.5*(x + y) + 2", "-(x^2) * 3 + 0.1 + 1.5*x - 0.3333",
+};
+
 int expr_primitive_names(const char **names, int max) {
     int n = 0;
     for (int i = 0; i < lib_count && n < max; i++)
@@ -236,6 +243,8 @@ int expr_test_texts(test_rng_t *r, char (*texts)[EXPR_TEXT_SIZE], int max) {
         snprintf(texts[n++], EXPR_TEXT_SIZE, "%s", names[i]);
     for (int i = 0; i < expr_every_op_count && n < max; i++)
         snprintf(texts[n++], EXPR_TEXT_SIZE, "%s", expr_every_op_texts[i]);
+    for (size_t i = 0; i < sizeof rewritten_texts / sizeof rewritten_texts[0] && n < max; i++)
+        snprintf(texts[n++], EXPR_TEXT_SIZE, "%s", rewritten_texts[i]);
     while (n < max)
         expr_random_text(r, 4, texts[n++], EXPR_TEXT_SIZE);
     return n;

@@ -38,8 +38,8 @@ extern const int expr_every_op_count;
 /* The primitives of the library (every LIB_PRIMITIVE, called bare), for the per-primitive tests. */
 int expr_primitive_names(const char **names, int max);
 
-/* The device tests' expressions: every primitive, every op's text, then random texts of depth 4 until there are
- * max (which must leave room for the first two); returns max. */
+/* The device tests' expressions: every primitive, every op's text, the sums the simplifier rewrites, then random
+ * texts of depth 4 until there are max (which must leave room for the first three); returns max. */
 #define EXPR_TEXT_SIZE 8192
 int expr_test_texts(test_rng_t *r, char (*texts)[EXPR_TEXT_SIZE], int max);
 

@@ -259,6 +259,37 @@ TEST(expr_simplify) {
     }
 }
 
+/* A sum's pair q u^2 + c u becomes q (u + c/2q)^2 - c^2/4q (implicits/simplify.c), where u occurs once: the
+ * enclosure over a box is then the exact range (up to rounding) where the sum as written overestimates it. */
+TEST(expr_squares_completed) {
+    static const struct {
+        const char *text;
+        double lo[3], hi[3], range[2]; /* the exact range over the box */
+    } cases[] = {
+        {"x^4 - 5*x^2", {1, 0, 0}, {2, 0, 0}, {-6.25, -4}},        /* as written: [-19, 11] */
+        {"x^2 - 3*x", {0, 0, 0}, {3, 0, 0}, {-2.25, 0}},           /* [-9, 9] */
+        {"8*x^4 - 8*x^2 + 1", {-1, 0, 0}, {1, 0, 0}, {-1, 1}},     /* [-7, 9] */
+        {"2*x^2 + x", {-1, 0, 0}, {1, 0, 0}, {-0.125, 3}},         /* [-1, 3] */
+        {"y - x^2 + x", {0, 0, 0}, {1, 0, 0}, {0, 0.25}},          /* [-1, 1] */
+        {"x - y + x^2 + 1", {-2, 1, 0}, {1, 1, 0}, {-0.25, 2}},    /* the pair apart: [-2, 4] */
+        {"tangle", {1, 0, 0}, {2, 0, 0}, {5.55, 7.8}},             /* [-7.2, 22.8] */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        iacsg_expr *e;
+        iacsg_error err = {0};
+        CHECK(iacsg_expr_parse(cases[i].text, "<test>", &e, &err) == IACSG_OK, "%s: %s", cases[i].text, err.message);
+        for (int fp64 = 0; fp64 < 2; fp64++) {
+            double r[2], slack = fp64 ? 1e-12 : 1e-5;
+            CHECK(iacsg_expr_eval_box(e, fp64, cases[i].lo, cases[i].hi, 0, r, &err) == IACSG_OK, "%s", err.message);
+            CHECK(r[0] <= cases[i].range[0] && r[1] >= cases[i].range[1] && r[0] >= cases[i].range[0] - slack &&
+                      r[1] <= cases[i].range[1] + slack,
+                  "'%s' (%s) over its box: [%.17g, %.17g], its range [%g, %g]", cases[i].text, fp64 ? "fp64" : "float",
+                  r[0], r[1], cases[i].range[0], cases[i].range[1]);
+        }
+        iacsg_expr_destroy(e);
+    }
+}
+
 TEST(expr_uses_time_and_bounds) {
     static const struct {
         const char *text;
