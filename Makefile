@@ -36,7 +36,7 @@ DEB_PACKAGES = gcc g++ make valgrind clang libclang-rt-14-dev pocl-opencl-icd oc
                pkg-config groff-base libsdl2-dev xvfb xdotool openmpi-bin libopenmpi-dev
 
 # OpenCL sources, in dependency order: they are concatenated (local #include lines dropped) into the binary.
-IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec.h
+IA_CL_HEADERS = ia/compat.h ia/round.h ia/interval.h ia/arith.h ia/elem.h ia/vec.h ia/vec_sincos.h
 KERNEL_SOURCES ?= kernels/compat.h kernels/params.h kernels/camera.h kernels/packet_camera.h kernels/traverse.h \
                   kernels/packet.h kernels/tile_rays.h kernels/tile.h kernels/effects.h kernels/light.h kernels/shade.h \
                   kernels/render.cl kernels/march.h kernels/effects.cl

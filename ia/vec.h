@@ -16,7 +16,7 @@
  * The polynomial operations (neg + - * sqr pown sqrt abs min max, add_r, mul_r), / and recip away from their
  * poles, and log are vector code. The others (exp sin cos tan atan pow, / and recip by an interval holding 0,
  * and pown with a negative or very large exponent) run ia/'s scalar operation lane by lane: correct, not
- * faster; a lane with a NaN bound is passed to them as empty.
+ * faster; a lane with a NaN bound is passed to them as empty. sin and cos: ia/vec_sincos.h.
  */
 #ifndef IA_VEC_H
 #define IA_VEC_H
@@ -277,8 +277,6 @@ IA_FN iav iav__recip_by_lane(iav a) {
 __attribute__((noinline)) static iav iav__div_by_lane(iav a, iav b) { IAV_LANEWISE(ia_div(A, B)); }
 IAV_UNARY_BY_LANE(exp)
 IAV_UNARY_BY_LANE(atan)
-IAV_UNARY_BY_LANE(sin)
-IAV_UNARY_BY_LANE(cos)
 IAV_UNARY_BY_LANE(tan)
 IAV_BINARY_BY_LANE(pow)
 IA_FN iav iav__pown_by_lane(iav a, int n) {

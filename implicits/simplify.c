@@ -81,15 +81,16 @@ typedef struct {
 enum { SUM_TERMS_MAX = 64 }; /* larger sums are left as they are (each + of a chain flattens the chain below it) */
 
 /* Appends the terms of sign * node i to t[0..n) through + - neg and the constants of +r: the new count, or -1 past
- * SUM_TERMS_MAX. */
-static int sum_terms(const dag *d, int i, int sign, term *t, int n) {
+ * SUM_TERMS_MAX terms or as many levels (so that a chain of 10^5 sums is not walked down at each of its nodes). */
+static int sum_terms(const dag *d, int i, int sign, term *t, int n, int depth) {
     const dag_node *N = &d->nodes[i];
-    if (n < 0)
+    if (n < 0 || depth > SUM_TERMS_MAX)
         return -1;
     switch (N->op) {
-    case OP_ADD: case OP_ADD_R: return sum_terms(d, N->b, sign, t, sum_terms(d, N->a, sign, t, n));
-    case OP_SUB: return sum_terms(d, N->b, -sign, t, sum_terms(d, N->a, sign, t, n));
-    case OP_NEG: return sum_terms(d, N->a, -sign, t, n);
+    case OP_ADD: case OP_ADD_R:
+        return sum_terms(d, N->b, sign, t, sum_terms(d, N->a, sign, t, n, depth + 1), depth + 1);
+    case OP_SUB: return sum_terms(d, N->b, -sign, t, sum_terms(d, N->a, sign, t, n, depth + 1), depth + 1);
+    case OP_NEG: return sum_terms(d, N->a, -sign, t, n, depth + 1);
     }
     if (n >= SUM_TERMS_MAX)
         return -1;
@@ -152,7 +153,7 @@ static int complete_squares(dag *d, int op, int a, int b, iacsg_error *err) {
     term t[SUM_TERMS_MAX];
     if (d->nodes[a].op == OP_CONST && d->nodes[b].op == OP_CONST) /* folded by make */
         return -2;
-    int n = sum_terms(d, b, op == OP_SUB ? -1 : 1, t, sum_terms(d, a, 1, t, 0)), found = 0, r = 0, nconst = 0;
+    int n = sum_terms(d, b, op == OP_SUB ? -1 : 1, t, sum_terms(d, a, 1, t, 0, 0), 0), found = 0, r = 0, nconst = 0;
     while (n > 0 && (r = complete_one(d, t, n, err)) == 1)
         found = 1;
     for (int k = 0; k < n; k++)

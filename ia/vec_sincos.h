@@ -1,0 +1,166 @@
+/* ia/vec_sincos.h -- iav_sin and iav_cos (OpenCL C, after ia/vec.h). Float intervals on a device that has double
+ * take ia/elem.h's reduction in double in all lanes at once: the same operations in the same order, so every lane
+ * holds the bits of ia_sin or ia_cos (tests/t_ia_vec_device_fp.c). Lane by lane, those cost a trigonometric shape
+ * most of its render (a gyroid in a ball: ~1.4 s a 1024x1024 frame, six intervals' sin or cos an evaluation).
+ * Elsewhere (double intervals, a device without double; the lanes beyond IA__REDUCED_MAX, infinite or NaN)
+ * ia/'s scalar operation runs lane by lane.
+ *
+ * Stages, as ia__sincos_reduced: the lanes' narrow ones by one reduction at their midpoint (ia__sincos_mid_of),
+ * where that declines or a lane is wide by the reductions of both ends (ia__sincos_ends_of), each computed only
+ * where some lane needs it, then chosen lane by lane.
+ */
+#ifndef IA_VEC_SINCOS_H
+#define IA_VEC_SINCOS_H
+#include "vec.h"
+#if IA_DEVICE && defined(IA_VW)
+
+__attribute__((noinline)) static iav iav__sin_by_lane(iav a) {
+    iav b = a;
+    IAV_LANEWISE(ia_sin(A));
+}
+__attribute__((noinline)) static iav iav__cos_by_lane(iav a) {
+    iav b = a;
+    IAV_LANEWISE(ia_cos(A));
+}
+
+#ifdef IA_DEVICE_DOUBLE
+typedef IAV_CAT(long, IA_VW) iav__longv;
+#define iav__to_long IAV_CAT(convert_long, IA_VW)
+
+/* x reduced in lanes (ia__reduced_at): k, r, sin r, cos r. */
+typedef struct {
+    iav__longv k;
+    iav__doublev r, sin_r, cos_r;
+} iav__reduced;
+IAV_INLINE iav__reduced iav__reduced_at(iav__doublev x) {
+    iav__reduced p;
+    iav__doublev k = rint(x * IA__INVPIO2);
+    p.r = (x - k * IA__PIO2_1) - k * IA__PIO2_1T;
+    p.k = iav__to_long(k);
+    iav__doublev z = p.r * p.r;
+    iav__doublev ps = -1.66666666666666324348e-01 +
+                      z * (8.33333333332248946124e-03 +
+                           z * (-1.98412698298579493134e-04 +
+                                z * (2.75573137070700676789e-06 +
+                                     z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10))));
+    iav__doublev pc = 4.16666666666666019037e-02 +
+                      z * (-1.38888888888741095749e-03 +
+                           z * (2.48015872894767294178e-05 +
+                                z * (-2.75573143513906633035e-07 +
+                                     z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11))));
+    p.sin_r = p.r + p.r * z * ps;
+    p.cos_r = (1.0 - 0.5 * z) + z * z * pc;
+    return p;
+}
+
+/* ia__quadrant_cos in lanes. */
+IAV_INLINE iav__doublev iav__quadrant_cos(iav__longv q, iav__doublev sin_r, iav__doublev cos_r) {
+    iav__doublev v = select(cos_r, sin_r, (q & 1) != 0);
+    return select(v, -v, ((q & 3) == 1) | ((q & 3) == 2));
+}
+
+/* ia__sincos_pad in lanes. */
+IAV_INLINE iav__doublev iav__sincos_pad(iav__doublev v, iav__longv k) {
+    return fabs(v) * 0x1p-45 + select((iav__doublev)0, (iav__doublev)0x1p-64, k != 0);
+}
+
+/* ia__sincos_bounds in lanes (ia__float_below and ia__float_above: RN, then a step out where it landed inside). */
+IAV_INLINE iav iav__sincos_bounds(iav__doublev lo, iav__doublev hi, iav__doublev pad_lo, iav__doublev pad_hi) {
+    iav__doublev b_lo = lo - pad_lo, b_hi = hi + pad_hi;
+    ia_realv f_lo = iav__to_real(b_lo), f_hi = iav__to_real(b_hi);
+#ifndef IA_FAST
+    f_lo = select(f_lo, iav_lo(f_lo), iav__to_mask(iav__to_double(f_lo) > b_lo));
+    f_hi = select(f_hi, iav_hi(f_hi), iav__to_mask(iav__to_double(f_hi) < b_hi));
+#endif
+    return iav_make(select(f_lo, IAV_R(-1), f_lo < -1), select(f_hi, IAV_R(1), f_hi > 1));
+}
+
+/* ia__sincos_mid_of in lanes: lo -2 in the lanes where it declines. */
+IAV_INLINE iav iav__sincos_mid_of(iav__reduced c, iav__doublev d, int shift) {
+    iav__doublev z = d * d;
+    iav__doublev v = iav__quadrant_cos(c.k - shift, c.sin_r, c.cos_r), low = v * (1 - 0.5 * z);
+    iav__doublev slope = fabs(iav__quadrant_cos(c.k - shift + 1, c.sin_r, c.cos_r)) *
+                         (d * (1 - z * (1.0 / 6 - z * (1.0 / 120))));
+    iav__doublev lo = select(low, v, v < low) - slope, hi = select(v, low, v < low) + slope, size = fabs(v) + slope;
+    iav b = iav__sincos_bounds(lo, hi, iav__sincos_pad(size, c.k), iav__sincos_pad(size, c.k));
+    ia_maskv declined = iav__to_mask(fmin(fabs(lo), fabs(hi)) < size * 0x1p-10);
+    return iav_make(select(b.lo, IAV_R(-2), declined), select(b.hi, IAV_R(-2), declined));
+}
+
+/* ia__quadrant_extrema in lanes: of the integers first..last (at most three where fewer than 3 apart), bit 1 where
+ * one has m - shift = 0 mod 4 (a maximum), bit 2 where one has 2 mod 4 (a minimum). */
+IAV_INLINE iav__longv iav__quadrant_extrema(iav__longv first, iav__longv last, int shift) {
+    iav__longv hits = (iav__longv)0;
+    for (int j = 0; j < 3; j++) {
+        iav__longv m = first + j, q = (m - shift) & 3;
+        hits |= select((iav__longv)0, select((iav__longv)0, select((iav__longv)1, (iav__longv)2, q == 2), (q & 1) == 0),
+                       m <= last);
+    }
+    return select(hits, (iav__longv)3, last - first >= 3);
+}
+
+/* ia__sincos_ends_of in lanes. */
+IAV_INLINE iav iav__sincos_ends_of(iav__reduced e0, iav__reduced e1, int shift) {
+    iav__longv first = e0.k + select((iav__longv)0, (iav__longv)1, e0.r > 0x1p-60);
+    iav__longv last = e1.k - select((iav__longv)0, (iav__longv)1, e1.r < -0x1p-60);
+    ia_maskv hits = iav__to_mask(iav__quadrant_extrema(first, last, shift));
+    iav__doublev v0 = iav__quadrant_cos(e0.k - shift, e0.sin_r, e0.cos_r);
+    iav__doublev v1 = iav__quadrant_cos(e1.k - shift, e1.sin_r, e1.cos_r);
+    iav__longv first_low = v0 <= v1;
+    iav__doublev lo = select(v1, v0, first_low), hi = select(v0, v1, first_low);
+    iav b = iav__sincos_bounds(lo, hi, iav__sincos_pad(lo, select(e1.k, e0.k, first_low)),
+                               iav__sincos_pad(hi, select(e0.k, e1.k, first_low)));
+    return iav_make(select(b.lo, IAV_R(-1), (hits & 2) != 0), select(b.hi, IAV_R(1), (hits & 1) != 0));
+}
+
+/* cos (shift 0) or sin (shift 1) of a whose lanes all lie within IA__REDUCED_MAX: ia__sincos_reduced's choices. */
+IAV_INLINE iav iav__sincos_reduced(iav a, int shift) {
+    iav__doublev lo = iav__to_double(a.lo), hi = iav__to_double(a.hi);
+    ia_maskv narrow = iav__to_mask(hi - lo <= 2 * IA__NARROW);
+    iav r = iav_make(IAV_R(-2), IAV_R(-2));
+    if (iav_any(narrow)) {
+        iav__doublev m = 0.5 * (lo + hi), d = fmax(hi - m, m - lo) * (1 + 0x1p-50);
+        iav mid = iav__sincos_mid_of(iav__reduced_at(m), d, shift);
+        r = iav_make(select(r.lo, mid.lo, narrow), select(r.hi, mid.hi, narrow));
+    }
+    ia_maskv ends = r.lo == -2;
+    if (iav_any(ends)) {
+        iav e = iav__sincos_ends_of(iav__reduced_at(lo), iav__reduced_at(hi), shift);
+        r = iav_make(select(r.lo, e.lo, ends), select(r.hi, e.hi, ends));
+    }
+    return r;
+}
+
+/* cos (shift 0) or sin (shift 1): the lanes within IA__REDUCED_MAX (not NaN nor infinite) reduced in double, the
+ * others by ia/'s scalar operation, lane by lane where any is left. */
+IAV_INLINE iav iav__sincos(iav a, int shift) {
+    ia_maskv reduces = fabs(a.lo) <= (ia_real)IA__REDUCED_MAX & fabs(a.hi) <= (ia_real)IA__REDUCED_MAX;
+    if (!iav_any(reduces))
+        return shift ? iav__sin_by_lane(a) : iav__cos_by_lane(a);
+    iav r = iav__sincos_reduced(iav_make(select(IAV_R(0), a.lo, reduces), select(IAV_R(0), a.hi, reduces)), shift);
+    if (iav_any(~reduces)) {
+        iav s = shift ? iav__sin_by_lane(a) : iav__cos_by_lane(a);
+        r = iav_make(select(s.lo, r.lo, reduces), select(s.hi, r.hi, reduces));
+    }
+    return r;
+}
+#endif
+
+IA_FN iav iav_sin(iav a) {
+#ifdef IA_DEVICE_DOUBLE
+    return iav__sincos(a, 1);
+#else
+    return iav__sin_by_lane(a);
+#endif
+}
+
+IA_FN iav iav_cos(iav a) {
+#ifdef IA_DEVICE_DOUBLE
+    return iav__sincos(a, 0);
+#else
+    return iav__cos_by_lane(a);
+#endif
+}
+
+#endif
+#endif
