@@ -221,11 +221,13 @@ const char *const expr_every_op_texts[] = {
 };
 const int expr_every_op_count = (int)(sizeof expr_every_op_texts / sizeof expr_every_op_texts[0]);
 
-/* Sums the simplifier rewrites (implicits/simplify.c: squares completed, constants folded together), so that the
- * oracle (the expression as written) checks the rewritten code's enclosures. */
+/* Sums and products the simplifier rewrites (implicits/simplify.c: squares completed, constants folded together,
+ * point factors pulled out, equal powers joined, u (k u + c) expanded), so that the oracle (the expression as
+ * written) checks the rewritten code's enclosures. */
 static const char *const rewritten_texts[] = {
     "x^4 - 5*x^2 + y", "x*x - 3*x + 1 + z", "2*x^2 + x - y*y", "y - x^2 + 0.75*x", "8*x^4 - 8*x^2 + 1 - z",
-    "z + sqr(x + y) - 0.5*(x + y) + 2", "-(x^2) * 3 + 0.1 + 1.5*x - 0.3333",
+    "z + sqr(x + y) - 0.5*(x + y) + 2", "-(x^2) * 3 + 0.1 + 1.5*x - 0.3333", "4*y^3*(1 - y)^3 + x",
+    "x*(x + 1) - y", "x^2*y^2 - z", "2*x*y + z*(3 - 2*z)", "(y - 1)^5 * (0.5*z)^5 * 3",
 };
 
 int expr_primitive_names(const char **names, int max) {

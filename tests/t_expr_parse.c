@@ -260,7 +260,8 @@ TEST(expr_simplify) {
 }
 
 /* A sum's pair q u^2 + c u becomes q (u + c/2q)^2 - c^2/4q (implicits/simplify.c), where u occurs once: the
- * enclosure over a box is then the exact range (up to rounding) where the sum as written overestimates it. */
+ * enclosure over a box is then the exact range (up to rounding) where the sum as written overestimates it; so do
+ * products that come to such a sum. */
 TEST(expr_squares_completed) {
     static const struct {
         const char *text;
@@ -273,6 +274,10 @@ TEST(expr_squares_completed) {
         {"y - x^2 + x", {0, 0, 0}, {1, 0, 0}, {0, 0.25}},          /* [-1, 1] */
         {"x - y + x^2 + 1", {-2, 1, 0}, {1, 1, 0}, {-0.25, 2}},    /* the pair apart: [-2, 4] */
         {"tangle", {1, 0, 0}, {2, 0, 0}, {5.55, 7.8}},             /* [-7.2, 22.8] */
+        /* products: u (k u + c) expanded to be completed, equal powers joined, point factors pulled out */
+        {"x*(x + 1)", {-1, 0, 0}, {0, 0, 0}, {-0.25, 0}},          /* [-1, 0] */
+        {"4*y^3*(1 - y)^3", {0, 0, 0}, {0, 1, 0}, {0, 0.0625}},    /* [0, 4] */
+        {"2*y*(3 - 2*y)", {0, 0, 0}, {0, 1.5, 0}, {0, 2.25}},      /* [0, 9] */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         iacsg_expr *e;
@@ -304,6 +309,7 @@ TEST(expr_uses_time_and_bounds) {
         {"move(sphere, t, 0, 0)", 1, IACSG_BOUNDS_EVERYWHERE, {-1, -1, -1, 2, 1, 1}},
         /* its squares completed (implicits/simplify.c), the tangle's enclosures prove all of space */
         {"tangle", 0, IACSG_BOUNDS_EVERYWHERE, {-2.2663, -2.2663, -2.2663, 2.2663, 2.2663, 2.2663}},
+        {"citrus", 0, IACSG_BOUNDS_EVERYWHERE, {-0.25, 0, -0.25, 0.25, 1, 0.25}}, /* was 53.8 deep in z */
         {"cylinder", 0, IACSG_BOUNDS_NONE, {0, 0, 0, 0, 0, 0}},
         {"gyroid", 0, IACSG_BOUNDS_NONE, {0, 0, 0, 0, 0, 0}},
     };
