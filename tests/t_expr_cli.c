@@ -88,3 +88,23 @@ TEST(expr_cli_compile) {
               marks[i], out);
     }
 }
+
+/* A first build (empty PoCL and program caches) prints nothing on stderr: the device compiler's warnings, which
+ * PoCL prints, would come from the emitted code (a scale's division once tested its constant divisor for 0). */
+TEST(expr_cli_first_build_is_quiet) {
+    char dir[256], cmd[2048], path[1024];
+    test_make_dir(dir, sizeof dir, "quiet-build");
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && POCL_CACHE_DIR='%s/pocl' IACSG_CACHE_DIR='%s/cache' '%s' "
+             "'scale(sphere, 2, 1, 1) | move(scale(citrus, 2.4, 3.2, 2.4), 0, -1.6, 0)' -size 16x16 -o q.png "
+             ">/dev/null 2>stderr.txt",
+             dir, dir, dir, test_binary_path());
+    int rc = system(cmd);
+    snprintf(path, sizeof path, "%s/stderr.txt", dir);
+    size_t n = 0;
+    char *err = test_read_file(path, &n);
+    CHECK(WIFEXITED(rc) && WEXITSTATUS(rc) == 0, "the render failed: %s", err ? err : "");
+    CHECK(err && n == 0, "the first build printed on stderr: %s", err ? err : "(no file)");
+    free(err);
+    test_remove_dir(dir);
+}
