@@ -20,7 +20,7 @@
 #include <string.h>
 
 #define BOUNDS_SCALE 1024.0 /* S above: below it the split is close to the plain midpoint */
-#define BOUNDS_BUDGET 3000
+#define BOUNDS_BUDGET 10000 /* bretzel4 needs ~10^4 in y (3000 proved it 128 deep) */
 #define BOUNDS_WORK 30000000.0 /* node evaluations per stage: about a tenth of a second; huge DAGs give up */
 #define BOUNDS_TOP_SPACE 100   /* stage 1 looks for planes up to 2^100 */
 

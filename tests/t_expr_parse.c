@@ -310,6 +310,8 @@ TEST(expr_uses_time_and_bounds) {
         /* its squares completed (implicits/simplify.c), the tangle's enclosures prove all of space */
         {"tangle", 0, IACSG_BOUNDS_EVERYWHERE, {-2.2663, -2.2663, -2.2663, 2.2663, 2.2663, 2.2663}},
         {"citrus", 0, IACSG_BOUNDS_EVERYWHERE, {-0.25, 0, -0.25, 0.25, 1, 0.25}}, /* was 53.8 deep in z */
+        /* its y slabs need some 10^4 boxes (x^2 thrice in its polynomial): it was proven 128 deep in y */
+        {"bretzel4", 0, IACSG_BOUNDS_EVERYWHERE, {-2.0689, -1.2310, -0.18257, 2.0689, 1.2310, 0.18257}},
         {"cylinder", 0, IACSG_BOUNDS_NONE, {0, 0, 0, 0, 0, 0}},
         {"gyroid", 0, IACSG_BOUNDS_NONE, {0, 0, 0, 0, 0, 0}},
     };
