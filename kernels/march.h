@@ -65,6 +65,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
     iav fa = iav_point(0);
     ia_maskv inside = (ia_maskv)0; /* the lanes that start inside a solid (F(a) < 0): a layer through it */
     ia_realv a0 = a, t_mid = IAV_R(IA_INF); /* their start, and where F' along them is 0 by the first step */
+    ia_realv t0 = a, f0 = IAV_R(0), t1 = a, f1 = IAV_R(0); /* the handed lanes' last two points of F, for a secant */
     for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(going); step++) {
         iav at_a = iav_make(a, a);
         if (iav_any(fresh)) { /* F at a, where its enclosure is not known or holds 0 */
@@ -127,6 +128,11 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         else
             handed |= crossed;
         hs = iav_make(select(hs.lo, s.lo, crossed), select(hs.hi, s.hi, crossed));
+        /* two points of F for Newton's first secant guess: the step's ends, F there by its enclosures' midpoints */
+        t0 = select(t0, a, crossed);
+        f0 = select(f0, IAV_R(0), crossed);
+        t1 = select(t1, b, crossed);
+        f1 = select(f1, IAV_R(0), crossed);
         t_far = select(t_far, b, crossed);
         ia_realv cross_lo = a;
         ia_maskv narrowed = (ia_maskv)0;
@@ -208,7 +214,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
      * step's slope, loose over a long step, so that Newton converged only linearly (up to 11 steps): where a step
      * shrank the part by less than 4, F' over the part that is left is evaluated again and hs narrowed to its
      * intersection with it (both enclose F' there), which keeps its sign (layers 12.44 -> 12.04 evaluations). */
-    ia_maskv stale = (ia_maskv)0;
+    ia_maskv stale = (ia_maskv)0, at_mid = (ia_maskv)0;
     for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(handed); step++) {
         stale &= handed;
         if (iav_any(stale)) {
@@ -220,16 +226,27 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
             ia_maskv use = stale & (fmax(hs.lo, slope.lo) <= fmin(hs.hi, slope.hi)); /* false for NaN */
             hs = iav_make(select(hs.lo, fmax(hs.lo, slope.lo), use), select(hs.hi, fmin(hs.hi, slope.hi), use));
         }
-        ia_realv m = a * (ia_real)0.5 + t_far * (ia_real)0.5;
+        /* m: the secant's guess at the root from the last two points of F where it lies inside the part (then
+         * F(m) is near 0 and the part shrinks to about the guess's error), else the part's midpoint */
+        ia_realv guess = t1 - f1 * (t1 - t0) / (f1 - f0);
+        ia_maskv guessed = ~at_mid & (guess > a) & (guess < t_far); /* false for NaN */
+        ia_realv m = select(a * (ia_real)0.5 + t_far * (ia_real)0.5, guess, guessed);
         iav at_m = iav_make(m, m);
         iav fm = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_m), packet_extent(o[1], d[1], at_m),
                           packet_extent(o[2], d[2], at_m), time);
         PACKET_COUNT(*evals, handed);
+        t0 = t1;
+        f0 = f1;
+        t1 = m;
+        f1 = (ia_real)0.5 * (fm.lo + fm.hi);
         iav n = iav_sub(at_m, iav_div(fm, hs));
         /* never narrower than half a leaf, as packet.h's Newton (the walk's leaf test follows it) */
         ia_realv lo = fmax(a, n.lo), hi = fmin(t_far, n.hi);
         hi = fmin(t_far, fmax(hi, lo + (ia_real)0.5 * eps));
-        ia_maskv ok = handed & (lo <= hi) & (hi - lo <= (ia_real)0.5 * (t_far - a));
+        ia_maskv halved = handed & (lo <= hi) & (hi - lo <= (ia_real)0.5 * (t_far - a));
+        /* a guess that narrowed the part but did not halve it: the midpoint next */
+        ia_maskv ok = halved | (handed & guessed & (lo <= hi) & (hi - lo < t_far - a));
+        at_mid = ok & ~halved;
         stale = ok & (hi - lo > (ia_real)0.25 * (t_far - a));
         a = select(a, lo, ok);
         t_far = select(t_far, hi, ok);
