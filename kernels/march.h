@@ -80,13 +80,15 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         }
         ia_realv b = fmin(a + w, t_far);
         iav seg = iav_make(a, b), slope;
-        if (step > 0 && !iav_any(going & (b < t_far))) {
-            /* every lane's step is the rest of its ray: F's enclosure alone may prove it (no F at b is needed
-             * after it), at about half the cost of iacsg_Fdv's; the lanes it fails take the step by Fdv */
+        ia_maskv rest = step > 0 ? going & (b >= t_far) : (ia_maskv)0;
+        if (iav_any(rest)) {
+            /* a step that is the rest of the ray: F's enclosure alone may prove it (no F at b is needed after
+             * it), at about half the cost of iacsg_Fdv's; the lanes it fails take the step by Fdv. Tried lane by
+             * lane, so that a ray takes the same steps alone as in a packet (test effects_march_lanes_alone) */
             iav fr = packet_F(~(ulong)0, packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
                               packet_extent(o[2], d[2], seg), time);
-            PACKET_COUNT(*evals, going);
-            ia_maskv out = going & ((fr.lo > 0) | (fr.hi < 0));
+            PACKET_COUNT(*evals, rest);
+            ia_maskv out = rest & ((fr.lo > 0) | (fr.hi < 0));
             a = select(a, b, out);
             going &= ~out;
             if (!iav_any(going))
