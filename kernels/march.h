@@ -32,29 +32,29 @@ static ia_real march_farthest(ia_realv t, ia_maskv lanes) {
 }
 
 #ifdef PACKET_FDV
-/* A secondary ray starts next to a surface it leaves (or crosses): bisection must halve its first nodes down to
- * its distance from that surface before one excludes it, some 2 log2(length / distance) evaluations, and then
- * halve its way down again to the next root. Instead the ray marches: from a (t_near on), one evaluation of
- * iacsg_Fdv over [a, b] gives F's enclosure there and the derivative F' along the ray, bounded (packet.h's
- * theorem), so F over [a, b] lies in the mean value form anchored at the start, F(a) + F' [0, b - a]. Where that
- * (or F's enclosure) excludes 0, a moves to b and the next step is 8 times as long; else a moves as far as the
- * form excludes 0 (F(a) / |F'|: a step of Newton's towards the root ahead, from below), and the next step is
- * twice that; where it cannot move, the step shrinks eightfold. F at the new a is enclosed by the same form (no
- * evaluation; it is evaluated again where that enclosure grew to hold 0). A step no longer than eps whose
- * enclosures hold 0 is the hit leaf, as the walk's. Every part a passes is proven root-free, so the leaf's start
- * is never after the first root. Where the caller asks only `whether` the ray meets a surface (an opaque shadow
- * ray), a step over which F(a) and the form at b have certain, opposite signs ends it too: F crosses 0 in it (the
- * first root lies in [a, b]), so the steps that would close in on that root are saved. For the other rays such a
- * step (its slope then keeps one sign: the root is unique) is closed in on by interval Newton with that slope, one
- * point evaluation a step: a sphere's exit ray, 20.5 -> 17.6 evaluations (before: the march's steps towards the
- * root, two evaluations each). The lanes still marching after EFFECTS_MARCH_STEPS, or whose F' is unbounded,
- * go on by the walk from their a. The first step is EFFECTS_MARCH_FIRST times the start's distance from the
- * surface `leaving`. Measured on the reference view (eps 1e-5; evaluations per shadow ray, reflected ray,
- * transparent layer): the walk alone (from the root of a tree as long as the packet's rays) 14.8, 16.1, 49.8;
- * marching only off the surface (each step proven whole or the walk) 5.5, 8.0, 28.9; with the steps towards the
- * root 3.9, 4.9, 15.7; the step after one towards the root sized by the bracket [c, e] 3.9, 4.7, 14.4; with the
- * crossings proven and closed in on by Newton 3.8, 4.5, 12.4; first steps of 1024 `leaving` 7.0, 9.1, 28.4 (before
- * the steps towards the root). */
+/* A secondary ray starts next to a surface it leaves (or crosses): bisection must halve its first nodes down to its
+ * distance from that surface before one excludes it, some 2 log2(length / distance) evaluations, and then halve its way
+ * down again to the next root. Instead the ray marches: from a (t_near on), one evaluation of iacsg_Fdv over [a, b]
+ * gives F's enclosure there and the derivative F' along the ray, bounded (packet.h's theorem), so F over [a, b] lies in
+ * the mean value form anchored at the start, F(a) + F' [0, b - a]. Where that (or F's enclosure) excludes 0, a moves to
+ * b and the next step is 8 times as long; else a moves as far as the form excludes 0 (F(a) / |F'|: a step of Newton's
+ * towards the root ahead, from below), and the next step is twice that; where it cannot move, the step shrinks
+ * eightfold. F at the new a is enclosed by the same form (no evaluation; it is evaluated again where that enclosure
+ * grew to hold 0). A step no longer than eps whose enclosures hold 0 is the hit leaf, as the walk's. Every part a
+ * passes is proven root-free, so the leaf's start is never after the first root. Where the caller asks only `whether`
+ * the ray meets a surface (an opaque shadow ray), a step over which F(a) and the form at b have certain, opposite signs
+ * ends it too: F crosses 0 in it (the first root lies in [a, b]), so the steps that would close in on that root are
+ * saved. For the other rays such a step (its slope then keeps one sign: the root is unique) is closed in on by interval
+ * Newton with that slope, one point evaluation a step: a sphere's exit ray, 20.5 -> 17.6 evaluations (before: the
+ * march's steps towards the root, two evaluations each). A step that is the rest of the ray is tried by F's enclosure
+ * alone first (no slope is needed after it; most reflected and shadow rays leave the scene by it). The lanes still
+ * marching after EFFECTS_MARCH_STEPS, or whose F' is unbounded, go on by the walk from their a. The first step is
+ * EFFECTS_MARCH_FIRST times the start's distance from the surface `leaving`. Measured on the reference view (eps 1e-5;
+ * evaluations per shadow ray, reflected ray, transparent layer): the walk alone (from the root of a tree as long as the
+ * packet's rays) 14.8, 16.1, 49.8; marching only off the surface (each step proven whole or the walk) 5.5, 8.0, 28.9;
+ * with the steps towards the root 3.9, 4.9, 15.7; the step after one towards the root sized by the bracket [c, e] 3.9,
+ * 4.7, 14.4; with the crossings proven and closed in on by Newton 3.8, 4.5, 12.4; first steps of 1024 `leaving` 7.0,
+ * 9.1, 28.4 (before the steps towards the root). */
 static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv *t_near, ia_realv *t_far_io,
                               ia_maskv *going_io, ia_realv leaving, ia_real eps, int whether, iav time,
                               ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
@@ -210,9 +210,10 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         fresh = going & (iav_contains_zero(fa) | (~whole & (fa.hi - fa.lo > (ia_real)0.25 * off0)) | ~use);
     }
     /* F crosses 0 in [a, t_far] of the handed lanes and its slope there, hs, keeps one sign (the root is unique):
-     * interval Newton with that slope, [a, t_far] <- [a, t_far] & (m - F(m) / hs), down to a leaf. Each step keeps
-     * the root and at least halves the part (m is outside m - F(m) / hs where F(m) excludes 0); a lane whose step
-     * halves it no more (F(m) holds 0 at a width above eps) goes on by the walk over its part. hs is the march's
+     * interval Newton with that slope, [a, t_far] <- [a, t_far] & (m - F(m) / hs), down to a leaf, for any m in the
+     * part. A midpoint step keeps the root and at least halves the part (m is outside m - F(m) / hs where F(m)
+     * excludes 0); a lane whose midpoint step halves it no more (F(m) holds 0 at a width above eps) goes on by the
+     * walk over its part. A step at a secant's guess must only narrow it (layers 9.81 -> 9.64). hs is the march's
      * step's slope, loose over a long step, so that Newton converged only linearly (up to 11 steps): where a step
      * shrank the part by less than 4, F' over the part that is left is evaluated again and hs narrowed to its
      * intersection with it (both enclose F' there), which keeps its sign (layers 12.44 -> 12.04 evaluations). */
