@@ -32,29 +32,29 @@ static ia_real march_farthest(ia_realv t, ia_maskv lanes) {
 }
 
 #ifdef PACKET_FDV
-/* A secondary ray starts next to a surface it leaves (or crosses): bisection must halve its first nodes down to
- * its distance from that surface before one excludes it, some 2 log2(length / distance) evaluations, and then
- * halve its way down again to the next root. Instead the ray marches: from a (t_near on), one evaluation of
- * iacsg_Fdv over [a, b] gives F's enclosure there and the derivative F' along the ray, bounded (packet.h's
- * theorem), so F over [a, b] lies in the mean value form anchored at the start, F(a) + F' [0, b - a]. Where that
- * (or F's enclosure) excludes 0, a moves to b and the next step is 8 times as long; else a moves as far as the
- * form excludes 0 (F(a) / |F'|: a step of Newton's towards the root ahead, from below), and the next step is
- * twice that; where it cannot move, the step shrinks eightfold. F at the new a is enclosed by the same form (no
- * evaluation; it is evaluated again where that enclosure grew to hold 0). A step no longer than eps whose
- * enclosures hold 0 is the hit leaf, as the walk's. Every part a passes is proven root-free, so the leaf's start
- * is never after the first root. Where the caller asks only `whether` the ray meets a surface (an opaque shadow
- * ray), a step over which F(a) and the form at b have certain, opposite signs ends it too: F crosses 0 in it (the
- * first root lies in [a, b]), so the steps that would close in on that root are saved. For the other rays such a
- * step (its slope then keeps one sign: the root is unique) is closed in on by interval Newton with that slope, one
- * point evaluation a step: a sphere's exit ray, 20.5 -> 17.6 evaluations (before: the march's steps towards the
- * root, two evaluations each). The lanes still marching after EFFECTS_MARCH_STEPS, or whose F' is unbounded,
- * go on by the walk from their a. The first step is EFFECTS_MARCH_FIRST times the start's distance from the
- * surface `leaving`. Measured on the reference view (eps 1e-5; evaluations per shadow ray, reflected ray,
- * transparent layer): the walk alone (from the root of a tree as long as the packet's rays) 14.8, 16.1, 49.8;
- * marching only off the surface (each step proven whole or the walk) 5.5, 8.0, 28.9; with the steps towards the
- * root 3.9, 4.9, 15.7; the step after one towards the root sized by the bracket [c, e] 3.9, 4.7, 14.4; with the
- * crossings proven and closed in on by Newton 3.8, 4.5, 12.4; first steps of 1024 `leaving` 7.0, 9.1, 28.4 (before
- * the steps towards the root). */
+/* A secondary ray starts next to a surface it leaves (or crosses): bisection must halve its first nodes down to its
+ * distance from that surface before one excludes it, some 2 log2(length / distance) evaluations, and then halve its way
+ * down again to the next root. Instead the ray marches: from a (t_near on), one evaluation of iacsg_Fdv over [a, b]
+ * gives F's enclosure there and the derivative F' along the ray, bounded (packet.h's theorem), so F over [a, b] lies in
+ * the mean value form anchored at the start, F(a) + F' [0, b - a]. Where that (or F's enclosure) excludes 0, a moves to
+ * b and the next step is 8 times as long; else a moves as far as the form excludes 0 (F(a) / |F'|: a step of Newton's
+ * towards the root ahead, from below), and the next step is twice that; where it cannot move, the step shrinks
+ * eightfold. F at the new a is enclosed by the same form (no evaluation; it is evaluated again where that enclosure
+ * grew to hold 0). A step no longer than eps whose enclosures hold 0 is the hit leaf, as the walk's. Every part a
+ * passes is proven root-free, so the leaf's start is never after the first root. Where the caller asks only `whether`
+ * the ray meets a surface (an opaque shadow ray), a step over which F(a) and the form at b have certain, opposite signs
+ * ends it too: F crosses 0 in it (the first root lies in [a, b]), so the steps that would close in on that root are
+ * saved. For the other rays such a step (its slope then keeps one sign: the root is unique) is closed in on by interval
+ * Newton with that slope, one point evaluation a step: a sphere's exit ray, 20.5 -> 17.6 evaluations (before: the
+ * march's steps towards the root, two evaluations each). A step that is the rest of the ray is tried by F's enclosure
+ * alone first (no slope is needed after it; most reflected and shadow rays leave the scene by it). The lanes still
+ * marching after EFFECTS_MARCH_STEPS, or whose F' is unbounded, go on by the walk from their a. The first step is
+ * EFFECTS_MARCH_FIRST times the start's distance from the surface `leaving`. Measured on the reference view (eps 1e-5;
+ * evaluations per shadow ray, reflected ray, transparent layer): the walk alone (from the root of a tree as long as the
+ * packet's rays) 14.8, 16.1, 49.8; marching only off the surface (each step proven whole or the walk) 5.5, 8.0, 28.9;
+ * with the steps towards the root 3.9, 4.9, 15.7; the step after one towards the root sized by the bracket [c, e] 3.9,
+ * 4.7, 14.4; with the crossings proven and closed in on by Newton 3.8, 4.5, 12.4; first steps of 1024 `leaving` 7.0,
+ * 9.1, 28.4 (before the steps towards the root). */
 static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv *t_near, ia_realv *t_far_io,
                               ia_maskv *going_io, ia_realv leaving, ia_real eps, int whether, iav time,
                               ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
@@ -65,6 +65,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
     iav fa = iav_point(0);
     ia_maskv inside = (ia_maskv)0; /* the lanes that start inside a solid (F(a) < 0): a layer through it */
     ia_realv a0 = a, t_mid = IAV_R(IA_INF); /* their start, and where F' along them is 0 by the first step */
+    ia_realv t0 = a, f0 = IAV_R(0), t1 = a, f1 = IAV_R(0); /* the handed lanes' last two points of F, for a secant */
     for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(going); step++) {
         iav at_a = iav_make(a, a);
         if (iav_any(fresh)) { /* F at a, where its enclosure is not known or holds 0 */
@@ -79,6 +80,20 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         }
         ia_realv b = fmin(a + w, t_far);
         iav seg = iav_make(a, b), slope;
+        ia_maskv rest = step > 0 ? going & (b >= t_far) : (ia_maskv)0;
+        if (iav_any(rest)) {
+            /* a step that is the rest of the ray: F's enclosure alone may prove it (no F at b is needed after
+             * it), at about half the cost of iacsg_Fdv's; the lanes it fails take the step by Fdv. Tried lane by
+             * lane, so that a ray takes the same steps alone as in a packet (test effects_march_lanes_alone) */
+            iav fr = packet_F(~(ulong)0, packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
+                              packet_extent(o[2], d[2], seg), time);
+            PACKET_COUNT(*evals, rest);
+            ia_maskv out = rest & ((fr.lo > 0) | (fr.hi < 0));
+            a = select(a, b, out);
+            going &= ~out;
+            if (!iav_any(going))
+                break;
+        }
         iav f = iacsg_Fdv(packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
                           packet_extent(o[2], d[2], seg), time, iav_make(d[0], d[0]), iav_make(d[1], d[1]),
                           iav_make(d[2], d[2]), &slope);
@@ -115,6 +130,11 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         else
             handed |= crossed;
         hs = iav_make(select(hs.lo, s.lo, crossed), select(hs.hi, s.hi, crossed));
+        /* two points of F for Newton's first secant guess: the step's ends, F there by its enclosures' midpoints */
+        t0 = select(t0, a, crossed);
+        f0 = select(f0, IAV_R(0), crossed);
+        t1 = select(t1, b, crossed);
+        f1 = select(f1, IAV_R(0), crossed);
         t_far = select(t_far, b, crossed);
         ia_realv cross_lo = a;
         ia_maskv narrowed = (ia_maskv)0;
@@ -190,13 +210,14 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         fresh = going & (iav_contains_zero(fa) | (~whole & (fa.hi - fa.lo > (ia_real)0.25 * off0)) | ~use);
     }
     /* F crosses 0 in [a, t_far] of the handed lanes and its slope there, hs, keeps one sign (the root is unique):
-     * interval Newton with that slope, [a, t_far] <- [a, t_far] & (m - F(m) / hs), down to a leaf. Each step keeps
-     * the root and at least halves the part (m is outside m - F(m) / hs where F(m) excludes 0); a lane whose step
-     * halves it no more (F(m) holds 0 at a width above eps) goes on by the walk over its part. hs is the march's
+     * interval Newton with that slope, [a, t_far] <- [a, t_far] & (m - F(m) / hs), down to a leaf, for any m in the
+     * part. A midpoint step keeps the root and at least halves the part (m is outside m - F(m) / hs where F(m)
+     * excludes 0); a lane whose midpoint step halves it no more (F(m) holds 0 at a width above eps) goes on by the
+     * walk over its part. A step at a secant's guess must only narrow it (layers 9.81 -> 9.64). hs is the march's
      * step's slope, loose over a long step, so that Newton converged only linearly (up to 11 steps): where a step
      * shrank the part by less than 4, F' over the part that is left is evaluated again and hs narrowed to its
      * intersection with it (both enclose F' there), which keeps its sign (layers 12.44 -> 12.04 evaluations). */
-    ia_maskv stale = (ia_maskv)0;
+    ia_maskv stale = (ia_maskv)0, at_mid = (ia_maskv)0;
     for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(handed); step++) {
         stale &= handed;
         if (iav_any(stale)) {
@@ -208,16 +229,27 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
             ia_maskv use = stale & (fmax(hs.lo, slope.lo) <= fmin(hs.hi, slope.hi)); /* false for NaN */
             hs = iav_make(select(hs.lo, fmax(hs.lo, slope.lo), use), select(hs.hi, fmin(hs.hi, slope.hi), use));
         }
-        ia_realv m = a * (ia_real)0.5 + t_far * (ia_real)0.5;
+        /* m: the secant's guess at the root from the last two points of F where it lies inside the part (then
+         * F(m) is near 0 and the part shrinks to about the guess's error), else the part's midpoint */
+        ia_realv guess = t1 - f1 * (t1 - t0) / (f1 - f0);
+        ia_maskv guessed = ~at_mid & (guess > a) & (guess < t_far); /* false for NaN */
+        ia_realv m = select(a * (ia_real)0.5 + t_far * (ia_real)0.5, guess, guessed);
         iav at_m = iav_make(m, m);
         iav fm = packet_F(~(ulong)0, packet_extent(o[0], d[0], at_m), packet_extent(o[1], d[1], at_m),
                           packet_extent(o[2], d[2], at_m), time);
         PACKET_COUNT(*evals, handed);
+        t0 = t1;
+        f0 = f1;
+        t1 = m;
+        f1 = (ia_real)0.5 * (fm.lo + fm.hi);
         iav n = iav_sub(at_m, iav_div(fm, hs));
         /* never narrower than half a leaf, as packet.h's Newton (the walk's leaf test follows it) */
         ia_realv lo = fmax(a, n.lo), hi = fmin(t_far, n.hi);
         hi = fmin(t_far, fmax(hi, lo + (ia_real)0.5 * eps));
-        ia_maskv ok = handed & (lo <= hi) & (hi - lo <= (ia_real)0.5 * (t_far - a));
+        ia_maskv halved = handed & (lo <= hi) & (hi - lo <= (ia_real)0.5 * (t_far - a));
+        /* a guess that narrowed the part but did not halve it: the midpoint next */
+        ia_maskv ok = halved | (handed & guessed & (lo <= hi) & (hi - lo < t_far - a));
+        at_mid = ok & ~halved;
         stale = ok & (hi - lo > (ia_real)0.25 * (t_far - a));
         a = select(a, lo, ok);
         t_far = select(t_far, hi, ok);
