@@ -238,13 +238,21 @@ static void effects_centre(__constant ia_real *params, __constant ia_real *fx, _
 #endif
 
 #ifdef KERNEL_STATS
-/* The sum of a packet's lanes' counts (the effects' secondary rays and evaluations). */
+/* The sum and the maximum of a packet's lanes' counts, by halves in registers (stored whole and loaded back, the
+ * load waited on the stores of its pieces). */
 static uint lanes_sum(packet_index v) {
-    uint k[IA_VW], sum = 0;
-    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_uint, IA_VW)(v), 0, k);
-    for (int q = 0; q < IA_VW; q++)
-        sum += k[q];
-    return sum;
+    uint16 k = convert_uint16(v);
+    uint8 k8 = k.lo + k.hi;
+    uint4 k4 = k8.lo + k8.hi;
+    uint2 k2 = k4.lo + k4.hi;
+    return k2.x + k2.y;
+}
+static uint lanes_max(packet_index v) {
+    uint16 k = convert_uint16(v);
+    uint8 k8 = max(k.lo, k.hi);
+    uint4 k4 = max(k8.lo, k8.hi);
+    uint2 k2 = max(k4.lo, k4.hi);
+    return max(k2.x, k2.y);
 }
 #endif
 
@@ -300,15 +308,9 @@ static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags
 #ifdef KERNEL_STATS
     /* the packet's sum and maximum, all the host reads (a store per pixel was a fifth of an empty -stats frame's
      * kernel time, and 4 MB of fresh pages a 1024x1024 frame); lanes past the image counted nothing */
-    uint count[IA_VW], sum = 0, most = 0;
-    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_uint, IA_VW)(counts), 0, count);
-    for (int k = 0; k < IA_VW; k++) {
-        sum += count[k];
-        most = max(most, count[k]);
-    }
     size_t packet = (size_t)(j0 / PACKET_H) * (size_t)((width + PACKET_W - 1) / PACKET_W) + (size_t)(i0 / PACKET_W);
-    evals[2 * packet] = sum;
-    evals[2 * packet + 1] = most;
+    evals[2 * packet] = lanes_sum(counts);
+    evals[2 * packet + 1] = lanes_max(counts);
     if (fx->counts) {
         fx->counts[2 * packet] = lanes_sum(fx_rays);
         fx->counts[2 * packet + 1] = lanes_sum(fx_evals);
