@@ -77,18 +77,17 @@ IA_FN void camera_ray(const KERNEL_CONSTANT ia_real *p, int ortho, int i, int j,
     }
 }
 
-/* The exact crossing (plane - o) / d of a coordinate plane by the ray, enclosed, for d != 0: the difference
- * one ulp outward, then divided by the point d, which is monotone (increasing for d > 0), so each end's
- * quotient widened by the division's error bound. ia_div would do the same through its case analysis for
- * interval divisors; this runs six times per ray. */
-IA_FN ia_interval camera_crossing(ia_real plane, ia_real o, ia_real d) {
-    ia_real lo = ia_lo(plane - o), hi = ia_hi(plane - o);
-    if (d < 0) {
-        ia_real swap = lo;
-        lo = hi;
-        hi = swap;
-    }
-    return ia_make(ia_lo_k(lo / d, IA_ULP_DIV), ia_hi_k(hi / d, IA_ULP_DIV));
+/* Where the ray enters and leaves the slab lo..hi of one axis (d != 0), enclosed: the exact crossings
+ * (plane - o) / d of the near plane (lo for d > 0, hi for d < 0) and of the far one, each difference one ulp
+ * outward, then divided by the point d, which is monotone (increasing for d > 0), so each quotient widened by
+ * the division's error bound. Only the bound that counts is divided: the entry's lower, the exit's upper (with
+ * a correctly rounded /, what the least and the greatest of both planes' enclosures were, at half the
+ * divisions: 12 a packet of 16 rays in lanes, a tenth of the sphere's per-pixel work). */
+IA_FN void camera_slab(ia_real lo, ia_real hi, ia_real o, ia_real d, ia_real *enter, ia_real *leave) {
+    int backward = d < 0;
+    ia_real near = (backward ? hi : lo) - o, far = (backward ? lo : hi) - o;
+    *enter = ia_lo_k((backward ? ia_hi(near) : ia_lo(near)) / d, IA_ULP_DIV);
+    *leave = ia_hi_k((backward ? ia_lo(far) : ia_hi(far)) / d, IA_ULP_DIV);
 }
 
 /* The part [tn, tf] of the ray o + t*d inside the box lo..hi, widened outward: every t in [tn, tf] whose exact
@@ -102,9 +101,10 @@ IA_FN int camera_clip_box(const ia_real lo[3], const ia_real hi[3], const ia_rea
                 return 0;
             continue;
         }
-        ia_interval a = camera_crossing(lo[k], o[k], d[k]), b = camera_crossing(hi[k], o[k], d[k]);
-        tn = fmax(tn, fmin(a.lo, b.lo));
-        tf = fmin(tf, fmax(a.hi, b.hi));
+        ia_real enter, leave;
+        camera_slab(lo[k], hi[k], o[k], d[k], &enter, &leave);
+        tn = fmax(tn, enter);
+        tf = fmin(tf, leave);
     }
     *t_near = tn;
     *t_far = tf;

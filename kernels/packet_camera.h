@@ -76,12 +76,12 @@ IA_FN void packet_rays(const KERNEL_CONSTANT ia_real *p, int ortho, packet_int i
     packet_rays_at(p, ortho, packet_to_real(2 * i + 1), packet_to_real(2 * j + 1), width, height, o, d);
 }
 
-/* camera_crossing: (plane - o) / d enclosed, for the lanes where d != 0. */
-IA_FN iav packet_crossing(ia_real plane, ia_realv o, ia_realv d) {
-    ia_realv lo = iav_lo(plane - o), hi = iav_hi(plane - o);
+/* camera_slab: where the rays enter and leave the slab lo..hi, for the lanes where d != 0. */
+IA_FN void packet_slab(ia_real lo, ia_real hi, ia_realv o, ia_realv d, ia_realv *enter, ia_realv *leave) {
     ia_maskv backward = d < 0;
-    ia_realv first = select(lo, hi, backward), second = select(hi, lo, backward);
-    return iav_make(iav_lo_k(first / d, IA_ULP_DIV), iav_hi_k(second / d, IA_ULP_DIV));
+    ia_realv near = select(IAV_R(lo), IAV_R(hi), backward) - o, far = select(IAV_R(hi), IAV_R(lo), backward) - o;
+    *enter = iav_lo_k(select(iav_lo(near), iav_hi(near), backward) / d, IA_ULP_DIV);
+    *leave = iav_hi_k(select(iav_hi(far), iav_lo(far), backward) / d, IA_ULP_DIV);
 }
 
 /* camera_clip: the lanes whose ray meets the bounds, with their parts [*t_near, *t_far] inside. */
@@ -93,9 +93,10 @@ IA_FN ia_maskv packet_clip(const KERNEL_CONSTANT ia_real *p, const ia_realv o[3]
         ia_real lo = p[PARAM_BOX + k], hi = p[PARAM_BOX + 3 + k];
         ia_maskv flat = d[k] == 0; /* parallel to the slab: in it or not */
         meets &= ~(flat & (o[k] < lo | o[k] > hi));
-        iav a = packet_crossing(lo, o[k], d[k]), b = packet_crossing(hi, o[k], d[k]);
-        tn = select(fmax(tn, fmin(a.lo, b.lo)), tn, flat);
-        tf = select(fmin(tf, fmax(a.hi, b.hi)), tf, flat);
+        ia_realv enter, leave;
+        packet_slab(lo, hi, o[k], d[k], &enter, &leave);
+        tn = select(fmax(tn, enter), tn, flat);
+        tf = select(fmin(tf, leave), tf, flat);
     }
     *t_near = tn;
     *t_far = tf;

@@ -163,23 +163,23 @@ static void packet_gradients(PACKET_TAPE_PARAM const __global ulong *segment_gro
 }
 
 /* The colours of a packet wholly in the image whose first pixel is `first`, row by row: a row's PACKET_W pixels
- * are 3 PACKET_W consecutive floats, interleaved from the three colour vectors by two shuffles and stored as
- * 8 + 4 (a store per float, lane by lane, was a sixth of an empty frame's kernel time). */
+ * are 3 PACKET_W consecutive floats, interleaved from the three colour vectors and stored as 8 + 4 (a store per
+ * float, lane by lane, was a sixth of an empty frame's kernel time). The lanes are picked by constant swizzles:
+ * shuffle2 with masks computed per row went through the stack element by element, 30 % of the sphere's kernel. */
 #if PACKET_W != 4 || PACKET_LANES != 16
 #error "put_rgb_rows interleaves rows of 4 pixels of a 16-lane packet"
 #endif
+static void put_rgb_row(float4 r, float4 g, float4 b, __global float *at) {
+    vstore8((float8)(r.s0, g.s0, b.s0, r.s1, g.s1, b.s1, r.s2, g.s2), 0, at);
+    vstore4((float4)(b.s2, r.s3, g.s3, b.s3), 0, at + 8);
+}
 static void put_rgb_rows(const shade_colorv rgb[3], size_t first, int width, __global float *out) {
-    for (uint r = 0; r < PACKET_H; r++) {
-        uint16 first_lane = (uint16)(4 * r); /* the row's lanes, 4r .. 4r + 3 */
-        uint16 rg = (uint16)(0, 16, 0, 1, 17, 0, 2, 18, 0, 3, 19, 0, 0, 0, 0, 0) +
-                    first_lane * (uint16)(1, 1, 0, 1, 1, 0, 1, 1, 0, 1, 1, 0, 0, 0, 0, 0);
-        uint16 b = (uint16)(0, 1, 16, 3, 4, 17, 6, 7, 18, 9, 10, 19, 12, 13, 14, 15) +
-                   first_lane * (uint16)(0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0);
-        float16 row = shuffle2(shuffle2(rgb[0], rgb[1], rg), rgb[2], b);
-        __global float *at = out + 3 * (first + (size_t)r * (size_t)width);
-        vstore8(row.lo, 0, at);
-        vstore4(row.s89ab, 0, at + 8);
-    }
+    __global float *at = out + 3 * first;
+    size_t row = 3 * (size_t)width;
+    put_rgb_row(rgb[0].s0123, rgb[1].s0123, rgb[2].s0123, at);
+    put_rgb_row(rgb[0].s4567, rgb[1].s4567, rgb[2].s4567, at + row);
+    put_rgb_row(rgb[0].s89ab, rgb[1].s89ab, rgb[2].s89ab, at + 2 * row);
+    put_rgb_row(rgb[0].scdef, rgb[1].scdef, rgb[2].scdef, at + 3 * row);
 }
 
 /* Writes the outputs of the lanes' pixels (col, row) that are in the image (the packet's first is (i0, j0)): the
@@ -238,13 +238,21 @@ static void effects_centre(__constant ia_real *params, __constant ia_real *fx, _
 #endif
 
 #ifdef KERNEL_STATS
-/* The sum of a packet's lanes' counts (the effects' secondary rays and evaluations). */
+/* The sum and the maximum of a packet's lanes' counts, by halves in registers (stored whole and loaded back, the
+ * load waited on the stores of its pieces). */
 static uint lanes_sum(packet_index v) {
-    uint k[IA_VW], sum = 0;
-    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_uint, IA_VW)(v), 0, k);
-    for (int q = 0; q < IA_VW; q++)
-        sum += k[q];
-    return sum;
+    uint16 k = convert_uint16(v);
+    uint8 k8 = k.lo + k.hi;
+    uint4 k4 = k8.lo + k8.hi;
+    uint2 k2 = k4.lo + k4.hi;
+    return k2.x + k2.y;
+}
+static uint lanes_max(packet_index v) {
+    uint16 k = convert_uint16(v);
+    uint8 k8 = max(k.lo, k.hi);
+    uint4 k4 = max(k8.lo, k8.hi);
+    uint2 k2 = max(k4.lo, k4.hi);
+    return max(k2.x, k2.y);
 }
 #endif
 
@@ -300,15 +308,9 @@ static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags
 #ifdef KERNEL_STATS
     /* the packet's sum and maximum, all the host reads (a store per pixel was a fifth of an empty -stats frame's
      * kernel time, and 4 MB of fresh pages a 1024x1024 frame); lanes past the image counted nothing */
-    uint count[IA_VW], sum = 0, most = 0;
-    IAV_CAT(vstore, IA_VW)(IAV_CAT(convert_uint, IA_VW)(counts), 0, count);
-    for (int k = 0; k < IA_VW; k++) {
-        sum += count[k];
-        most = max(most, count[k]);
-    }
     size_t packet = (size_t)(j0 / PACKET_H) * (size_t)((width + PACKET_W - 1) / PACKET_W) + (size_t)(i0 / PACKET_W);
-    evals[2 * packet] = sum;
-    evals[2 * packet + 1] = most;
+    evals[2 * packet] = lanes_sum(counts);
+    evals[2 * packet + 1] = lanes_max(counts);
     if (fx->counts) {
         fx->counts[2 * packet] = lanes_sum(fx_rays);
         fx->counts[2 * packet + 1] = lanes_sum(fx_evals);
