@@ -6,6 +6,8 @@
 # Prints markdown rows; tests/bench/NOTES.md's section "Ray-tracing effects" holds runs of it. BENCH_ONLY: the views
 # to run, of "reference regions" (both by default).
 set -eu
+# a first run's program saved before the next starts, not by a detached saver beside the timed runs (as bench.sh)
+export IACSG_CACHE_SAVE=${IACSG_CACHE_SAVE:-wait}
 bin=$(realpath "${1:-build/iacsg}")
 runs=${RUNS:-5}
 here=$(cd "$(dirname "$0")/../.." && pwd)
