@@ -104,19 +104,24 @@ IA_FN int ia__reduce(double x, double *r) {
     return (int)k;
 }
 
+/* fdlibm's polynomials in z = r^2 of its sin and cos kernels, for a double or a vector of doubles (ia/vec_sincos.h):
+ * sin r = r + r z IA__SIN_POLY(z), cos r = (1 - z/2) + z^2 IA__COS_POLY(z). */
+#define IA__SIN_POLY(z)                                                                                          \
+    (-1.66666666666666324348e-01 +                                                                             \
+     (z) * (8.33333333332248946124e-03 +                                                                       \
+            (z) * (-1.98412698298579493134e-04 +                                                               \
+                   (z) * (2.75573137070700676789e-06 +                                                         \
+                          (z) * (-2.50507602534068634195e-08 + (z) * 1.58969099521155010221e-10)))))
+#define IA__COS_POLY(z)                                                                                          \
+    (4.16666666666666019037e-02 +                                                                              \
+     (z) * (-1.38888888888741095749e-03 +                                                                      \
+            (z) * (2.48015872894767294178e-05 +                                                                \
+                   (z) * (-2.75573143513906633035e-07 +                                                        \
+                          (z) * (2.08757232129817482790e-09 + (z) * -1.13596475577881948265e-11)))))
+
 /* sin r and cos r in double (fdlibm's kernels). */
 IA_FN void ia__sincos_kernels(double r, double *sin_r, double *cos_r) {
-    double z = r * r;
-    double ps = -1.66666666666666324348e-01 +
-                z * (8.33333333332248946124e-03 +
-                     z * (-1.98412698298579493134e-04 +
-                          z * (2.75573137070700676789e-06 +
-                               z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10))));
-    double pc = 4.16666666666666019037e-02 +
-                z * (-1.38888888888741095749e-03 +
-                     z * (2.48015872894767294178e-05 +
-                          z * (-2.75573143513906633035e-07 +
-                               z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11))));
+    double z = r * r, ps = IA__SIN_POLY(z), pc = IA__COS_POLY(z);
     *sin_r = r + r * z * ps;
     *cos_r = (1.0 - 0.5 * z) + z * z * pc;
 }

@@ -37,17 +37,7 @@ IAV_INLINE iav__reduced iav__reduced_at(iav__doublev x) {
     iav__doublev k = rint(x * IA__INVPIO2);
     p.r = (x - k * IA__PIO2_1) - k * IA__PIO2_1T;
     p.k = iav__to_long(k);
-    iav__doublev z = p.r * p.r;
-    iav__doublev ps = -1.66666666666666324348e-01 +
-                      z * (8.33333333332248946124e-03 +
-                           z * (-1.98412698298579493134e-04 +
-                                z * (2.75573137070700676789e-06 +
-                                     z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10))));
-    iav__doublev pc = 4.16666666666666019037e-02 +
-                      z * (-1.38888888888741095749e-03 +
-                           z * (2.48015872894767294178e-05 +
-                                z * (-2.75573143513906633035e-07 +
-                                     z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11))));
+    iav__doublev z = p.r * p.r, ps = IA__SIN_POLY(z), pc = IA__COS_POLY(z);
     p.sin_r = p.r + p.r * z * ps;
     p.cos_r = (1.0 - 0.5 * z) + z * z * pc;
     return p;
@@ -144,23 +134,12 @@ IAV_INLINE iav iav__sincos(iav a, int shift) {
     }
     return r;
 }
+#else
+IAV_INLINE iav iav__sincos(iav a, int shift) { return shift ? iav__sin_by_lane(a) : iav__cos_by_lane(a); }
 #endif
 
-IA_FN iav iav_sin(iav a) {
-#ifdef IA_DEVICE_DOUBLE
-    return iav__sincos(a, 1);
-#else
-    return iav__sin_by_lane(a);
-#endif
-}
-
-IA_FN iav iav_cos(iav a) {
-#ifdef IA_DEVICE_DOUBLE
-    return iav__sincos(a, 0);
-#else
-    return iav__cos_by_lane(a);
-#endif
-}
+IA_FN iav iav_sin(iav a) { return iav__sincos(a, 1); }
+IA_FN iav iav_cos(iav a) { return iav__sincos(a, 0); }
 
 #endif
 #endif
