@@ -75,7 +75,7 @@ static int make(dag *d, int op, int a, int b, int n, iacsg_error *err);
 /* ---- squares completed in sums ---- */
 
 typedef struct {
-    int node, sign; /* sign * node; node -1: a term taken into a square */
+    int node, sign; /* sign * node */
 } term;
 
 enum { SUM_TERMS_MAX = 64 }; /* larger sums are left as they are (each + of a chain flattens the chain below it) */

@@ -65,7 +65,9 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
     iav fa = iav_point(0);
     ia_maskv inside = (ia_maskv)0; /* the lanes that start inside a solid (F(a) < 0): a layer through it */
     ia_realv a0 = a, t_mid = IAV_R(IA_INF); /* their start, and where F' along them is 0 by the first step */
-    ia_realv t0 = a, f0 = IAV_R(0), t1 = a, f1 = IAV_R(0); /* the handed lanes' last two points of F, for a secant */
+    /* the last two points of F of the handed lanes' Newton steps, for a secant; none before the first (f1 - f0 = 0:
+     * no guess), and the first step's midpoint with the ray's start at F = 0 puts the second guess behind the part */
+    ia_realv t0 = a, f0 = IAV_R(0), t1 = a, f1 = IAV_R(0);
     for (int step = 0; step < EFFECTS_MARCH_STEPS && iav_any(going); step++) {
         iav at_a = iav_make(a, a);
         if (iav_any(fresh)) { /* F at a, where its enclosure is not known or holds 0 */
@@ -130,11 +132,6 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         else
             handed |= crossed;
         hs = iav_make(select(hs.lo, s.lo, crossed), select(hs.hi, s.hi, crossed));
-        /* two points of F for Newton's first secant guess: the step's ends, F there by its enclosures' midpoints */
-        t0 = select(t0, a, crossed);
-        f0 = select(f0, IAV_R(0), crossed);
-        t1 = select(t1, b, crossed);
-        f1 = select(f1, IAV_R(0), crossed);
         t_far = select(t_far, b, crossed);
         ia_realv cross_lo = a;
         ia_maskv narrowed = (ia_maskv)0;
