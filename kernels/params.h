@@ -26,6 +26,9 @@ enum {
 
 /* Flags, an int argument of the render kernels. */
 #define RENDER_ORTHO 1
+/* The colours as 3 bytes a pixel (light.h's display colours clamped to [0, 1], x 255, + 0.5, truncated: as
+ * src/image_bytes.c converts floats), not 3 floats: the frame then goes to an 8-bit image as it is. */
+#define RENDER_BYTES 2
 
 /* The pixels of a tile (kernels/tile.h) are those of one work-group of the render kernel. */
 #define TILE_SIZE 8

@@ -163,9 +163,10 @@ static void packet_gradients(PACKET_TAPE_PARAM const __global ulong *segment_gro
 }
 
 /* The colours of a packet wholly in the image whose first pixel is `first`, row by row: a row's PACKET_W pixels
- * are 3 PACKET_W consecutive floats, interleaved from the three colour vectors and stored as 8 + 4 (a store per
- * float, lane by lane, was a sixth of an empty frame's kernel time). The lanes are picked by constant swizzles:
- * shuffle2 with masks computed per row went through the stack element by element, 30 % of the sphere's kernel. */
+ * are 3 PACKET_W consecutive floats (or bytes), interleaved from the three colour vectors and stored as 8 + 4 (a
+ * store per float, lane by lane, was a sixth of an empty frame's kernel time). The lanes are picked by constant
+ * swizzles: shuffle2 with masks computed per row went through the stack element by element, 30 % of the sphere's
+ * kernel. */
 #if PACKET_W != 4 || PACKET_LANES != 16
 #error "put_rgb_rows interleaves rows of 4 pixels of a 16-lane packet"
 #endif
@@ -173,24 +174,48 @@ static void put_rgb_row(float4 r, float4 g, float4 b, __global float *at) {
     vstore8((float8)(r.s0, g.s0, b.s0, r.s1, g.s1, b.s1, r.s2, g.s2), 0, at);
     vstore4((float4)(b.s2, r.s3, g.s3, b.s3), 0, at + 8);
 }
-static void put_rgb_rows(const shade_colorv rgb[3], size_t first, int width, __global float *out) {
-    __global float *at = out + 3 * first;
+
+/* RENDER_BYTES' rounding of colours to bytes, exactly src/image_bytes.c's: NaN and below 0 give 0 (fmax passes
+ * NaN over), the product and the sum rounded apart (not contracted into an fma), truncated. */
+#define COLOR_BYTES(n)                                                                                          \
+    static IAV_CAT(uchar, n) color_bytes##n(IAV_CAT(float, n) v) {                                            \
+        _Pragma("OPENCL FP_CONTRACT OFF")                                                                       \
+        IAV_CAT(float, n) scaled = fmin(fmax(v, 0.0f), 1.0f) * 255.0f;                                          \
+        return IAV_CAT(convert_uchar, n)(scaled + 0.5f);                                                        \
+    }
+COLOR_BYTES(4)
+COLOR_BYTES(8)
+
+static void put_rgb_row_bytes(float4 r, float4 g, float4 b, __global uchar *at) {
+    vstore8(color_bytes8((float8)(r.s0, g.s0, b.s0, r.s1, g.s1, b.s1, r.s2, g.s2)), 0, at);
+    vstore4(color_bytes4((float4)(b.s2, r.s3, g.s3, b.s3)), 0, at + 8);
+}
+
+/* A whole packet's colours, as floats or with RENDER_BYTES as bytes (out then points to bytes), row by row. */
+#define PUT_RGB_ROWS(put, at, row)                                                                              \
+    do {                                                                                                        \
+        put(rgb[0].s0123, rgb[1].s0123, rgb[2].s0123, (at));                                                   \
+        put(rgb[0].s4567, rgb[1].s4567, rgb[2].s4567, (at) + (row));                                           \
+        put(rgb[0].s89ab, rgb[1].s89ab, rgb[2].s89ab, (at) + 2 * (row));                                       \
+        put(rgb[0].scdef, rgb[1].scdef, rgb[2].scdef, (at) + 3 * (row));                                       \
+    } while (0)
+static void put_rgb_rows(const shade_colorv rgb[3], size_t first, int width, int bytes, __global float *out) {
     size_t row = 3 * (size_t)width;
-    put_rgb_row(rgb[0].s0123, rgb[1].s0123, rgb[2].s0123, at);
-    put_rgb_row(rgb[0].s4567, rgb[1].s4567, rgb[2].s4567, at + row);
-    put_rgb_row(rgb[0].s89ab, rgb[1].s89ab, rgb[2].s89ab, at + 2 * row);
-    put_rgb_row(rgb[0].scdef, rgb[1].scdef, rgb[2].scdef, at + 3 * row);
+    if (bytes)
+        PUT_RGB_ROWS(put_rgb_row_bytes, (__global uchar *)out + 3 * first, row);
+    else
+        PUT_RGB_ROWS(put_rgb_row, out + 3 * first, row);
 }
 
 /* Writes the outputs of the lanes' pixels (col, row) that are in the image (the packet's first is (i0, j0)): the
  * colours, and where the host asked for them (non-NULL) the depths (the leaf's start, +inf on a miss) and the
  * normals (0 on a miss). */
-static void put_pixels(int i0, int j0, packet_int col, packet_int row, int width, int height, ia_maskv hit,
-                       const shade_colorv rgb[3], ia_realv t_start, const ia_realv n[3], __global float *rgb_out,
-                       __global float *depth, __global float *normal) {
+static void put_pixels(int i0, int j0, packet_int col, packet_int row, int width, int height, int bytes,
+                       ia_maskv hit, const shade_colorv rgb[3], ia_realv t_start, const ia_realv n[3],
+                       __global float *rgb_out, __global float *depth, __global float *normal) {
     int whole = i0 + PACKET_W <= width && j0 + PACKET_H <= height;
     if (whole)
-        put_rgb_rows(rgb, (size_t)j0 * (size_t)width + (size_t)i0, width, rgb_out);
+        put_rgb_rows(rgb, (size_t)j0 * (size_t)width + (size_t)i0, width, bytes, rgb_out);
     if (whole && !depth && !normal)
         return;
     int i[IA_VW], j[IA_VW];
@@ -211,7 +236,9 @@ static void put_pixels(int i0, int j0, packet_int col, packet_int row, int width
         if (depth)
             depth[pixel] = on[k] != 0 ? camera_depth_round_down(start[k]) : INFINITY;
         for (int c = 0; c < 3; c++) {
-            if (!whole)
+            if (!whole && bytes)
+                ((__global uchar *)rgb_out)[3 * pixel + c] = color_bytes4((float4)color[c][k]).s0;
+            else if (!whole)
                 rgb_out[3 * pixel + c] = color[c][k];
             if (normal)
                 normal[3 * pixel + c] = normal_k[c][k];
@@ -304,7 +331,7 @@ static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags
     else
 #endif
         shade_pixels(params, hit, n, d, row, height, color);
-    put_pixels(i0, j0, col, row, width, height, hit, color, hit_lo, n, rgb, depth, normal);
+    put_pixels(i0, j0, col, row, width, height, flags & RENDER_BYTES, hit, color, hit_lo, n, rgb, depth, normal);
 #ifdef KERNEL_STATS
     /* the packet's sum and maximum, all the host reads (a store per pixel was a fifth of an empty -stats frame's
      * kernel time, and 4 MB of fresh pages a 1024x1024 frame); lanes past the image counted nothing */

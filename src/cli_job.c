@@ -192,6 +192,8 @@ int cli_job_next(cli_job *j, iacsg_frame *done, cli_job_item *item) {
 
 int cli_job_writes_frames(const cli_job *j) { return !j->band_rows; }
 
+int cli_job_alone(const cli_job *j) { return !j->mpi; }
+
 const iacsg_frame *cli_job_gathered(cli_job *j) {
     return j->band_rows && j->rank == 0 && j->count && !j->failed && j->last == CLI_MPI_DONE ? &j->whole : NULL;
 }

@@ -40,6 +40,9 @@ int cli_job_next(cli_job *j, iacsg_frame *done, cli_job_item *item);
 /* Whether this process writes the frames it renders (not so for bands: rank 0 writes the assembled frame). */
 int cli_job_writes_frames(const cli_job *j);
 
+/* Whether this process renders every frame alone, with no MPI job (which gathers and reports floats). */
+int cli_job_alone(const cli_job *j);
+
 /* Rank 0 of a banded frame, after the last cli_job_next: the whole frame (owned by the job), else NULL. */
 const iacsg_frame *cli_job_gathered(cli_job *j);
 

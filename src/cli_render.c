@@ -376,7 +376,9 @@ static iacsg_status write_frame(cli_writer *writer, const render_options *o, con
         char *path = cli_job_path(paths[k], o->frames, frame);
         if (!path)
             return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
-        iacsg_status st = cli_writer_write(writer, path, fr->width, fr->height, channels[k], data[k], k > 0, err);
+        iacsg_status st = k == 0 && fr->rgb8
+                              ? cli_writer_write_bytes(writer, path, fr->width, fr->height, 3, fr->rgb8, err)
+                              : cli_writer_write(writer, path, fr->width, fr->height, channels[k], data[k], k > 0, err);
         if (st == IACSG_OK)
             printf("wrote %s\n", path);
         free(path);
@@ -566,6 +568,7 @@ int cli_render(int argc, char **argv) {
         st = cli_writer_checked(writer, &err);
     iacsg_frame fr = {0};
     cli_job_item item = {-1, 0, 0};
+    o.view.rgb_bytes = cli_job_alone(job); /* the colours go to 8-bit files only (MPI gathers floats) */
     while (st == IACSG_OK && cli_job_next(job, &fr, &item)) {
         if (o.frames)
             iacsg_frame_time(item.frame, o.frames, o.view.time);

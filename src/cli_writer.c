@@ -231,6 +231,28 @@ void cli_writer_prefault(cli_writer *w, size_t bytes) {
 #endif
 }
 
+/* Sends the write rq of the pixels already in shared memory, and waits for its answer; a server lost meanwhile is
+ * replaced by this process. */
+static iacsg_status send_write(cli_writer *w, writer_request *rq, const char *path, iacsg_error *err) {
+    if (send_request(w, rq, path) == 0 && receive(w, err) == 0)
+        return err->status;
+    if (w->mode == WRITER_SERVER) {
+        fall_back_here(w);
+        return serve_here(w, rq, path, w->shared, w->shared_size, err);
+    }
+    if (err->status == IACSG_OK)
+        iacsg_error_set(err, IACSG_ERR_IO, 0, 0, gone);
+    return err->status;
+}
+
+/* Whether `bytes` of pixels fit the shared memory (else err says so). */
+static int fits(cli_writer *w, const char *path, size_t bytes, iacsg_error *err) {
+    if (bytes <= w->shared_size)
+        return 1;
+    iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "%s: image larger than the writer was started for", path);
+    return 0;
+}
+
 iacsg_status cli_writer_write(cli_writer *w, const char *path, int width, int height, int channels,
                               const float *pixels, int as_float, iacsg_error *err) {
     writer_request rq = {REQUEST_WRITE_FLOATS, width, height, channels, as_float, strlen(path)};
@@ -239,23 +261,29 @@ iacsg_status cli_writer_write(cli_writer *w, const char *path, int width, int he
     size_t count = (size_t)width * (size_t)height * (size_t)channels;
     if (w->mode == WRITER_HERE)
         return serve_here(w, &rq, path, pixels, count * sizeof(float), err);
-    if (count > w->shared_size / sizeof(float))
-        return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "%s: image larger than the writer was started for", path);
+    if (!fits(w, path, count * (as_float ? sizeof(float) : 1), err))
+        return err->status;
     if (as_float) {
         memcpy(w->shared, pixels, count * sizeof(float));
     } else {
         rq.op = REQUEST_WRITE_BYTES;
         image_floats_to_bytes(pixels, w->shared, count);
     }
-    if (send_request(w, &rq, path) == 0 && receive(w, err) == 0)
+    return send_write(w, &rq, path, err);
+}
+
+iacsg_status cli_writer_write_bytes(cli_writer *w, const char *path, int width, int height, int channels,
+                                    const unsigned char *pixels, iacsg_error *err) {
+    writer_request rq = {REQUEST_WRITE_BYTES, width, height, channels, 0, strlen(path)};
+    if (cli_writer_checked(w, err) != IACSG_OK)
         return err->status;
-    if (w->mode == WRITER_SERVER) {
-        fall_back_here(w);
-        return serve_here(w, &rq, path, w->shared, w->shared_size, err);
-    }
-    if (err->status == IACSG_OK)
-        iacsg_error_set(err, IACSG_ERR_IO, 0, 0, gone);
-    return err->status;
+    size_t count = (size_t)width * (size_t)height * (size_t)channels;
+    if (w->mode == WRITER_HERE)
+        return serve_here(w, &rq, path, pixels, count, err);
+    if (!fits(w, path, count, err))
+        return err->status;
+    memcpy(w->shared, pixels, count);
+    return send_write(w, &rq, path, err);
 }
 
 void cli_writer_stop(cli_writer *w) {

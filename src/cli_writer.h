@@ -27,6 +27,10 @@ void cli_writer_prefault(cli_writer *w, size_t bytes);
 iacsg_status cli_writer_write(cli_writer *w, const char *path, int width, int height, int channels,
                               const float *pixels, int as_float, iacsg_error *err);
 
+/* The same for pixels already 8-bit (channels bytes a pixel), written as they are. */
+iacsg_status cli_writer_write_bytes(cli_writer *w, const char *path, int width, int height, int channels,
+                                    const unsigned char *pixels, iacsg_error *err);
+
 /* Ends the child (at once: every write has been answered) and frees the writer. NULL is allowed. For the end of a
  * command: the child is not waited for, and this process ignores SIGCHLD from then on (so it leaves no zombie). */
 void cli_writer_stop(cli_writer *w);

@@ -223,6 +223,7 @@ static void summarize_evals(const cl_uint *packets, size_t npackets, size_t rays
 /* The device buffers of one frame. */
 typedef struct {
     cl_mem params, rgb, depth, normal, tiles, groups, evals, tile_evals; /* the last two only with stats */
+    int rgb_bytes;   /* rgb holds 3 bytes a pixel (frame.rgb8: RENDER_BYTES), else 3 floats */
 } frame_buffers;
 
 static void release_buffers(frame_buffers *b) {
@@ -261,7 +262,9 @@ static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t
                                (void *)params, &rc);
     CLRT_CHECK(err, rc);
     cl_mem_flags image = CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR;
-    b->rgb = clCreateBuffer(ctx, image, 3 * n * sizeof(float), f->rgb, &rc);
+    b->rgb_bytes = f->rgb8 != NULL;
+    b->rgb = clCreateBuffer(ctx, image, 3 * n * (b->rgb_bytes ? 1 : sizeof(float)),
+                            b->rgb_bytes ? (void *)f->rgb8 : (void *)f->rgb, &rc);
     CLRT_CHECK(err, rc);
     if (f->depth) {
         b->depth = clCreateBuffer(ctx, image, n * sizeof(float), f->depth, &rc);
@@ -292,7 +295,7 @@ fail:
  * band's first row (index 4): the kernels of both paths start with params, flags, width, height. */
 static iacsg_status set_args(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, frame_buffers *b,
                              const render_fx_camera *fx, iacsg_error *err) {
-    cl_int flags = view->camera.ortho_height > 0 ? RENDER_ORTHO : 0;
+    cl_int flags = (view->camera.ortho_height > 0 ? RENDER_ORTHO : 0) | (b->rgb_bytes ? RENDER_BYTES : 0);
     cl_int width = view->width, height = view->height; /* argument 4, the band's first block row, is set per launch */
     CLRT_CHECK(err, clSetKernelArg(k, 0, sizeof(cl_mem), &b->params));
     CLRT_CHECK(err, clSetKernelArg(k, 1, sizeof(cl_int), &flags));
@@ -405,7 +408,7 @@ static iacsg_status read_back(iacsg_renderer *r, const frame_buffers *b, const r
     cl_command_queue q = r->rt.queue;
     /* Mapping a USE_HOST_PTR buffer makes its host array current (a no-op on a CPU device). */
     cl_mem images[6] = {b->rgb, b->depth, b->normal, b->evals, b->tile_evals, fx->counts};
-    size_t sizes[6] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float),
+    size_t sizes[6] = {3 * n * (b->rgb_bytes ? 1 : sizeof(float)), n * sizeof(float), 3 * n * sizeof(float),
                        2 * packets_n * sizeof(cl_uint), tiles_n * sizeof(cl_uint), 2 * packets_n * sizeof(cl_uint)};
     for (int k = 0; k < 6; k++) {
         if (!images[k])
@@ -468,7 +471,10 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     cl_uint *evals = NULL, *tile_evals = NULL;
     frame->width = view->width;
     frame->height = view->height;
-    frame->rgb = render_image_alloc(3 * n);
+    if (view->rgb_bytes && render_effects_camera_final(r, view))
+        frame->rgb8 = render_in_place_alloc(3 * n);
+    else
+        frame->rgb = render_image_alloc(3 * n);
     int in_camera = render_effects_in_camera(r, view), fx_depth, fx_normal;
     render_effects_expr_aovs(r, view, &fx_depth, &fx_normal);
     render_fx_camera fx_camera = {0};
@@ -485,8 +491,9 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
         evals = render_in_place_alloc(2 * packets_n * sizeof(cl_uint));
         tile_evals = render_in_place_alloc(tiles_n * sizeof(cl_uint));
     }
-    if (!frame->rgb || (!frame->depth && need_depth) || (!frame->normal && (!view->no_normals || fx_normal)) ||
-        (!frame->ids && !view->no_ids) || (r->config.stats && (!evals || !tile_evals)))
+    if ((!frame->rgb && !frame->rgb8) || (!frame->depth && need_depth) ||
+        (!frame->normal && (!view->no_normals || fx_normal)) || (!frame->ids && !view->no_ids) ||
+        (r->config.stats && (!evals || !tile_evals)))
         st = st != IACSG_OK ? st
                             : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image",
                                               view->width, view->height);
@@ -536,6 +543,8 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
 
 void iacsg_frame_free(iacsg_frame *frame) {
     free(frame->rgb);
+    free(frame->rgb8);
+    frame->rgb8 = NULL;
     free(frame->depth);
     free(frame->normal);
     free(frame->ids);

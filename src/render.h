@@ -135,6 +135,11 @@ typedef struct {
     int row_first, row_count;
     /* The ray-tracing effects, or NULL for the plain render. */
     const iacsg_effects *effects;
+    /* The colours in frame.rgb8, 3 bytes a pixel (as an 8-bit image stores them), not in frame.rgb, where the
+     * camera kernel's colours are final: an expression's frame with no effect, or with effects that kernel applies
+     * (no -aa, no reflected ray listed); else, and for a scene, frame.rgb as without it. 3 bytes a pixel are a
+     * quarter of the fresh pages 12 are, and no conversion. */
+    int rgb_bytes;
 } iacsg_view;
 
 /* The rows of a band start at multiples of this (a block of the kernel's tiles, src/render.c). */
@@ -144,7 +149,7 @@ typedef struct {
 
 typedef struct {
     int width, height;
-    float *rgb;    /* 3 floats a pixel, display-encoded in [0, 1], row 0 at the top */
+    float *rgb;    /* 3 floats a pixel, display-encoded in [0, 1], row 0 at the top (or NULL: rgb8) */
     float *depth;  /* 1 float a pixel: distance from the eye (ray parameter) at the hit, +inf on a miss (or NULL) */
     float *normal; /* 3 floats a pixel: the unit normal facing the eye, 0 on a miss (or NULL) */
     float *ids;    /* 1 float a pixel: the item (region or surface) hit, -1 on a miss; an expression: 0 (or NULL) */
@@ -167,6 +172,8 @@ typedef struct {
      * mean interval evaluations. */
     long long secondary_rays;
     double secondary_evals_mean;
+    /* With view.rgb_bytes where honoured (rgb then NULL): the colours, 3 bytes a pixel (else NULL). */
+    unsigned char *rgb8;
 } iacsg_frame;
 
 /* The lights a scene file declares (`light` statements), as iacsg_effects takes them: copies them (at most

@@ -780,6 +780,10 @@ int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view) {
            !kernel_colors_hold(r, e);
 }
 
+int render_effects_camera_final(const iacsg_renderer *r, const iacsg_view *view) {
+    return !effects_on(r, view->effects) || (render_effects_in_camera(r, view) && view->effects->aa <= 1);
+}
+
 iacsg_status render_effects_camera_open(iacsg_renderer *r, const iacsg_view *view, size_t packets,
                                         render_fx_camera *c, iacsg_error *err) {
     memset(c, 0, sizeof *c);

@@ -81,6 +81,9 @@ typedef struct {
  * every hit first), and hits to shade again (not only -aa or -background, where the kernel's colours stand: the
  * pass after the frame colours the misses only, and each hit keeps the plain render's colour exactly). */
 int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view);
+/* Whether the first-root path's camera kernel's colours are the frame's: no effect, or the effects it applies
+ * itself without -aa (no pass after it writes a colour). */
+int render_effects_camera_final(const iacsg_renderer *r, const iacsg_view *view);
 iacsg_status render_effects_camera_open(iacsg_renderer *r, const iacsg_view *view, size_t packets,
                                         render_fx_camera *c, iacsg_error *err);
 void render_effects_camera_close(render_fx_camera *c);
