@@ -208,7 +208,8 @@ int emit_is_ident_char(char c) {
     "    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {\n        if (m & 1)\n            r *= p;\n"           \
     "        p *= p;\n    }\n    return n < 0 ? 1 / r : r;\n}\n"
 #define POINT_POWN POINT_POWN_OF("IA_FN", "ia_real", "iacsg_pown", "ia_pown_point", "pown")
-/* in the vector part of the program, which a scene's program enters after its solids' scalar code */
+/* before P_f_gradv, in the vector part of the program (a scene's program enters it after its solids' scalar code,
+ * whose IACSG_K guard would hide it) */
 #define POINT_POWNV                                                                                             \
     "#ifndef IACSG_POWNV\n#define IACSG_POWNV 1\n"                                                               \
     POINT_POWN_OF("IAV_INLINE", "ia_realv", "iacsg_pownv", "iav_pown_point", "iav_pown_by_lane") "#endif\n"
@@ -276,7 +277,8 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
               : tpl == dag_ops[OP_DIV].tderiv ? "ia_mul(DA, RB)" /* B's derivative is 0: (DA - R 0) / B */
                                               : tpl;
     for (const char *p = tpl; *p;) {
-        if ((r == AS_POINT || r == AS_POINTV) && (strncmp(p, ".lo", 3) == 0 || strncmp(p, ".hi", 3) == 0) && !emit_is_ident_char(p[3])) {
+        int bound = strncmp(p, ".lo", 3) == 0 || strncmp(p, ".hi", 3) == 0;
+        if ((r == AS_POINT || r == AS_POINTV) && bound && !emit_is_ident_char(p[3])) {
             p += 3;
             continue;
         }
@@ -464,6 +466,21 @@ static void lanes_gradient_statements(strbuf *b, const emitter *em, int i) {
     }
 }
 
+/* The point code's statement making node i NaN where its own operation is undefined at the point (value: AS_POINT
+ * or AS_POINTV); over lanes a select on the condition's mask (OpenCL's ?: would take a vector condition too). */
+static void nan_where_undefined(strbuf *b, const emitter *em, int i, role value) {
+    const char *condition = dag_ops[em->d->nodes[i].op].undefined;
+    if (value == AS_POINTV) {
+        strbuf_printf(b, "    v%d = select(v%d, IAV_R(NAN), ", i, i);
+        expand(b, em, i, condition, value);
+        strbuf_printf(b, ");\n");
+    } else {
+        strbuf_printf(b, "    v%d = ", i);
+        expand(b, em, i, condition, value);
+        strbuf_printf(b, " ? (ia_real)NAN : v%d;\n", i);
+    }
+}
+
 static void body(strbuf *b, const emitter *em, const int *order, int count, role r) {
     role value = r == AS_VECTOR_DT     ? AS_VECTOR
                  : r == AS_INTERVAL_DT ? AS_INTERVAL
@@ -493,18 +510,8 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
             flag_statement(b, em, i, value, 'e');
         if (own && is_along_ray(r))
             strbuf_printf(b, "    undefined |= v%d_u;\n", i);
-        if (own && !is_interval(r) && !strstr(dag_ops[n->op].undefined, "R.")) {
-            /* over lanes a select on the condition's mask: OpenCL's ?: would take a vector condition too */
-            if (is_lanes_point(r))
-                strbuf_printf(b, "    v%d = select(v%d, IAV_R(NAN), ", i, i);
-            else
-                strbuf_printf(b, "    v%d = ", i);
-            expand(b, em, i, dag_ops[n->op].undefined, value);
-            if (is_lanes_point(r))
-                strbuf_printf(b, ");\n");
-            else
-                strbuf_printf(b, " ? (ia_real)NAN : v%d;\n", i);
-        }
+        if (own && !is_interval(r) && !strstr(dag_ops[n->op].undefined, "R."))
+            nan_where_undefined(b, em, i, value);
         if ((r != AS_DERIV && r != AS_DERIVV && !is_along_ray(r)) || !em->axes[i])
             continue;
         if (r == AS_DERIVV) {
@@ -831,7 +838,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, int march, char
      * IACSG_SCALAR_CODE to get the scalar ones, and IACSG_SCALAR_FD for the scalar derivative along a ray, P_Fd. */
     int *parts;
     int nparts = emit_union_parts(d, root, &parts);
-    strbuf_printf(&b, "#if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)\n%s", POINT_POWNV);
+    strbuf_printf(&b, "#if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)\n");
     int ok = nparts >= 0;
     if (nparts >= EMIT_GROUP_MIN_PARTS) {
         ok = emit_union_groups(&b, &em, root, parts, nparts, prefix, AS_VECTOR);
@@ -846,6 +853,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, int march, char
             strbuf_printf(&b, newton ? "#define IACSG_FDV 1\n" : "#define IACSG_FDV_MARCH 1\n");
             emit_tderiv_function(&b, &em, order, count, root, prefix, AS_VECTOR_DT);
         }
+        strbuf_printf(&b, "%s", POINT_POWNV);
         emit_lanes_gradient(&b, &em, order, count, root, prefix);
     }
     strbuf_printf(&b, "#else\nIA_FN ia_interval %s_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n",

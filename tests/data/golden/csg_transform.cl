@@ -24,24 +24,6 @@ IA_FN ia_real iacsg_pown(ia_real a, int n) {
 }
 #endif
 #if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)
-#ifndef IACSG_POWNV
-#define IACSG_POWNV 1
-IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
-    int done;
-    ia_realv d = iav_pown_point(a, n, &done);
-    if (done)
-        return d;
-    if (n > 8 || n < -8)
-        return iav_pown_by_lane(a, n);
-    ia_realv r = 1, p = a;
-    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
-        if (m & 1)
-            r *= p;
-        p *= p;
-    }
-    return n < 0 ? 1 / r : r;
-}
-#endif
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v9 = iav_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));
     iav v10 = iav_sqr(v9);
@@ -134,6 +116,24 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     *dt = v44_t;
     return v44;
 }
+#ifndef IACSG_POWNV
+#define IACSG_POWNV 1
+IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
+    int done;
+    ia_realv d = iav_pown_point(a, n, &done);
+    if (done)
+        return d;
+    if (n > 8 || n < -8)
+        return iav_pown_by_lane(a, n);
+    ia_realv r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
+#endif
 IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
     ia_realv v9 = x + IACSG_K(-0x1p+0f, -0x1p+0);
     ia_realv v9_dx = IAV_R(1);

@@ -24,24 +24,6 @@ IA_FN ia_real iacsg_pown(ia_real a, int n) {
 }
 #endif
 #if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)
-#ifndef IACSG_POWNV
-#define IACSG_POWNV 1
-IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
-    int done;
-    ia_realv d = iav_pown_point(a, n, &done);
-    if (done)
-        return d;
-    if (n > 8 || n < -8)
-        return iav_pown_by_lane(a, n);
-    ia_realv r = 1, p = a;
-    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
-        if (m & 1)
-            r *= p;
-        p *= p;
-    }
-    return n < 0 ? 1 / r : r;
-}
-#endif
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v2 = iav_pown(x, 3);
     iav v5 = iav_sqrt(y);
@@ -68,6 +50,24 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     ia_maskv v16_e = v13_e || v15_e;
     return iav_or_outside(v16, v16_u, v16_e);
 }
+#ifndef IACSG_POWNV
+#define IACSG_POWNV 1
+IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
+    int done;
+    ia_realv d = iav_pown_point(a, n, &done);
+    if (done)
+        return d;
+    if (n > 8 || n < -8)
+        return iav_pown_by_lane(a, n);
+    ia_realv r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
+#endif
 IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
     ia_realv v2 = iacsg_pownv(x, 3);
     ia_realv v2_dx = (ia_real)3 * iacsg_pownv(x, 3 - 1) * IAV_R(1);

@@ -24,24 +24,6 @@ IA_FN ia_real iacsg_pown(ia_real a, int n) {
 }
 #endif
 #if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)
-#ifndef IACSG_POWNV
-#define IACSG_POWNV 1
-IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
-    int done;
-    ia_realv d = iav_pown_point(a, n, &done);
-    if (done)
-        return d;
-    if (n > 8 || n < -8)
-        return iav_pown_by_lane(a, n);
-    ia_realv r = 1, p = a;
-    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
-        if (m & 1)
-            r *= p;
-        p *= p;
-    }
-    return n < 0 ? 1 / r : r;
-}
-#endif
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v3 = iav_sqr(x);
     iav v5 = iav_sqr(y);
@@ -77,6 +59,24 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     *dt = v16_t;
     return v16;
 }
+#ifndef IACSG_POWNV
+#define IACSG_POWNV 1
+IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
+    int done;
+    ia_realv d = iav_pown_point(a, n, &done);
+    if (done)
+        return d;
+    if (n > 8 || n < -8)
+        return iav_pown_by_lane(a, n);
+    ia_realv r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
+#endif
 IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
     ia_realv v3 = x * x;
     ia_realv v3_dx = (ia_real)2 * x * IAV_R(1);

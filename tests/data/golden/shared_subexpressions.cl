@@ -24,6 +24,13 @@ IA_FN ia_real iacsg_pown(ia_real a, int n) {
 }
 #endif
 #if defined(IA_VW) && !defined(IACSG_SCALAR_CODE)
+IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
+    iav v1 = iav_sin(x);
+    iav v3 = iav_mul(v1, y);
+    iav v5 = iav_add(v1, iav_const(IACSG_K(0x1.999998p-4f, 0x1.9999999999999p-4), IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4)));
+    iav v6 = iav_min(v3, v5);
+    return v6;
+}
 #ifndef IACSG_POWNV
 #define IACSG_POWNV 1
 IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
@@ -42,13 +49,6 @@ IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
     return n < 0 ? 1 / r : r;
 }
 #endif
-IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
-    iav v1 = iav_sin(x);
-    iav v3 = iav_mul(v1, y);
-    iav v5 = iav_add(v1, iav_const(IACSG_K(0x1.999998p-4f, 0x1.9999999999999p-4), IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4)));
-    iav v6 = iav_min(v3, v5);
-    return v6;
-}
 IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
     ia_realv v1 = iav_sin_point(x);
     ia_realv v1_dx = iav_cos_point(x) * IAV_R(1);
