@@ -8,6 +8,9 @@
  * Stages, as ia__sincos_reduced: the lanes' narrow ones by one reduction at their midpoint (ia__sincos_mid_of),
  * where that declines or a lane is wide by the reductions of both ends (ia__sincos_ends_of), each computed only
  * where some lane needs it, then chosen lane by lane.
+ *
+ * Also sin and cos at points in lanes, iav_sin_point and iav_cos_point (as ia_sin_point, ia_cos_point), for the
+ * emitted point code over lanes (P_f_gradv, the kernels' shading).
  */
 #ifndef IA_VEC_SINCOS_H
 #define IA_VEC_SINCOS_H
