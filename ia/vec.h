@@ -340,5 +340,56 @@ IAV_INLINE iav iav_pown(iav a, int n) {
     return iav_make(select(lo, -lo, a.lo < 0), select(hi, -hi, a.hi < 0));
 }
 
+
+/* ---- points over lanes, for the emitted point code's lanes version (implicits/emit.c: P_f_gradv): ia/'s point
+ * functions with the same operations in the same order, so that each lane holds the scalar one's bits. */
+
+/* The scalar call in each lane (A, B: a's and b's), for the built-ins whose vector versions PoCL gets wrong in
+ * some lanes: double pow and pown beside lanes holding NaN or infinities (pow(1.30, 1.5) = 0.52 there), float sin,
+ * cos and tan beside lanes of large arguments (measured on PoCL 5, LLVM 15; float pow and pown, double sin, cos,
+ * and exp, log, atan, sqrt of both were right). */
+#define IAV_POINT_LANEWISE(call)                                                                               \
+    ia_real as[IA_VW], bs[IA_VW];                                                                              \
+    IAV_STORE(a, as);                                                                                          \
+    IAV_STORE(b, bs);                                                                                          \
+    for (int k = 0; k < IA_VW; k++) {                                                                          \
+        ia_real A = as[k], B = bs[k];                                                                          \
+        (void)B;                                                                                               \
+        as[k] = call;                                                                                          \
+    }                                                                                                          \
+    return IAV_LOAD(as)
+IA_FN ia_realv iav_pow_point(ia_realv a, ia_realv b) { IAV_POINT_LANEWISE(pow(A, B)); }
+IA_FN ia_realv iav_tan_point(ia_realv a) {
+    ia_realv b = a;
+    IAV_POINT_LANEWISE(tan(A));
+}
+IAV_INLINE ia_realv iav_pown_by_lane(ia_realv a, int n) {
+    ia_realv b = a;
+    IAV_POINT_LANEWISE(pown(A, n));
+}
+
+/* ia_real_max: NaN where either operand is (fmax would drop it). */
+IA_FN ia_realv iav_real_max(ia_realv a, ia_realv b) { return select(fmax(a, b), IAV_R(NAN), isnan(a) | isnan(b)); }
+
+/* ia_pown_point: on a float device with double, the chain in double rounded to nearest once; *done 0 where it
+ * does not apply (n = 0, |n| beyond the chain, or no double). */
+IAV_INLINE ia_realv iav_pown_point(ia_realv x, int n, int *done) {
+#ifdef IA_DEVICE_DOUBLE
+    unsigned int m = n < 0 ? 0u - (unsigned int)n : (unsigned int)n;
+    *done = m >= 1 && m <= IA_POWN_CHAIN_MAX;
+    iav__doublev r = (iav__doublev)1, b = iav__to_double(x);
+    for (; *done && m > 0; m >>= 1) {
+        if (m & 1)
+            r *= b;
+        b *= b;
+    }
+    return iav__to_real(n < 0 ? 1 / r : r);
+#else
+    (void)n;
+    *done = 0;
+    return x;
+#endif
+}
+
 #endif
 #endif

@@ -8,6 +8,9 @@
  * Stages, as ia__sincos_reduced: the lanes' narrow ones by one reduction at their midpoint (ia__sincos_mid_of),
  * where that declines or a lane is wide by the reductions of both ends (ia__sincos_ends_of), each computed only
  * where some lane needs it, then chosen lane by lane.
+ *
+ * Also sin and cos at points in lanes, iav_sin_point and iav_cos_point (as ia_sin_point, ia_cos_point), for the
+ * emitted point code over lanes (P_f_gradv, the kernels' shading).
  */
 #ifndef IA_VEC_SINCOS_H
 #define IA_VEC_SINCOS_H
@@ -140,6 +143,32 @@ IAV_INLINE iav iav__sincos(iav a, int shift) { return shift ? iav__sin_by_lane(a
 
 IA_FN iav iav_sin(iav a) { return iav__sincos(a, 1); }
 IA_FN iav iav_cos(iav a) { return iav__sincos(a, 0); }
+
+/* cos (shift 0) or sin (shift 1) at points, as ia_cos_point and ia_sin_point: the lanes within IA__REDUCED_MAX by
+ * ia__sincos_point's reduction and kernels in double, the others (and all where that reduction is not compiled)
+ * lane by lane (ia/vec.h: IAV_POINT_LANEWISE), only where some lane needs it. */
+IA_FN ia_realv iav__sin_point_by_lane(ia_realv a) {
+    ia_realv b = a;
+    IAV_POINT_LANEWISE(ia_sin_point(A));
+}
+IA_FN ia_realv iav__cos_point_by_lane(ia_realv a) {
+    ia_realv b = a;
+    IAV_POINT_LANEWISE(ia_cos_point(A));
+}
+IAV_INLINE ia_realv iav__sincos_point(ia_realv x, int shift) {
+#ifdef IA_SINCOS_REDUCED
+    ia_maskv far = ~(fabs(x) <= (ia_real)IA__REDUCED_MAX);
+    iav__reduced p = iav__reduced_at(iav__to_double(select(x, IAV_R(0), far)));
+    ia_realv v = iav__to_real(iav__quadrant_cos(p.k - shift, p.sin_r, p.cos_r));
+    if (!iav_any(far))
+        return v;
+    return select(v, shift ? iav__sin_point_by_lane(x) : iav__cos_point_by_lane(x), far);
+#else
+    return shift ? iav__sin_point_by_lane(x) : iav__cos_point_by_lane(x);
+#endif
+}
+IA_FN ia_realv iav_sin_point(ia_realv x) { return iav__sincos_point(x, 1); }
+IA_FN ia_realv iav_cos_point(ia_realv x) { return iav__sincos_point(x, 0); }
 
 #endif
 #endif

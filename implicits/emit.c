@@ -72,15 +72,29 @@ typedef struct {
     const dag *d;
     unsigned char *axes;      /* per node: bit k set when its derivative along axis k is not identically 0 */
     unsigned char *undefined; /* per node: 1 when it may be undefined somewhere (it has a flag v<i>_u) */
+    int axis;                 /* the gradient's component being written over lanes (AS_DERIVV): 0, 1, 2 */
 } emitter;
 
 /* The text standing for operand node i in the interval code, the vector interval code (ia/vec.h: the same
- * templates with iav_ for ia_), the point code, or its gradient (an iacsg_grad vector: x, y, z, 0); and, for the
- * interval code along a ray, scalar or over lanes (AS_INTERVAL_DT, AS_VECTOR_DT: values and their derivatives in
- * t, the leaves x, y, z moving at the rates dx, dy, dz), the enclosure of its derivative (AS_TDERIV,
- * AS_VTDERIV). */
-typedef enum { AS_INTERVAL, AS_VECTOR, AS_POINT, AS_DERIV, AS_INTERVAL_DT, AS_TDERIV, AS_VECTOR_DT, AS_VTDERIV } role;
-static int is_interval(role r) { return r != AS_POINT && r != AS_DERIV; }
+ * templates with iav_ for ia_), the point code, or its gradient (an iacsg_grad vector: x, y, z, 0); the point code
+ * over lanes (AS_POINTV: ia_realv values) and one component of its gradient (AS_DERIVV: the emitter's axis, an
+ * ia_realv); and, for the interval code along a ray, scalar or over lanes (AS_INTERVAL_DT, AS_VECTOR_DT: values
+ * and their derivatives in t, the leaves x, y, z moving at the rates dx, dy, dz), the enclosure of its derivative
+ * (AS_TDERIV, AS_VTDERIV). */
+typedef enum {
+    AS_INTERVAL,
+    AS_VECTOR,
+    AS_POINT,
+    AS_DERIV,
+    AS_POINTV,
+    AS_DERIVV,
+    AS_INTERVAL_DT,
+    AS_TDERIV,
+    AS_VECTOR_DT,
+    AS_VTDERIV
+} role;
+static int is_lanes_point(role r) { return r == AS_POINTV || r == AS_DERIVV; }
+static int is_interval(role r) { return r != AS_POINT && r != AS_DERIV && !is_lanes_point(r); }
 static int is_vector(role r) { return r == AS_VECTOR || r == AS_VECTOR_DT || r == AS_VTDERIV; }
 static int is_along_ray(role r) { return r == AS_INTERVAL_DT || r == AS_VECTOR_DT; }
 static int is_tderiv(role r) { return r == AS_TDERIV || r == AS_VTDERIV; }
@@ -94,6 +108,13 @@ static void put_operand(strbuf *b, const emitter *em, int i, role r) {
             strbuf_printf(b, is_vector(r) ? "iav_point(0)" : "ia_point(0)");
         else
             strbuf_printf(b, "v%d_t", i);
+    } else if (r == AS_DERIVV) {
+        if (!(em->axes[i] >> em->axis & 1))
+            strbuf_printf(b, "IAV_R(0)");
+        else if (n->op <= OP_Z)
+            strbuf_printf(b, "IAV_R(1)");
+        else
+            strbuf_printf(b, "v%d_d%s", i, var_names[em->axis]);
     } else if (r == AS_DERIV) {
         if (n->op <= OP_Z)
             strbuf_printf(b, "(iacsg_grad)(%d, %d, %d, 0)", n->op == OP_X, n->op == OP_Y, n->op == OP_Z);
@@ -115,7 +136,9 @@ static void put_operand(strbuf *b, const emitter *em, int i, role r) {
         put_real(b, n->hi, n->fhi);
         strbuf_printf(b, ")");
     } else if (n->op == OP_CONST) {
-        put_real(b, n->near, n->fnear);
+        strbuf_printf(b, r == AS_POINTV ? "IAV_R(" : "");
+        put_real(b, n->near, n->fnear); /* over lanes a vector: pow takes no scalar beside one */
+        strbuf_printf(b, r == AS_POINTV ? ")" : "");
     } else {
         strbuf_printf(b, "v%d", i);
     }
@@ -175,14 +198,21 @@ int emit_is_ident_char(char c) {
  * enclosures over it); else by repeated squaring for |n| <= 8, the built-in pown beyond. PoCL's pown goes through
  * exp and log: in the heart's frames (pown 3, twice) __pocl_expep and __pocl_epln, shading the hit pixels lane by
  * lane, took as many samples as the whole render kernel. The exponent is a constant: after inlining, the loop is a
- * few multiplications. */
-#define POINT_POWN                                                                                              \
-    "IA_FN ia_real iacsg_pown(ia_real a, int n) {\n"                                                          \
-    "    int done;\n    ia_real d = ia_pown_point(a, n, &done);\n    if (done)\n        return d;\n"      \
-    "    if (n > 8 || n < -8)\n        return pown(a, n);\n"                                                 \
-    "    ia_real r = 1, p = a;\n"                                                                             \
-    "    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {\n        if (m & 1)\n            r *= p;\n"         \
+ * few multiplications. iacsg_pown at a point, iacsg_pownv over lanes (ia/vec.h's iav_pown_point; inlined for
+ * its constant, as iav_pown). */
+#define POINT_POWN_OF(qualifier, real, name, point, beyond)                                                        \
+    qualifier " " real " " name "(" real " a, int n) {\n"                                                        \
+    "    int done;\n    " real " d = " point "(a, n, &done);\n    if (done)\n        return d;\n"               \
+    "    if (n > 8 || n < -8)\n        return " beyond "(a, n);\n"                                               \
+    "    " real " r = 1, p = a;\n"                                                                               \
+    "    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {\n        if (m & 1)\n            r *= p;\n"           \
     "        p *= p;\n    }\n    return n < 0 ? 1 / r : r;\n}\n"
+#define POINT_POWN POINT_POWN_OF("IA_FN", "ia_real", "iacsg_pown", "ia_pown_point", "pown")
+/* before P_f_gradv, in the vector part of the program (a scene's program enters it after its solids' scalar code,
+ * whose IACSG_K guard would hide it) */
+#define POINT_POWNV                                                                                             \
+    "#ifndef IACSG_POWNV\n#define IACSG_POWNV 1\n"                                                               \
+    POINT_POWN_OF("IAV_INLINE", "ia_realv", "iacsg_pownv", "iav_pown_point", "iav_pown_by_lane") "#endif\n"
 
 /* The outward enclosure [RD(1/hi), RU(1/lo)] of the reciprocals of a constant c = [lo, hi] with 0 < lo <= hi, in
  * double (d) and float (f): 1 when c is such a constant with finite reciprocals, else 0. A quotient by c is then a
@@ -211,14 +241,31 @@ int emit_reciprocal_enclosure(const dag_node *c, double d[2], float f[2]) {
     return 1;
 }
 
+/* The point code's functions whose lanes version is not the OpenCL built-in of the same name: the powers (see
+ * POINT_POWN), ia_sin_point and ia_cos_point's, ia_real_max's, and the built-ins that PoCL's vectors get wrong in
+ * some lanes (ia/vec.h: IAV_POINT_LANEWISE). NULL for the others. */
+static const char *lanes_function(const char *name, size_t len) {
+    static const char *const lanes[][2] = {{"pown", "iacsg_pownv"},     {"sin", "iav_sin_point"},
+                                           {"cos", "iav_cos_point"},    {"tan", "iav_tan_point"},
+                                           {"pow", "iav_pow_point"},    {"ia_real_max", "iav_real_max"}};
+    for (size_t k = 0; k < sizeof lanes / sizeof lanes[0]; k++)
+        if (strlen(lanes[k][0]) == len && strncmp(name, lanes[k][0], len) == 0)
+            return lanes[k][1];
+    return NULL;
+}
+
 /* Writes an ops.def template for node i, replacing the placeholders A, B, N, KB, DA, DB, R and RB (the
  * reciprocals of a constant B, see emit_reciprocal_enclosure). In the point code, the bounds .lo and .hi of the
  * `undefined` column are the point itself. */
 static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r) {
     const dag *d = em->d;
     const dag_node *n = &d->nodes[i];
-    role operand_role = r == AS_DERIV ? AS_POINT : r == AS_VTDERIV ? AS_VECTOR : r == AS_TDERIV ? AS_INTERVAL : r;
-    role deriv_role = is_tderiv(r) ? r : AS_DERIV;
+    role operand_role = r == AS_DERIV     ? AS_POINT
+                        : r == AS_DERIVV  ? AS_POINTV
+                        : r == AS_VTDERIV ? AS_VECTOR
+                        : r == AS_TDERIV  ? AS_INTERVAL
+                                          : r;
+    role deriv_role = is_tderiv(r) ? r : is_lanes_point(r) ? AS_DERIVV : AS_DERIV;
     if (n->op == OP_MIN && tpl == dag_ops[OP_MIN].interval && (em->undefined[n->a] || em->undefined[n->b])) {
         put_union(b, em, i, r);
         return;
@@ -230,7 +277,8 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
               : tpl == dag_ops[OP_DIV].tderiv ? "ia_mul(DA, RB)" /* B's derivative is 0: (DA - R 0) / B */
                                               : tpl;
     for (const char *p = tpl; *p;) {
-        if (r == AS_POINT && (strncmp(p, ".lo", 3) == 0 || strncmp(p, ".hi", 3) == 0) && !emit_is_ident_char(p[3])) {
+        int bound = strncmp(p, ".lo", 3) == 0 || strncmp(p, ".hi", 3) == 0;
+        if ((r == AS_POINT || r == AS_POINTV) && bound && !emit_is_ident_char(p[3])) {
             p += 3;
             continue;
         }
@@ -265,6 +313,8 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
         }
         else if (is_vector(r) && len > 3 && strncmp(p, "ia_", 3) == 0)
             strbuf_printf(b, "iav_%.*s", (int)len - 3, p + 3);
+        else if (is_lanes_point(r) && lanes_function(p, len))
+            strbuf_printf(b, "%s", lanes_function(p, len));
         else if (!is_interval(r) && IS("pown"))
             strbuf_printf(b, "iacsg_pown"); /* the point code's powers: see POINT_POWN */
         else if (!is_interval(r) && (IS("sin") || IS("cos")))
@@ -385,14 +435,67 @@ static const char *scalar_tderiv(const emitter *em, const dag_node *n) {
     }
 }
 
+/* Node n's derivative along the emitter's axis over lanes (AS_DERIVV): ops.def's derivative column, but a sum or
+ * product with an operand whose derivative along the axis is identically 0 is the other term alone (the scalar
+ * code's 4-vectors compute the product by 0 and add it; they differ only where that product is NaN, where the
+ * other operand is infinite or NaN). */
+static const char *lanes_derivative(const emitter *em, const dag_node *n) {
+    int zero_a = n->a >= 0 && !(em->axes[n->a] >> em->axis & 1);
+    int zero_b = n->b >= 0 && !(em->axes[n->b] >> em->axis & 1);
+    switch (n->op) {
+    case OP_ADD:
+        return zero_a ? "DB" : zero_b ? "DA" : dag_ops[n->op].derivative;
+    case OP_SUB:
+        return zero_a ? "-DB" : zero_b ? "DA" : dag_ops[n->op].derivative;
+    case OP_MUL:
+        return zero_a ? "A * DB" : zero_b ? "DA * B" : dag_ops[n->op].derivative;
+    default:
+        return dag_ops[n->op].derivative;
+    }
+}
+
+/* Node i's gradient over lanes: a statement per axis its derivative depends on (v<i>_dx, _dy, _dz). */
+static void lanes_gradient_statements(strbuf *b, const emitter *em, int i) {
+    emitter along = *em;
+    for (along.axis = 0; along.axis < 3; along.axis++) {
+        if (!(em->axes[i] >> along.axis & 1))
+            continue;
+        strbuf_printf(b, "    ia_realv v%d_d%s = ", i, var_names[along.axis]);
+        expand(b, &along, i, lanes_derivative(&along, &em->d->nodes[i]), AS_DERIVV);
+        strbuf_printf(b, ";\n");
+    }
+}
+
+/* The point code's statement making node i NaN where its own operation is undefined at the point (value: AS_POINT
+ * or AS_POINTV); over lanes a select on the condition's mask (OpenCL's ?: would take a vector condition too). */
+static void nan_where_undefined(strbuf *b, const emitter *em, int i, role value) {
+    const char *condition = dag_ops[em->d->nodes[i].op].undefined;
+    if (value == AS_POINTV) {
+        strbuf_printf(b, "    v%d = select(v%d, IAV_R(NAN), ", i, i);
+        expand(b, em, i, condition, value);
+        strbuf_printf(b, ");\n");
+    } else {
+        strbuf_printf(b, "    v%d = ", i);
+        expand(b, em, i, condition, value);
+        strbuf_printf(b, " ? (ia_real)NAN : v%d;\n", i);
+    }
+}
+
 static void body(strbuf *b, const emitter *em, const int *order, int count, role r) {
-    role value = r == AS_VECTOR_DT ? AS_VECTOR : r == AS_INTERVAL_DT ? AS_INTERVAL : r == AS_DERIV ? AS_POINT : r;
+    role value = r == AS_VECTOR_DT     ? AS_VECTOR
+                 : r == AS_INTERVAL_DT ? AS_INTERVAL
+                 : r == AS_DERIV       ? AS_POINT
+                 : r == AS_DERIVV      ? AS_POINTV
+                                       : r;
     for (int k = 0; k < count; k++) {
         int i = order[k];
         const dag_node *n = &em->d->nodes[i];
         if (n->op < OP_NEG)
             continue; /* leaves are written in place */
-        const char *type = !is_interval(r) ? "ia_real" : is_vector(r) ? "iav" : "ia_interval";
+        const char *type = is_lanes_point(r) ? "ia_realv"
+                           : !is_interval(r) ? "ia_real"
+                           : is_vector(r)    ? "iav"
+                                             : "ia_interval";
         char paired[64];
         int sin_cos = sin_cos_statement(b, em, i, r, paired, sizeof paired);
         if (!sin_cos) {
@@ -407,13 +510,14 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
             flag_statement(b, em, i, value, 'e');
         if (own && is_along_ray(r))
             strbuf_printf(b, "    undefined |= v%d_u;\n", i);
-        if (own && !is_interval(r) && !strstr(dag_ops[n->op].undefined, "R.")) {
-            strbuf_printf(b, "    v%d = ", i);
-            expand(b, em, i, dag_ops[n->op].undefined, AS_POINT);
-            strbuf_printf(b, " ? (ia_real)NAN : v%d;\n", i);
-        }
-        if ((r != AS_DERIV && !is_along_ray(r)) || !em->axes[i])
+        if (own && !is_interval(r) && !strstr(dag_ops[n->op].undefined, "R."))
+            nan_where_undefined(b, em, i, value);
+        if ((r != AS_DERIV && r != AS_DERIVV && !is_along_ray(r)) || !em->axes[i])
             continue;
+        if (r == AS_DERIVV) {
+            lanes_gradient_statements(b, em, i);
+            continue;
+        }
         if (r == AS_DERIV) {
             strbuf_printf(b, "    iacsg_grad v%d_d = ", i);
             expand(b, em, i, dag_ops[n->op].derivative, AS_DERIV);
@@ -460,6 +564,25 @@ static void emit_tderiv_function(strbuf *b, const emitter *em, const int *order,
     put_operand(b, em, root, vector ? AS_VTDERIV : AS_TDERIV);
     strbuf_printf(b, partial && vector ? ", undefined);\n    return " : ";\n    return ");
     put_solid_value(b, em, root, vector ? AS_VECTOR : AS_INTERVAL);
+    strbuf_printf(b, ";\n}\n");
+}
+
+/* The point value and gradient over lanes, for the kernels' shading (kernels/render.cl: packet_gradients): the
+ * point code's operations in SIMD lanes, each gradient component a vector of its own, and only those that are not
+ * identically 0 (where the scalar code computes a 4-vector per node and lane). */
+static void emit_lanes_gradient(strbuf *b, const emitter *em, const int *order, int count, int root,
+                                const char *prefix) {
+    strbuf_printf(b, "IA_FN ia_realv %s_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {\n",
+                  prefix);
+    body(b, em, order, count, AS_DERIVV);
+    emitter along = *em;
+    for (along.axis = 0; along.axis < 3; along.axis++) {
+        strbuf_printf(b, "    g[%d] = ", along.axis);
+        put_operand(b, &along, root, AS_DERIVV);
+        strbuf_printf(b, ";\n");
+    }
+    strbuf_printf(b, "    return ");
+    put_operand(b, em, root, AS_POINTV);
     strbuf_printf(b, ";\n}\n");
 }
 
@@ -682,7 +805,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, int march, char
                                "expression too long to compile: %d operations after simplification (at most %d)",
                                count, EMIT_MAX_NODES);
     }
-    emitter em = {d, count < 0 ? NULL : malloc((size_t)root + 1), count < 0 ? NULL : malloc((size_t)root + 1)};
+    emitter em = {d, count < 0 ? NULL : malloc((size_t)root + 1), count < 0 ? NULL : malloc((size_t)root + 1), 0};
     if (!em.axes || !em.undefined) {
         if (count >= 0)
             free(order);
@@ -730,6 +853,8 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, int march, char
             strbuf_printf(&b, newton ? "#define IACSG_FDV 1\n" : "#define IACSG_FDV_MARCH 1\n");
             emit_tderiv_function(&b, &em, order, count, root, prefix, AS_VECTOR_DT);
         }
+        strbuf_printf(&b, "%s", POINT_POWNV);
+        emit_lanes_gradient(&b, &em, order, count, root, prefix);
     }
     strbuf_printf(&b, "#else\nIA_FN ia_interval %s_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {\n",
                   prefix);

@@ -28,10 +28,11 @@ void iacsg_expr_destroy(iacsg_expr *e);
  *   IA_FN ia_interval P_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t);    inclusion function
  *   IA_FN ia_real     P_f_grad(ia_real x, ia_real y, ia_real z, ia_real t,
  *                              ia_real *gx, ia_real *gy, ia_real *gz);                    value and gradient
- * and, in a program built with IA_VW (the renderer's), instead of P_F: P_Fv, its enclosure over IA_VW lanes, or
- * for a union of many parts P_Fv_group (IACSG_GROUPS of them, and no P_f_grad: kernels/shade.h); and where
- * interval Newton pays, P_Fdv, the value and the derivative along a ray (IACSG_FDV). Undefined operands follow
- * the rule of ia/ia.h. It expects the ia/ headers before it (iacsg_cl_ia). The caller free()s *source. */
+ * and, in a program built with IA_VW (the renderer's), instead of P_F: P_Fv, its enclosure over IA_VW lanes, and
+ * P_f_gradv, the value and gradient at IA_VW points (ia_realv x, y, z, t, ia_realv g[3]; the kernels' shading), or
+ * for a union of many parts P_Fv_group (IACSG_GROUPS of them, and no P_f_grad nor P_f_gradv: kernels/shade.h);
+ * and where interval Newton pays, P_Fdv, the value and the derivative along a ray (IACSG_FDV). Undefined operands
+ * follow the rule of ia/ia.h. It expects the ia/ headers before it (iacsg_cl_ia). The caller free()s *source. */
 iacsg_status iacsg_expr_emit_cl(const iacsg_expr *e, const char *prefix, char **source, iacsg_error *err);
 
 /* 1 if the expression depends on the time variable t. */

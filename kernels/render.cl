@@ -115,18 +115,19 @@ static void block_tiles(PACKET_TAPE_PARAM __constant ia_real *params, int flags,
 }
 
 /* The gradients at the points o + t d of the lanes of `hit` (anything in the others). For a union in groups, by
- * differences over the groups of the segments of the frame's tree the points are on; else lane by lane, with the
- * emitted (scalar) point code. */
+ * differences over the groups of the segments of the frame's tree the points are on; else with the emitted point
+ * code over lanes (iacsg_f_gradv), 0 in the other lanes, which it takes at the origin (a NaN or infinite point
+ * would send sin and cos to their slow path). */
 static void packet_gradients(PACKET_TAPE_PARAM const __global ulong *segment_groups, ia_real t0, ia_real w,
                              ia_maskv hit, const ia_realv o[3], const ia_realv d[3], ia_realv t, ia_real time,
                              ia_realv g[3]) {
-    ia_real on[IA_VW], tk[IA_VW];
-    IAV_STORE(select(IAV_R(0), IAV_R(1), hit), on);
-    IAV_STORE(t, tk);
     ia_realv p[3];
     for (int c = 0; c < 3; c++)
         p[c] = o[c] + t * d[c];
 #ifdef IACSG_GROUPS
+    ia_real on[IA_VW], tk[IA_VW];
+    IAV_STORE(select(IAV_R(0), IAV_R(1), hit), on);
+    IAV_STORE(t, tk);
     packet_parts parts = {0};
 #ifdef IACSG_TAPE
     parts.records = (const __global ushort *)(segment_groups + SEGMENTS);
@@ -146,19 +147,11 @@ static void packet_gradients(PACKET_TAPE_PARAM const __global ulong *segment_gro
     shade_gradients_by_differences(PACKET_TAPE_ARG parts, p, iav_point(time), g);
 #else
     (void)segment_groups, (void)t0, (void)w;
-    ia_real pk[3][IA_VW], gk[3][IA_VW] = {{0}};
     for (int c = 0; c < 3; c++)
-        IAV_STORE(p[c], pk[c]);
-    for (int k = 0; k < IA_VW; k++) {
-        if (on[k] == 0)
-            continue;
-        ia_real gradient[3];
-        shade_gradient(pk[0][k], pk[1][k], pk[2][k], time, gradient);
-        for (int c = 0; c < 3; c++)
-            gk[c][k] = gradient[c];
-    }
+        p[c] = select(IAV_R(0), p[c], hit);
+    (void)iacsg_f_gradv(p[0], p[1], p[2], IAV_R(time), g);
     for (int c = 0; c < 3; c++)
-        g[c] = IAV_LOAD(gk[c]);
+        g[c] = select(IAV_R(0), g[c], hit);
 #endif
 }
 

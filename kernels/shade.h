@@ -1,21 +1,13 @@
 /* kernels/shade.h -- the normals and colours of a packet's pixels on the first-root path, in SIMD lanes, by the
- * lighting of light.h. Only the gradient runs lane by lane, as the emitted point code is scalar; the rest ran so
- * too once and was three quarters of a frame's fixed cost.
+ * lighting of light.h (lane by lane, it was three quarters of a frame's fixed cost once).
  *
- * Needs iacsg_f_grad, the point value and gradient of the expression, or for a union in groups its enclosures
- * (packet_F).
+ * The gradient is the emitted iacsg_f_gradv (kernels/render.cl: packet_gradients), or for a union in groups by
+ * differences of its enclosures (packet_F), below.
  */
 #ifndef KERNELS_SHADE_H
 #define KERNELS_SHADE_H
 #include "packet.h"
 #include "light.h"
-
-#ifndef IACSG_GROUPS
-/* The gradient at p: the emitted forward-mode iacsg_f_grad. */
-IA_FN void shade_gradient(ia_real x, ia_real y, ia_real z, ia_real time, ia_real g[3]) {
-    iacsg_f_grad(x, y, z, time, &g[0], &g[1], &g[2]);
-}
-#endif
 
 /* The gradient at points p of the lanes of a union in groups, by central differences of its enclosures'
  * midpoints at points (over the groups set in `groups`, or a tape's lists of the tile's parts: the others are certainly positive around p, so the part

@@ -15,8 +15,8 @@ static const char eval_usage[] =
     "Decimal numbers are taken as the reals they denote; the bounds printed parse back to the same doubles.\n";
 static const char compile_usage[] =
     "usage: iacsg compile EXPR|SCENE [--dump tokens|ast|dag|simple] [--prefix NAME]\n"
-    "Prints the OpenCL C generated for the expression (functions NAME_F, NAME_f_grad, NAME_Fv; NAME = iacsg),\n"
-    "or the dump of one compiler stage.\n";
+    "Prints the OpenCL C generated for the expression (functions NAME_F, NAME_f_grad, NAME_Fv, NAME_f_gradv;\n"
+    "NAME = iacsg), or the dump of one compiler stage.\n";
 
 /* The text of a scene file when `input` names a readable file, else the input itself. malloc'ed. */
 static char *read_input(const char *input, const char **name) {

@@ -18,13 +18,15 @@ typedef struct {
 /* What the hand-written expressions of the tests build from two spheres. */
 typedef enum { SOLID_A, SOLID_UNION, SOLID_INTER, SOLID_DIFF } solid_op;
 
-/* OpenCL C for the CSG of spheres a and b: F, Fv, f and its gradient, as the compiler would emit them. */
+/* OpenCL C for the CSG of spheres a and b: F, Fv, f and its gradient at a point and over lanes, as the compiler
+ * would emit them. */
 static inline char *spheres_cl(sphere a, sphere b, solid_op op) {
     static const char *ops_F[] = {"a", "ia_min(a, b)", "ia_max(a, b)", "ia_max(a, ia_neg(b))"};
     static const char *ops_Fv[] = {"a", "iav_min(a, b)", "iav_max(a, b)", "iav_max(a, iav_neg(b))"};
     static const char *ops_f[] = {"a", "fmin(a, b)", "fmax(a, b)", "fmax(a, -b)"};
     /* The gradient of the branch that min/max selects; for the difference, -grad b when -b wins. */
     static const char *ops_g[] = {"1", "a <= b", "a >= b", "a >= -b"};
+    static const char *ops_gv[] = {"(ia_maskv)-1", "a <= b", "a >= b", "a >= -b"};
     static const char *ops_gs[] = {"1", "1", "1", "-1"};
     char *s = malloc(8192);
     snprintf(s, 8192,
@@ -43,6 +45,16 @@ static inline char *spheres_cl(sphere a, sphere b, solid_op op) {
              " iav_sqr(iav_add_r(z, -cz))), -r * r);\n}\n"
              "IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {\n"
              "  iav a = sph_Fv(x, y, z, SA), b = sph_Fv(x, y, z, SB); (void)t; (void)b; return %s;\n}\n"
+             "IA_FN ia_realv sph_fv(ia_realv x, ia_realv y, ia_realv z, ia_real cx, ia_real cy, ia_real cz, ia_real r)"
+             " {\n"
+             "  return (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) - r * r;\n}\n"
+             "IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {\n"
+             "  ia_realv a = sph_fv(x, y, z, SA), b = sph_fv(x, y, z, SB), p[3] = {x, y, z}; (void)t;\n"
+             "  ia_real ca[4] = {SA}, cb[4] = {SB}; ia_maskv use_a = %s;\n"
+             "  ia_realv sg = select(IAV_R(%s), IAV_R(1), use_a);\n"
+             "  for (int c = 0; c < 3; c++)\n"
+             "    g[c] = sg * 2 * (p[c] - select(IAV_R(cb[c]), IAV_R(ca[c]), use_a));\n"
+             "  return %s;\n}\n"
              "#endif\n"
              "IA_FN ia_real iacsg_f(ia_real x, ia_real y, ia_real z, ia_real t) {\n"
              "  ia_real a = sph_f(x, y, z, SA), b = sph_f(x, y, z, SB); (void)t; (void)b; return %s;\n}\n"
@@ -54,7 +66,8 @@ static inline char *spheres_cl(sphere a, sphere b, solid_op op) {
              "  *gy = sg * 2 * (y - (use_a ? ca[1] : cb[1]));\n"
              "  *gz = sg * 2 * (z - (use_a ? ca[2] : cb[2]));\n"
              "  return iacsg_f(x, y, z, t);\n}\n",
-             a.c[0], a.c[1], a.c[2], a.r, b.c[0], b.c[1], b.c[2], b.r, ops_F[op], ops_Fv[op], ops_f[op], ops_g[op], ops_gs[op]);
+             a.c[0], a.c[1], a.c[2], a.r, b.c[0], b.c[1], b.c[2], b.r, ops_F[op], ops_Fv[op], ops_gv[op], ops_gs[op],
+             ops_f[op], ops_f[op], ops_g[op], ops_gs[op]);
     return s;
 }
 

@@ -116,6 +116,105 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     *dt = v44_t;
     return v44;
 }
+#ifndef IACSG_POWNV
+#define IACSG_POWNV 1
+IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
+    int done;
+    ia_realv d = iav_pown_point(a, n, &done);
+    if (done)
+        return d;
+    if (n > 8 || n < -8)
+        return iav_pown_by_lane(a, n);
+    ia_realv r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
+#endif
+IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
+    ia_realv v9 = x + IACSG_K(-0x1p+0f, -0x1p+0);
+    ia_realv v9_dx = IAV_R(1);
+    ia_realv v10 = v9 * v9;
+    ia_realv v10_dx = (ia_real)2 * v9 * v9_dx;
+    ia_realv v11 = y * y;
+    ia_realv v11_dy = (ia_real)2 * y * IAV_R(1);
+    ia_realv v12 = v10 + v11;
+    ia_realv v12_dx = v10_dx;
+    ia_realv v12_dy = v11_dy;
+    ia_realv v13 = z * z;
+    ia_realv v13_dz = (ia_real)2 * z * IAV_R(1);
+    ia_realv v14 = v12 + v13;
+    ia_realv v14_dx = v12_dx;
+    ia_realv v14_dy = v12_dy;
+    ia_realv v14_dz = v13_dz;
+    ia_realv v16 = v14 + IACSG_K(-0x1p-2f, -0x1p-2);
+    ia_realv v16_dx = v14_dx;
+    ia_realv v16_dy = v14_dy;
+    ia_realv v16_dz = v14_dz;
+    ia_realv v17 = fabs(x);
+    ia_realv v17_dx = (x < 0 ? -IAV_R(1) : IAV_R(1));
+    ia_realv v18 = fabs(y);
+    ia_realv v18_dy = (y < 0 ? -IAV_R(1) : IAV_R(1));
+    ia_realv v19 = fabs(z);
+    ia_realv v19_dz = (z < 0 ? -IAV_R(1) : IAV_R(1));
+    ia_realv v20 = v17 + IACSG_K(-0x1p+0f, -0x1p+0);
+    ia_realv v20_dx = v17_dx;
+    ia_realv v21 = v18 + IACSG_K(-0x1p+0f, -0x1p+0);
+    ia_realv v21_dy = v18_dy;
+    ia_realv v22 = v19 + IACSG_K(-0x1p+0f, -0x1p+0);
+    ia_realv v22_dz = v19_dz;
+    ia_realv v23 = iav_real_max(v20, v21);
+    ia_realv v23_dx = (v20 >= v21 ? v20_dx : IAV_R(0));
+    ia_realv v23_dy = (v20 >= v21 ? IAV_R(0) : v21_dy);
+    ia_realv v24 = iav_real_max(v22, v23);
+    ia_realv v24_dx = (v22 >= v23 ? IAV_R(0) : v23_dx);
+    ia_realv v24_dy = (v22 >= v23 ? IAV_R(0) : v23_dy);
+    ia_realv v24_dz = (v22 >= v23 ? v22_dz : IAV_R(0));
+    ia_realv v30 = x * IAV_R(IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1));
+    ia_realv v30_dx = IAV_R(1) * IAV_R(IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1));
+    ia_realv v32 = y * IAV_R(IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1));
+    ia_realv v32_dy = IAV_R(1) * IAV_R(IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1));
+    ia_realv v33 = v30 + v32;
+    ia_realv v33_dx = v30_dx;
+    ia_realv v33_dy = v32_dy;
+    ia_realv v34 = y * IAV_R(IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1));
+    ia_realv v34_dy = IAV_R(1) * IAV_R(IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bccp-1));
+    ia_realv v35 = x * IAV_R(IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1));
+    ia_realv v35_dx = IAV_R(1) * IAV_R(IACSG_K(0x1.6a09e6p-1f, 0x1.6a09e667f3bcdp-1));
+    ia_realv v36 = v34 - v35;
+    ia_realv v36_dx = -v35_dx;
+    ia_realv v36_dy = v34_dy;
+    ia_realv v37 = v33 * v33;
+    ia_realv v37_dx = (ia_real)2 * v33 * v33_dx;
+    ia_realv v37_dy = (ia_real)2 * v33 * v33_dy;
+    ia_realv v38 = v36 * v36;
+    ia_realv v38_dx = (ia_real)2 * v36 * v36_dx;
+    ia_realv v38_dy = (ia_real)2 * v36 * v36_dy;
+    ia_realv v39 = v37 + v38;
+    ia_realv v39_dx = v37_dx + v38_dx;
+    ia_realv v39_dy = v37_dy + v38_dy;
+    ia_realv v41 = v39 + IACSG_K(-0x1p-4f, -0x1p-4);
+    ia_realv v41_dx = v39_dx;
+    ia_realv v41_dy = v39_dy;
+    ia_realv v42 = -v41;
+    ia_realv v42_dx = -v41_dx;
+    ia_realv v42_dy = -v41_dy;
+    ia_realv v43 = iav_real_max(v24, v42);
+    ia_realv v43_dx = (v24 >= v42 ? v24_dx : v42_dx);
+    ia_realv v43_dy = (v24 >= v42 ? v24_dy : v42_dy);
+    ia_realv v43_dz = (v24 >= v42 ? v24_dz : IAV_R(0));
+    ia_realv v44 = fmin(v16, v43);
+    ia_realv v44_dx = (v16 <= v43 || v43 != v43 ? v16_dx : v43_dx);
+    ia_realv v44_dy = (v16 <= v43 || v43 != v43 ? v16_dy : v43_dy);
+    ia_realv v44_dz = (v16 <= v43 || v43 != v43 ? v16_dz : v43_dz);
+    g[0] = v44_dx;
+    g[1] = v44_dy;
+    g[2] = v44_dz;
+    return v44;
+}
 #else
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     ia_interval v9 = ia_add_r(x, IACSG_K(-0x1p+0f, -0x1p+0));

@@ -50,6 +50,58 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     ia_maskv v16_e = v13_e || v15_e;
     return iav_or_outside(v16, v16_u, v16_e);
 }
+#ifndef IACSG_POWNV
+#define IACSG_POWNV 1
+IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
+    int done;
+    ia_realv d = iav_pown_point(a, n, &done);
+    if (done)
+        return d;
+    if (n > 8 || n < -8)
+        return iav_pown_by_lane(a, n);
+    ia_realv r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
+#endif
+IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
+    ia_realv v2 = iacsg_pownv(x, 3);
+    ia_realv v2_dx = (ia_real)3 * iacsg_pownv(x, 3 - 1) * IAV_R(1);
+    ia_realv v5 = sqrt(y);
+    v5 = select(v5, IAV_R(NAN), y < 0);
+    ia_realv v5_dy = IAV_R(1) / ((ia_real)2 * v5);
+    ia_realv v6 = v2 + v5;
+    ia_realv v6_dx = v2_dx;
+    ia_realv v6_dy = v5_dy;
+    ia_realv v10 = iacsg_pownv(z, -2);
+    v10 = select(v10, IAV_R(NAN), -2 < 0 && z <= 0 && z >= 0);
+    ia_realv v10_dz = (ia_real)-2 * iacsg_pownv(z, -2 - 1) * IAV_R(1);
+    ia_realv v11 = v6 + v10;
+    ia_realv v11_dx = v6_dx;
+    ia_realv v11_dy = v6_dy;
+    ia_realv v11_dz = v10_dz;
+    ia_realv v12 = x * x;
+    ia_realv v12_dx = (ia_real)2 * x * IAV_R(1);
+    ia_realv v13 = v11 + v12;
+    ia_realv v13_dx = v11_dx + v12_dx;
+    ia_realv v13_dy = v11_dy;
+    ia_realv v13_dz = v11_dz;
+    ia_realv v15 = iav_pow_point(y, IAV_R(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
+    v15 = select(v15, IAV_R(NAN), y < 0 || (y <= 0 && IAV_R(IACSG_K(0x1.8p+0f, 0x1.8p+0)) <= 0));
+    ia_realv v15_dy = v15 * (IAV_R(0) * log(y) + IAV_R(IACSG_K(0x1.8p+0f, 0x1.8p+0)) * IAV_R(1) / y);
+    ia_realv v16 = v13 + v15;
+    ia_realv v16_dx = v13_dx;
+    ia_realv v16_dy = v13_dy + v15_dy;
+    ia_realv v16_dz = v13_dz;
+    g[0] = v16_dx;
+    g[1] = v16_dy;
+    g[2] = v16_dz;
+    return v16;
+}
 #else
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     ia_interval v2 = ia_pown(x, 3);

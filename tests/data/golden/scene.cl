@@ -59,6 +59,57 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     *dt = v16_t;
     return v16;
 }
+#ifndef IACSG_POWNV
+#define IACSG_POWNV 1
+IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
+    int done;
+    ia_realv d = iav_pown_point(a, n, &done);
+    if (done)
+        return d;
+    if (n > 8 || n < -8)
+        return iav_pown_by_lane(a, n);
+    ia_realv r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
+#endif
+IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
+    ia_realv v3 = x * x;
+    ia_realv v3_dx = (ia_real)2 * x * IAV_R(1);
+    ia_realv v5 = y * y;
+    ia_realv v5_dy = (ia_real)2 * y * IAV_R(1);
+    ia_realv v6 = v3 + v5;
+    ia_realv v6_dx = v3_dx;
+    ia_realv v6_dy = v5_dy;
+    ia_realv v8 = z * z;
+    ia_realv v8_dz = (ia_real)2 * z * IAV_R(1);
+    ia_realv v9 = v6 + v8;
+    ia_realv v9_dx = v6_dx;
+    ia_realv v9_dy = v6_dy;
+    ia_realv v9_dz = v8_dz;
+    ia_realv v11 = v9 - IAV_R(IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1));
+    ia_realv v11_dx = v9_dx;
+    ia_realv v11_dy = v9_dy;
+    ia_realv v11_dz = v9_dz;
+    ia_realv v14 = v6 - IAV_R(IACSG_K(0x1.70a3d8p-4f, 0x1.70a3d70a3d70bp-4));
+    ia_realv v14_dx = v6_dx;
+    ia_realv v14_dy = v6_dy;
+    ia_realv v15 = -v14;
+    ia_realv v15_dx = -v14_dx;
+    ia_realv v15_dy = -v14_dy;
+    ia_realv v16 = iav_real_max(v11, v15);
+    ia_realv v16_dx = (v11 >= v15 ? v11_dx : v15_dx);
+    ia_realv v16_dy = (v11 >= v15 ? v11_dy : v15_dy);
+    ia_realv v16_dz = (v11 >= v15 ? v11_dz : IAV_R(0));
+    g[0] = v16_dx;
+    g[1] = v16_dy;
+    g[2] = v16_dz;
+    return v16;
+}
 #else
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     ia_interval v3 = ia_sqr(x);

@@ -31,6 +31,40 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v6 = iav_min(v3, v5);
     return v6;
 }
+#ifndef IACSG_POWNV
+#define IACSG_POWNV 1
+IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
+    int done;
+    ia_realv d = iav_pown_point(a, n, &done);
+    if (done)
+        return d;
+    if (n > 8 || n < -8)
+        return iav_pown_by_lane(a, n);
+    ia_realv r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
+#endif
+IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
+    ia_realv v1 = iav_sin_point(x);
+    ia_realv v1_dx = iav_cos_point(x) * IAV_R(1);
+    ia_realv v3 = v1 * y;
+    ia_realv v3_dx = v1_dx * y;
+    ia_realv v3_dy = v1 * IAV_R(1);
+    ia_realv v5 = v1 + IAV_R(IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4));
+    ia_realv v5_dx = v1_dx;
+    ia_realv v6 = fmin(v3, v5);
+    ia_realv v6_dx = (v3 <= v5 || v5 != v5 ? v3_dx : v5_dx);
+    ia_realv v6_dy = (v3 <= v5 || v5 != v5 ? v3_dy : IAV_R(0));
+    g[0] = v6_dx;
+    g[1] = v6_dy;
+    g[2] = IAV_R(0);
+    return v6;
+}
 #else
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     ia_interval v1 = ia_sin(x);

@@ -153,6 +153,126 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     *dt = iav_entire_where(v48_t, undefined);
     return iav_or_outside(v48, v48_u, v48_e);
 }
+#ifndef IACSG_POWNV
+#define IACSG_POWNV 1
+IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
+    int done;
+    ia_realv d = iav_pown_point(a, n, &done);
+    if (done)
+        return d;
+    if (n > 8 || n < -8)
+        return iav_pown_by_lane(a, n);
+    ia_realv r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
+#endif
+IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
+    ia_realv v2 = x * x;
+    ia_realv v2_dx = (ia_real)2 * x * IAV_R(1);
+    ia_realv v4 = y * y;
+    ia_realv v4_dy = (ia_real)2 * y * IAV_R(1);
+    ia_realv v5 = v2 + v4;
+    ia_realv v5_dx = v2_dx;
+    ia_realv v5_dy = v4_dy;
+    ia_realv v8 = v5 - IAV_R(IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1));
+    ia_realv v8_dx = v5_dx;
+    ia_realv v8_dy = v5_dy;
+    ia_realv v9 = v8 * v8;
+    ia_realv v9_dx = (ia_real)2 * v8 * v8_dx;
+    ia_realv v9_dy = (ia_real)2 * v8 * v8_dy;
+    ia_realv v11 = z * z;
+    ia_realv v11_dz = (ia_real)2 * z * IAV_R(1);
+    ia_realv v14 = v11 + IACSG_K(-0x1p+0f, -0x1p+0);
+    ia_realv v14_dz = v11_dz;
+    ia_realv v15 = v14 * v14;
+    ia_realv v15_dz = (ia_real)2 * v14 * v14_dz;
+    ia_realv v16 = v9 + v15;
+    ia_realv v16_dx = v9_dx;
+    ia_realv v16_dy = v9_dy;
+    ia_realv v16_dz = v15_dz;
+    ia_realv v17 = v4 + v11;
+    ia_realv v17_dy = v4_dy;
+    ia_realv v17_dz = v11_dz;
+    ia_realv v18 = v17 - IAV_R(IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1));
+    ia_realv v18_dy = v17_dy;
+    ia_realv v18_dz = v17_dz;
+    ia_realv v19 = v18 * v18;
+    ia_realv v19_dy = (ia_real)2 * v18 * v18_dy;
+    ia_realv v19_dz = (ia_real)2 * v18 * v18_dz;
+    ia_realv v20 = v2 + IACSG_K(-0x1p+0f, -0x1p+0);
+    ia_realv v20_dx = v2_dx;
+    ia_realv v21 = v20 * v20;
+    ia_realv v21_dx = (ia_real)2 * v20 * v20_dx;
+    ia_realv v22 = v19 + v21;
+    ia_realv v22_dx = v21_dx;
+    ia_realv v22_dy = v19_dy;
+    ia_realv v22_dz = v19_dz;
+    ia_realv v23 = v16 * v22;
+    ia_realv v23_dx = v16_dx * v22 + v16 * v22_dx;
+    ia_realv v23_dy = v16_dy * v22 + v16 * v22_dy;
+    ia_realv v23_dz = v16_dz * v22 + v16 * v22_dz;
+    ia_realv v24 = v2 + v11;
+    ia_realv v24_dx = v2_dx;
+    ia_realv v24_dz = v11_dz;
+    ia_realv v25 = v24 - IAV_R(IACSG_K(0x1.47ae14p-1f, 0x1.47ae147ae147bp-1));
+    ia_realv v25_dx = v24_dx;
+    ia_realv v25_dz = v24_dz;
+    ia_realv v26 = v25 * v25;
+    ia_realv v26_dx = (ia_real)2 * v25 * v25_dx;
+    ia_realv v26_dz = (ia_real)2 * v25 * v25_dz;
+    ia_realv v27 = v4 + IACSG_K(-0x1p+0f, -0x1p+0);
+    ia_realv v27_dy = v4_dy;
+    ia_realv v28 = v27 * v27;
+    ia_realv v28_dy = (ia_real)2 * v27 * v27_dy;
+    ia_realv v29 = v26 + v28;
+    ia_realv v29_dx = v26_dx;
+    ia_realv v29_dy = v28_dy;
+    ia_realv v29_dz = v26_dz;
+    ia_realv v30 = v23 * v29;
+    ia_realv v30_dx = v23_dx * v29 + v23 * v29_dx;
+    ia_realv v30_dy = v23_dy * v29 + v23 * v29_dy;
+    ia_realv v30_dz = v23_dz * v29 + v23 * v29_dz;
+    ia_realv v32 = v30 - IAV_R(IACSG_K(0x1.47ae14p-6f, 0x1.47ae147ae147bp-6));
+    ia_realv v32_dx = v30_dx;
+    ia_realv v32_dy = v30_dy;
+    ia_realv v32_dz = v30_dz;
+    ia_realv v33 = v5 + v11;
+    ia_realv v33_dx = v5_dx;
+    ia_realv v33_dy = v5_dy;
+    ia_realv v33_dz = v11_dz;
+    ia_realv v34 = v33 + IACSG_K(-0x1p+0f, -0x1p+0);
+    ia_realv v34_dx = v33_dx;
+    ia_realv v34_dy = v33_dy;
+    ia_realv v34_dz = v33_dz;
+    ia_realv v40 = t + IACSG_K(-0x1p-1f, -0x1p-1);
+    ia_realv v41 = v40 * IACSG_K(-0x1.8p+3f, -0x1.8p+3);
+    ia_realv v42 = exp(v41);
+    ia_realv v43 = v42 + IACSG_K(0x1p+0f, 0x1p+0);
+    ia_realv v44 = 1 / v43;
+    v44 = select(v44, IAV_R(NAN), v43 <= 0 && v43 >= 0);
+    ia_realv v45 = IAV_R(IACSG_K(0x1p+0f, 0x1p+0)) - v44;
+    ia_realv v46 = v32 * v45;
+    ia_realv v46_dx = v32_dx * v45;
+    ia_realv v46_dy = v32_dy * v45;
+    ia_realv v46_dz = v32_dz * v45;
+    ia_realv v47 = v34 * v44;
+    ia_realv v47_dx = v34_dx * v44;
+    ia_realv v47_dy = v34_dy * v44;
+    ia_realv v47_dz = v34_dz * v44;
+    ia_realv v48 = v46 + v47;
+    ia_realv v48_dx = v46_dx + v47_dx;
+    ia_realv v48_dy = v46_dy + v47_dy;
+    ia_realv v48_dz = v46_dz + v47_dz;
+    g[0] = v48_dx;
+    g[1] = v48_dy;
+    g[2] = v48_dz;
+    return v48;
+}
 #else
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     ia_interval v2 = ia_sqr(x);

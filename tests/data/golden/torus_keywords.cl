@@ -81,6 +81,57 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     *dt = iav_entire_where(v16_t, undefined);
     return iav_or_outside(v16, v16_u, v16_e);
 }
+#ifndef IACSG_POWNV
+#define IACSG_POWNV 1
+IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
+    int done;
+    ia_realv d = iav_pown_point(a, n, &done);
+    if (done)
+        return d;
+    if (n > 8 || n < -8)
+        return iav_pown_by_lane(a, n);
+    ia_realv r = 1, p = a;
+    for (int m = n < 0 ? -n : n; m > 0; m >>= 1) {
+        if (m & 1)
+            r *= p;
+        p *= p;
+    }
+    return n < 0 ? 1 / r : r;
+}
+#endif
+IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_realv g[3]) {
+    ia_realv v4 = x * x;
+    ia_realv v4_dx = (ia_real)2 * x * IAV_R(1);
+    ia_realv v6 = y * y;
+    ia_realv v6_dy = (ia_real)2 * y * IAV_R(1);
+    ia_realv v7 = v4 + v6;
+    ia_realv v7_dx = v4_dx;
+    ia_realv v7_dy = v6_dy;
+    ia_realv v8 = sqrt(v7);
+    v8 = select(v8, IAV_R(NAN), v7 < 0);
+    ia_realv v8_dx = v7_dx / ((ia_real)2 * v8);
+    ia_realv v8_dy = v7_dy / ((ia_real)2 * v8);
+    ia_realv v10 = z * z;
+    ia_realv v10_dz = (ia_real)2 * z * IAV_R(1);
+    ia_realv v11 = IAV_R(IACSG_K(0x1p+0f, 0x1p+0)) - v8;
+    ia_realv v11_dx = -v8_dx;
+    ia_realv v11_dy = -v8_dy;
+    ia_realv v12 = v11 * v11;
+    ia_realv v12_dx = (ia_real)2 * v11 * v11_dx;
+    ia_realv v12_dy = (ia_real)2 * v11 * v11_dy;
+    ia_realv v13 = v10 + v12;
+    ia_realv v13_dx = v12_dx;
+    ia_realv v13_dy = v12_dy;
+    ia_realv v13_dz = v10_dz;
+    ia_realv v16 = v13 + IACSG_K(-0x1p-4f, -0x1p-4);
+    ia_realv v16_dx = v13_dx;
+    ia_realv v16_dy = v13_dy;
+    ia_realv v16_dz = v13_dz;
+    g[0] = v16_dx;
+    g[1] = v16_dy;
+    g[2] = v16_dz;
+    return v16;
+}
 #else
 IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interval t) {
     ia_interval v4 = ia_sqr(x);
