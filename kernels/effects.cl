@@ -231,18 +231,19 @@ __attribute__((noinline)) static void effects_centre(__constant ia_real *params,
                                                      const ia_realv o_ray[3], const ia_realv d_ray[3],
                                                      ia_realv hit_lo, const ia_realv n_hit[3], shade_colorv color[3],
                                                      packet_index *rays, packet_index *evals) {
-    shade_colorv acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
     if (!iav_any(live & hit)) { /* the background alone, as effects_paths gives it, without reading the rays: a
                                  * packet the tile pass proved empty has them zeroed in halves just before this
                                  * call, and loading them whole waited for those stores (a fifth of this
-                                 * function's CPU samples) */
+                                 * function's CPU samples); nor adding it to a zeroed sum, whose load waited on
+                                 * the zeroing's stores in halves (a fifth again, with transparency) */
         shade_colorv bg[3];
         effects_background(fx, packet_to_real(row), height, bg);
-        effects_add(acc, live, IAV_R(1), bg);
+        IAV_CAT(int, IA_VW) lanes = IAV_CAT(convert_int, IA_VW)(live) != 0;
         for (int c = 0; c < 3; c++)
-            color[c] = sqrt(fmin(fmax(acc[c], 0.0f), 1.0f));
+            color[c] = select((shade_colorv)0, sqrt(fmin(fmax(bg[c], 0.0f), 1.0f)), lanes);
         return;
     }
+    shade_colorv acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
     ia_realv o[3], d[3], n[3], t = hit_lo;
     for (int c = 0; c < 3; c++) {
         o[c] = o_ray[c];
