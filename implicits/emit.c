@@ -418,40 +418,30 @@ static int sin_cos_statement(strbuf *b, const emitter *em, int i, role r, char *
     return 1;
 }
 
+/* A derivative rule for node n whose operands' derivatives are identically 0 where zero_a, zero_b say: a sum's
+ * or a product's other term alone (forms: a + b with a' = 0, then b' = 0; a - b; a b), else `general`. */
+static const char *pruned_rule(const dag_node *n, int zero_a, int zero_b, const char *const forms[6],
+                               const char *general) {
+    int k = n->op == OP_ADD ? 0 : n->op == OP_SUB ? 2 : n->op == OP_MUL ? 4 : -1;
+    return k < 0 ? general : zero_a ? forms[k] : zero_b ? forms[k + 1] : general;
+}
+
 /* Node i's derivative along a ray one box at a time (AS_TDERIV): ops.def's tderiv column, but a sum or product with
  * an operand whose derivative is identically 0 is the other term alone, as over lanes (vector_tderiv): not a
  * product by [0, 0] and a rounded addition of it (icos.csg's tau y, tau z, tau x). */
 static const char *scalar_tderiv(const emitter *em, const dag_node *n) {
-    int zero_a = n->a >= 0 && !em->axes[n->a], zero_b = n->b >= 0 && !em->axes[n->b];
-    switch (n->op) {
-    case OP_ADD:
-        return zero_a ? "DB" : zero_b ? "DA" : dag_ops[n->op].tderiv;
-    case OP_SUB:
-        return zero_a ? "ia_neg(DB)" : zero_b ? "DA" : dag_ops[n->op].tderiv;
-    case OP_MUL:
-        return zero_a ? "ia_mul(A, DB)" : zero_b ? "ia_mul(DA, B)" : dag_ops[n->op].tderiv;
-    default:
-        return dag_ops[n->op].tderiv;
-    }
+    static const char *const forms[6] = {"DB", "DA", "ia_neg(DB)", "DA", "ia_mul(A, DB)", "ia_mul(DA, B)"};
+    return pruned_rule(n, n->a >= 0 && !em->axes[n->a], n->b >= 0 && !em->axes[n->b], forms,
+                       dag_ops[n->op].tderiv);
 }
 
-/* Node n's derivative along the emitter's axis over lanes (AS_DERIVV): ops.def's derivative column, but a sum or
- * product with an operand whose derivative along the axis is identically 0 is the other term alone (the scalar
- * code's 4-vectors compute the product by 0 and add it; they differ only where that product is NaN, where the
- * other operand is infinite or NaN). */
+/* Node n's derivative along the emitter's axis over lanes (AS_DERIVV): ops.def's derivative column, pruned as
+ * scalar_tderiv (the scalar code's 4-vectors compute the product by 0 and add it; they differ only where that
+ * product is NaN, where the other operand is infinite or NaN). */
 static const char *lanes_derivative(const emitter *em, const dag_node *n) {
-    int zero_a = n->a >= 0 && !(em->axes[n->a] >> em->axis & 1);
-    int zero_b = n->b >= 0 && !(em->axes[n->b] >> em->axis & 1);
-    switch (n->op) {
-    case OP_ADD:
-        return zero_a ? "DB" : zero_b ? "DA" : dag_ops[n->op].derivative;
-    case OP_SUB:
-        return zero_a ? "-DB" : zero_b ? "DA" : dag_ops[n->op].derivative;
-    case OP_MUL:
-        return zero_a ? "A * DB" : zero_b ? "DA * B" : dag_ops[n->op].derivative;
-    default:
-        return dag_ops[n->op].derivative;
-    }
+    static const char *const forms[6] = {"DB", "DA", "-DB", "DA", "A * DB", "DA * B"};
+    return pruned_rule(n, n->a >= 0 && !(em->axes[n->a] >> em->axis & 1),
+                       n->b >= 0 && !(em->axes[n->b] >> em->axis & 1), forms, dag_ops[n->op].derivative);
 }
 
 /* Node i's gradient over lanes: a statement per axis its derivative depends on (v<i>_dx, _dy, _dz). */
