@@ -350,7 +350,7 @@ ELAPSED=$(( $(date +%s) - T_START ))
     echo "CPU for the first command of a while, none for the next; a first run pays it only when no server was running)."
     echo "The fixed start-up of a command (its shared libraries, the OpenCL platform and device: \`iacsg devices\`) is"
     echo "**${STARTUP_MS} ms** (median of 5): wall - build - render - start-up is parsing, writing (the \`-stats\` write:"
-    echo "the image to 8 bits, the PNG in the writer, the rename) and exit."
+    echo "the image to 8 bits where the camera kernel did not write bytes, the PNG in the writer, the rename) and exit."
     echo ""
     echo "## Targets (issue 5, and issue 16 where it set a tighter one)"
     echo ""
