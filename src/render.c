@@ -252,6 +252,9 @@ iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_vie
 /* The images are device buffers over the frame's own host arrays (CL_MEM_USE_HOST_PTR): on a CPU device the
  * kernel writes them in place, where a copy would cost as much as a third of an empty frame. So are the counts
  * of -stats (evals, tile_evals; NULL without). */
+/* The bytes of b's colour image of n pixels: 3 bytes a pixel (frame.rgb8) or 3 floats. */
+static size_t rgb_image_size(const frame_buffers *b, size_t n) { return 3 * n * (b->rgb_bytes ? 1 : sizeof(float)); }
+
 static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t n, size_t tiles_n,
                                    size_t packets_n, iacsg_frame *f, cl_uint *evals, cl_uint *tile_evals,
                                    frame_buffers *b, iacsg_error *err) {
@@ -263,8 +266,7 @@ static iacsg_status create_buffers(iacsg_renderer *r, const void *params, size_t
     CLRT_CHECK(err, rc);
     cl_mem_flags image = CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR;
     b->rgb_bytes = f->rgb8 != NULL;
-    b->rgb = clCreateBuffer(ctx, image, 3 * n * (b->rgb_bytes ? 1 : sizeof(float)),
-                            b->rgb_bytes ? (void *)f->rgb8 : (void *)f->rgb, &rc);
+    b->rgb = clCreateBuffer(ctx, image, rgb_image_size(b, n), b->rgb_bytes ? (void *)f->rgb8 : (void *)f->rgb, &rc);
     CLRT_CHECK(err, rc);
     if (f->depth) {
         b->depth = clCreateBuffer(ctx, image, n * sizeof(float), f->depth, &rc);
@@ -408,7 +410,7 @@ static iacsg_status read_back(iacsg_renderer *r, const frame_buffers *b, const r
     cl_command_queue q = r->rt.queue;
     /* Mapping a USE_HOST_PTR buffer makes its host array current (a no-op on a CPU device). */
     cl_mem images[6] = {b->rgb, b->depth, b->normal, b->evals, b->tile_evals, fx->counts};
-    size_t sizes[6] = {3 * n * (b->rgb_bytes ? 1 : sizeof(float)), n * sizeof(float), 3 * n * sizeof(float),
+    size_t sizes[6] = {rgb_image_size(b, n), n * sizeof(float), 3 * n * sizeof(float),
                        2 * packets_n * sizeof(cl_uint), tiles_n * sizeof(cl_uint), 2 * packets_n * sizeof(cl_uint)};
     for (int k = 0; k < 6; k++) {
         if (!images[k])
