@@ -141,6 +141,12 @@ IA_FN ia_interval ia_sqrt(ia_interval a) {
 #define IA_POWN_CHAIN_MAX ((3 * IA_ULP_POW + 3) / 2 + 1)
 #endif
 
+/* Up to this exponent the chain runs in the format itself even where the device has double: its two or three
+ * products, each rounded outward, are 2.25 (n - 1) + 2 <= 18 steps out (far below what an ulp of uncertainty in x
+ * costs, n ulps), and over lanes cost a fraction of ia__pown_double's conversions to double and back (the heart's
+ * two cubes, libfive's view at 2048x2048: 88 -> 71 ms). */
+#define IA_POWN_FORMAT_MAX 8
+
 #ifdef IA_DEVICE_DOUBLE
 /* The float at or below (above) the double b: rounded to nearest, then moved one step out (ia_lo, ia_hi) where
  * that landed on the wrong side. Without branches (select): a branch on the rounding's direction is
@@ -217,7 +223,7 @@ IA_FN ia_real ia__pown_nonneg(ia_real x, unsigned int n, int dir) {
     if (x == 0)
         return 0;
 #ifdef IA_DEVICE_DOUBLE
-    if (n <= IA_POWN_CHAIN_MAX)
+    if (n > IA_POWN_FORMAT_MAX && n <= IA_POWN_CHAIN_MAX)
         return ia__pown_double(x, n, dir);
 #endif
     if (n > IA_POWN_CHAIN_MAX) {

@@ -23,8 +23,8 @@
  *   / and sqrt (2 within 2^(p+3) subnormal steps of 0, p = 24 or 53); 3k+3 for a function with a k-ulp bound
  *   (k+1 from the function and its rounding, 2k+2 from the widening); pown: about 2.25 (|n|-1) + 2 up to
  *   |n| = IA_POWN_CHAIN_MAX (4 on the host, 1024 on the device), that of pow above it, doubled for n < 0;
- *   float pown, sin and cos on a device with double compute in double and round once: about 1 step
- *   (IA_DEVICE_DOUBLE, ia/compat.h). sin and cos return +-1 exactly when the
+ *   float pown beyond IA_POWN_FORMAT_MAX = 8 (ia/arith.h), sin and cos on a device with double compute in
+ *   double and round once: about 1 step (IA_DEVICE_DOUBLE, ia/compat.h). sin and cos return +-1 exactly when the
  *   interval may contain an extremum, and find out whether it does from the derivative's signs when the
  *   interval is shorter than 2 pi (so huge arguments stay tight); sqr and even pown of an interval holding 0
  *   start at exactly 0. Nothing returns [-inf, +inf] unless the true range is unbounded on both sides.

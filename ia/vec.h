@@ -230,8 +230,9 @@ IAV_INLINE ia_realv iav__pown_double(ia_realv x, unsigned int n, ia_realv s) {
 #endif
 IAV_INLINE ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
 #ifdef IA_DEVICE_DOUBLE
-    return select(iav__pown_double(x, n, s), IAV_R(0), x == 0);
-#else
+    if (n > IA_POWN_FORMAT_MAX)
+        return select(iav__pown_double(x, n, s), IAV_R(0), x == 0);
+#endif
     ia_realv r = IAV_R(1), b = x;
     int first = 1; /* as in ia__pown_nonneg: the first factor unrounded */
     while (1) {
@@ -243,7 +244,6 @@ IAV_INLINE ia_realv iav__pown_nonneg(ia_realv x, unsigned int n, ia_realv s) {
             return select(r, IAV_R(0), x == 0);
         b = iav__round_dir(b * b, s);
     }
-#endif
 }
 
 /* The scalar ia/ operation in each lane, for the operations with no vector version. */
