@@ -7,7 +7,7 @@
  *
  * Stages, as ia__sincos_reduced: the lanes' narrow ones by one reduction at their midpoint (ia__sincos_mid_of),
  * where that declines or a lane is wide by the reductions of both ends (ia__sincos_ends_of), each computed only
- * where some lane needs it, then chosen lane by lane.
+ * where some lane needs it, then chosen lane by lane. iav_sin_cos takes both from the same reductions.
  *
  * Also sin and cos at points in lanes, iav_sin_point and iav_cos_point (as ia_sin_point, ia_cos_point), for the
  * emitted point code over lanes (P_f_gradv, the kernels' shading).
@@ -106,43 +106,68 @@ IAV_INLINE iav iav__sincos_ends_of(iav__reduced e0, iav__reduced e1, int shift) 
     return iav_make(select(b.lo, IAV_R(-1), (hits & 2) != 0), select(b.hi, IAV_R(1), (hits & 1) != 0));
 }
 
-/* cos (shift 0) or sin (shift 1) of a whose lanes all lie within IA__REDUCED_MAX: ia__sincos_reduced's choices. */
-IAV_INLINE iav iav__sincos_reduced(iav a, int shift) {
+/* sin (into *s where want_sin) and cos (*c where want_cos) of a whose lanes all lie within IA__REDUCED_MAX:
+ * ia__sincos_reduced's choices, each point the lanes need (the midpoint of the narrow ones, both ends where that
+ * declines or a lane is wide) reduced once for both. want_sin and want_cos are constants after inlining. */
+IAV_INLINE void iav__sincos_reduced(iav a, int want_sin, int want_cos, iav *s, iav *c) {
     iav__doublev lo = iav__to_double(a.lo), hi = iav__to_double(a.hi);
     ia_maskv narrow = iav__to_mask(hi - lo <= 2 * IA__NARROW);
-    iav r = iav_make(IAV_R(-2), IAV_R(-2));
+    *s = *c = iav_make(IAV_R(-2), IAV_R(-2));
     if (iav_any(narrow)) {
         iav__doublev m = 0.5 * (lo + hi), d = fmax(hi - m, m - lo) * (1 + 0x1p-50);
-        iav mid = iav__sincos_mid_of(iav__reduced_at(m), d, shift);
-        r = iav_make(select(r.lo, mid.lo, narrow), select(r.hi, mid.hi, narrow));
+        iav__reduced p = iav__reduced_at(m);
+        if (want_sin)
+            *s = iav__pick(*s, iav__sincos_mid_of(p, d, 1), narrow);
+        if (want_cos)
+            *c = iav__pick(*c, iav__sincos_mid_of(p, d, 0), narrow);
     }
-    ia_maskv ends = r.lo == -2;
-    if (iav_any(ends)) {
-        iav e = iav__sincos_ends_of(iav__reduced_at(lo), iav__reduced_at(hi), shift);
-        r = iav_make(select(r.lo, e.lo, ends), select(r.hi, e.hi, ends));
+    ia_maskv ends_s = want_sin ? s->lo == -2 : (ia_maskv)0, ends_c = want_cos ? c->lo == -2 : (ia_maskv)0;
+    if (iav_any(ends_s | ends_c)) {
+        iav__reduced e0 = iav__reduced_at(lo), e1 = iav__reduced_at(hi);
+        if (iav_any(ends_s))
+            *s = iav__pick(*s, iav__sincos_ends_of(e0, e1, 1), ends_s);
+        if (iav_any(ends_c))
+            *c = iav__pick(*c, iav__sincos_ends_of(e0, e1, 0), ends_c);
     }
-    return r;
 }
 
-/* cos (shift 0) or sin (shift 1): the lanes within IA__REDUCED_MAX (not NaN nor infinite) reduced in double, the
+/* sin and cos as wanted (above): the lanes within IA__REDUCED_MAX (not NaN nor infinite) reduced in double, the
  * others by ia/'s scalar operation, lane by lane where any is left. */
-IAV_INLINE iav iav__sincos(iav a, int shift) {
+IAV_INLINE void iav__sincos(iav a, int want_sin, int want_cos, iav *s, iav *c) {
+    *s = *c = a; /* (every lane is set below) */
     ia_maskv reduces = fabs(a.lo) <= (ia_real)IA__REDUCED_MAX & fabs(a.hi) <= (ia_real)IA__REDUCED_MAX;
-    if (!iav_any(reduces))
-        return shift ? iav__sin_by_lane(a) : iav__cos_by_lane(a);
-    iav r = iav__sincos_reduced(iav_make(select(IAV_R(0), a.lo, reduces), select(IAV_R(0), a.hi, reduces)), shift);
+    if (iav_any(reduces))
+        iav__sincos_reduced(iav_make(select(IAV_R(0), a.lo, reduces), select(IAV_R(0), a.hi, reduces)), want_sin,
+                            want_cos, s, c);
     if (iav_any(~reduces)) {
-        iav s = shift ? iav__sin_by_lane(a) : iav__cos_by_lane(a);
-        r = iav_make(select(s.lo, r.lo, reduces), select(s.hi, r.hi, reduces));
+        if (want_sin)
+            *s = iav__pick(iav__sin_by_lane(a), *s, reduces);
+        if (want_cos)
+            *c = iav__pick(iav__cos_by_lane(a), *c, reduces);
     }
-    return r;
 }
 #else
-IAV_INLINE iav iav__sincos(iav a, int shift) { return shift ? iav__sin_by_lane(a) : iav__cos_by_lane(a); }
+IAV_INLINE void iav__sincos(iav a, int want_sin, int want_cos, iav *s, iav *c) {
+    if (want_sin)
+        *s = iav__sin_by_lane(a);
+    if (want_cos)
+        *c = iav__cos_by_lane(a);
+}
 #endif
 
-IA_FN iav iav_sin(iav a) { return iav__sincos(a, 1); }
-IA_FN iav iav_cos(iav a) { return iav__sincos(a, 0); }
+IA_FN iav iav_sin(iav a) {
+    iav s, unused;
+    iav__sincos(a, 1, 0, &s, &unused);
+    return s;
+}
+IA_FN iav iav_cos(iav a) {
+    iav unused, c;
+    iav__sincos(a, 0, 1, &unused, &c);
+    return c;
+}
+/* Both, with the bits of iav_sin and iav_cos, from one reduction: the emitted code pairs a sin and a cos of one
+ * argument (implicits/emit.c), as a gyroid's three arguments have. */
+IA_FN void iav_sin_cos(iav a, iav *s, iav *c) { iav__sincos(a, 1, 1, s, c); }
 
 /* cos (shift 0) or sin (shift 1) at points, as ia_cos_point and ia_sin_point: the lanes within IA__REDUCED_MAX by
  * ia__sincos_point's reduction and kernels in double, the others (and all where that reduction is not compiled)

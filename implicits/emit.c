@@ -402,19 +402,59 @@ static void flag_statement(strbuf *b, const emitter *em, int i, role value, char
  * interval code computes its flag, the point code makes it NaN where its own operation is undefined (NaN then
  * spreads through the arithmetic; at a point, tan's poles are never met, so its condition on R is left out),
  * and the derivative along a ray gathers the flags of such operations in `undefined`. */
-/* Along a ray, one box at a time, sin's derivative needs cos of the same argument and cos's sin: node i's value
- * statement computes both from one argument reduction (ia/elem.h's ia_sin_cos) into v<i> and v<i>_cos or
- * v<i>_sin, and its derivative is made of the other (the template in buf). Returns 0 for other nodes and roles.
- * icos.csg's Newton steps took 12 reductions for its 6 cosines. */
-static int sin_cos_statement(strbuf *b, const emitter *em, int i, role r, char *buf, size_t size) {
+/* sin and cos of one argument share its reduction (ia/elem.h's ia_sin_cos, ia/vec_sincos.h's iav_sin_cos): in the
+ * interval code, a sin and a cos over the same operand among the nodes of order[] are one statement, at the first
+ * of them (a gyroid's three arguments have both: libfive's view at 1024x1024, 203 -> 139 ms), and along a ray (where sin's derivative
+ * needs the cos of its argument and cos's the sin) a sin or cos without its partner computes both into v<i> and
+ * v<i>_cos or v<i>_sin (icos.csg's Newton steps took 12 reductions for its 6 cosines). partner[i]: that other
+ * node, or -1; a malloc'ed array indexed by node (NULL with no memory: no pairs). */
+static int *sin_cos_partners(const emitter *em, const int *order, int count) {
+    int *partner = malloc(((size_t)em->d->count + 1) * sizeof *partner);
+    if (!partner)
+        return NULL;
+    for (int k = 0; k < count; k++)
+        partner[order[k]] = -1;
+    for (int k = 0; k < count; k++) {
+        const dag_node *n = &em->d->nodes[order[k]];
+        if (n->op != OP_SIN)
+            continue;
+        for (int q = 0; q < count && partner[order[k]] < 0; q++) {
+            const dag_node *m = &em->d->nodes[order[q]];
+            if (m->op == OP_COS && m->a == n->a && partner[order[q]] < 0) {
+                partner[order[k]] = order[q];
+                partner[order[q]] = order[k];
+            }
+        }
+    }
+    return partner;
+}
+
+/* Node i's statement where it is paired (see above): returns 1 with the template of its derivative along a ray in
+ * buf (the other's value), 0 for other nodes and roles. The later node of a pair has no statement of its own. */
+static int sin_cos_statement(strbuf *b, const emitter *em, const int *partner, int i, role r, char *buf,
+                             size_t size) {
     const dag_node *n = &em->d->nodes[i];
-    if (r != AS_INTERVAL_DT || !em->axes[i] || (n->op != OP_SIN && n->op != OP_COS))
+    if (!is_interval(r) || (n->op != OP_SIN && n->op != OP_COS))
         return 0;
-    int is_sin = n->op == OP_SIN;
-    strbuf_printf(b, "    ia_interval v%d, v%d_%s;\n    ia_sin_cos(", i, i, is_sin ? "cos" : "sin");
-    put_operand(b, em, n->a, AS_INTERVAL);
-    strbuf_printf(b, is_sin ? ", &v%d, &v%d_cos);\n" : ", &v%d_sin, &v%d);\n", i, i);
-    snprintf(buf, size, is_sin ? "ia_mul(v%d_cos, DA)" : "ia_neg(ia_mul(v%d_sin, DA))", i);
+    int is_sin = n->op == OP_SIN, j = partner ? partner[i] : -1;
+    if (j < 0 && !(is_along_ray(r) && em->axes[i]))
+        return 0;
+    char other[32];
+    if (j >= 0)
+        snprintf(other, sizeof other, "v%d", j);
+    else
+        snprintf(other, sizeof other, "v%d_%s", i, is_sin ? "cos" : "sin");
+    snprintf(buf, size, is_sin ? "ia_mul(%s, DA)" : "ia_neg(ia_mul(%s, DA))", other);
+    if (j >= 0 && j < i)
+        return 1;
+    int vector = is_vector(r);
+    strbuf_printf(b, "    %s v%d, %s;\n    %s(", vector ? "iav" : "ia_interval", i, other,
+                  vector ? "iav_sin_cos" : "ia_sin_cos");
+    put_operand(b, em, n->a, vector ? AS_VECTOR : AS_INTERVAL);
+    if (is_sin)
+        strbuf_printf(b, ", &v%d, &%s);\n", i, other);
+    else
+        strbuf_printf(b, ", &%s, &v%d);\n", other, i);
     return 1;
 }
 
@@ -472,6 +512,7 @@ static void nan_where_undefined(strbuf *b, const emitter *em, int i, role value)
 }
 
 static void body(strbuf *b, const emitter *em, const int *order, int count, role r) {
+    int *partner = is_interval(r) ? sin_cos_partners(em, order, count) : NULL;
     role value = r == AS_VECTOR_DT     ? AS_VECTOR
                  : r == AS_INTERVAL_DT ? AS_INTERVAL
                  : r == AS_DERIV       ? AS_POINT
@@ -487,7 +528,7 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
                            : is_vector(r)    ? "iav"
                                              : "ia_interval";
         char paired[64];
-        int sin_cos = sin_cos_statement(b, em, i, r, paired, sizeof paired);
+        int sin_cos = sin_cos_statement(b, em, partner, i, r, paired, sizeof paired);
         if (!sin_cos) {
             strbuf_printf(b, "    %s v%d = ", type, i);
             expand(b, em, i, is_interval(r) ? dag_ops[n->op].interval : dag_ops[n->op].point, value);
@@ -515,12 +556,13 @@ static void body(strbuf *b, const emitter *em, const int *order, int count, role
             char composed[64];
             strbuf_printf(b, "    %s v%d_t = ", type, i);
             if (r == AS_VECTOR_DT)
-                expand(b, em, i, vector_tderiv(em, n, composed, sizeof composed), AS_VTDERIV);
+                expand(b, em, i, sin_cos ? paired : vector_tderiv(em, n, composed, sizeof composed), AS_VTDERIV);
             else
                 expand(b, em, i, sin_cos ? paired : scalar_tderiv(em, n), AS_TDERIV);
         }
         strbuf_printf(b, ";\n");
     }
+    free(partner);
 }
 
 /* Whether any node of order[] has an operation that may be undefined. */

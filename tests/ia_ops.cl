@@ -154,6 +154,12 @@ IA_FN iav ia_test_vapply(int op, iav a, iav b, int n, ia_real c) {
     case IA_OP_MAX: return iav_max(a, b);
     case IA_OP_ADD_R: return iav_add_r(a, c);
     case IA_OP_MUL_R: return iav_mul_r(a, c);
+    case IA_TEST_SIN_COS_SIN:
+    case IA_TEST_SIN_COS_COS: { /* iav_sin_cos's (tests/t_ia_vec_device_fp.c compares them with iav_sin, iav_cos) */
+        iav s, co;
+        iav_sin_cos(a, &s, &co);
+        return op == IA_TEST_SIN_COS_SIN ? s : co;
+    }
     }
     return iav_point((ia_real)NAN);
 }

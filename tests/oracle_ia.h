@@ -42,6 +42,10 @@ typedef struct {
     ia_real c;
 } ia_case;
 
+/* tests/ia_ops.cl's codes for the sin and the cos of ia_sin_cos (and over lanes iav_sin_cos), after the ops of
+ * tests/oracle.h (tests/t_ia_device_fp.c, t_ia_vec_device_fp.c). */
+enum { IA_TEST_SIN_COS_SIN = 1000, IA_TEST_SIN_COS_COS };
+
 #define GEN_NO_SUBNORMAL 1 /* for IA_FTZ: no subnormal bound (the contract's precondition there) */
 
 /* A real as a device that flushes subnormals reads it: a subnormal one is a zero of its sign. */

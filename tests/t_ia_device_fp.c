@@ -30,8 +30,6 @@ static struct {
     char err[1024];
 } dev;
 
-/* ia_test_ops's codes for the sin and the cos of ia_sin_cos (after the ops of tests/oracle.h). */
-enum { IA_TEST_SIN_COS_SIN = 1000, IA_TEST_SIN_COS_COS };
 
 /* "#define IA_OP_ADD 0" ... from the op list of tests/oracle.h, so host and device number the ops alike. */
 static const char *prelude(void) {
@@ -366,15 +364,8 @@ TEST_FP(ia_device_ulps) {
  * of either (where the midpoint way gives way to the end points), past the double reduction's range, points, empty
  * and unbounded ones. */
 
-TEST_FP(ia_device_sin_cos) {
-    char err[1024];
-    long count = test_iters(20000);
-    ia_case *k = calloc((size_t)count, sizeof *k);
-    ia_real *out[4];
-    for (int j = 0; j < 4; j++)
-        out[j] = malloc(sizeof *out[j] * 2 * (size_t)count);
-    CHECK(k && out[0] && out[1] && out[2] && out[3], "out of memory");
-    test_rng_t *r = test_rng();
+/* The cases (count >= 3; also tests/t_ia_vec_device_fp.c's for iav_sin_cos). */
+void FP_NAME(ia_sin_cos_cases)(test_rng_t *r, ia_case *k, long count) {
     for (long i = 0; i < count; i++) {
         double centre = (test_rand_unit(r) * 2 - 1) * (i % 5 == 4 ? 0x1p21 : i % 5 == 3 ? 20 : 1e3);
         if (i % 7 == 0) /* near a multiple of pi/2: a zero of sin or cos */
@@ -386,6 +377,17 @@ TEST_FP(ia_device_sin_cos) {
     k[0].a = ia_empty();
     k[1].a = ia_make(-IA_INF, 1);
     k[2].a = ia_entire();
+}
+
+TEST_FP(ia_device_sin_cos) {
+    char err[1024];
+    long count = test_iters(20000);
+    ia_case *k = calloc((size_t)count, sizeof *k);
+    ia_real *out[4];
+    for (int j = 0; j < 4; j++)
+        out[j] = malloc(sizeof *out[j] * 2 * (size_t)count);
+    CHECK(k && out[0] && out[1] && out[2] && out[3], "out of memory");
+    FP_NAME(ia_sin_cos_cases)(test_rng(), k, count);
     int ops[4] = {ORACLE_SIN, ORACLE_COS, IA_TEST_SIN_COS_SIN, IA_TEST_SIN_COS_COS};
     for (int j = 0; j < 4; j++)
         if (FP_NAME(ia_dev_ops)(0, ops[j], k, count, out[j], err, sizeof err)) {

@@ -23,6 +23,9 @@
 int FP_NAME(ia_dev_ops_in)(int mode, const char *extra, const char *kernel, int lanes, int op, const ia_case *k,
                            long count, ia_real *out, char *err, size_t size);
 
+/* tests/t_ia_device_fp.c: the cases of its ia_sin_cos test. */
+void FP_NAME(ia_sin_cos_cases)(test_rng_t *r, ia_case *k, long count);
+
 #define GROUP 16 /* cases are padded to a multiple of every width tested */
 static const int widths[] = {8, 16};
 #define NW ((int)(sizeof widths / sizeof widths[0]))
@@ -229,6 +232,39 @@ TEST_FP(ia_vec_min) { run_vec_op(ORACLE_MIN); }
 TEST_FP(ia_vec_max) { run_vec_op(ORACLE_MAX); }
 TEST_FP(ia_vec_add_r) { run_vec_op(ORACLE_ADD_R); }
 TEST_FP(ia_vec_mul_r) { run_vec_op(ORACLE_MUL_R); }
+
+/* ---- iav_sin_cos: both from one reduction of each point, the bits of iav_sin and iav_cos in every lane (which the
+ * tests above hold to ia/'s and to MPFR), on ia_device_sin_cos's cases: narrow, wide, near a zero of either, past
+ * the double reduction's range, points, empty and unbounded. */
+
+TEST_FP(ia_vec_sin_cos) {
+    long count = (test_iters(20000) + GROUP - 1) / GROUP * GROUP;
+    ia_case *k = calloc((size_t)count, sizeof *k);
+    ia_real *out[4];
+    for (int j = 0; j < 4; j++)
+        out[j] = malloc(sizeof *out[j] * 2 * (size_t)count);
+    CHECK(k && out[0] && out[1] && out[2] && out[3], "out of memory");
+    FP_NAME(ia_sin_cos_cases)(test_rng(), k, count);
+    const int ops[4] = {ORACLE_SIN, ORACLE_COS, IA_TEST_SIN_COS_SIN, IA_TEST_SIN_COS_COS};
+    char err[1024] = "";
+    long differ = 0, first = -1;
+    for (int w = 0; w < NW && !err[0]; w++) {
+        for (int j = 0; j < 4 && !err[0]; j++)
+            if (FP_NAME(ia_dev_ops_in)(0, vw_option(widths[w]), "ia_test_vops", widths[w], ops[j], k, count, out[j],
+                                       err, sizeof err))
+                break;
+        for (long i = 0; i < 2 * count && !err[0]; i++)
+            for (int j = 0; j < 2; j++)
+                if (!same_bits(out[j][i], out[j + 2][i]) && differ++ == 0)
+                    first = i;
+    }
+    ia_interval a = first >= 0 ? k[first / 2].a : ia_empty();
+    free(k), free(out[0]), free(out[1]), free(out[2]), free(out[3]);
+    CHECK(!err[0], "%s", err);
+    CHECK(differ == 0, "%ld bounds of iav_sin_cos differ from iav_sin's or iav_cos's, first for [%a, %a]", differ,
+          (double)a.lo, (double)a.hi);
+    test_note("%ld intervals at IA_VW=8 and 16, sin and cos alike", count);
+}
 
 /* ---- the comparison can fail: iav_ built with IA_FAST (no widening) against the rigorous ia/ */
 
