@@ -404,10 +404,10 @@ static void flag_statement(strbuf *b, const emitter *em, int i, role value, char
  * and the derivative along a ray gathers the flags of such operations in `undefined`. */
 /* sin and cos of one argument share its reduction (ia/elem.h's ia_sin_cos, ia/vec_sincos.h's iav_sin_cos): in the
  * interval code, a sin and a cos over the same operand among the nodes of order[] are one statement, at the first
- * of them (a gyroid's three arguments have both: libfive's view at 1024x1024, 203 -> 139 ms), and along a ray (where sin's derivative
- * needs the cos of its argument and cos's the sin) a sin or cos without its partner computes both into v<i> and
- * v<i>_cos or v<i>_sin (icos.csg's Newton steps took 12 reductions for its 6 cosines). partner[i]: that other
- * node, or -1; a malloc'ed array indexed by node (NULL with no memory: no pairs). */
+ * of them (a gyroid's three arguments have both: libfive's view at 1024x1024, 203 -> 139 ms), and along a ray
+ * (where sin's derivative needs the cos of its argument and cos's the sin) a sin or cos without its partner computes
+ * both into v<i> and v<i>_cos or v<i>_sin (icos.csg's Newton steps took 12 reductions for its 6 cosines).
+ * partner[i]: that other node, or -1; a malloc'ed array indexed by node (NULL with no memory: no pairs). */
 static int *sin_cos_partners(const emitter *em, const int *order, int count) {
     int *partner = malloc(((size_t)em->d->count + 1) * sizeof *partner);
     if (!partner)
