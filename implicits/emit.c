@@ -444,7 +444,11 @@ static int sin_cos_statement(strbuf *b, const emitter *em, const int *partner, i
         snprintf(other, sizeof other, "v%d", j);
     else
         snprintf(other, sizeof other, "v%d_%s", i, is_sin ? "cos" : "sin");
-    snprintf(buf, size, is_sin ? "ia_mul(%s, DA)" : "ia_neg(ia_mul(%s, DA))", other);
+    int rate = is_vector(r) && em->d->nodes[n->a].op <= OP_Z; /* a leaf's: a point per lane (vector_tderiv) */
+    if (is_sin)
+        snprintf(buf, size, rate ? "ia_mul_pv(%s, DA.lo)" : "ia_mul(%s, DA)", other);
+    else
+        snprintf(buf, size, rate ? "ia_neg(ia_mul_pv(%s, DA.lo))" : "ia_neg(ia_mul(%s, DA))", other);
     if (j >= 0 && j < i)
         return 1;
     int vector = is_vector(r);
@@ -790,10 +794,12 @@ static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *
 
 /* Whether the kernels should refine roots by interval Newton (iacsg_Fdv, kernels/packet.h): only where its
  * derivative is about as cheap as the value and varies little over a small box. Measured on the seed scenes:
- * the reference view's sphere and torus 50 -> 40 ms, the sigmoid blend 127 -> 94, but with sin and cos (the
- * derivative of each needs the other, which runs lane by lane) 162 -> 206, and x^500 (whose derivative x^499
- * moves too fast for Newton to contract) 167 -> 188. So not with sin, cos, pow (whose derivative needs a log)
- * or powers above 8; exp, tan, atan and log have derivatives made of their own values and cheap operations.
+ * the reference view's sphere and torus 50 -> 40 ms, the sigmoid blend 127 -> 94, but x^500 (whose derivative
+ * x^499 moves too fast for Newton to contract) 167 -> 188. So not with pow (whose derivative needs a log) or
+ * powers above 8; exp, tan, atan and log have derivatives made of their own values and cheap operations, and sin
+ * and cos each other, from the same reduction (sin_cos_statement). (When sin and cos ran lane by lane, Newton took
+ * a trigonometric scene from 162 to 206 ms; now a gyroid in a ball at eps 1e-5 goes 260 -> 214 ms, 7.70 -> 6.23
+ * evaluations a ray, at most 1696 -> 166, and Fig. 7's trigtorus | sphere 57 -> 53 ms.)
  * The segment path's secondary rays (kernels/scene_effects.cl) march with the derivative at any power
  * (IACSG_FDV_MARCH, march.h's effects_march): its mean value form bounds F over a step along the ray, where F's
  * enclosure over the step's box (each coordinate on its own) reaches back towards the surface the ray leaves.
@@ -806,8 +812,6 @@ static int newton_pays(const dag *d, const int *order, int count, int max_power)
     for (int k = 0; k < count; k++) {
         const dag_node *n = &d->nodes[order[k]];
         switch (n->op) {
-        case OP_SIN:
-        case OP_COS:
         case OP_POW:
             return 0;
         case OP_POWN:

@@ -13,7 +13,7 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, int march, char
 int emit_union_parts(const dag *d, int root, int **out);
 
 /* 1 when interval Newton pays for the nodes order[0 .. count-1] (their derivative is about as cheap as their
- * value: no sin, cos, pow or high power, emit.c says why); the tape interpreter (tape.c) asks it per part. */
+ * value: no pow or high power, emit.c says why); the tape interpreter (tape.c) asks it per part. */
 int emit_newton_pays(const dag *d, const int *order, int count);
 
 /* 1 for a character of a C identifier (the templates of ops.def are scanned word by word). */

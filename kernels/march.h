@@ -265,7 +265,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
 #endif
 
 #if IA_DEVICE && defined(IA_VW) && !defined(IACSG_SCALAR_CODE) /* (as packet.h's lanes) */
-/* Where F has no derivative code (implicits/emit.c: newton_pays, e.g. sin, cos, pow), the same march by F's enclosure
+/* Where F has no derivative code (implicits/emit.c: newton_pays, e.g. pow, x^500), the same march by F's enclosure
  * over each step alone: a step whose enclosure excludes 0 is root-free (a moves to b; the next step 8 times as
  * long, twice after one that fell short), else the step is halved, down to a leaf no longer than eps whose
  * enclosure holds 0 (the hit; every part a passed is root-free, so the leaf's start is never after the first

@@ -31,6 +31,20 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v6 = iav_min(v3, v5);
     return v6;
 }
+#define IACSG_FDV 1
+IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav *dt) {
+    iav v1, v1_cos;
+    iav_sin_cos(x, &v1, &v1_cos);
+    iav v1_t = iav_mul_pv(v1_cos, dx.lo);
+    iav v3 = iav_mul(v1, y);
+    iav v3_t = iav_add(iav_mul(v1_t, y), iav_mul_pv(v1, dy.lo));
+    iav v5 = iav_add(v1, iav_const(IACSG_K(0x1.999998p-4f, 0x1.9999999999999p-4), IACSG_K(0x1.99999ap-4f, 0x1.999999999999ap-4)));
+    iav v5_t = v1_t;
+    iav v6 = iav_min(v3, v5);
+    iav v6_t = iav_dmin(v3, v5, v3_t, v5_t);
+    *dt = v6_t;
+    return v6;
+}
 #ifndef IACSG_POWNV
 #define IACSG_POWNV 1
 IAV_INLINE ia_realv iacsg_pownv(ia_realv a, int n) {
