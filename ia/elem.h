@@ -18,11 +18,54 @@
 #define IA_INVPI_HI 0x1.45f308p-2f
 #endif
 
+#ifdef IA_DEVICE_DOUBLE
+/* Float exp on the device from a reduction and a polynomial in double, where the device has double: PoCL's vector
+ * exp differs from its scalar one in some lanes, so ia/vec.h ran exp lane by lane, 46 % of the sigmoid blend's
+ * render (Fig. 8); these operations, the same over lanes (ia/vec.h: iav_exp), give both the same bits, within a
+ * step or two of the exact bound where the platform's, widened by its 3 ulps, were up to 12.
+ *
+ * x is clamped to [IA__EXP_FLOOR, IA__EXP_CEIL], outside which e^x is under half the smallest subnormal or over
+ * 2^128 (the bounds below are then 0 and the next float up, or MAX and +inf, as they must). There x = k ln2 + r
+ * with k = rint(x / ln2) (|k| <= 160) and r = (x - k L1) - k L2, where L1 + L2 = ln 2 to within 2^-85 and L1 has
+ * 32 significant bits (fdlibm's ln2HI, ln2LO): k L1 is exact, and so is x - k L1 (both on the grid of 2^-32 where
+ * k != 0, since then |x| > 1/4, and under 1 in size); k = 0 leaves r = x. So r is within 2^-53 |r| + 2^-76 of
+ * x - k ln2, and |r| <= ln2/2 up to the rounding of x / ln2. e^r by its Taylor polynomial of degree 12 in Horner's
+ * form: the remainder is under (ln2/2)^13/13! e^(ln2/2) < 2^-51 of e^r, the roundings under 26 ulps of double;
+ * 2^k scales exactly. So v is within 2^-47 v of e^x, and v -+ 2^-40 v round outward to float (ia__float_below,
+ * ia__float_above). */
+#define IA__EXP_FLOOR (-110.0)
+#define IA__EXP_CEIL 100.0
+#define IA__LN2_HI 6.93147180369123816490e-01
+#define IA__LN2_LO 1.90821492927058770002e-10
+#define IA__INV_LN2 1.44269504088896338700e+00
+/* The polynomial, for a double or a vector of doubles (ia/vec.h). */
+#define IA__EXP_POLY(r)                                                                                          \
+    (1 + (r) * (1 + (r) * (1.0 / 2 + (r) * (1.0 / 6 + (r) * (1.0 / 24 + (r) * (1.0 / 120 + (r) * (1.0 / 720 +        \
+     (r) * (1.0 / 5040 + (r) * (1.0 / 40320 + (r) * (1.0 / 362880 + (r) * (1.0 / 3628800 +                        \
+     (r) * (1.0 / 39916800 + (r) * (1.0 / 479001600)))))))))))))
+/* e^x in double as above (x clamped), and e^x rounded to nearest float: the emitted point code's (ia_exp_point),
+ * so that a point's value lies in ia_exp's bounds over any interval holding the point. */
+IA_FN double ia__exp_double(ia_real x) {
+    double c = fmin(fmax((double)x, IA__EXP_FLOOR), IA__EXP_CEIL), k = rint(c * IA__INV_LN2);
+    double r = (c - k * IA__LN2_HI) - k * IA__LN2_LO;
+    return IA__EXP_POLY(r) * as_double((long)((int)k + 1023) << 52);
+}
+IA_FN ia_real ia_exp_point(ia_real x) { return (ia_real)ia__exp_double(x); }
+#define IA__EXP_PAD 0x1p-40
+#else
+IA_FN ia_real ia_exp_point(ia_real x) { return exp(x); }
+#endif
+
 /* exp(a): increasing, result >= 0. Empty stays empty; exp(-inf) = 0, exp(+inf) = +inf. */
 IA_FN ia_interval ia_exp(ia_interval a) {
     if (ia_is_empty(a))
         return a;
+#ifdef IA_DEVICE_DOUBLE
+    double lo = ia__exp_double(a.lo), hi = ia__exp_double(a.hi);
+    return ia_make(fmax(ia__float_below(lo - lo * IA__EXP_PAD), (ia_real)0), ia__float_above(hi + hi * IA__EXP_PAD));
+#else
     return ia_make(fmax(ia_lo_k(exp(a.lo), IA_ULP_EXP), (ia_real)0), ia_hi_k(exp(a.hi), IA_ULP_EXP));
+#endif
 }
 
 /* log(a) on its domain (0, +inf]: a is clipped to it; a <= 0 entirely (including [0,0]) gives empty, and a

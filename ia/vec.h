@@ -14,9 +14,10 @@
  * A NaN that reaches the end fails iav_contains_zero, as an empty interval would.
  *
  * The polynomial operations (neg + - * sqr pown sqrt abs min max, add_r, mul_r), / and recip away from their
- * poles, and log are vector code. The others (exp sin cos tan atan pow, / and recip by an interval holding 0,
- * and pown with a negative or very large exponent) run ia/'s scalar operation lane by lane: correct, not
- * faster; a lane with a NaN bound is passed to them as empty. sin and cos: ia/vec_sincos.h.
+ * poles, and log are vector code, and so are exp, sin and cos where the device has double (ia/elem.h's reductions
+ * in double; sin and cos in ia/vec_sincos.h). The others (tan atan pow, / and recip by an interval holding 0, pown
+ * with a negative or very large exponent, and exp, sin and cos elsewhere) run ia/'s scalar operation lane by lane:
+ * correct, not faster; a lane with a NaN bound is passed to them as empty.
  */
 #ifndef IA_VEC_H
 #define IA_VEC_H
@@ -204,9 +205,33 @@ IAV_INLINE ia_realv iav__round_dir(ia_realv r, ia_realv s) {
 }
 #ifdef IA_DEVICE_DOUBLE
 typedef IAV_CAT(double, IA_VW) iav__doublev;
+typedef IAV_CAT(long, IA_VW) iav__longv;
 #define iav__to_double IAV_CAT(convert_double, IA_VW)
 #define iav__to_real IAV_CAT(convert_float, IA_VW)
 #define iav__to_mask IAV_CAT(convert_int, IA_VW)
+/* ia__float_below and ia__float_above in lanes: rounded to nearest, then a step out where that landed inside. */
+IAV_INLINE ia_realv iav__float_below(iav__doublev b) {
+    ia_realv f = iav__to_real(b);
+#ifdef IA_FAST
+    return f;
+#else
+    return select(f, iav_lo(f), iav__to_mask(iav__to_double(f) > b));
+#endif
+}
+IAV_INLINE ia_realv iav__float_above(iav__doublev b) {
+    ia_realv f = iav__to_real(b);
+#ifdef IA_FAST
+    return f;
+#else
+    return select(f, iav_hi(f), iav__to_mask(iav__to_double(f) < b));
+#endif
+}
+/* ia__exp_double in lanes (ia/elem.h), the same operations in the same order: bit-identical. */
+IAV_INLINE iav__doublev iav__exp_double(ia_realv x) {
+    iav__doublev c = fmin(fmax(iav__to_double(x), (iav__doublev)IA__EXP_FLOOR), (iav__doublev)IA__EXP_CEIL);
+    iav__doublev k = rint(c * IA__INV_LN2), r = (c - k * IA__LN2_HI) - k * IA__LN2_LO;
+    return IA__EXP_POLY(r) * IAV_CAT(as_double, IA_VW)((IAV_CAT(convert_long, IA_VW)(k) + 1023) << 52);
+}
 /* ia__pown_double in lanes (x > 0 in the lanes that count), the same operations in the same order: bit-identical. */
 IAV_INLINE ia_realv iav__pown_double(ia_realv x, unsigned int n, ia_realv s) {
     iav__doublev r = (iav__doublev)1, b = iav__to_double(x);
@@ -275,7 +300,15 @@ IA_FN iav iav__recip_by_lane(iav a) {
     IAV_LANEWISE(ia_recip(A));
 }
 __attribute__((noinline)) static iav iav__div_by_lane(iav a, iav b) { IAV_LANEWISE(ia_div(A, B)); }
+#ifdef IA_DEVICE_DOUBLE
+/* ia_exp's bounds from ia__exp_double, in lanes. */
+IA_FN iav iav_exp(iav a) {
+    iav__doublev lo = iav__exp_double(a.lo), hi = iav__exp_double(a.hi);
+    return iav_make(fmax(iav__float_below(lo - lo * IA__EXP_PAD), IAV_R(0)), iav__float_above(hi + hi * IA__EXP_PAD));
+}
+#else
 IAV_UNARY_BY_LANE(exp)
+#endif
 IAV_UNARY_BY_LANE(atan)
 IAV_UNARY_BY_LANE(tan)
 IAV_BINARY_BY_LANE(pow)
@@ -362,6 +395,15 @@ IA_FN ia_realv iav_pow_point(ia_realv a, ia_realv b) { IAV_POINT_LANEWISE(pow(A,
 IA_FN ia_realv iav_tan_point(ia_realv a) {
     ia_realv b = a;
     IAV_POINT_LANEWISE(tan(A));
+}
+/* ia_exp_point: from ia__exp_double in lanes where the device has double (the same bits), else lane by lane. */
+IA_FN ia_realv iav_exp_point(ia_realv a) {
+#ifdef IA_DEVICE_DOUBLE
+    return iav__to_real(iav__exp_double(a));
+#else
+    ia_realv b = a;
+    IAV_POINT_LANEWISE(ia_exp_point(A));
+#endif
 }
 IAV_INLINE ia_realv iav_pown_by_lane(ia_realv a, int n) {
     ia_realv b = a;

@@ -27,7 +27,6 @@ __attribute__((noinline)) static iav iav__cos_by_lane(iav a) {
 }
 
 #ifdef IA_DEVICE_DOUBLE
-typedef IAV_CAT(long, IA_VW) iav__longv;
 #define iav__to_long IAV_CAT(convert_long, IA_VW)
 
 /* x reduced in lanes (ia__reduced_at): k, r, sin r, cos r. */
@@ -59,12 +58,7 @@ IAV_INLINE iav__doublev iav__sincos_pad(iav__doublev v, iav__longv k) {
 
 /* ia__sincos_bounds in lanes (ia__float_below and ia__float_above: RN, then a step out where it landed inside). */
 IAV_INLINE iav iav__sincos_bounds(iav__doublev lo, iav__doublev hi, iav__doublev pad_lo, iav__doublev pad_hi) {
-    iav__doublev b_lo = lo - pad_lo, b_hi = hi + pad_hi;
-    ia_realv f_lo = iav__to_real(b_lo), f_hi = iav__to_real(b_hi);
-#ifndef IA_FAST
-    f_lo = select(f_lo, iav_lo(f_lo), iav__to_mask(iav__to_double(f_lo) > b_lo));
-    f_hi = select(f_hi, iav_hi(f_hi), iav__to_mask(iav__to_double(f_hi) < b_hi));
-#endif
+    ia_realv f_lo = iav__float_below(lo - pad_lo), f_hi = iav__float_above(hi + pad_hi);
     return iav_make(select(f_lo, IAV_R(-1), f_lo < -1), select(f_hi, IAV_R(1), f_hi > 1));
 }
 

@@ -242,12 +242,13 @@ int emit_reciprocal_enclosure(const dag_node *c, double d[2], float f[2]) {
 }
 
 /* The point code's functions whose lanes version is not the OpenCL built-in of the same name: the powers (see
- * POINT_POWN), ia_sin_point and ia_cos_point's, ia_real_max's, and the built-ins that PoCL's vectors get wrong in
- * some lanes (ia/vec.h: IAV_POINT_LANEWISE). NULL for the others. */
+ * POINT_POWN), ia_sin_point, ia_cos_point and ia_exp_point's, ia_real_max's, and the built-ins that PoCL's vectors
+ * get wrong in some lanes (ia/vec.h: IAV_POINT_LANEWISE). NULL for the others. */
 static const char *lanes_function(const char *name, size_t len) {
     static const char *const lanes[][2] = {{"pown", "iacsg_pownv"},     {"sin", "iav_sin_point"},
                                            {"cos", "iav_cos_point"},    {"tan", "iav_tan_point"},
-                                           {"pow", "iav_pow_point"},    {"ia_real_max", "iav_real_max"}};
+                                           {"pow", "iav_pow_point"},    {"ia_real_max", "iav_real_max"},
+                                           {"exp", "iav_exp_point"}};
     for (size_t k = 0; k < sizeof lanes / sizeof lanes[0]; k++)
         if (strlen(lanes[k][0]) == len && strncmp(name, lanes[k][0], len) == 0)
             return lanes[k][1];
@@ -317,8 +318,8 @@ static void expand(strbuf *b, const emitter *em, int i, const char *tpl, role r)
             strbuf_printf(b, "%s", lanes_function(p, len));
         else if (!is_interval(r) && IS("pown"))
             strbuf_printf(b, "iacsg_pown"); /* the point code's powers: see POINT_POWN */
-        else if (!is_interval(r) && (IS("sin") || IS("cos")))
-            strbuf_printf(b, "ia_%.*s_point", (int)len, p); /* as ia_sin and ia_cos compute (ia/elem.h) */
+        else if (!is_interval(r) && (IS("sin") || IS("cos") || IS("exp")))
+            strbuf_printf(b, "ia_%.*s_point", (int)len, p); /* as ia_sin, ia_cos, ia_exp compute (ia/elem.h) */
         else
             strbuf_append(b, p, len);
 #undef IS

@@ -251,7 +251,7 @@ IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_
     ia_realv v34_dz = v33_dz;
     ia_realv v40 = t + IACSG_K(-0x1p-1f, -0x1p-1);
     ia_realv v41 = v40 * IACSG_K(-0x1.8p+3f, -0x1.8p+3);
-    ia_realv v42 = exp(v41);
+    ia_realv v42 = iav_exp_point(v41);
     ia_realv v43 = v42 + IACSG_K(0x1p+0f, 0x1p+0);
     ia_realv v44 = 1 / v43;
     v44 = select(v44, IAV_R(NAN), v43 <= 0 && v43 >= 0);
@@ -450,7 +450,7 @@ IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *
     iacsg_grad v34_d = v33_d;
     ia_real v40 = t + IACSG_K(-0x1p-1f, -0x1p-1);
     ia_real v41 = v40 * IACSG_K(-0x1.8p+3f, -0x1.8p+3);
-    ia_real v42 = exp(v41);
+    ia_real v42 = ia_exp_point(v41);
     ia_real v43 = v42 + IACSG_K(0x1p+0f, 0x1p+0);
     ia_real v44 = 1 / v43;
     v44 = v43 <= 0 && v43 >= 0 ? (ia_real)NAN : v44;
