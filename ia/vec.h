@@ -165,6 +165,32 @@ IA_FN iav iav_mul(iav a, iav b) {
     return iav_make(iav_lo(fmin(fmin(p1, p2), fmin(p3, p4))), iav_hi(fmax(fmax(p1, p2), fmax(p3, p4))));
 }
 
+/* ---- operands known to start at 0 or above (lo >= 0 in every lane that counts), which the emitter proves node by
+ * node (implicits/emit_signs.c). A product of such is [a.lo b.lo, a.hi b.hi], not the min and max of four; a sum or
+ * product of such is >= 0 too, so its lower bound, which the widening may take below 0, is clamped at 0 (tighter
+ * than iav_add's and iav_mul's, never wider), and the next operation may rely on it; such a result needs no
+ * |r| to widen its upper bound, nor a clamp. iav_mul_n takes one operand >= 0 and one of any sign: two products,
+ * chosen by the other's signs, with iav_mul's bits; so has iav_sqr_nn iav_sqr's. */
+#ifdef IA_FAST
+#define iav__hi_nonneg(r) (r)
+#else
+#define iav__hi_nonneg(r) fma((r), IAV_R(IA_PAD_C(0)), (r) + IA_PAD_T(0)) /* iav_hi's value for r >= 0 */
+#endif
+IA_FN ia_realv iav__lo_clamped(ia_realv r) { return fmax(iav_lo(r), IAV_R(0)); }
+IA_FN iav iav_add_nn(iav a, iav b) { return iav_make(iav__lo_clamped(a.lo + b.lo), iav__hi_nonneg(a.hi + b.hi)); }
+IA_FN iav iav_add_r_nn(iav a, ia_real c) { return iav_make(iav__lo_clamped(a.lo + c), iav__hi_nonneg(a.hi + c)); }
+IA_FN iav iav_mul_r_nn(iav a, ia_real c) { return iav_make(iav__lo_clamped(a.lo * c), iav__hi_nonneg(a.hi * c)); }
+IA_FN iav iav_mul_nn(iav a, iav b) { /* a.lo b.lo is never 0 * inf: a nonempty lower bound is finite */
+    return iav_make(iav__lo_clamped(a.lo * b.lo), iav__hi_nonneg(iav__mul0(a.hi, b.hi)));
+}
+IA_FN iav iav_mul_n(iav a, iav b) {
+    ia_realv lo = iav__mul0(select(a.hi, a.lo, b.lo >= 0), b.lo), hi = iav__mul0(select(a.lo, a.hi, b.hi >= 0), b.hi);
+    return iav_make(iav_lo(lo), iav_hi(hi));
+}
+IA_FN iav iav_sqr_nn(iav a) {
+    return iav_make(iav__lo_clamped(a.lo * a.lo), select(iav__hi_nonneg(a.hi * a.hi), IAV_R(0), a.hi == 0));
+}
+
 /* The derivative code's products (implicits/emit.c: the derivative along a ray, whose leaves move at the rates
  * of the ray's direction, one point per lane). a * [p, p]: iav_mul's result (the same two products, the same
  * rounding) without the two products and four comparisons a point makes redundant. 2a: exact but where it

@@ -1,6 +1,7 @@
 /* implicits/tape.c -- tape_build (see tape.h for the stages and the layout). */
 #include "tape.h"
 #include "emit.h"
+#include "emit_signs.h"
 #include "eval.h"
 #include "ia/flush.h"
 #include <math.h>
@@ -120,6 +121,7 @@ typedef struct {
     int *slot, *last_use, *used_as_interval, *uses; /* per node */
     unsigned char *squared;   /* per node: its instruction also squares it (TAPE_THEN_SQR) */
     unsigned char *undefined; /* per node, as emit.c's */
+    unsigned char *nonneg;    /* per node, as emit.c's (emit_signs.h) */
     int max_slots;
     int flagged; /* the part last lowered has an instruction that may be undefined */
 } builder;
@@ -229,7 +231,9 @@ static int lower_part(builder *b, const int *order, int count, int *result_slot)
         unsigned flags = (b->undefined[i] ? TAPE_UNDEFINED : 0) | (own_undefined(n) ? TAPE_OWN : 0) |
                          (n->op == OP_MIN && (b->undefined[n->a] || b->undefined[n->b]) ? TAPE_UNION : 0);
         b->flagged |= flags != 0;
-        flags |= inlined | (b->squared[i] ? TAPE_THEN_SQR : 0);
+        int clamped;
+        (void)emit_signs_value(d, b->nonneg, n, &clamped); /* the compiled code's clamped forms, for its bits */
+        flags |= inlined | (b->squared[i] ? TAPE_THEN_SQR : 0) | (clamped ? TAPE_NONNEG : 0);
         /* a quotient by a positive constant: a product by its reciprocals, as the compiled code (emit.c) */
         double recip[2];
         float frecip[2];
@@ -339,12 +343,13 @@ iacsg_status tape_build(const dag *d, int root, int fp64, iacsg_tape *out, iacsg
                  .used_as_interval = calloc(nodes, sizeof(int)),
                  .uses = calloc(nodes, sizeof(int)),
                  .squared = calloc(nodes, 1),
-                 .undefined = calloc(nodes, 1)};
+                 .undefined = calloc(nodes, 1),
+                 .nonneg = calloc(nodes, 1)};
     void *scratch = malloc(eval_scratch_size(root));
     unsigned *table = malloc(((size_t)(nparts > 0 ? nparts : 1)) * TAPE_PART_WORDS * sizeof *table);
     iacsg_status st = IACSG_OK;
     if (nparts < 0 || !b.slot || !b.last_use || !b.used_as_interval || !b.uses || !b.squared || !b.undefined ||
-        !scratch || !table) {
+        !b.nonneg || !scratch || !table) {
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory building the tape");
         goto done;
     }
@@ -364,6 +369,7 @@ iacsg_status tape_build(const dag *d, int root, int fp64, iacsg_tape *out, iacsg
         else
             b.undefined[i] = own_undefined(n) || b.undefined[n->a] || (n->b >= 0 && b.undefined[n->b]);
     }
+    emit_signs_mark(d, order, count, b.nonneg);
     free(order);
     /* each part's box, and the parts in the order of their boxes' centres along a Morton curve, so that the
      * consecutive parts of a group lie close together: tight group boxes and masks (unbounded parts last) */
@@ -489,6 +495,7 @@ done:
     free(b.uses);
     free(b.squared);
     free(b.undefined);
+    free(b.nonneg);
     free(b.code.w);
     free(b.reals.w);
     free(scratch);

@@ -53,8 +53,10 @@ enum { TAPE_PART_WORDS = 4, TAPE_INSTR_WORDS = 4 };
  * `undefined` column applies (ops.def; not for pown's positive powers), it is a union with a flagged operand,
  * its operand A or B is a constant read from its reals (lo, hi) rather than a slot, its value is then squared
  * (the sqr of a value that nothing else reads, never undefined: the (x - a)^2 of a sphere in one dispatch of
- * the interpreter instead of two, the same two operations). */
-enum { TAPE_UNDEFINED = 1, TAPE_OWN = 2, TAPE_UNION = 4, TAPE_A_REAL = 8, TAPE_B_REAL = 16, TAPE_THEN_SQR = 32 };
+ * the interpreter instead of two, the same two operations), its operands start at 0 or above and it takes the
+ * form that clamps its lower bound at 0, as the compiled code does (emit_signs.h: tape_apply_nonneg). */
+enum { TAPE_UNDEFINED = 1, TAPE_OWN = 2, TAPE_UNION = 4, TAPE_A_REAL = 8, TAPE_B_REAL = 16, TAPE_THEN_SQR = 32,
+       TAPE_NONNEG = 64 };
 
 typedef struct {
     unsigned *words;

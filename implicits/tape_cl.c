@@ -1,10 +1,12 @@
 /* implicits/tape_cl.c -- tape_cl: the expression-independent part of a tape program, written from ops.def as
  * emit.c writes the compiled code over lanes (each interval template with ia_ read as iav_, ia/vec.h), so an
- * interpreted operation is the very call a compiled one makes: tape_apply (an operation's value), tape_own_flags
+ * interpreted operation is the very call a compiled one makes: tape_apply (an operation's value), tape_apply_nonneg
+ * (the clamped forms over operands >= 0, implicits/emit_signs.h), tape_own_flags
  * (its `undefined` and `empty` columns), tape_apply_dt (its derivative along a ray, the `tderiv` column, for
  * interval Newton), and the tape layout's numbers from tape.h. kernels/tape_eval.h runs the
  * instructions with them. */
 #include "emit.h"
+#include "emit_signs.h"
 #include "strbuf.h"
 #include "tape.h"
 #include <stddef.h>
@@ -50,15 +52,27 @@ char *tape_cl(void) {
                       "#define TAPE_OP_MIN %d\n#define TAPE_UNDEFINED %d\n#define TAPE_OWN %d\n#define TAPE_UNION %d\n"
                       "#define TAPE_A_REAL %d\n#define TAPE_B_REAL %d\n#define TAPE_TILE_WORDS %d\n#define TAPE_TILE_RECORD %d\n"
                       "#define TAPE_LIST_FULL %d\n#define TAPE_MAX_SEGMENTS %d\n#define TAPE_W_NEWTON %d\n"
-                      "#define TAPE_THEN_SQR %d\n#define TAPE_OP_SQR %d\n",
+                      "#define TAPE_THEN_SQR %d\n#define TAPE_OP_SQR %d\n#define TAPE_NONNEG %d\n",
                   TAPE_MAX_GROUPS, TAPE_SLOTS, TAPE_W_GROUPS, TAPE_W_PARTS, TAPE_W_PART_TABLE, TAPE_W_CODE,
                   TAPE_W_REALS, TAPE_W_GROUP_TABLE, TAPE_PART_WORDS, TAPE_INSTR_WORDS, TAPE_OP_CONST, OP_MIN,
                   TAPE_UNDEFINED, TAPE_OWN, TAPE_UNION, TAPE_A_REAL, TAPE_B_REAL, TAPE_TILE_WORDS,
-                  TAPE_TILE_RECORD, TAPE_LIST_FULL, TAPE_MAX_SEGMENTS, TAPE_W_NEWTON, TAPE_THEN_SQR, OP_SQR);
+                  TAPE_TILE_RECORD, TAPE_LIST_FULL, TAPE_MAX_SEGMENTS, TAPE_W_NEWTON, TAPE_THEN_SQR, OP_SQR,
+                  TAPE_NONNEG);
     put_switch(&b,
                "IAV_INLINE iav tape_apply(uint op, iav A, iav B, int N, ia_real KB) {\n"
                "    (void)B, (void)N, (void)KB;\n",
                offsetof(dag_op_info, interval), "iav_point(0)");
+    /* the clamped forms of the operations whose operands start at 0 or above (TAPE_NONNEG) */
+    strbuf_printf(&b, "IAV_INLINE iav tape_apply_nonneg(uint op, iav A, iav B, ia_real KB) {\n"
+                      "    (void)B, (void)KB;\n    switch (op) {\n");
+    for (int op = OP_NEG; op < OP_COUNT; op++) {
+        if (!emit_signs_clamped(op))
+            continue;
+        strbuf_printf(&b, "    case %d: /* %s */\n        return ", op, dag_op_id(op));
+        put_vector_template(&b, emit_signs_clamped(op));
+        strbuf_printf(&b, ";\n");
+    }
+    strbuf_printf(&b, "    }\n    return iav_point(0); /* never: the host flags only these */\n}\n");
     put_switch(&b,
                "IAV_INLINE iav tape_apply_dt(uint op, iav A, iav B, int N, ia_real KB, iav R, iav DA, iav DB) {\n"
                "    (void)A, (void)B, (void)N, (void)KB, (void)R, (void)DB;\n",

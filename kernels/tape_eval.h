@@ -67,8 +67,9 @@ IAV_INLINE iav tape_part_body(tape_ptr tape, uint p, iav x, iav y, iav z, iav t,
             R = K;
             ru = re = (flags & TAPE_UNDEFINED) ? (ia_maskv)-1 : (ia_maskv)0; /* an empty constant */
         } else {
-            R = (flags & TAPE_UNION) ? iav_union(A, u[a], e[a], B, u[b], e[b])
-                                     : tape_apply(op, A, B, (int)code[2], reals[code[3]]);
+            R = (flags & TAPE_UNION)    ? iav_union(A, u[a], e[a], B, u[b], e[b])
+                : (flags & TAPE_NONNEG) ? tape_apply_nonneg(op, A, B, reals[code[3]])
+                                        : tape_apply(op, A, B, (int)code[2], reals[code[3]]);
             if (flags & TAPE_UNDEFINED) { /* own condition or the operands' flags; both for a union */
                 if (flags & TAPE_OWN)
                     tape_own_flags(op, A, B, (int)code[2], R, &ru, &re);

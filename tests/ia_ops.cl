@@ -160,6 +160,12 @@ IA_FN iav ia_test_vapply(int op, iav a, iav b, int n, ia_real c) {
         iav_sin_cos(a, &s, &co);
         return op == IA_TEST_SIN_COS_SIN ? s : co;
     }
+    case IA_TEST_ADD_NN: return iav_add_nn(a, b);
+    case IA_TEST_ADD_R_NN: return iav_add_r_nn(a, c);
+    case IA_TEST_MUL_NN: return iav_mul_nn(a, b);
+    case IA_TEST_MUL_R_NN: return iav_mul_r_nn(a, c);
+    case IA_TEST_MUL_N: return iav_mul_n(a, b);
+    case IA_TEST_SQR_NN: return iav_sqr_nn(a);
     }
     return iav_point((ia_real)NAN);
 }
@@ -177,7 +183,8 @@ kernel void ia_test_vops(int op, global const ia_real *in, global const int *n, 
         IAV_STORE(iav_contains_zero(a), m);
         for (int j = 0; j < IA_VW; j++)
             rlo[j] = rhi[j] = (ia_real)m[j];
-    } else if (op == IA_OP_POWN || op == IA_OP_ADD_R || op == IA_OP_MUL_R) {
+    } else if (op == IA_OP_POWN || op == IA_OP_ADD_R || op == IA_OP_MUL_R || op == IA_TEST_ADD_R_NN ||
+               op == IA_TEST_MUL_R_NN) {
         for (int j = 0; j < IA_VW; j++) {
             size_t i = base + (size_t)j;
             iav r = ia_test_vapply(op, a, b, n[i], in[5 * i + 4]);

@@ -42,9 +42,19 @@ typedef struct {
     ia_real c;
 } ia_case;
 
-/* tests/ia_ops.cl's codes for the sin and the cos of ia_sin_cos (and over lanes iav_sin_cos), after the ops of
- * tests/oracle.h (tests/t_ia_device_fp.c, t_ia_vec_device_fp.c). */
-enum { IA_TEST_SIN_COS_SIN = 1000, IA_TEST_SIN_COS_COS };
+/* tests/ia_ops.cl's codes for the sin and the cos of ia_sin_cos (and over lanes iav_sin_cos), and over lanes for the
+ * forms of ia/vec.h for operands >= 0 (iav_add_nn ...), after the ops of tests/oracle.h (tests/t_ia_device_fp.c,
+ * t_ia_vec_device_fp.c). */
+enum {
+    IA_TEST_SIN_COS_SIN = 1000,
+    IA_TEST_SIN_COS_COS,
+    IA_TEST_ADD_NN,
+    IA_TEST_ADD_R_NN,
+    IA_TEST_MUL_NN,
+    IA_TEST_MUL_R_NN,
+    IA_TEST_MUL_N,
+    IA_TEST_SQR_NN
+};
 
 #define GEN_NO_SUBNORMAL 1 /* for IA_FTZ: no subnormal bound (the contract's precondition there) */
 

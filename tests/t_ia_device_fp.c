@@ -41,8 +41,10 @@ static const char *prelude(void) {
     len += (size_t)snprintf(s + len, sizeof s - len, "#define IA_OP_" #NAME " %d\n", ORACLE_##NAME);
     ORACLE_OPS(X)
 #undef X
-    len += (size_t)snprintf(s + len, sizeof s - len, "#define IA_TEST_SIN_COS_SIN %d\n#define IA_TEST_SIN_COS_COS %d\n",
-                            IA_TEST_SIN_COS_SIN, IA_TEST_SIN_COS_COS);
+    static const char *tests[] = {"SIN_COS_SIN", "SIN_COS_COS", "ADD_NN", "ADD_R_NN",
+                                  "MUL_NN",      "MUL_R_NN",    "MUL_N",  "SQR_NN"};
+    for (int i = 0; i < (int)(sizeof tests / sizeof tests[0]); i++)
+        len += (size_t)snprintf(s + len, sizeof s - len, "#define IA_TEST_%s %d\n", tests[i], IA_TEST_SIN_COS_SIN + i);
     static const char *fns[] = {"DIV", "SQRT", "EXP", "LOG", "SIN", "COS", "TAN", "ATAN", "POW"};
     for (int i = 0; i < ORACLE_NFNS; i++)
         len += (size_t)snprintf(s + len, sizeof s - len, "#define IA_FN_%s %d\n", fns[i], i);

@@ -266,6 +266,84 @@ TEST_FP(ia_vec_sin_cos) {
     test_note("%ld intervals at IA_VW=8 and 16, sin and cos alike", count);
 }
 
+/* ---- the forms for operands that start at 0 or above (ia/vec.h: iav_add_nn ..., which the emitter calls where it
+ * proves that, implicits/emit_signs.c): on vec_cases' cases with a (and b, and c, where the form needs them >= 0)
+ * moved to [0, +inf) by their magnitudes, each lane holds the generic operation's bounds bit for bit, but where the
+ * form clamps its lower bound at 0 (add, add_r, mul, mul_r: >= 0 as the next form needs, never below the generic
+ * one), and contains the MPFR values at points of the inputs. */
+
+/* [lo, hi] moved to [0, +inf): itself where lo >= 0 (-0 kept), its mirror where hi <= 0, else [0, max(-lo, hi)]. */
+static ia_interval magnitudes(ia_interval a) {
+    if (!(a.lo <= a.hi) || a.lo >= 0)
+        return a;
+    return a.hi <= 0 ? ia_make(-a.hi, -a.lo) : ia_make(0, fmax(-a.lo, a.hi));
+}
+
+static const struct {
+    int code, op, b_nonneg, clamps;
+    const char *name;
+} nn_forms[] = {{IA_TEST_ADD_NN, ORACLE_ADD, 1, 1, "add_nn"},     {IA_TEST_ADD_R_NN, ORACLE_ADD_R, 1, 1, "add_r_nn"},
+                {IA_TEST_MUL_NN, ORACLE_MUL, 1, 1, "mul_nn"},     {IA_TEST_MUL_R_NN, ORACLE_MUL_R, 1, 1, "mul_r_nn"},
+                {IA_TEST_MUL_N, ORACLE_MUL, 0, 0, "mul_n"},       {IA_TEST_SQR_NN, ORACLE_SQR, 0, 0, "sqr_nn"}};
+
+TEST_FP(ia_vec_nonneg_forms) {
+    test_rng_t *r = test_rng();
+    long count = vec_count(ORACLE_MUL);
+    ia_case *k = malloc(sizeof *k * (size_t)count);
+    ia_real *generic = malloc(sizeof *generic * 2 * (size_t)count), *form = malloc(sizeof *form * 2 * (size_t)count);
+    CHECK(k && generic && form, "out of memory");
+    const int np = 10, saved_ftz = pt_ftz;
+    pt_t p[PT_MAX];
+    pt_init(p, np);
+    pt_ftz = FP_NAME(ia_dev_flushes)(0);
+    char err[1024] = "", msg[2048], first[2048] = "";
+    long checked = 0, differ = 0, violations = 0, checks = 0, clamped = 0;
+    for (size_t f = 0; f < sizeof nn_forms / sizeof nn_forms[0] && !err[0]; f++) {
+        vec_cases(nn_forms[f].op, 1, r, k, count);
+        for (long i = 0; i < count; i++) {
+            k[i].a = magnitudes(k[i].a);
+            if (nn_forms[f].b_nonneg)
+                k[i].b = magnitudes(k[i].b);
+            if (nn_forms[f].code == IA_TEST_ADD_R_NN || nn_forms[f].code == IA_TEST_MUL_R_NN)
+                k[i].c = k[i].c == 0 ? 1 : fabs(k[i].c); /* the emitter's constants: >= 0, > 0 for a product */
+        }
+        for (int w = 0; w < NW && !err[0]; w++) {
+            if (FP_NAME(ia_dev_ops_in)(0, vw_option(widths[w]), "ia_test_vops", widths[w], nn_forms[f].op, k, count,
+                                       generic, err, sizeof err) ||
+                FP_NAME(ia_dev_ops_in)(0, vw_option(widths[w]), "ia_test_vops", widths[w], nn_forms[f].code, k, count,
+                                       form, err, sizeof err))
+                break;
+            int uses_b = oracle_op_kind[nn_forms[f].op] == ORACLE_K_BIN;
+            for (long i = 0; i < count; i++) {
+                const ia_real *g = generic + 2 * i, *v = form + 2 * i;
+                if (ia_is_empty(k[i].a) || (uses_b && ia_is_empty(k[i].b)) || !(g[0] <= g[1]))
+                    continue;
+                checked++;
+                int clamp = nn_forms[f].clamps && g[0] <= 0;
+                clamped += clamp && g[0] < 0;
+                int same = (clamp ? v[0] == 0 : same_bits(v[0], g[0])) && same_bits(v[1], g[1]);
+                if (!same && differ++ == 0)
+                    snprintf(first, sizeof first, "%s, IA_VW=%d, %s: generic [%s, %s], form [%s, %s]",
+                             nn_forms[f].name, widths[w], case_str(nn_forms[f].op, &k[i]), oracle_hex(g[0]),
+                             oracle_hex(g[1]), oracle_hex(v[0]), oracle_hex(v[1]));
+                pt_draw(nn_forms[f].op, &k[i], p, np, r);
+                if (pt_check(nn_forms[f].op, &k[i], p, np, v, nn_forms[f].name, msg, sizeof msg, &checks) &&
+                    violations++ == 0)
+                    snprintf(first, sizeof first, "%.2000s", msg);
+            }
+        }
+    }
+    pt_ftz = saved_ftz;
+    pt_clear(p, np);
+    free(k), free(generic), free(form);
+    CHECK(!err[0], "%s", err);
+    test_note("%ld lanes of 6 forms at IA_VW=8 and 16 (%ld lower bounds clamped from below 0), %ld oracle checks",
+              checked, clamped, checks);
+    CHECK(differ == 0 && violations == 0, "%ld lanes differ from the generic operation, %ld miss the exact range; "
+          "first: %s", differ, violations, first);
+    CHECK(clamped > 0 && checked > 6 * count, "only %ld lanes checked, %ld clamped", checked, clamped);
+}
+
 /* ---- the comparison can fail: iav_ built with IA_FAST (no widening) against the rigorous ia/ */
 
 TEST_FP(ia_vec_fast_caught) {

@@ -27,9 +27,9 @@ IA_FN ia_real iacsg_pown(ia_real a, int n) {
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v3 = iav_sqr(x);
     iav v5 = iav_sqr(y);
-    iav v6 = iav_add(v3, v5);
+    iav v6 = iav_add_nn(v3, v5);
     iav v8 = iav_sqr(z);
-    iav v9 = iav_add(v6, v8);
+    iav v9 = iav_add_nn(v6, v8);
     iav v11 = iav_sub(v9, iav_const(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
     iav v14 = iav_sub(v6, iav_const(IACSG_K(0x1.70a3d2p-4f, 0x1.70a3d70a3d709p-4), IACSG_K(0x1.70a3dap-4f, 0x1.70a3d70a3d70dp-4)));
     iav v15 = iav_neg(v14);
@@ -42,11 +42,11 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     iav v3_t = iav_mul_pv(iav_twice(x), dx.lo);
     iav v5 = iav_sqr(y);
     iav v5_t = iav_mul_pv(iav_twice(y), dy.lo);
-    iav v6 = iav_add(v3, v5);
+    iav v6 = iav_add_nn(v3, v5);
     iav v6_t = iav_add(v3_t, v5_t);
     iav v8 = iav_sqr(z);
     iav v8_t = iav_mul_pv(iav_twice(z), dz.lo);
-    iav v9 = iav_add(v6, v8);
+    iav v9 = iav_add_nn(v6, v8);
     iav v9_t = iav_add(v6_t, v8_t);
     iav v11 = iav_sub(v9, iav_const(IACSG_K(0x1.47ae1p-1f, 0x1.47ae147ae1479p-1), IACSG_K(0x1.47ae18p-1f, 0x1.47ae147ae147dp-1)));
     iav v11_t = v9_t;

@@ -27,9 +27,9 @@ IA_FN ia_real iacsg_pown(ia_real a, int n) {
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v3 = iav_sqr(x);
     iav v5 = iav_sqr(y);
-    iav v6 = iav_add(v3, v5);
+    iav v6 = iav_add_nn(v3, v5);
     iav v8 = iav_sqr(z);
-    iav v9 = iav_add(v6, v8);
+    iav v9 = iav_add_nn(v6, v8);
     iav v11 = iav_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
     return v11;
 }
@@ -39,11 +39,11 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     iav v3_t = iav_mul_pv(iav_twice(x), dx.lo);
     iav v5 = iav_sqr(y);
     iav v5_t = iav_mul_pv(iav_twice(y), dy.lo);
-    iav v6 = iav_add(v3, v5);
+    iav v6 = iav_add_nn(v3, v5);
     iav v6_t = iav_add(v3_t, v5_t);
     iav v8 = iav_sqr(z);
     iav v8_t = iav_mul_pv(iav_twice(z), dz.lo);
-    iav v9 = iav_add(v6, v8);
+    iav v9 = iav_add_nn(v6, v8);
     iav v9_t = iav_add(v6_t, v8_t);
     iav v11 = iav_add_r(v9, IACSG_K(-0x1p+0f, -0x1p+0));
     iav v11_t = v9_t;

@@ -27,7 +27,7 @@ IA_FN ia_real iacsg_pown(ia_real a, int n) {
 IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v4 = iav_sqr(x);
     iav v6 = iav_sqr(y);
-    iav v7 = iav_add(v4, v6);
+    iav v7 = iav_add_nn(v4, v6);
     iav v8 = iav_sqrt(v7);
     ia_maskv v8_u = (v7.lo < 0);
     ia_maskv v8_e = (v7.hi < 0);
@@ -38,7 +38,7 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     iav v12 = iav_sqr(v11);
     ia_maskv v12_u = v11_u;
     ia_maskv v12_e = v11_e;
-    iav v13 = iav_add(v10, v12);
+    iav v13 = iav_add_nn(v10, v12);
     ia_maskv v13_u = v12_u;
     ia_maskv v13_e = v12_e;
     iav v16 = iav_add_r(v13, IACSG_K(-0x1p-4f, -0x1p-4));
@@ -53,7 +53,7 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     iav v4_t = iav_mul_pv(iav_twice(x), dx.lo);
     iav v6 = iav_sqr(y);
     iav v6_t = iav_mul_pv(iav_twice(y), dy.lo);
-    iav v7 = iav_add(v4, v6);
+    iav v7 = iav_add_nn(v4, v6);
     iav v7_t = iav_add(v4_t, v6_t);
     iav v8 = iav_sqrt(v7);
     ia_maskv v8_u = (v7.lo < 0);
@@ -70,7 +70,7 @@ IAV_INLINE iav iacsg_Fdv(iav x, iav y, iav z, iav t, iav dx, iav dy, iav dz, iav
     ia_maskv v12_u = v11_u;
     ia_maskv v12_e = v11_e;
     iav v12_t = iav_mul(iav_twice(v11), v11_t);
-    iav v13 = iav_add(v10, v12);
+    iav v13 = iav_add_nn(v10, v12);
     ia_maskv v13_u = v12_u;
     ia_maskv v13_e = v12_e;
     iav v13_t = iav_add(v10_t, v12_t);
