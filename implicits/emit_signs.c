@@ -5,7 +5,8 @@
  * the form its code over lanes takes: a product of operands >= 0 is two products, not four and a min and max of
  * them (the decocube's three factors; the heart's 0.1 x^2), a product with one such operand two chosen by the
  * other's signs, a sum of such widens its upper bound without |r| (ia/vec.h: iav_add_nn ...).
- * Measured (libfive's view, 2048x2048): the heart 84 -> 72 ms, the decocube 87 -> 80 (medians of 11 alternated).
+ * Measured (libfive's view): kernel samples over 6 runs at 1024x1024, decocube 6087/6178 -> 5022/5461, heart
+ * 5186/5308 -> 4840/4279; an experiment build of these forms at 2048x2048, heart 84 -> 72 ms, decocube 87 -> 80.
  */
 #include "emit_signs.h"
 
