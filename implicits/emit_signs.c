@@ -34,17 +34,17 @@ void emit_signs_mark(const dag *d, const int *order, int count, unsigned char *n
         case OP_POWN: /* an even power's or a power of a >= 0 rounds its lower bound down to 0 at most */
             v = n->n >= 0 && (n->n % 2 == 0 || a);
             break;
-        case OP_ADD: /* emit_signs_value's clamped forms */
-        case OP_MUL:
         case OP_MIN:
             v = a && b;
             break;
         case OP_MAX:
             v = a || b;
             break;
+        case OP_ADD: /* >= 0 where emit_signs_value takes a clamped form */
         case OP_ADD_R:
+        case OP_MUL:
         case OP_MUL_R:
-            v = emit_signs_value(d, nonneg, n, &(int){0}) != NULL;
+            (void)emit_signs_value(d, nonneg, n, &v);
             break;
         default:
             v = 0;
