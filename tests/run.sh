@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # tests/run.sh -- what `make test` runs after building: the whole suite, the suite again under AddressSanitizer
 # and UndefinedBehaviorSanitizer (a separate build, fewer property-test iterations), and valgrind's leak check
-# of the compiler over examples/. Prints each run's output, then one closing line "N passed, N failed" that sums
-# them; a run that dies before its own closing line counts as one failure.
+# of the compiler over examples/ (iacsg-compile-tests: the compiler's tests, without OpenImageIO). Prints each
+# run's output, then one closing line "N passed, N failed" that sums them; a run that dies before its own closing
+# line counts as one failure.
 set -uo pipefail
 build=${BUILD:-build}
 asan=${ASAN_BUILD:-build-asan}
@@ -40,6 +41,6 @@ IACSG_BIN="$PWD/$asan/iacsg" IACSG_TEST_MULT=${IACSG_ASAN_MULT:-0.1} \
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp":print_suppressions=0 \
     run "sanitizers" "$asan/iacsg-tests"
 run "valgrind" valgrind -q --leak-check=full --errors-for-leak-kinds=definite,indirect --error-exitcode=9 \
-    "$build/iacsg-tests" examples_compile
+    "$build/iacsg-compile-tests" examples_compile
 echo "$total_passed passed, $total_failed failed"
 [ "$total_failed" -eq 0 ]
