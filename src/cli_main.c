@@ -1,6 +1,8 @@
-/* src/cli_main.c -- the `iacsg` command: dispatches to a subcommand (src/cli.h), or renders. */
+/* src/cli_main.c -- the `iacsg` command: hands a command that needs OpenCL to the launcher (src/cli_launch.c), or
+ * dispatches to a subcommand (src/cli.h), or renders. */
 #include "cli.h"
 #include "cli_brlcad.h"
+#include "cli_launch.h"
 #include "iacsg.h"
 #include <stdio.h>
 #include <string.h>
@@ -97,24 +99,31 @@ static const char usage_more[] =
     "member, a cycle or a malformed line is refused with its line. Colours: the combination's, else the colour\n"
     "table's, else the palette. The view defaults to rt's: orthographic (-ortho the bounds' diagonal, unless\n"
     "-ortho or -fov is given), -az 35 -el 25, centred on the bounds, which are rt's model box; lengths in mm.\n"
-    "\n"
+    "\n";
+
+/* The environment's variables, apart for the same reason. */
+static const char usage_environment[] =
     "Environment:\n"
+    "  IACSG_LAUNCH_IDLE=S  a render or `devices` runs in a process forked by the launcher, which has loaded the\n"
+    "                     OpenCL driver and stays for S seconds without a command [30]; 0: the command runs itself\n"
     "  IACSG_WRITER_IDLE=S  the image writer (a process that has loaded OpenImageIO) stays for S seconds without\n"
     "                     a command, for the next commands of this user and build [30]; 0: a writer per command\n"
     "  IACSG_CACHE_DIR=DIR  where built OpenCL programs are kept (DIR/programs, at most 256 MB)\n"
     "                     [$XDG_CACHE_HOME/iacsg, else ~/.cache/iacsg]; IACSG_KERNEL_CACHE=0: not kept;\n"
     "                     IACSG_CACHE_SAVE=wait: a program is saved before the command ends, not after it\n";
 
-int main(int argc, char **argv) {
+int cli_dispatch(int argc, char **argv) {
     if (argc < 2) {
         fputs(usage, stderr);
         fputs(usage_more, stderr);
+        fputs(usage_environment, stderr);
         return 2;
     }
     const char *cmd = argv[1];
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "-help") == 0) {
         fputs(usage, stdout);
         fputs(usage_more, stdout);
+        fputs(usage_environment, stdout);
         return 0;
     }
     if (strcmp(cmd, "--version") == 0) {
@@ -134,4 +143,11 @@ int main(int argc, char **argv) {
     if (strcmp(cmd, "devices") == 0)
         return cli_devices(argc - 1, argv + 1);
     return cli_render(argc, argv);
+}
+
+int main(int argc, char **argv) {
+    int status;
+    if (cli_launch(argc, argv, &status))
+        return status;
+    return cli_dispatch(argc, argv);
 }

@@ -1,17 +1,7 @@
 /* src/cli_writer_server.c -- see cli_writer_server.h.
  *
- * Stages: the server's name (a hash of what must match between a command and its server), the connection (to a
- * running server, else one started: the command binds the name and listens, then forks the server, which
- * inherits the listening socket, so that commands starting at once agree on one server and none waits for it to
- * come up), the server's start (its own session, stdio on /dev/null and every other inherited descriptor closed,
- * so that it never holds a caller's pipe open), and its loop (poll over the listener and its clients).
- *
- * The name is an abstract unix socket, "iacsg-writer-UID-HASH": HASH covers the protocol's version, the binary
- * and the image library (device, inode, size, times), the user's ids and groups, the mount namespace, the dynamic
- * loader's variables and the idle time, so that another build (a sanitizer build, an installed copy) or another
- * setting never talks to this one's server. Anyone may connect to an abstract socket: both ends check that the
- * other runs as the same user (SO_PEERCRED), and a name taken by another user only makes the command write
- * another way.
+ * Stages: the server's identity (src/cli_server.c names, starts and connects it; its name here also covers the image
+ * library), the server's loop (poll over the listener and its clients), and the command's hello.
  *
  * Protocol (SOCK_SEQPACKET, so a message arrives whole): the command's hello, a writer_hello with the pixels'
  * memfd and a descriptor of its working directory (SCM_RIGHTS); then cli_writer_lib.h's requests, each answered
@@ -19,10 +9,8 @@
  * files land where and as they would from the command itself, and error messages name the same paths. */
 #define _GNU_SOURCE /* memfd, accept4, SO_PEERCRED, MSG_CMSG_CLOEXEC */
 #include "cli_writer_server.h"
-#include "cli_library.h"
+#include "cli_server.h"
 #include "cli_writer_lib.h"
-#include "detach.h"
-#include "digest.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -47,65 +35,7 @@ typedef struct {
     unsigned umask;
 } writer_hello;
 
-int cli_writer_server_idle(void) {
-    const char *s = getenv("IACSG_WRITER_IDLE");
-    if (!s || !*s)
-        return DEFAULT_IDLE;
-    char *end;
-    long v = strtol(s, &end, 10);
-    return *end || v <= 0 ? 0 : v > 86400 ? 86400 : (int)v;
-}
-
-/* ---- the name ---- */
-
-static void hash_file(digest_ctx *c, const char *path) {
-    struct stat st;
-    long long v[7] = {0};
-    if (stat(path, &st) == 0) {
-        long long f[7] = {(long long)st.st_dev, (long long)st.st_ino, (long long)st.st_size, st.st_mtim.tv_sec,
-                          st.st_mtim.tv_nsec, st.st_ctim.tv_sec, st.st_ctim.tv_nsec};
-        memcpy(v, f, sizeof v);
-    }
-    digest_update(c, v, sizeof v);
-}
-
-static void hash_string(digest_ctx *c, const char *s) { digest_update(c, s ? s : "", s ? strlen(s) + 1 : 1); }
-
-static socklen_t server_address(int idle, struct sockaddr_un *a) {
-    digest_ctx c;
-    digest_init(&c);
-    unsigned version = WRITER_PROTOCOL;
-    digest_update(&c, &version, sizeof version);
-    hash_file(&c, "/proc/self/exe");
-    char path[4096];
-    if (cli_library_path("libiacsg_image.so", path) == 0)
-        hash_file(&c, path);
-    uid_t uid = geteuid();
-    gid_t gid = getegid(), groups[256];
-    int ngroups = getgroups(256, groups);
-    digest_update(&c, &uid, sizeof uid);
-    digest_update(&c, &gid, sizeof gid);
-    if (ngroups > 0)
-        digest_update(&c, groups, (size_t)ngroups * sizeof *groups);
-    ssize_t n = readlink("/proc/self/ns/mnt", path, sizeof path - 1);
-    path[n > 0 ? n : 0] = '\0';
-    hash_string(&c, path);
-    hash_string(&c, getenv("LD_LIBRARY_PATH"));
-    hash_string(&c, getenv("LD_PRELOAD"));
-    digest_update(&c, &idle, sizeof idle);
-    char hex[65];
-    digest_hex(&c, hex);
-    memset(a, 0, sizeof *a);
-    a->sun_family = AF_UNIX; /* sun_path[0] == 0: the abstract namespace */
-    int len = snprintf(a->sun_path + 1, sizeof a->sun_path - 1, "iacsg-writer-%u-%.32s", (unsigned)uid, hex);
-    return (socklen_t)(offsetof(struct sockaddr_un, sun_path) + 1 + (size_t)len);
-}
-
-static int peer_is_this_user(int fd) {
-    struct ucred cred;
-    socklen_t len = sizeof cred;
-    return getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) == 0 && cred.uid == geteuid();
-}
+int cli_writer_server_idle(void) { return cli_server_idle("IACSG_WRITER_IDLE", DEFAULT_IDLE); }
 
 /* ---- the server ---- */
 
@@ -117,25 +47,6 @@ typedef struct {
     size_t size;
     int greeted;
 } client;
-
-/* The descriptors a message carried, into fds[0..1] (others closed); -1 where none. */
-static void take_fds(struct msghdr *m, int fds[2]) {
-    int n = 0;
-    fds[0] = fds[1] = -1;
-    for (struct cmsghdr *h = CMSG_FIRSTHDR(m); h; h = CMSG_NXTHDR(m, h)) {
-        if (h->cmsg_level != SOL_SOCKET || h->cmsg_type != SCM_RIGHTS)
-            continue;
-        size_t count = (h->cmsg_len - CMSG_LEN(0)) / sizeof(int);
-        for (size_t k = 0; k < count; k++) {
-            int fd;
-            memcpy(&fd, CMSG_DATA(h) + k * sizeof(int), sizeof fd);
-            if (n < 2)
-                fds[n++] = fd;
-            else
-                close(fd);
-        }
-    }
-}
 
 static int greet(client *c, const char *msg, ssize_t size, int fds[2]) {
     writer_hello h;
@@ -161,18 +72,11 @@ static int greet(client *c, const char *msg, ssize_t size, int fds[2]) {
 
 /* Serves the client's next message; 0 when it is gone (or broke the protocol) and must be dropped. */
 static int serve_client(image_library *lib, client *c, char *msg) {
-    union {
-        struct cmsghdr h;
-        char buf[CMSG_SPACE(2 * sizeof(int))];
-    } ctl;
-    struct iovec iov = {msg, WRITER_MESSAGE_MAX};
-    struct msghdr m = {.msg_iov = &iov, .msg_iovlen = 1, .msg_control = ctl.buf, .msg_controllen = sizeof ctl.buf};
-    ssize_t got = recvmsg(c->fd, &m, MSG_DONTWAIT | MSG_CMSG_CLOEXEC);
-    if (got < 0)
-        return errno == EAGAIN || errno == EINTR;
     int fds[2];
-    take_fds(&m, fds);
-    int ok = got > 0 && !(m.msg_flags & (MSG_TRUNC | MSG_CTRUNC));
+    ssize_t got = cli_server_recv_fds(c->fd, msg, WRITER_MESSAGE_MAX, fds, 2, MSG_DONTWAIT);
+    if (got < 0 && (errno == EAGAIN || errno == EINTR))
+        return 1;
+    int ok = got > 0;
     if (ok && !c->greeted) {
         ok = greet(c, msg, got, fds);
     } else if (ok) {
@@ -207,7 +111,7 @@ static int accept_client(int listener, client *clients, int *n) {
     int fd = accept4(listener, NULL, NULL, SOCK_CLOEXEC | SOCK_NONBLOCK);
     if (fd < 0)
         return 0;
-    if (*n >= MAX_CLIENTS || !peer_is_this_user(fd))
+    if (*n >= MAX_CLIENTS || !cli_server_peer_ok(fd))
         close(fd);
     else
         clients[(*n)++] = (client){.fd = fd, .cwd = -1};
@@ -269,23 +173,6 @@ static _Noreturn void server_main(int listener, int idle) {
     _exit(0);
 }
 
-/* Binds the name and starts the server on it: 1 started, 0 another command holds the name, -1 failed. */
-static int start_server(const struct sockaddr_un *a, socklen_t len, int idle) {
-    int listener = socket(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0);
-    if (listener < 0)
-        return -1;
-    if (bind(listener, (const struct sockaddr *)a, len) != 0 || listen(listener, SOMAXCONN) != 0) {
-        int taken = errno == EADDRINUSE;
-        close(listener);
-        return taken ? 0 : -1;
-    }
-    int started = detach_process(&listener);
-    if (started == 1)
-        server_main(listener, idle);
-    close(listener);
-    return started == 0 ? 1 : -1;
-}
-
 static int send_hello(int sock, int memfd) {
     int cwd = open(".", O_PATH | O_DIRECTORY | O_CLOEXEC);
     if (cwd < 0)
@@ -294,50 +181,17 @@ static int send_hello(int sock, int memfd) {
     umask(mask);
     writer_hello h = {WRITER_PROTOCOL, (unsigned)mask};
     int fds[2] = {memfd, cwd};
-    union {
-        struct cmsghdr h;
-        char buf[CMSG_SPACE(sizeof fds)];
-    } ctl;
-    memset(&ctl, 0, sizeof ctl);
-    struct iovec iov = {&h, sizeof h};
-    struct msghdr m = {.msg_iov = &iov, .msg_iovlen = 1, .msg_control = ctl.buf, .msg_controllen = sizeof ctl.buf};
-    struct cmsghdr *c = CMSG_FIRSTHDR(&m);
-    c->cmsg_level = SOL_SOCKET;
-    c->cmsg_type = SCM_RIGHTS;
-    c->cmsg_len = CMSG_LEN(sizeof fds);
-    memcpy(CMSG_DATA(c), fds, sizeof fds);
-    ssize_t sent = sendmsg(sock, &m, MSG_NOSIGNAL);
+    int sent = cli_server_send_fds(sock, &h, sizeof h, fds, 2);
     close(cwd);
-    return sent == (ssize_t)sizeof h ? 0 : -1;
+    return sent;
 }
 
 int cli_writer_server_connect(int memfd, int idle, int *started) {
-    struct sockaddr_un a;
-    socklen_t len = server_address(idle, &a);
-    *started = 0;
-    for (int tries = 0; tries < 100; tries++) { /* another command may have bound the name and not yet listen */
-        int sock = socket(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0);
-        if (sock < 0)
-            return -1;
-        if (connect(sock, (const struct sockaddr *)&a, len) == 0) {
-            if (peer_is_this_user(sock) && send_hello(sock, memfd) == 0)
-                return sock;
-            close(sock);
-            return -1;
-        }
-        int refused = errno == ECONNREFUSED;
+    const cli_server s = {"writer", WRITER_PROTOCOL, idle, "libiacsg_image.so", NULL, server_main};
+    int sock = cli_server_connect(&s, started);
+    if (sock >= 0 && send_hello(sock, memfd) != 0) {
         close(sock);
-        if (!refused)
-            return -1;
-        if (!*started) {
-            int r = start_server(&a, len, idle);
-            if (r < 0)
-                return -1;
-            *started = r;
-            if (r)
-                continue;
-        }
-        nanosleep(&(struct timespec){0, 1000000}, NULL);
+        return -1;
     }
-    return -1;
+    return sock;
 }
