@@ -154,7 +154,7 @@ static int end_as(int status) {
 }
 
 /* Sends the request and waits for the launched process: 1 with *status, 0 when none was started. */
-static int run_launched(int sock, const char *req, size_t size, int cwd, int *status) {
+static int run_launched(int sock, const char *req, size_t size, int cwd, int started, int *status) {
     char how[96];
     sigset_t blocked, before;
     sigemptyset(&blocked);
@@ -169,6 +169,7 @@ static int run_launched(int sock, const char *req, size_t size, int cwd, int *st
         return 0;
     }
     launched_pid = a.value;
+    trace(started ? "server (started)" : a.more ? "server (reused): its prepared process" : "server (reused)");
     set_relays(&before);
     ssize_t got;
     while ((got = recv(sock, &a, sizeof a, 0)) < 0 && errno == EINTR)
@@ -180,7 +181,7 @@ static int run_launched(int sock, const char *req, size_t size, int cwd, int *st
         *status = 1;
         return 1;
     }
-    snprintf(how, sizeof how, "the launched process ended: %.3f s of CPU", (double)a.cpu_us * 1e-6);
+    snprintf(how, sizeof how, "the launched process ended: %.3f s of CPU", (double)a.more * 1e-6);
     trace(how); /* the bench adds it to the command's own */
     *status = end_as(a.value);
     return 1;
@@ -202,8 +203,7 @@ int cli_launch(int argc, char **argv, int *status) {
     const cli_server server = cli_launch_server(cli_server_idle("IACSG_LAUNCH_IDLE", LAUNCH_DEFAULT_IDLE), argc, argv);
     int sock = cwd >= 0 ? cli_server_connect(&server, &started) : -1;
     if (sock >= 0) {
-        trace(started ? "server (started)" : "server (reused)");
-        launched = run_launched(sock, req, size, cwd, status);
+        launched = run_launched(sock, req, size, cwd, started, status);
         close(sock);
     }
     if (!launched)

@@ -4,15 +4,14 @@
  * from the command, so that a command only reaches a server that would run it as it would run itself: resource
  * limits, CPU affinity, nice value, cgroup, pid namespace, and the ICD loader's variables, which choose the
  * libraries loaded), the preload (each OpenCL driver the ICD loader would open, opened now: nothing of OpenCL is
- * called, so the server starts no thread and may fork), the loop (poll over the listener, the commands'
- * sockets and SIGCHLD), and the forked process (the command's streams, directory, umask and environment, then
- * main's dispatch).
+ * called, so the server starts no thread and may fork), and the loop (poll over the listener, the commands'
+ * sockets and SIGCHLD; each command to the prepared process or to one forked for it: src/cli_launch_run.c).
  *
  * A command's socket closing while its process runs means the command is gone (killed by SIGKILL, say): its
  * process gets SIGTERM, as it would have from a shell that killed the command. */
 #define _GNU_SOURCE /* accept4, signalfd, close_range, sched_getaffinity */
 #include "cli_launch_server.h"
-#include "cli.h"
+#include "cli_launch_run.h"
 #include <dirent.h>
 #include <dlfcn.h>
 #include <errno.h>
@@ -67,27 +66,6 @@ static void hash_inherited(digest_ctx *c) {
     cli_server_hash_string(c, getenv("OPENCL_VENDOR_PATH"));
 }
 
-/* ---- the title ---- */
-
-/* The memory of the first command's arguments, which ps and /proc/PID/cmdline show for the server and its forked
- * processes: rewritten with the server's name, then each process's own arguments (cut to fit). */
-static char *title;
-static size_t title_size;
-
-static void set_title(char *const *argv) {
-    size_t at = 0;
-    for (int k = 0; argv[k] && at < title_size; k++) {
-        size_t len = strlen(argv[k]);
-        if (len > title_size - at)
-            len = title_size - at;
-        memcpy(title + at, argv[k], len);
-        at += len;
-        if (at < title_size)
-            title[at++] = argv[k + 1] ? ' ' : '\0';
-    }
-    memset(title + at, 0, title_size - at);
-}
-
 /* ---- the preload ---- */
 
 /* Opens the library an .icd file names (its first line). */
@@ -134,64 +112,6 @@ static void preload_opencl(void) {
         closedir(dir);
 }
 
-/* ---- the forked process ---- */
-
-/* Splits the request's strings into argv and envp (NULL-terminated). 0 when they fill the payload exactly. */
-static int split_strings(char *p, size_t size, unsigned argc, unsigned envc, char ***argv, char ***envp) {
-    char **v = malloc(((size_t)argc + envc + 2) * sizeof *v);
-    if (!v)
-        return -1;
-    size_t at = 0;
-    unsigned k = 0;
-    for (; k < argc + envc && at < size; k++) {
-        char *end = memchr(p + at, '\0', size - at);
-        if (!end)
-            break;
-        v[k + (k >= argc)] = p + at;
-        at = (size_t)(end - p) + 1;
-    }
-    if (k != argc + envc || at != size || argc == 0) {
-        free(v);
-        return -1;
-    }
-    v[argc] = NULL;
-    v[argc + envc + 1] = NULL;
-    *argv = v;
-    *envp = v + argc + 1;
-    return 0;
-}
-
-/* Runs the command in this (forked) process: never returns. */
-static _Noreturn void run_command(const launch_request *q, char **argv, char **envp, const int fds[4]) {
-    sigset_t blocked; /* the command's dispositions and mask, as an exec would have carried them */
-    sigemptyset(&blocked);
-    for (int sig = 1; sig <= 64; sig++) {
-        if (sig != SIGKILL && sig != SIGSTOP)
-            signal(sig, q->ignored >> (sig - 1) & 1 ? SIG_IGN : SIG_DFL);
-        if (q->blocked >> (sig - 1) & 1)
-            sigaddset(&blocked, sig);
-    }
-    sigprocmask(SIG_SETMASK, &blocked, NULL);
-    int entered = fchdir(fds[3]) == 0;
-    umask((mode_t)(q->umask & 0777));
-    for (int k = 0; k < 3; k++)
-        if (dup2(fds[k], k) < 0)
-            _exit(125);
-    close_range(3, ~0u, 0); /* the listener, the other commands' sockets, this one's: none is the command's */
-    prctl(PR_SET_NAME, "iacsg");
-    set_title(argv);
-    if (!entered) {
-        fputs("iacsg: the launcher cannot enter the command's working directory\n", stderr);
-        exit(1);
-    }
-    extern char **environ;
-    environ = envp;
-    int argc = 0;
-    while (argv[argc])
-        argc++;
-    exit(cli_dispatch(argc, argv)); /* exit, not _exit: the command's stdio is flushed as it would be */
-}
-
 /* ---- the loop ---- */
 
 typedef struct {
@@ -199,13 +119,73 @@ typedef struct {
     pid_t pid;
 } command;
 
-static int send_answer(int fd, int kind, int value, long long cpu_us) {
-    launch_answer a = {kind, value, cpu_us};
+/* The prepared process (src/cli_launch_run.h), at most one: made, for the environment of the last command, when
+ * no command runs (made while one runs, its start would take CPU from that command), and given the next command
+ * of the same environment; another environment gets a process forked for it. */
+typedef struct {
+    pid_t pid; /* 0: none */
+    int sock;
+    char *env; /* the environment it prepares for: NUL-separated strings */
+    size_t size;
+} prepared;
+
+static int send_answer(int fd, int kind, int value, long long more) {
+    launch_answer a = {kind, value, more};
     return send(fd, &a, sizeof a, MSG_NOSIGNAL | MSG_DONTWAIT) == (ssize_t)sizeof a ? 0 : -1;
 }
 
-/* Takes a command waiting on the listener and forks its process: 1 when one was taken (or refused). */
-static int start_command(int listener, command *cmds, int *n) {
+static void set_environment(prepared *p, const char *env, size_t size) {
+    char *copy = malloc(size ? size : 1);
+    if (copy)
+        memcpy(copy, env, size);
+    free(p->env);
+    p->env = copy;
+    p->size = copy ? size : 0;
+}
+
+static void prepare(prepared *p) {
+    int pair[2];
+    if (p->pid || !p->env || socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, pair) != 0)
+        return;
+    pid_t pid = fork();
+    if (pid == 0)
+        launch_prepared(pair[1], p->env, p->size);
+    close(pair[1]);
+    if (pid > 0) {
+        p->pid = pid;
+        p->sock = pair[0];
+    } else {
+        close(pair[0]);
+    }
+}
+
+static void own_environment(prepared *p) {
+    extern char **environ;
+    size_t size = 0;
+    for (char **e = environ; e && *e; e++)
+        size += strlen(*e) + 1;
+    char *block = malloc(size ? size : 1), *at = block;
+    for (char **e = environ; block && e && *e; e++)
+        at += strlen(strcpy(at, *e)) + 1;
+    if (block)
+        set_environment(p, block, size);
+    free(block);
+}
+
+/* Hands the request to the prepared process when it prepared for this environment: its pid, else 0. */
+static pid_t hand_over(prepared *p, const char *buf, size_t size, const char *env, const int fds[4]) {
+    size_t env_size = (size_t)(buf + size - env);
+    if (!p->pid || env_size != p->size || memcmp(env, p->env, env_size) != 0 ||
+        cli_server_send_fds(p->sock, buf, size, fds, 4) != 0)
+        return 0;
+    pid_t pid = p->pid;
+    close(p->sock);
+    p->pid = 0;
+    return pid;
+}
+
+/* Takes a command waiting on the listener and starts its process: 1 when one was taken (or refused). */
+static int start_command(int listener, command *cmds, int *n, prepared *p) {
     static char buf[LAUNCH_REQUEST_MAX];
     int fd = accept4(listener, NULL, NULL, SOCK_CLOEXEC);
     if (fd < 0)
@@ -218,20 +198,22 @@ static int start_command(int listener, command *cmds, int *n) {
         got = cli_server_recv_fds(fd, buf, sizeof buf, fds, 4, 0);
     launch_request q;
     char **argv = NULL, **envp = NULL;
-    int ok = got >= (ssize_t)sizeof q && fds[3] >= 0;
-    if (ok) {
-        memcpy(&q, buf, sizeof q);
-        ok = q.version == LAUNCH_PROTOCOL &&
-             split_strings(buf + sizeof q, (size_t)got - sizeof q, q.argc, q.envc, &argv, &envp) == 0;
+    int ok = got > 0 && fds[3] >= 0 && launch_parse(buf, (size_t)got, &q, &argv, &envp) == 0;
+    const char *env = ok && envp[0] ? envp[0] : buf + (got > 0 ? got : 0);
+    pid_t pid = ok ? hand_over(p, buf, (size_t)got, env, fds) : -1;
+    int was_prepared = pid > 0;
+    if (ok && !pid) {
+        pid = fork();
+        if (pid == 0)
+            launch_run(&q, argv, envp, fds, 1);
     }
-    pid_t pid = ok ? fork() : -1;
-    if (pid == 0)
-        run_command(&q, argv, envp, fds);
+    if (ok)
+        set_environment(p, env, (size_t)(buf + got - env));
     free(argv);
     for (int k = 0; k < 4; k++)
         if (fds[k] >= 0)
             close(fds[k]);
-    if (pid > 0 && send_answer(fd, LAUNCH_STARTED, (int)pid, 0) == 0) {
+    if (pid > 0 && send_answer(fd, LAUNCH_STARTED, (int)pid, was_prepared) == 0) {
         fcntl(fd, F_SETFL, O_NONBLOCK);
         cmds[(*n)++] = (command){fd, pid};
     } else {
@@ -243,11 +225,17 @@ static int start_command(int listener, command *cmds, int *n) {
 }
 
 /* Reaps the ended processes and tells their commands. */
-static void reap(command *cmds, int *n) {
+static void reap(command *cmds, int *n, prepared *p) {
     int status;
     pid_t pid;
     struct rusage ru;
-    while ((pid = wait4(-1, &status, WNOHANG, &ru)) > 0)
+    while ((pid = wait4(-1, &status, WNOHANG, &ru)) > 0) {
+        if (pid == p->pid) { /* it failed before its command came: the next command is forked for */
+            close(p->sock);
+            p->pid = 0;
+            free(p->env);
+            p->env = NULL;
+        }
         for (int k = 0; k < *n; k++)
             if (cmds[k].pid == pid) {
                 if (cmds[k].fd >= 0) {
@@ -259,6 +247,7 @@ static void reap(command *cmds, int *n) {
                 cmds[k] = cmds[--*n];
                 break;
             }
+    }
 }
 
 /* The started server (detach_process: its own session, stdio on /dev/null, no descriptor but the listener). */
@@ -266,7 +255,7 @@ static _Noreturn void serve(int listener, int idle) {
     if (chdir("/") != 0)
         _exit(1);
     prctl(PR_SET_NAME, "iacsg-launch"); /* in ps and top, where it shows the first command's arguments */
-    set_title((char *const[]){"iacsg-launch", NULL});
+    launch_title((char *const[]){"iacsg-launch", NULL});
     fcntl(listener, F_SETFL, O_NONBLOCK);
     signal(SIGPIPE, SIG_IGN);
     sigset_t child;
@@ -280,7 +269,11 @@ static _Noreturn void serve(int listener, int idle) {
     static command cmds[MAX_COMMANDS];
     static struct pollfd p[MAX_COMMANDS + 2];
     int n = 0;
+    prepared ready = {0};
+    own_environment(&ready); /* the first command's, whose fork this process is */
     for (;;) {
+        if (n == 0)
+            prepare(&ready);
         int np = 0;
         p[np++] = (struct pollfd){listener, POLLIN, 0};
         p[np++] = (struct pollfd){children, POLLIN, 0};
@@ -289,7 +282,7 @@ static _Noreturn void serve(int listener, int idle) {
         int r = poll(p, (nfds_t)np, n > 0 ? -1 : idle * 1000);
         if (r < 0 && errno != EINTR)
             break;
-        if (r == 0 && !start_command(listener, cmds, &n)) /* idle: a command that connected just now? */
+        if (r == 0 && !start_command(listener, cmds, &n, &ready)) /* idle: a command that connected just now? */
             break;
         if (r <= 0)
             continue;
@@ -303,18 +296,15 @@ static _Noreturn void serve(int listener, int idle) {
             struct signalfd_siginfo info;
             while (read(children, &info, sizeof info) == (ssize_t)sizeof info)
                 ;
-            reap(cmds, &n);
+            reap(cmds, &n, &ready);
         }
         if (p[0].revents & POLLIN)
-            start_command(listener, cmds, &n);
+            start_command(listener, cmds, &n, &ready);
     }
     _exit(0);
 }
 
 cli_server cli_launch_server(int idle, int argc, char **argv) {
-    if (argc > 0) { /* the arguments lie end to end in one block, each after the last one's NUL */
-        title = argv[0];
-        title_size = (size_t)(argv[argc - 1] + strlen(argv[argc - 1]) - argv[0]);
-    }
+    launch_title_area(argc, argv);
     return (cli_server){"launch", LAUNCH_PROTOCOL, idle, NULL, hash_inherited, serve};
 }

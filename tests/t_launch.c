@@ -55,7 +55,8 @@ TEST(launch_reused_with_cwd_umask_environment_and_status) {
     CHECK(rc == 0 && strcmp(how, "server (started)") == 0, "first command: exit %d, launcher '%s'", rc, how);
     rc = run_traced(dir, "reuse", "umask 027 && IACSG_WRITER_TRACE=1", "sphere -size 8x8 -o sub/second.png", how,
                     sizeof how);
-    CHECK(rc == 0 && strcmp(how, "server (reused)") == 0, "second command: exit %d, launcher '%s'", rc, how);
+    CHECK(rc == 0 && strcmp(how, "server (reused)") == 0,
+          "second command (another environment: a process forked for it): exit %d, launcher '%s'", rc, how);
     struct stat st;
     snprintf(path, sizeof path, "%s/sub/second.png", dir);
     CHECK(stat(path, &st) == 0, "sub/second.png was not written in the command's directory");
@@ -69,7 +70,7 @@ TEST(launch_reused_with_cwd_umask_environment_and_status) {
                            "sphere -size 8x8 -nosuchoption"};
     for (int k = 0; k < 4; k++) {
         int rc1 = run_traced(dir, "reuse", "", cases[k], how, sizeof how);
-        CHECK(strcmp(how, "server (reused)") == 0, "%s: launcher '%s'", cases[k], how);
+        CHECK(strncmp(how, "server (reused)", 15) == 0, "%s: launcher '%s'", cases[k], how);
         char *out1 = untraced(dir, "out.txt"), *err1 = untraced(dir, "err.txt");
         int rc2 = run_traced(dir, "reuse", "IACSG_LAUNCH_IDLE=0", cases[k], how, sizeof how);
         CHECK(strcmp(how, "this process (IACSG_LAUNCH_IDLE=0)") == 0, "%s: launcher '%s'", cases[k], how);
@@ -82,20 +83,53 @@ TEST(launch_reused_with_cwd_umask_environment_and_status) {
     test_remove_dir(dir);
 }
 
+/* The prepared process serves the next command of the environment it prepared for, and only that: a command of
+ * another environment gets a process forked for it, which sees that environment. */
+TEST(launch_prepared_process_for_its_environment_only) {
+    char dir[256], how[256];
+    test_make_dir(dir, sizeof dir, "launch-prepared");
+    int rc = run_traced(dir, "prepared", "", "sphere -size 8x8 -o a.png", how, sizeof how);
+    CHECK(rc == 0 && strcmp(how, "server (started)") == 0, "first command: exit %d, launcher '%s'", rc, how);
+    for (int k = 0; k < 2; k++) {
+        sleep(1); /* time to prepare, as between the commands a person types */
+        rc = run_traced(dir, "prepared", "", "sphere -size 8x8 -o b.png", how, sizeof how);
+        CHECK(rc == 0 && strcmp(how, "server (reused): its prepared process") == 0,
+              "the same environment again: exit %d, launcher '%s'", rc, how);
+    }
+    sleep(1);
+    rc = run_traced(dir, "prepared", "IACSG_WRITER_TRACE=1", "sphere -size 8x8 -o c.png", how, sizeof how);
+    CHECK(rc == 0 && strcmp(how, "server (reused)") == 0, "another environment: exit %d, launcher '%s'", rc, how);
+    char *err = untraced(dir, "err.txt");
+    CHECK(err && strstr(err, "iacsg: image writer: "), "the command's environment was not its process's: %s",
+          err ? err : "(none)");
+    free(err);
+    sleep(1);
+    rc = run_traced(dir, "prepared", "IACSG_WRITER_TRACE=1", "sphere -size 8x8 -o d.png", how, sizeof how);
+    CHECK(rc == 0 && strcmp(how, "server (reused): its prepared process") == 0,
+          "that environment again: exit %d, launcher '%s'", rc, how);
+    err = untraced(dir, "err.txt");
+    CHECK(err && strstr(err, "iacsg: image writer: "), "the prepared process lost the environment: %s",
+          err ? err : "(none)");
+    free(err);
+    test_remove_dir(dir);
+}
+
 /* A long render in the background (after `prefix`: env --default-signal=INT, or nothing: a background command of
  * sh ignores SIGINT), sent `signals` in turn half a second apart once its launched process runs. The report:
- * "status N children M", M the launcher's processes left a second later. */
+ * "status N children M", M the commands' processes the launcher has a second later (its prepared process aside:
+ * it shows as iacsg-prepared). Exit 3: no launcher found; 4: the command's process never showed. */
 static void signal_command(const char *dir, const char *prefix, const char *signals, char *report, size_t size) {
     char cmd[4096], path[512];
     snprintf(cmd, sizeof cmd,
              "cd '%s' && export LD_LIBRARY_PATH=/nonexistent-launch-sig-%d IACSG_LAUNCH_TRACE=1 && "
              "'%s' sphere -size 8x8 -o warm.png >/dev/null 2>&1; "
-             "for p in $(pgrep -x iacsg-launch); do tr '\\0' '\\n' </proc/$p/environ 2>/dev/null | "
+             "for p in $(pgrep -x iacsg-launch); do { tr '\\0' '\\n' </proc/$p/environ; } 2>/dev/null | "
              "grep -qx \"LD_LIBRARY_PATH=$LD_LIBRARY_PATH\" && server=$p; done; [ -n \"$server\" ] || exit 3; "
              "%s '%s' 'min(sphere,torus)' -size 2048x2048 -frames 200 -o long.png >/dev/null 2>err.txt & c=$!; "
-             "for i in $(seq 100); do [ -n \"$(pgrep -P $server)\" ] && break; sleep 0.05; done; "
+             "for i in $(seq 100); do [ -n \"$(pgrep -x -P $server iacsg)\" ] && break; sleep 0.05; done; "
+             "[ -n \"$(pgrep -x -P $server iacsg)\" ] || { kill -KILL $c; exit 4; }; "
              "for s in %s; do kill -$s $c; sleep 0.5; done; wait $c; s=$?; sleep 1; "
-             "echo \"status $s children $(pgrep -P $server | wc -l)\" >report.txt",
+             "echo \"status $s children $(pgrep -x -P $server iacsg | wc -l)\" >report.txt",
              dir, (int)getpid(), test_binary_path(), prefix, test_binary_path(), signals);
     int rc = system(cmd);
     snprintf(path, sizeof path, "%s/report.txt", dir);

@@ -1,0 +1,156 @@
+/* src/cli_launch_run.c -- see cli_launch_run.h.
+ *
+ * Stages: the title (what ps shows), the request's strings, the command's run (its signal dispositions and mask,
+ * directory, umask, streams and environment, as an exec would have carried them, then main's dispatch), and the
+ * prepared process (OpenCL opened, then a request awaited). */
+#define _GNU_SOURCE /* close_range */
+#include "cli_launch_run.h"
+#include "cli.h"
+#include "clrt.h"
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* ---- the title ---- */
+
+/* The memory of the first command's arguments: rewritten with the server's name, then each process's own
+ * arguments. */
+static char *title;
+static size_t title_size;
+
+void launch_title_area(int argc, char **argv) {
+    if (argc > 0) { /* the arguments lie end to end in one block, each after the last one's NUL */
+        title = argv[0];
+        title_size = (size_t)(argv[argc - 1] + strlen(argv[argc - 1]) - argv[0]);
+    }
+}
+
+void launch_title(char *const *argv) {
+    if (!title)
+        return;
+    size_t at = 0;
+    for (int k = 0; argv[k] && at < title_size; k++) {
+        size_t len = strlen(argv[k]);
+        if (len > title_size - at)
+            len = title_size - at;
+        memcpy(title + at, argv[k], len);
+        at += len;
+        if (at < title_size)
+            title[at++] = argv[k + 1] ? ' ' : '\0';
+    }
+    memset(title + at, 0, title_size - at);
+}
+
+/* ---- the request ---- */
+
+/* Splits the request's strings into argv and envp (NULL-terminated). 0 when they fill the payload exactly. */
+static int split_strings(char *p, size_t size, unsigned argc, unsigned envc, char ***argv, char ***envp) {
+    char **v = malloc(((size_t)argc + envc + 2) * sizeof *v);
+    if (!v)
+        return -1;
+    size_t at = 0;
+    unsigned k = 0;
+    for (; k < argc + envc && at < size; k++) {
+        char *end = memchr(p + at, '\0', size - at);
+        if (!end)
+            break;
+        v[k + (k >= argc)] = p + at;
+        at = (size_t)(end - p) + 1;
+    }
+    if (k != argc + envc || at != size || argc == 0) {
+        free(v);
+        return -1;
+    }
+    v[argc] = NULL;
+    v[argc + envc + 1] = NULL;
+    *argv = v;
+    *envp = v + argc + 1;
+    return 0;
+}
+
+int launch_parse(char *buf, size_t size, launch_request *q, char ***argv, char ***envp) {
+    if (size < sizeof *q)
+        return -1;
+    memcpy(q, buf, sizeof *q);
+    if (q->version != LAUNCH_PROTOCOL)
+        return -1;
+    return split_strings(buf + sizeof *q, size - sizeof *q, q->argc, q->envc, argv, envp);
+}
+
+/* ---- the run ---- */
+
+_Noreturn void launch_run(const launch_request *q, char **argv, char **envp, const int fds[4], int inherited) {
+    sigset_t blocked; /* the command's dispositions and mask, as an exec would have carried them */
+    sigemptyset(&blocked);
+    for (int sig = 1; sig <= 64; sig++) {
+        if (sig != SIGKILL && sig != SIGSTOP)
+            signal(sig, q->ignored >> (sig - 1) & 1 ? SIG_IGN : SIG_DFL);
+        if (q->blocked >> (sig - 1) & 1)
+            sigaddset(&blocked, sig);
+    }
+    sigprocmask(SIG_SETMASK, &blocked, NULL);
+    int entered = fchdir(fds[3]) == 0;
+    umask((mode_t)(q->umask & 0777));
+    for (int k = 0; k < 3; k++)
+        if (dup2(fds[k], k) < 0)
+            _exit(125);
+    if (inherited)
+        close_range(3, ~0u, 0); /* the listener, the other commands' sockets, this one's: none is the command's */
+    else
+        for (int k = 0; k < 4; k++)
+            if (fds[k] > 2)
+                close(fds[k]);
+    prctl(PR_SET_NAME, "iacsg");
+    launch_title(argv);
+    if (!entered) {
+        fputs("iacsg: the launcher cannot enter the command's working directory\n", stderr);
+        exit(1);
+    }
+    extern char **environ;
+    environ = envp;
+    int argc = 0;
+    while (argv[argc])
+        argc++;
+    exit(cli_dispatch(argc, argv)); /* exit, not _exit: the command's stdio is flushed as it would be */
+}
+
+/* ---- the prepared process ---- */
+
+_Noreturn void launch_prepared(int sock, const char *env, size_t size) {
+    int keep = fcntl(sock, F_DUPFD_CLOEXEC, 3);
+    if (keep < 0 || (keep > 3 && close_range(3, (unsigned)keep - 1, 0) != 0) ||
+        close_range((unsigned)keep + 1, ~0u, 0) != 0)
+        _exit(1);
+    prctl(PR_SET_NAME, "iacsg-prepared");
+    launch_title((char *const[]){"iacsg-prepared", NULL});
+    size_t count = 0;
+    for (size_t at = 0; at < size; at += strlen(env + at) + 1)
+        count++;
+    char **vars = malloc((count + 1) * sizeof *vars), *block = malloc(size + 1);
+    if (!vars || !block)
+        _exit(1);
+    memcpy(block, env, size);
+    block[size] = '\0';
+    count = 0;
+    for (size_t at = 0; at < size; at += strlen(block + at) + 1)
+        vars[count++] = block + at;
+    vars[count] = NULL;
+    extern char **environ;
+    environ = vars; /* what OpenCL's drivers read as they start (POCL_*, HOME, ...) is the command's */
+    clrt_prepare(0);
+    static char buf[LAUNCH_REQUEST_MAX];
+    int fds[4];
+    ssize_t got = cli_server_recv_fds(keep, buf, sizeof buf, fds, 4, 0);
+    launch_request q;
+    char **argv, **envp;
+    if (got <= 0 || fds[3] < 0 || launch_parse(buf, (size_t)got, &q, &argv, &envp) != 0)
+        _exit(1); /* the launcher ended, or (never: it checked) sent no well-formed request */
+    close(keep);
+    launch_run(&q, argv, envp, fds, 0);
+}

@@ -1,0 +1,28 @@
+/* src/cli_launch_run.h -- the launcher's processes (src/cli_launch_server.c forks them): the one that runs a
+ * command, and the prepared one, which has opened OpenCL (platforms, devices, a context on device 0) in an
+ * environment before its command comes, and runs the next command of that same environment. */
+#ifndef IACSG_CLI_LAUNCH_RUN_H
+#define IACSG_CLI_LAUNCH_RUN_H
+#include "cli_launch_server.h"
+#include <stddef.h>
+
+/* The memory of argv (main's, argc of them), which ps and /proc/PID/cmdline show for the launcher and each process
+ * it forks; launch_title writes `words` there (cut to fit). */
+void launch_title_area(int argc, char **argv);
+void launch_title(char *const *words);
+
+/* Reads a request of `size` bytes at buf (the strings stay there): *q, and argv and envp (NULL-terminated, one
+ * allocation at *argv to free). 0 when well formed. */
+int launch_parse(char *buf, size_t size, launch_request *q, char ***argv, char ***envp);
+
+/* Runs the command in this forked process with fds (stdin, stdout, stderr, working directory): never returns.
+ * `inherited`: close every other descriptor (a process forked for this command; a prepared one has closed the
+ * launcher's already, and keeps OpenCL's). */
+_Noreturn void launch_run(const launch_request *q, char **argv, char **envp, const int fds[4], int inherited);
+
+/* The prepared process, forked by the launcher: `sock` its end of a socket pair (every other descriptor of the
+ * launcher is closed here), `env` the environment block (NUL-separated strings, `size` bytes) it prepares for.
+ * Opens OpenCL in it, then runs the request the launcher sends on `sock` (none: it exits). Never returns. */
+_Noreturn void launch_prepared(int sock, const char *env, size_t size);
+
+#endif
