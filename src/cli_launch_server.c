@@ -134,15 +134,6 @@ static int send_answer(int fd, int kind, int value, long long more) {
     return send(fd, &a, sizeof a, MSG_NOSIGNAL | MSG_DONTWAIT) == (ssize_t)sizeof a ? 0 : -1;
 }
 
-static void set_environment(prepared *p, const char *env, size_t size) {
-    char *copy = malloc(size ? size : 1);
-    if (copy)
-        memcpy(copy, env, size);
-    free(p->env);
-    p->env = copy;
-    p->size = copy ? size : 0;
-}
-
 static void prepare(prepared *p) {
     int pair[2];
     if (p->pid || !p->env || socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, pair) != 0)
@@ -159,6 +150,24 @@ static void prepare(prepared *p) {
     }
 }
 
+/* Makes `env` the environment to prepare for; a prepared process of another environment is ended. */
+static void set_environment(prepared *p, const char *env, size_t size) {
+    if (p->env && size == p->size && memcmp(env, p->env, size) == 0)
+        return;
+    if (p->pid) {
+        kill(p->pid, SIGKILL); /* reaped with the others */
+        close(p->sock);
+        p->pid = 0;
+    }
+    char *copy = malloc(size ? size : 1);
+    if (copy)
+        memcpy(copy, env, size);
+    free(p->env);
+    p->env = copy;
+    p->size = copy ? size : 0;
+}
+
+/* The environment of this process: the first command's, whose fork it is. */
 static void own_environment(prepared *p) {
     extern char **environ;
     size_t size = 0;
@@ -172,11 +181,10 @@ static void own_environment(prepared *p) {
     free(block);
 }
 
-/* Hands the request to the prepared process when it prepared for this environment: its pid, else 0. */
-static pid_t hand_over(prepared *p, const char *buf, size_t size, const char *env, const int fds[4]) {
-    size_t env_size = (size_t)(buf + size - env);
-    if (!p->pid || env_size != p->size || memcmp(env, p->env, env_size) != 0 ||
-        cli_server_send_fds(p->sock, buf, size, fds, 4) != 0)
+/* Hands the request to the prepared process, if any (prepared for the request's environment: set_environment saw
+ * to it): its pid, else 0. */
+static pid_t hand_over(prepared *p, const char *buf, size_t size, const int fds[4]) {
+    if (!p->pid || cli_server_send_fds(p->sock, buf, size, fds, 4) != 0)
         return 0;
     pid_t pid = p->pid;
     close(p->sock);
@@ -199,16 +207,17 @@ static int start_command(int listener, command *cmds, int *n, prepared *p) {
     launch_request q;
     char **argv = NULL, **envp = NULL;
     int ok = got > 0 && fds[3] >= 0 && launch_parse(buf, (size_t)got, &q, &argv, &envp) == 0;
-    const char *env = ok && envp[0] ? envp[0] : buf + (got > 0 ? got : 0);
-    pid_t pid = ok ? hand_over(p, buf, (size_t)got, env, fds) : -1;
+    if (ok) {
+        const char *env = envp[0] ? envp[0] : buf + got; /* the environment's strings end the request */
+        set_environment(p, env, (size_t)(buf + got - env));
+    }
+    pid_t pid = ok ? hand_over(p, buf, (size_t)got, fds) : -1;
     int was_prepared = pid > 0;
     if (ok && !pid) {
         pid = fork();
         if (pid == 0)
             launch_run(&q, argv, envp, fds, 1);
     }
-    if (ok)
-        set_environment(p, env, (size_t)(buf + got - env));
     free(argv);
     for (int k = 0; k < 4; k++)
         if (fds[k] >= 0)

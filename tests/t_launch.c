@@ -111,6 +111,17 @@ TEST(launch_prepared_process_for_its_environment_only) {
     CHECK(err && strstr(err, "iacsg: image writer: "), "the prepared process lost the environment: %s",
           err ? err : "(none)");
     free(err);
+    /* What OpenCL reads as it starts is the command's too: PoCL's device list (its basic device, not pthread). */
+    for (int k = 0; k < 2; k++) {
+        sleep(1);
+        rc = run_traced(dir, "prepared", "POCL_DEVICES=basic", "devices", how, sizeof how);
+        char *out = untraced(dir, "out.txt");
+        CHECK(rc == 0 && strcmp(how, k ? "server (reused): its prepared process" : "server (reused)") == 0 && out &&
+                  strstr(out, "0: basic"),
+              "POCL_DEVICES=basic, %s: exit %d, launcher '%s', devices:\n%s", k ? "again" : "first", rc, how,
+              out ? out : "(none)");
+        free(out);
+    }
     test_remove_dir(dir);
 }
 
