@@ -7,7 +7,7 @@
  * memfd and a descriptor of its working directory (SCM_RIGHTS); then cli_writer_lib.h's requests, each answered
  * in order. The server serves one request at a time, in the command's directory (fchdir) with its umask, so that
  * files land where and as they would from the command itself, and error messages name the same paths. */
-#define _GNU_SOURCE /* memfd, accept4, SO_PEERCRED, MSG_CMSG_CLOEXEC */
+#define _GNU_SOURCE /* accept4 */
 #include "cli_writer_server.h"
 #include "cli_server.h"
 #include "cli_writer_lib.h"
@@ -15,7 +15,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,8 +22,6 @@
 #include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
-#include <sys/un.h>
-#include <time.h>
 #include <unistd.h>
 
 #define WRITER_PROTOCOL 1u
