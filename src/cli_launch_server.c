@@ -29,7 +29,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-enum { MAX_COMMANDS = 256 };
+enum { MAX_COMMANDS = 256, FIRST_WAIT_MS = 200 };
 
 /* ---- the name ---- */
 
@@ -274,24 +274,32 @@ static _Noreturn void serve(int listener, int idle) {
     int children = signalfd(-1, &child, SFD_CLOEXEC | SFD_NONBLOCK);
     if (children < 0)
         _exit(1);
-    preload_opencl();
     static command cmds[MAX_COMMANDS];
     static struct pollfd p[MAX_COMMANDS + 2];
-    int n = 0;
+    int n = 0, first = 1, loaded = 0;
     prepared ready = {0};
     own_environment(&ready); /* the first command's, whose fork this process is */
     for (;;) {
-        if (n == 0)
+        /* The first command (it started this server and sends its request at once) is forked for before the
+         * preload: its process loads OpenCL on its own thread while it reads its input, as a command that runs
+         * itself does, rather than waiting for this process's load. The load waits until no command runs. */
+        if (n == 0 && !first && !loaded) {
+            preload_opencl();
+            loaded = 1;
+        }
+        if (n == 0 && loaded)
             prepare(&ready);
         int np = 0;
         p[np++] = (struct pollfd){listener, POLLIN, 0};
         p[np++] = (struct pollfd){children, POLLIN, 0};
         for (int k = 0; k < n; k++)
             p[np++] = (struct pollfd){cmds[k].fd, POLLIN, 0}; /* -1: ignored by poll */
-        int r = poll(p, (nfds_t)np, n > 0 ? -1 : idle * 1000);
+        int r = poll(p, (nfds_t)np, first ? FIRST_WAIT_MS : n > 0 ? -1 : idle * 1000);
+        int was_first = first;
+        first = 0;
         if (r < 0 && errno != EINTR)
             break;
-        if (r == 0 && !start_command(listener, cmds, &n, &ready)) /* idle: a command that connected just now? */
+        if (r == 0 && !was_first && !start_command(listener, cmds, &n, &ready)) /* idle: one connected just now? */
             break;
         if (r <= 0)
             continue;
