@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -143,6 +144,45 @@ char *test_read_file(const char *path, size_t *size) {
 const char *test_binary_path(void) {
     const char *b = getenv("IACSG_BIN");
     return b && *b ? b : IACSG_BINARY_DEFAULT;
+}
+
+int test_run_traced(const char *dir, const char *before, const char *args, const char *prefix, char *trace,
+                    size_t size) {
+    char cmd[4096], path[512], line[1024];
+    snprintf(cmd, sizeof cmd, "cd '%s' && %s '%s' %s >out.txt 2>err.txt", dir, before, test_binary_path(), args);
+    int rc = system(cmd);
+    trace[0] = '\0';
+    snprintf(path, sizeof path, "%s/err.txt", dir);
+    FILE *f = fopen(path, "r");
+    size_t n = strlen(prefix);
+    while (f && fgets(line, sizeof line, f))
+        if (!trace[0] && strncmp(line, prefix, n) == 0) {
+            strncpy(trace, line + n, size - 1);
+            trace[size - 1] = '\0';
+            trace[strcspn(trace, "\n")] = '\0';
+        }
+    if (f)
+        fclose(f);
+    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+char *test_read_without(const char *dir, const char *name, const char *prefix) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    char *text = test_read_file(path, NULL);
+    size_t n = strlen(prefix), kept = 0;
+    for (char *line = text; line && *line;) {
+        char *end = strchr(line, '\n');
+        size_t len = end ? (size_t)(end - line) + 1 : strlen(line);
+        if (strncmp(line, prefix, n) != 0) {
+            memmove(text + kept, line, len);
+            kept += len;
+        }
+        line += len;
+    }
+    if (text)
+        text[kept] = '\0';
+    return text;
 }
 
 static int selected(const char *name, int argc, char **argv) {

@@ -12,39 +12,19 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-/* Runs `args` in `dir` with the test's launcher (tag) and IACSG_LAUNCH_TRACE, after `env`, stdout into
- * dir/out.txt and stderr into dir/err.txt; returns the shell's exit status and the launcher's trace in `how`. */
+#define LAUNCH_TRACE "iacsg: launcher: "
+
+/* Runs `args` in `dir` with the test's launcher (tag) and IACSG_LAUNCH_TRACE, after `env`; returns the exit status
+ * and the launcher's first trace line in `how`. */
 static int run_traced(const char *dir, const char *tag, const char *env, const char *args, char *how, size_t size) {
-    char cmd[2048], path[512];
-    snprintf(cmd, sizeof cmd,
-             "cd '%s' && %s LD_LIBRARY_PATH=/nonexistent-launch-%s-%d IACSG_LAUNCH_TRACE=1 '%s' %s >out.txt 2>err.txt",
-             dir, env, tag, (int)getpid(), test_binary_path(), args);
-    int rc = system(cmd);
-    how[0] = '\0';
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    FILE *f = fopen(path, "r");
-    char line[1024];
-    while (f && fgets(line, sizeof line, f))
-        if (strncmp(line, "iacsg: launcher: ", 17) == 0 && !how[0]) {
-            snprintf(how, size, "%.200s", line + 17);
-            how[strcspn(how, "\n")] = '\0';
-        }
-    if (f)
-        fclose(f);
-    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    char before[512];
+    snprintf(before, sizeof before, "%s LD_LIBRARY_PATH=/nonexistent-launch-%s-%d IACSG_LAUNCH_TRACE=1", env, tag,
+             (int)getpid());
+    return test_run_traced(dir, before, args, LAUNCH_TRACE, how, size);
 }
 
 /* dir/name's text without the launcher's trace lines (the caller frees it). */
-static char *untraced(const char *dir, const char *name) {
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    char *text = test_read_file(path, NULL);
-    for (char *line = text; line && (line = strstr(line, "iacsg: launcher: ")) != NULL;) {
-        char *end = strchr(line, '\n');
-        memmove(line, end ? end + 1 : line + strlen(line), strlen(end ? end + 1 : line + strlen(line)) + 1);
-    }
-    return text;
-}
+static char *untraced(const char *dir, const char *name) { return test_read_without(dir, name, LAUNCH_TRACE); }
 
 TEST(launch_reused_with_cwd_umask_environment_and_status) {
     char dir[256], how[256], path[512];

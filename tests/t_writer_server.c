@@ -11,39 +11,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-/* Runs `args` in `dir` with the test's server (tag) and IACSG_WRITER_TRACE, with `env` before it, stderr into
- * dir/err.txt; returns the exit status and the first stderr line naming the writer in `how`. */
-static int run_traced(const char *dir, const char *tag, const char *env, const char *args, char *how, size_t size) {
-    char cmd[2048], path[512];
-    snprintf(cmd, sizeof cmd,
-             "cd '%s' && %s LD_LIBRARY_PATH=/nonexistent-%s-%d IACSG_WRITER_TRACE=1 '%s' %s >/dev/null 2>err.txt",
-             dir, env, tag, (int)getpid(), test_binary_path(), args);
-    int rc = system(cmd);
-    how[0] = '\0';
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    FILE *f = fopen(path, "r");
-    char line[1024];
-    while (f && fgets(line, sizeof line, f))
-        if (strncmp(line, "iacsg: image writer: ", 21) == 0 && !how[0]) {
-            strncpy(how, line + 21, size - 1);
-            how[size - 1] = '\0';
-        }
-    if (f)
-        fclose(f);
-    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
+#define WRITER_TRACE "iacsg: image writer: "
 
-/* The lines of dir/err.txt other than the writer's trace. */
-static void error_text(const char *dir, char *text, size_t size) {
-    char path[512], line[1024];
-    snprintf(path, sizeof path, "%s/err.txt", dir);
-    text[0] = '\0';
-    FILE *f = fopen(path, "r");
-    while (f && fgets(line, sizeof line, f))
-        if (strncmp(line, "iacsg: image writer: ", 21) != 0)
-            strncat(text, line, size - strlen(text) - 1);
-    if (f)
-        fclose(f);
+/* Runs `args` in `dir` with the test's server (tag) and IACSG_WRITER_TRACE, after `env`; returns the exit status
+ * and the writer the command got in `how`. */
+static int run_traced(const char *dir, const char *tag, const char *env, const char *args, char *how, size_t size) {
+    char before[512];
+    snprintf(before, sizeof before, "%s LD_LIBRARY_PATH=/nonexistent-%s-%d IACSG_WRITER_TRACE=1", env, tag,
+             (int)getpid());
+    return test_run_traced(dir, before, args, WRITER_TRACE, how, size);
 }
 
 TEST(writer_server_reused_with_cwd_and_umask) {
@@ -70,16 +46,17 @@ TEST(writer_server_errors_as_child) {
     CHECK(mkdir(path, 0755) == 0, "mkdir"); /* a directory where the image would go: the rename fails */
     const char *cases[] = {"sphere -size 8x8 -o out.nosuchformat", "sphere -size 8x8 -o taken.png"};
     for (int k = 0; k < 2; k++) {
-        char served[2048], child[2048];
         int rc1 = run_traced(dir, "errors", "", cases[k], how, sizeof how);
         CHECK(strstr(how, "server"), "%s: writer %s", cases[k], how);
-        error_text(dir, served, sizeof served);
+        char *served = test_read_without(dir, "err.txt", WRITER_TRACE);
         int rc2 = run_traced(dir, "errors", "IACSG_WRITER_IDLE=0", cases[k], how, sizeof how);
         CHECK(strstr(how, "child process"), "%s: writer %s with IACSG_WRITER_IDLE=0", cases[k], how);
-        error_text(dir, child, sizeof child);
+        char *child = test_read_without(dir, "err.txt", WRITER_TRACE);
         CHECK(rc1 == 1 && rc2 == 1, "%s: exit %d with the server, %d without", cases[k], rc1, rc2);
-        CHECK(served[0] && strcmp(served, child) == 0, "%s: with the server:\n%swithout:\n%s", cases[k], served,
-              child);
+        int same = served && child && served[0] && strcmp(served, child) == 0;
+        CHECK(same, "%s: with the server:\n%swithout:\n%s", cases[k], served ? served : "", child ? child : "");
+        free(served);
+        free(child);
     }
     snprintf(path, sizeof path, "%s/out.nosuchformat", dir);
     CHECK(access(path, F_OK) != 0, "a file was written for an unknown format");

@@ -61,5 +61,12 @@ const char *test_binary_path(void);
  * everything in it. */
 void test_make_dir(char *dir, size_t size, const char *tag);
 void test_remove_dir(const char *dir);
+/* Runs the command under test with `args` in `dir`, after `before` (shell text: variables, `umask 027 &&`),
+ * stdout into dir/out.txt and stderr into dir/err.txt. Returns its exit status (-1: it did not exit), and in
+ * `trace` the rest of the first stderr line that starts with `prefix` (empty: none). */
+int test_run_traced(const char *dir, const char *before, const char *args, const char *prefix, char *trace,
+                    size_t size);
+/* dir/name's text without its lines that start with `prefix` (NULL if it cannot be read; the caller frees it). */
+char *test_read_without(const char *dir, const char *name, const char *prefix);
 
 #endif
