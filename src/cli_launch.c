@@ -164,16 +164,21 @@ static int run_launched(int sock, const char *req, size_t size, int cwd, int sta
     int fds[4] = {0, 1, 2, cwd};
     launch_answer a;
     if (cli_server_send_fds(sock, req, size, fds, 4) != 0 || recv(sock, &a, sizeof a, 0) != (ssize_t)sizeof a ||
-        a.kind != LAUNCH_STARTED) {
+        (a.kind != LAUNCH_STARTED && a.kind != LAUNCH_ENDED)) {
         sigprocmask(SIG_SETMASK, &before, NULL);
         return 0;
     }
-    launched_pid = a.value;
-    trace(started ? "server (started)" : a.more ? "server (reused): its prepared process" : "server (reused)");
-    set_relays(&before);
-    ssize_t got;
-    while ((got = recv(sock, &a, sizeof a, 0)) < 0 && errno == EINTR)
-        ;
+    ssize_t got = sizeof a;
+    if (a.kind == LAUNCH_ENDED) { /* the process reported its end before the launcher its start */
+        trace(started ? "server (started)" : "server (reused)");
+        sigprocmask(SIG_SETMASK, &before, NULL);
+    } else {
+        launched_pid = a.value;
+        trace(started ? "server (started)" : a.more ? "server (reused): its prepared process" : "server (reused)");
+        set_relays(&before);
+        while ((got = recv(sock, &a, sizeof a, 0)) < 0 && errno == EINTR)
+            ;
+    }
     if (got != (ssize_t)sizeof a || a.kind != LAUNCH_ENDED) {
         kill((pid_t)launched_pid, SIGTERM);
         fprintf(stderr, "iacsg: the launcher ended before the command it ran (pid %d); its outcome is unknown\n",

@@ -15,10 +15,10 @@ void launch_title(char *const *words);
  * allocation at *argv to free). 0 when well formed. */
 int launch_parse(char *buf, size_t size, launch_request *q, char ***argv, char ***envp);
 
-/* Runs the command in this forked process with fds (stdin, stdout, stderr, working directory): never returns.
- * `inherited`: close every other descriptor (a process forked for this command; a prepared one has closed the
- * launcher's already, and keeps OpenCL's). */
-_Noreturn void launch_run(const launch_request *q, char **argv, char **envp, const int fds[4], int inherited);
+/* Runs the command in this forked process with fds (stdin, stdout, stderr, working directory, and the command's
+ * socket, on which it reports its end): never returns. `inherited`: close every other descriptor (a process forked
+ * for this command; a prepared one has closed the launcher's already, and keeps OpenCL's). */
+_Noreturn void launch_run(const launch_request *q, char **argv, char **envp, const int fds[5], int inherited);
 
 /* The prepared process, forked by the launcher: `sock` its end of a socket pair (every other descriptor of the
  * launcher is closed here), `env` the environment block (NUL-separated strings, `size` bytes) it prepares for.

@@ -183,8 +183,8 @@ static void own_environment(prepared *p) {
 
 /* Hands the request to the prepared process, if any (prepared for the request's environment: set_environment saw
  * to it): its pid, else 0. */
-static pid_t hand_over(prepared *p, const char *buf, size_t size, const int fds[4]) {
-    if (!p->pid || cli_server_send_fds(p->sock, buf, size, fds, 4) != 0)
+static pid_t hand_over(prepared *p, const char *buf, size_t size, const int fds[5]) {
+    if (!p->pid || cli_server_send_fds(p->sock, buf, size, fds, 5) != 0)
         return 0;
     pid_t pid = p->pid;
     close(p->sock);
@@ -200,7 +200,7 @@ static int start_command(int listener, command *cmds, int *n, prepared *p) {
         return 0;
     struct timeval limit = {2, 0}; /* a command sends its request with its connect */
     setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &limit, sizeof limit);
-    int fds[4] = {-1, -1, -1, -1};
+    int fds[5] = {-1, -1, -1, -1, fd}; /* the command's streams, its directory, and its socket */
     ssize_t got = -1;
     if (*n < MAX_COMMANDS && cli_server_peer_ok(fd))
         got = cli_server_recv_fds(fd, buf, sizeof buf, fds, 4, 0);
