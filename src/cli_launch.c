@@ -2,10 +2,10 @@
  *
  * Stages: whether the command goes to the launcher (refusals), the request (arguments, environment, umask; the
  * standard streams and the working directory as descriptors), and the wait: the launched process's pid, then its
- * wait status, with the signals a shell or a terminal sends this process relayed to it in between. The launched
- * process is in the launcher's session, not the terminal's foreground group, so Ctrl-C reaches only this process
- * and is relayed; a stop (Ctrl-Z) stops it with SIGSTOP (an orphaned group ignores SIGTSTP) and then this
- * process, and SIGCONT resumes both. */
+ * wait status (from the process as its command returns, else from the launcher's reap), with the signals a shell
+ * or a terminal sends this process relayed to it in between. The launched process is in the launcher's session,
+ * not the terminal's foreground group, so Ctrl-C reaches only this process and is relayed; a stop (Ctrl-Z) stops
+ * it with SIGSTOP (an orphaned group ignores SIGTSTP) and then this process, and SIGCONT resumes both. */
 #define _GNU_SOURCE /* O_PATH */
 #include "cli_launch.h"
 #include "cli_launch_server.h"

@@ -22,7 +22,9 @@ typedef struct {
 
 /* The answers: LAUNCH_STARTED with the process's pid (`more`: 1 when it is the prepared process, which had opened
  * OpenCL already), then LAUNCH_ENDED with its wait status (`more`: the CPU time in microseconds, user and system,
- * of its threads and reaped children). */
+ * of its threads and reaped children). The process itself sends LAUNCH_ENDED when its command returns, before
+ * it exits; the launcher sends it too when it reaps the process (the command sees only the first: a process
+ * ended by a signal reports nothing itself). */
 typedef enum { LAUNCH_STARTED = 1, LAUNCH_ENDED = 2 } launch_answer_kind;
 typedef struct {
     int kind;
