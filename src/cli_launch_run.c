@@ -125,7 +125,7 @@ _Noreturn void launch_run(const launch_request *q, char **argv, char **envp, con
             _exit(125);
     int reply = fds[4];
     if (inherited) { /* the listener, the other commands' sockets: none is the command's */
-        if (dup3(reply, 3, O_CLOEXEC) < 0)
+        if (reply != 3 && dup3(reply, 3, O_CLOEXEC) < 0)
             _exit(125);
         reply = 3;
         close_range(4, ~0u, 0);
