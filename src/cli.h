@@ -9,7 +9,6 @@ int cli_compile(int argc, char **argv); /* iacsg compile EXPR            (src/cl
 int cli_devices(int argc, char **argv); /* iacsg devices                 (src/cli_render.c) */
 int cli_view(int argc, char **argv);    /* iacsg view EXPR|SCENE [options] (src/cli_view.c) */
 
-
 /* The subcommand argv[1] names, or the render (src/cli_main.c): main, once src/cli_launch.c has not handed the
  * command to the launcher, and the launcher's forked process. */
 int cli_dispatch(int argc, char **argv);

@@ -86,6 +86,10 @@ int launch_parse(char *buf, size_t size, launch_request *q, char ***argv, char *
 
 /* ---- the run ---- */
 
+long long launch_cpu_us(const struct rusage *r) {
+    return (r->ru_utime.tv_sec + r->ru_stime.tv_sec) * 1000000LL + r->ru_utime.tv_usec + r->ru_stime.tv_usec;
+}
+
 /* The command's end, told to it at once: its output flushed and its standard streams closed (a `$(...)` reading
  * them sees their end), its status and CPU time sent on `reply`; this process's exit (PoCL's threads and
  * destructors, ~4 ms) and the launcher's reap (~2.5 ms) are then not waited for. */
@@ -100,9 +104,7 @@ static void report_end(int reply, int status) {
     struct rusage self, children;
     getrusage(RUSAGE_SELF, &self);
     getrusage(RUSAGE_CHILDREN, &children);
-    long long us = 0;
-    for (const struct rusage *r = &self; r; r = r == &self ? &children : NULL)
-        us += (r->ru_utime.tv_sec + r->ru_stime.tv_sec) * 1000000LL + r->ru_utime.tv_usec + r->ru_stime.tv_usec;
+    long long us = launch_cpu_us(&self) + launch_cpu_us(&children);
     launch_answer a = {LAUNCH_ENDED, (status & 0xff) << 8, us}; /* a wait status: exited with `status` */
     send(reply, &a, sizeof a, MSG_NOSIGNAL | MSG_DONTWAIT);
     close(reply);

@@ -5,6 +5,7 @@
 #define IACSG_CLI_LAUNCH_RUN_H
 #include "cli_launch_server.h"
 #include <stddef.h>
+#include <sys/resource.h>
 
 /* The memory of argv (main's, argc of them), which ps and /proc/PID/cmdline show for the launcher and each process
  * it forks; launch_title writes `words` there (cut to fit). */
@@ -14,6 +15,9 @@ void launch_title(char *const *words);
 /* Reads a request of `size` bytes at buf (the strings stay there): *q, and argv and envp (NULL-terminated, one
  * allocation at *argv to free). 0 when well formed. */
 int launch_parse(char *buf, size_t size, launch_request *q, char ***argv, char ***envp);
+
+/* A process's user and system CPU time in microseconds. */
+long long launch_cpu_us(const struct rusage *r);
 
 /* Runs the command in this forked process with fds (stdin, stdout, stderr, working directory, and the command's
  * socket, on which it reports its end): never returns. `inherited`: close every other descriptor (a process forked

@@ -53,7 +53,6 @@ static void hash_inherited(digest_ctx *c) {
     CPU_ZERO(&cpus);
     sched_getaffinity(0, sizeof cpus, &cpus);
     digest_update(c, &cpus, sizeof cpus);
-    errno = 0;
     int nice = getpriority(PRIO_PROCESS, 0);
     digest_update(c, &nice, sizeof nice);
     hash_file_text(c, "/proc/self/cgroup");
@@ -167,20 +166,6 @@ static void set_environment(prepared *p, const char *env, size_t size) {
     p->size = copy ? size : 0;
 }
 
-/* The environment of this process: the first command's, whose fork it is. */
-static void own_environment(prepared *p) {
-    extern char **environ;
-    size_t size = 0;
-    for (char **e = environ; e && *e; e++)
-        size += strlen(*e) + 1;
-    char *block = malloc(size ? size : 1), *at = block;
-    for (char **e = environ; block && e && *e; e++)
-        at += strlen(strcpy(at, *e)) + 1;
-    if (block)
-        set_environment(p, block, size);
-    free(block);
-}
-
 /* Hands the request to the prepared process, if any (prepared for the request's environment: set_environment saw
  * to it): its pid, else 0. */
 static pid_t hand_over(prepared *p, const char *buf, size_t size, const int fds[5]) {
@@ -248,9 +233,7 @@ static void reap(command *cmds, int *n, prepared *p) {
         for (int k = 0; k < *n; k++)
             if (cmds[k].pid == pid) {
                 if (cmds[k].fd >= 0) {
-                    long long cpu_us = (ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) * 1000000LL + ru.ru_utime.tv_usec +
-                                       ru.ru_stime.tv_usec;
-                    send_answer(cmds[k].fd, LAUNCH_ENDED, status, cpu_us);
+                    send_answer(cmds[k].fd, LAUNCH_ENDED, status, launch_cpu_us(&ru));
                     close(cmds[k].fd);
                 }
                 cmds[k] = cmds[--*n];
@@ -277,8 +260,7 @@ static _Noreturn void serve(int listener, int idle) {
     static command cmds[MAX_COMMANDS];
     static struct pollfd p[MAX_COMMANDS + 2];
     int n = 0, first = 1, loaded = 0;
-    prepared ready = {0};
-    own_environment(&ready); /* the first command's, whose fork this process is */
+    prepared ready = {0}; /* its environment: the first command's, once that is taken */
     for (;;) {
         /* The first command (it started this server and sends its request at once) is forked for before the
          * preload: its process loads OpenCL on its own thread while it reads its input, as a command that runs
