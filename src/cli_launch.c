@@ -169,12 +169,11 @@ static int run_launched(int sock, const char *req, size_t size, int cwd, int sta
         return 0;
     }
     ssize_t got = sizeof a;
+    trace(started ? "server (started)" : "server (reused)");
     if (a.kind == LAUNCH_ENDED) { /* the process reported its end before the launcher its start */
-        trace(started ? "server (started)" : "server (reused)");
         sigprocmask(SIG_SETMASK, &before, NULL);
     } else {
         launched_pid = a.value;
-        trace(started ? "server (started)" : a.more ? "server (reused): its prepared process" : "server (reused)");
         set_relays(&before);
         while ((got = recv(sock, &a, sizeof a, 0)) < 0 && errno == EINTR)
             ;

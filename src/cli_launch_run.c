@@ -1,8 +1,7 @@
 /* src/cli_launch_run.c -- see cli_launch_run.h.
  *
  * Stages: the title (what ps shows), the request's strings, the command's run (its signal dispositions and mask,
- * directory, umask, streams and environment, as an exec would have carried them, then main's dispatch), and the
- * prepared process (OpenCL opened, then a request awaited). */
+ * directory, umask, streams and environment, as an exec would have carried them, then main's dispatch). */
 #define _GNU_SOURCE /* close_range */
 #include "cli_launch_run.h"
 #include "cli.h"
@@ -110,7 +109,7 @@ static void report_end(int reply, int status) {
     close(reply);
 }
 
-_Noreturn void launch_run(const launch_request *q, char **argv, char **envp, const int fds[5], int inherited) {
+_Noreturn void launch_run(const launch_request *q, char **argv, char **envp, const int fds[5]) {
     sigset_t blocked; /* the command's dispositions and mask, as an exec would have carried them */
     sigemptyset(&blocked);
     for (int sig = 1; sig <= 64; sig++) {
@@ -125,17 +124,10 @@ _Noreturn void launch_run(const launch_request *q, char **argv, char **envp, con
     for (int k = 0; k < 3; k++)
         if (dup2(fds[k], k) < 0)
             _exit(125);
-    int reply = fds[4];
-    if (inherited) { /* the listener, the other commands' sockets: none is the command's */
-        if (reply != 3 && dup3(reply, 3, O_CLOEXEC) < 0)
-            _exit(125);
-        reply = 3;
-        close_range(4, ~0u, 0);
-    } else {
-        for (int k = 0; k < 4; k++)
-            if (fds[k] > 2)
-                close(fds[k]);
-    }
+    const int reply = 3; /* the command's socket; the launcher's other descriptors (the listener, the other
+                          * commands' sockets) are closed */
+    if ((fds[4] != reply && dup3(fds[4], reply, O_CLOEXEC) < 0) || close_range(reply + 1, ~0u, 0) != 0)
+        _exit(125);
     prctl(PR_SET_NAME, "iacsg");
     launch_title(argv);
     if (!entered) {
@@ -150,39 +142,4 @@ _Noreturn void launch_run(const launch_request *q, char **argv, char **envp, con
     int status = cli_dispatch(argc, argv);
     report_end(reply, status);
     exit(status); /* exit, not _exit: atexit handlers run as they would (the streams are /dev/null by now) */
-}
-
-/* ---- the prepared process ---- */
-
-_Noreturn void launch_prepared(int sock, const char *env, size_t size) {
-    int keep = fcntl(sock, F_DUPFD_CLOEXEC, 3);
-    if (keep < 0 || (keep > 3 && close_range(3, (unsigned)keep - 1, 0) != 0) ||
-        close_range((unsigned)keep + 1, ~0u, 0) != 0)
-        _exit(1);
-    prctl(PR_SET_NAME, "iacsg-prepared");
-    launch_title((char *const[]){"iacsg-prepared", NULL});
-    size_t count = 0;
-    for (size_t at = 0; at < size; at += strlen(env + at) + 1)
-        count++;
-    char **vars = malloc((count + 1) * sizeof *vars), *block = malloc(size + 1);
-    if (!vars || !block)
-        _exit(1);
-    memcpy(block, env, size);
-    block[size] = '\0';
-    count = 0;
-    for (size_t at = 0; at < size; at += strlen(block + at) + 1)
-        vars[count++] = block + at;
-    vars[count] = NULL;
-    extern char **environ;
-    environ = vars; /* what OpenCL's drivers read as they start (POCL_*, HOME, ...) is the command's */
-    clrt_prepare(0);
-    static char buf[LAUNCH_REQUEST_MAX];
-    int fds[5];
-    ssize_t got = cli_server_recv_fds(keep, buf, sizeof buf, fds, 5, 0);
-    launch_request q;
-    char **argv, **envp;
-    if (got <= 0 || fds[3] < 0 || fds[4] < 0 || launch_parse(buf, (size_t)got, &q, &argv, &envp) != 0)
-        _exit(1); /* the launcher ended, or (never: it checked) sent no well-formed request */
-    close(keep);
-    launch_run(&q, argv, envp, fds, 0);
 }

@@ -1,6 +1,4 @@
-/* src/cli_launch_run.h -- the launcher's processes (src/cli_launch_server.c forks them): the one that runs a
- * command, and the prepared one, which has opened OpenCL (platforms, devices, a context on device 0) in an
- * environment before its command comes, and runs the next command of that same environment. */
+/* src/cli_launch_run.h -- the process that runs a command for the launcher (src/cli_launch_server.c forks it). */
 #ifndef IACSG_CLI_LAUNCH_RUN_H
 #define IACSG_CLI_LAUNCH_RUN_H
 #include "cli_launch_server.h"
@@ -20,13 +18,7 @@ int launch_parse(char *buf, size_t size, launch_request *q, char ***argv, char *
 long long launch_cpu_us(const struct rusage *r);
 
 /* Runs the command in this forked process with fds (stdin, stdout, stderr, working directory, and the command's
- * socket, on which it reports its end): never returns. `inherited`: close every other descriptor (a process forked
- * for this command; a prepared one has closed the launcher's already, and keeps OpenCL's). */
-_Noreturn void launch_run(const launch_request *q, char **argv, char **envp, const int fds[5], int inherited);
-
-/* The prepared process, forked by the launcher: `sock` its end of a socket pair (every other descriptor of the
- * launcher is closed here), `env` the environment block (NUL-separated strings, `size` bytes) it prepares for.
- * Opens OpenCL in it, then runs the request the launcher sends on `sock` (none: it exits). Never returns. */
-_Noreturn void launch_prepared(int sock, const char *env, size_t size);
+ * socket, on which it reports its end; every other descriptor is closed): never returns. */
+_Noreturn void launch_run(const launch_request *q, char **argv, char **envp, const int fds[5]);
 
 #endif

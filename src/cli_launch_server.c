@@ -5,10 +5,15 @@
  * limits, CPU affinity, nice value, cgroup, pid namespace, and the ICD loader's variables, which choose the
  * libraries loaded), the preload (each OpenCL driver the ICD loader would open, opened now: nothing of OpenCL is
  * called, so the server starts no thread and may fork), and the loop (poll over the listener, the commands'
- * sockets and SIGCHLD; each command to the prepared process or to one forked for it: src/cli_launch_run.c).
+ * sockets and SIGCHLD; each command to a process forked for it: src/cli_launch_run.c).
  *
  * A command's socket closing while its process runs means the command is gone (killed by SIGKILL, say): its
- * process gets SIGTERM, as it would have from a shell that killed the command. */
+ * process gets SIGTERM, as it would have from a shell that killed the command.
+ *
+ * Nothing of OpenCL is opened ahead of a command (a process with platforms, devices and a context ready would save
+ * it 6-22 ms): PoCL's device start creates its cache directory and a file in it, so done after a command it would
+ * write into a directory that the user may be removing then, and a process prepared before the user removed that
+ * directory fails its builds. */
 #define _GNU_SOURCE /* accept4, signalfd, close_range, sched_getaffinity */
 #include "cli_launch_server.h"
 #include "cli_launch_run.h"
@@ -118,67 +123,13 @@ typedef struct {
     pid_t pid;
 } command;
 
-/* The prepared process (src/cli_launch_run.h), at most one: made, for the environment of the last command, when
- * no command runs (made while one runs, its start would take CPU from that command), and given the next command
- * of the same environment; another environment gets a process forked for it. */
-typedef struct {
-    pid_t pid; /* 0: none */
-    int sock;
-    char *env; /* the environment it prepares for: NUL-separated strings */
-    size_t size;
-} prepared;
-
 static int send_answer(int fd, int kind, int value, long long more) {
     launch_answer a = {kind, value, more};
     return send(fd, &a, sizeof a, MSG_NOSIGNAL | MSG_DONTWAIT) == (ssize_t)sizeof a ? 0 : -1;
 }
 
-static void prepare(prepared *p) {
-    int pair[2];
-    if (p->pid || !p->env || socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, pair) != 0)
-        return;
-    pid_t pid = fork();
-    if (pid == 0)
-        launch_prepared(pair[1], p->env, p->size);
-    close(pair[1]);
-    if (pid > 0) {
-        p->pid = pid;
-        p->sock = pair[0];
-    } else {
-        close(pair[0]);
-    }
-}
-
-/* Makes `env` the environment to prepare for; a prepared process of another environment is ended. */
-static void set_environment(prepared *p, const char *env, size_t size) {
-    if (p->env && size == p->size && memcmp(env, p->env, size) == 0)
-        return;
-    if (p->pid) {
-        kill(p->pid, SIGKILL); /* reaped with the others */
-        close(p->sock);
-        p->pid = 0;
-    }
-    char *copy = malloc(size ? size : 1);
-    if (copy)
-        memcpy(copy, env, size);
-    free(p->env);
-    p->env = copy;
-    p->size = copy ? size : 0;
-}
-
-/* Hands the request to the prepared process, if any (prepared for the request's environment: set_environment saw
- * to it): its pid, else 0. */
-static pid_t hand_over(prepared *p, const char *buf, size_t size, const int fds[5]) {
-    if (!p->pid || cli_server_send_fds(p->sock, buf, size, fds, 5) != 0)
-        return 0;
-    pid_t pid = p->pid;
-    close(p->sock);
-    p->pid = 0;
-    return pid;
-}
-
 /* Takes a command waiting on the listener and starts its process: 1 when one was taken (or refused). */
-static int start_command(int listener, command *cmds, int *n, prepared *p) {
+static int start_command(int listener, command *cmds, int *n) {
     static char buf[LAUNCH_REQUEST_MAX];
     int fd = accept4(listener, NULL, NULL, SOCK_CLOEXEC);
     if (fd < 0)
@@ -191,23 +142,17 @@ static int start_command(int listener, command *cmds, int *n, prepared *p) {
         got = cli_server_recv_fds(fd, buf, sizeof buf, fds, 4, 0);
     launch_request q;
     char **argv = NULL, **envp = NULL;
-    int ok = got > 0 && fds[3] >= 0 && launch_parse(buf, (size_t)got, &q, &argv, &envp) == 0;
-    if (ok) {
-        const char *env = envp[0] ? envp[0] : buf + got; /* the environment's strings end the request */
-        set_environment(p, env, (size_t)(buf + got - env));
-    }
-    pid_t pid = ok ? hand_over(p, buf, (size_t)got, fds) : -1;
-    int was_prepared = pid > 0;
-    if (ok && !pid) {
+    pid_t pid = -1;
+    if (got > 0 && fds[3] >= 0 && launch_parse(buf, (size_t)got, &q, &argv, &envp) == 0) {
         pid = fork();
         if (pid == 0)
-            launch_run(&q, argv, envp, fds, 1);
+            launch_run(&q, argv, envp, fds);
     }
     free(argv);
     for (int k = 0; k < 4; k++)
         if (fds[k] >= 0)
             close(fds[k]);
-    if (pid > 0 && send_answer(fd, LAUNCH_STARTED, (int)pid, was_prepared) == 0) {
+    if (pid > 0 && send_answer(fd, LAUNCH_STARTED, (int)pid, 0) == 0) {
         fcntl(fd, F_SETFL, O_NONBLOCK);
         cmds[(*n)++] = (command){fd, pid};
     } else {
@@ -219,17 +164,11 @@ static int start_command(int listener, command *cmds, int *n, prepared *p) {
 }
 
 /* Reaps the ended processes and tells their commands. */
-static void reap(command *cmds, int *n, prepared *p) {
+static void reap(command *cmds, int *n) {
     int status;
     pid_t pid;
     struct rusage ru;
     while ((pid = wait4(-1, &status, WNOHANG, &ru)) > 0) {
-        if (pid == p->pid) { /* it failed before its command came: the next command is forked for */
-            close(p->sock);
-            p->pid = 0;
-            free(p->env);
-            p->env = NULL;
-        }
         for (int k = 0; k < *n; k++)
             if (cmds[k].pid == pid) {
                 if (cmds[k].fd >= 0) {
@@ -260,7 +199,6 @@ static _Noreturn void serve(int listener, int idle) {
     static command cmds[MAX_COMMANDS];
     static struct pollfd p[MAX_COMMANDS + 2];
     int n = 0, first = 1, loaded = 0;
-    prepared ready = {0}; /* its environment: the first command's, once that is taken */
     for (;;) {
         /* The first command (it started this server and sends its request at once) is forked for before the
          * preload: its process loads OpenCL on its own thread while it reads its input, as a command that runs
@@ -269,8 +207,6 @@ static _Noreturn void serve(int listener, int idle) {
             preload_opencl();
             loaded = 1;
         }
-        if (n == 0 && loaded)
-            prepare(&ready);
         int np = 0;
         p[np++] = (struct pollfd){listener, POLLIN, 0};
         p[np++] = (struct pollfd){children, POLLIN, 0};
@@ -281,7 +217,7 @@ static _Noreturn void serve(int listener, int idle) {
         first = 0;
         if (r < 0 && errno != EINTR)
             break;
-        if (r == 0 && !was_first && !start_command(listener, cmds, &n, &ready)) /* idle: one connected just now? */
+        if (r == 0 && !was_first && !start_command(listener, cmds, &n)) /* idle: one connected just now? */
             break;
         if (r <= 0)
             continue;
@@ -295,10 +231,10 @@ static _Noreturn void serve(int listener, int idle) {
             struct signalfd_siginfo info;
             while (read(children, &info, sizeof info) == (ssize_t)sizeof info)
                 ;
-            reap(cmds, &n, &ready);
+            reap(cmds, &n);
         }
         if (p[0].revents & POLLIN)
-            start_command(listener, cmds, &n, &ready);
+            start_command(listener, cmds, &n);
     }
     _exit(0);
 }

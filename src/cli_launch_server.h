@@ -1,7 +1,7 @@
 /* src/cli_launch_server.h -- the launcher: a process per user and build that has loaded the OpenCL driver's
  * libraries (PoCL's LLVM and Clang: 75-90 ms of dynamic linking on a paravirtualised AMD EPYC, 15-30 ms on an
- * Intel Xeon) and runs, for each command that asks, a process of its own (forked, or the prepared one of
- * src/cli_launch_run.h) with the command's arguments, environment, working directory, umask and standard streams.
+ * Intel Xeon) and runs, for each command that asks, a process forked for it (src/cli_launch_run.h) with the
+ * command's arguments, environment, working directory, umask and standard streams.
  * The first command starts it; it ends after IACSG_LAUNCH_IDLE seconds (default 30) without a command. The
  * command's side is src/cli_launch.c. */
 #ifndef IACSG_CLI_LAUNCH_SERVER_H
@@ -20,11 +20,10 @@ typedef struct {
     unsigned long long ignored, blocked; /* the command's ignored and blocked signals: bit s-1 for signal s */
 } launch_request;
 
-/* The answers: LAUNCH_STARTED with the process's pid (`more`: 1 when it is the prepared process, which had opened
- * OpenCL already), then LAUNCH_ENDED with its wait status (`more`: the CPU time in microseconds, user and system,
- * of its threads and reaped children). The process itself sends LAUNCH_ENDED when its command returns, before
- * it exits; the launcher sends it too when it reaps the process (the command sees only the first: a process
- * ended by a signal reports nothing itself). */
+/* The answers: LAUNCH_STARTED with the process's pid, then LAUNCH_ENDED with its wait status (`more`: the CPU
+ * time in microseconds, user and system, of its threads and reaped children). The process itself sends
+ * LAUNCH_ENDED when its command returns, before it exits; the launcher sends it too when it reaps the process (the
+ * command sees only the first: a process ended by a signal reports nothing itself). */
 typedef enum { LAUNCH_STARTED = 1, LAUNCH_ENDED = 2 } launch_answer_kind;
 typedef struct {
     int kind;

@@ -128,24 +128,6 @@ int clrt_list_devices(void (*fn)(int, const char *, const char *, void *), void 
     return n < 0 ? 0 : n;
 }
 
-static cl_device_id prepared_device;
-static cl_context prepared_context;
-
-void clrt_prepare(int device_index) {
-    cl_platform_id plats[MAX_DEVICES];
-    cl_device_id devs[MAX_DEVICES];
-    iacsg_error ignored = {0};
-    int n = enumerate(plats, devs, MAX_DEVICES, &ignored);
-    cl_int rc = CL_SUCCESS;
-    if (device_index < 0 || device_index >= n)
-        return;
-    cl_context c = clCreateContext(NULL, 1, &devs[device_index], NULL, NULL, &rc);
-    if (rc == CL_SUCCESS) {
-        prepared_context = c;
-        prepared_device = devs[device_index];
-    }
-}
-
 iacsg_status clrt_open(clrt *rt, int device_index, iacsg_error *err) {
     memset(rt, 0, sizeof *rt);
     cl_platform_id plats[MAX_DEVICES];
@@ -177,14 +159,7 @@ iacsg_status clrt_open(clrt *rt, int device_index, iacsg_error *err) {
     rt->float_denorms = (fp & CL_FP_DENORM) != 0;
     const char *inexact = getenv("IACSG_INEXACT_DIVIDE_SQRT");
     rt->cr_divide_sqrt = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0 && !(inexact && *inexact);
-    if (prepared_context && prepared_device == rt->device) {
-        rt->context = prepared_context;
-    } else {
-        if (prepared_context)
-            clReleaseContext(prepared_context);
-        rt->context = clCreateContext(NULL, 1, &rt->device, NULL, NULL, &rc);
-    }
-    prepared_context = NULL;
+    rt->context = clCreateContext(NULL, 1, &rt->device, NULL, NULL, &rc);
     CLRT_CHECK(err, rc);
     rt->queue = clCreateCommandQueue(rt->context, rt->device, 0, &rc);
     CLRT_CHECK(err, rc);

@@ -60,11 +60,6 @@ void clrt_warm_join(void);
 int clrt_list_devices(void (*fn)(int index, const char *platform, const char *device, void *ctx), void *ctx,
                       iacsg_error *err);
 
-/* Opens the platforms and devices and makes a context on device number `device_index` ahead of need: the launcher's
- * prepared process (src/cli_launch_run.c) does so before its command comes. clrt_open takes that context when it
- * opens the same device (else releases it). Failures are left for clrt_open to meet and report. */
-void clrt_prepare(int device_index);
-
 /* Opens device number `device_index` (see clrt_list_devices): context, in-order queue, capabilities.
  * On failure nothing stays allocated. */
 iacsg_status clrt_open(clrt *rt, int device_index, iacsg_error *err);

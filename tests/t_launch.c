@@ -10,6 +10,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #define LAUNCH_TRACE "iacsg: launcher: "
@@ -63,43 +64,32 @@ TEST(launch_reused_with_cwd_umask_environment_and_status) {
     test_remove_dir(dir);
 }
 
-/* The prepared process serves the next command of the environment it prepared for, and only that: a command of
- * another environment gets a process forked for it, which sees that environment. */
-TEST(launch_prepared_process_for_its_environment_only) {
-    char dir[256], how[256];
-    test_make_dir(dir, sizeof dir, "launch-prepared");
-    int rc = run_traced(dir, "prepared", "", "sphere -size 8x8 -o a.png", how, sizeof how);
-    CHECK(rc == 0 && strcmp(how, "server (started)") == 0, "first command: exit %d, launcher '%s'", rc, how);
-    for (int k = 0; k < 2; k++) {
-        sleep(1); /* time to prepare, as between the commands a person types */
-        rc = run_traced(dir, "prepared", "", "sphere -size 8x8 -o b.png", how, sizeof how);
-        CHECK(rc == 0 && strcmp(how, "server (reused): its prepared process") == 0,
-              "the same environment again: exit %d, launcher '%s'", rc, how);
+/* A command's effects end with it, and each command meets the files as they are when it starts: with PoCL's cache
+ * in the test's directory, that cache removed right after each command stays removed (nothing of OpenCL starts
+ * between commands: PoCL's start creates it), and the next command builds in it afresh. What OpenCL reads as it
+ * starts is the command's environment: PoCL's device list with POCL_DEVICES=basic. */
+TEST(launch_leaves_nothing_running_between_commands) {
+    char dir[256], how[256], env[384], cache[300], cmd[320];
+    test_make_dir(dir, sizeof dir, "launch-between");
+    snprintf(cache, sizeof cache, "%s/pocl", dir);
+    snprintf(env, sizeof env, "POCL_CACHE_DIR='%s'", cache);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", cache);
+    struct stat st;
+    for (int k = 0; k < 3; k++) { /* `devices` starts PoCL's devices; the render builds in PoCL's cache */
+        int rc = run_traced(dir, "between", env, k < 2 ? "devices" : "sphere -size 8x8 -o a.png", how, sizeof how);
+        CHECK(rc == 0 && strcmp(how, k ? "server (reused)" : "server (started)") == 0,
+              "command %d (PoCL's cache removed before it: %s): exit %d, launcher '%s'", k, k ? "yes" : "no", rc,
+              how);
+        CHECK(stat(cache, &st) == 0, "command %d: PoCL made no cache in %s", k, cache);
+        CHECK(system(cmd) == 0, "command %d: the cache could not be removed right after the command", k);
+        nanosleep(&(struct timespec){0, 500000000}, NULL);
+        CHECK(stat(cache, &st) != 0, "command %d: PoCL's cache came back after the command ended", k);
     }
-    sleep(1);
-    rc = run_traced(dir, "prepared", "IACSG_WRITER_TRACE=1", "sphere -size 8x8 -o c.png", how, sizeof how);
-    CHECK(rc == 0 && strcmp(how, "server (reused)") == 0, "another environment: exit %d, launcher '%s'", rc, how);
-    char *err = untraced(dir, "err.txt");
-    CHECK(err && strstr(err, "iacsg: image writer: "), "the command's environment was not its process's: %s",
-          err ? err : "(none)");
-    free(err);
-    sleep(1);
-    rc = run_traced(dir, "prepared", "IACSG_WRITER_TRACE=1", "sphere -size 8x8 -o d.png", how, sizeof how);
-    CHECK(rc == 0 && strcmp(how, "server (reused): its prepared process") == 0,
-          "that environment again: exit %d, launcher '%s'", rc, how);
-    err = untraced(dir, "err.txt");
-    CHECK(err && strstr(err, "iacsg: image writer: "), "the prepared process lost the environment: %s",
-          err ? err : "(none)");
-    free(err);
-    /* What OpenCL reads as it starts is the command's too: PoCL's device list (its basic device, not pthread). */
     for (int k = 0; k < 2; k++) {
-        sleep(1);
-        rc = run_traced(dir, "prepared", "POCL_DEVICES=basic", "devices", how, sizeof how);
+        int rc = run_traced(dir, "between", "POCL_DEVICES=basic", "devices", how, sizeof how);
         char *out = untraced(dir, "out.txt");
-        CHECK(rc == 0 && strcmp(how, k ? "server (reused): its prepared process" : "server (reused)") == 0 && out &&
-                  strstr(out, "0: basic"),
-              "POCL_DEVICES=basic, %s: exit %d, launcher '%s', devices:\n%s", k ? "again" : "first", rc, how,
-              out ? out : "(none)");
+        CHECK(rc == 0 && strcmp(how, "server (reused)") == 0 && out && strstr(out, "0: basic"),
+              "POCL_DEVICES=basic: exit %d, launcher '%s', devices:\n%s", rc, how, out ? out : "(none)");
         free(out);
     }
     test_remove_dir(dir);
@@ -107,8 +97,8 @@ TEST(launch_prepared_process_for_its_environment_only) {
 
 /* A long render in the background (after `prefix`: env --default-signal=INT, or nothing: a background command of
  * sh ignores SIGINT), sent `signals` in turn half a second apart once its launched process runs. The report:
- * "status N children M", M the commands' processes the launcher has a second later (its prepared process aside:
- * it shows as iacsg-prepared). Exit 3: no launcher found; 4: the command's process never showed. */
+ * "status N children M", M the commands' processes the launcher has a second later. Exit 3: no launcher found; 4:
+ * the command's process never showed. */
 static void signal_command(const char *dir, const char *prefix, const char *signals, char *report, size_t size) {
     char cmd[4096], path[512];
     snprintf(cmd, sizeof cmd,
