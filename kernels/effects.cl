@@ -276,8 +276,9 @@ __attribute__((noinline)) static void effects_centre(__constant ia_real *params,
 }
 
 /* Paths first .. first + 15 of the launch. mode (kernels/effects.h): EFFECTS_MODE_CENTRE, path k the centre ray
- * of pixel pixels[k], its hit the frame's (depth, normal); EFFECTS_MODE_AA, path k the ray (k mod aa^2) of an
- * aa x aa grid in pixel pixels[k / aa^2], weight 1 / aa^2, traced with leaves aa_eps (as camera rays);
+ * of pixel pixels[k], its hit the frame's (depth, normal); EFFECTS_MODE_AA, path k the ray (k mod m) of the m
+ * rays of the aa x aa grid in `aa_set` (effects_aa_cell) in pixel pixels[k / m], weight 1 / aa^2, traced with
+ * leaves aa_eps (as camera rays);
  * EFFECTS_MODE_PATHS, path k the ray paths[k] (EFFECTS_PATH_REALS) of pixel pixels[k]. Interval Newton's window
  * in the walks (packet.h): 32 `footprint`s, the camera rays'. Out per path: its colour (3 floats: linear light
  * times the weight, in `color`; a centre ray's in its pixel of the frame's `rgb`, display-encoded when it lists no
@@ -288,11 +289,11 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
                             int aa, __global const float *depth, __global const float *normal,
                             ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
                             __global float *rgb, __global float *color, __global ia_real *kids,
-                            __global int *nkids, int kid_slots, __global uint *stats) {
+                            __global int *nkids, int kid_slots, __global uint *stats, int aa_set) {
     int first = (int)get_global_id(0) * IA_VW;
     if (first >= npaths)
         return;
-    int samples = mode == EFFECTS_MODE_AA ? aa * aa : 1, pix[IA_VW];
+    int samples = mode == EFFECTS_MODE_AA ? effects_aa_rays(aa, aa_set) : 1, pix[IA_VW];
     ia_real valid_k[IA_VW], w_k[IA_VW], layers_k[IA_VW], bounces_k[IA_VW], row_k[IA_VW], x2_k[IA_VW], y2_k[IA_VW];
     ia_real t_k[IA_VW];
     ia_real o_k[3][IA_VW], d_k[3][IA_VW], n_k[3][IA_VW];
@@ -302,13 +303,14 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
         pix[k] = pixels[path / samples];
         int i = pix[k] % width, j = pix[k] / width, s = path % samples;
         row_k[k] = (ia_real)j;
-        w_k[k] = mode == EFFECTS_MODE_AA ? (ia_real)1 / (ia_real)samples : 1;
+        w_k[k] = mode == EFFECTS_MODE_AA ? (ia_real)1 / (ia_real)(aa * aa) : 1;
         layers_k[k] = bounces_k[k] = 0;
         x2_k[k] = (ia_real)(2 * i + 1); /* the centre ray's, exactly as the camera kernel's (packet_rays) */
         y2_k[k] = (ia_real)(2 * j + 1);
         if (mode == EFFECTS_MODE_AA) {
-            x2_k[k] = (ia_real)(2 * i) + (ia_real)(2 * (s % aa) + 1) / (ia_real)aa;
-            y2_k[k] = (ia_real)(2 * j) + (ia_real)(2 * (s / aa) + 1) / (ia_real)aa;
+            int cell = effects_aa_cell(aa, aa_set, s);
+            x2_k[k] = (ia_real)(2 * i) + (ia_real)(2 * (cell % aa) + 1) / (ia_real)aa;
+            y2_k[k] = (ia_real)(2 * j) + (ia_real)(2 * (cell / aa) + 1) / (ia_real)aa;
         }
         t_k[k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)depth[pix[k]] : 0;
         for (int c = 0; c < 3; c++)

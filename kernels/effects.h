@@ -62,4 +62,26 @@ enum {
  * (n x n per listed pixel), or listed paths (reflected rays). */
 enum { EFFECTS_MODE_CENTRE = 0, EFFECTS_MODE_AA = 1, EFFECTS_MODE_PATHS = 2 };
 
+/* Which of -aa's n x n rays of a pixel a launch of EFFECTS_MODE_AA traces: all, the grid's four corners, or the
+ * rest (src/render_effects_device.c traces the rest only where the corners differ). */
+enum { EFFECTS_AA_ALL = 0, EFFECTS_AA_CORNERS = 1, EFFECTS_AA_REST = 2 };
+
+/* The rays of a pixel in `set` (corners and rest only for aa >= 3). */
+static inline int effects_aa_rays(int aa, int set) {
+    return set == EFFECTS_AA_CORNERS ? 4 : set == EFFECTS_AA_REST ? aa * aa - 4 : aa * aa;
+}
+
+/* The cell (a + aa b: the ray through (i + (a + 1/2) / aa, j + (b + 1/2) / aa) of pixel (i, j)) of ray s of a
+ * pixel in `set`: the rest in row-major order, the corners skipped. */
+static inline int effects_aa_cell(int aa, int set, int s) {
+    if (set == EFFECTS_AA_CORNERS)
+        return (s & 1 ? aa - 1 : 0) + (s & 2 ? aa * (aa - 1) : 0);
+    if (set == EFFECTS_AA_ALL)
+        return s;
+    int g = s + 1; /* past cell 0, then past aa - 1 and aa (aa - 1) where reached; aa^2 - 1 never is */
+    g += g >= aa - 1;
+    g += g >= aa * (aa - 1);
+    return g;
+}
+
 #endif

@@ -45,9 +45,8 @@ static const float fx_default_top[3] = {0.42f, 0.46f, 0.52f}, fx_default_bottom[
  * direction towards each (fixed to the camera), the weight of its diffuse term and of its highlight (times the
  * material's specular). */
 static const double fx_rig[2][4] = {{-0.6, 0.8, 0.85, 1.0}, {0.9, -0.2, 0.30, 0.10 / 0.45}};
-/* -aa: a pixel is an edge where its centre ray's id differs from a neighbour's, or its colour by this much in a
- * channel (shadow and reflection edges), or its depth by this fraction. */
-#define FX_AA_CONTRAST (1.0 / 16)
+/* -aa: a pixel is an edge where its centre ray's id differs from a neighbour's, or its colour by FX_AA_CONTRAST
+ * (render_effects_trace.h) in a channel (shadow and reflection edges), or its depth by this fraction. */
 #define FX_AA_DEPTH 0.02
 /* -aa's rays have leaves no narrower than a sample's footprint (at the bounds' farthest corner) / this. */
 #define FX_AA_EPS_PER_SAMPLE 4

@@ -52,6 +52,10 @@ struct render_fx {
     int nitems;
 };
 
+/* -aa: two display colours differ (an edge pixel's neighbour's, the corners of the first-root path's rays in a
+ * pixel) where a channel differs by more than this. */
+#define FX_AA_CONTRAST (1.0 / 16)
+
 /* The working precision's bytes per real; v stored as such a real at index k of `block`. */
 size_t fx_real_bytes(const iacsg_renderer *r);
 void fx_put_real(const iacsg_renderer *r, void *block, size_t k, double v);

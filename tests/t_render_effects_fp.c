@@ -5,6 +5,7 @@
  * (t_render_util.h). */
 #include "t_render_util.h"
 #include "iacsg.h"
+#include "kernels/effects.h"
 #include "render_effects_trace.h" /* fx_trace: secondary rays traced alone or in packets */
 
 #ifdef IA_FP64
@@ -519,6 +520,25 @@ static void check_aa_edges(void (*render)(const char *, const iacsg_view *, iacs
 }
 
 TEST_FP(effects_aa_edges) { check_aa_edges(render_expr, "sphere"); }
+
+/* An expression's -aa N from N = 3 traces a pixel's corners, then the rest (kernels/effects.h): together every
+ * cell of the N x N grid exactly once, the corners the grid's four. */
+TEST_FP(effects_aa_corners_then_rest_cover_the_grid) {
+    for (int aa = 3; aa <= 16; aa++) {
+        int seen[256] = {0};
+        for (int set = EFFECTS_AA_CORNERS; set <= EFFECTS_AA_REST; set++)
+            for (int s = 0; s < effects_aa_rays(aa, set); s++) {
+                int cell = effects_aa_cell(aa, set, s), a = cell % aa, b = cell / aa;
+                CHECK(cell >= 0 && cell < aa * aa, "aa %d, set %d, ray %d: cell %d outside the grid", aa, set, s, cell);
+                int corner = (a == 0 || a == aa - 1) && (b == 0 || b == aa - 1);
+                CHECK(corner == (set == EFFECTS_AA_CORNERS), "aa %d, set %d, ray %d: cell (%d, %d)", aa, set, s, a,
+                      b);
+                seen[cell]++;
+            }
+        for (int cell = 0; cell < aa * aa; cell++)
+            CHECK(seen[cell] == 1, "aa %d: cell %d traced %d times", aa, cell, seen[cell]);
+    }
+}
 
 /* The same as a region: the segment path's samples, traced as packets of the camera kernel's (4 x 4 samples of a
  * pixel, one packet). */
