@@ -20,6 +20,7 @@
  * and no effect but -aa or -background a pixel gets the colour the plain render gives it.
  */
 #include "render_effects_centre.h"
+#include "render_effects_edges.h"
 #include "implicits/scene.h"
 #include "kernels/effects.h"
 #include "kernels/params.h"
@@ -509,35 +510,17 @@ static void centre_path(const fx_frame *f, const iacsg_frame *fr, const double *
     q->hit.item = isinf(q->hit.t) ? -1 : fr->ids ? (int)fr->ids[pixel] : 0;
 }
 
-/* Whether pixels a and b (both traced) differ enough that the edge between them needs more rays. */
-static int differ(const iacsg_frame *fr, int a, int b) {
-    float ia = isinf(fr->depth[a]) ? -1 : fr->ids ? fr->ids[a] : 0;
-    float ib = isinf(fr->depth[b]) ? -1 : fr->ids ? fr->ids[b] : 0;
-    if (ia != ib)
-        return 1;
-    for (int c = 0; c < 3; c++)
-        if (fabsf(fr->rgb[3 * a + c] - fr->rgb[3 * b + c]) > FX_AA_CONTRAST)
-            return 1;
-    return ia >= 0 && fabsf(fr->depth[a] - fr->depth[b]) > FX_AA_DEPTH * fminf(fr->depth[a], fr->depth[b]);
-}
-
-/* The traced pixels on an edge (differ), in block order, into edges; returns how many,
- * or -1 out of memory. Each pair of neighbours is compared once. */
+/* The traced pixels on an edge (fx_find_edges), in block order, into edges; returns how many, or -1 out of
+ * memory. */
 static long edge_pixels(const fx_frame *f, const iacsg_frame *fr, int *edges) {
     const iacsg_view *v = f->view;
-    int row0, row1, w = v->width;
+    int row0, row1;
     traced_rows(v, &row0, &row1);
     unsigned char *edge = calloc((size_t)v->width * (size_t)v->height + 1, 1);
-    if (!edge)
+    if (!edge || fx_find_edges(fr, row0, row1, (float)FX_AA_CONTRAST, (float)FX_AA_DEPTH, edge) != 0) {
+        free(edge);
         return -1;
-    for (int j = row0; j < row1; j++)
-        for (int i = 0; i < w; i++) {
-            int p = j * w + i;
-            if (i + 1 < w && differ(fr, p, p + 1))
-                edge[p] = edge[p + 1] = 1;
-            if (j + 1 < row1 && differ(fr, p, p + w))
-                edge[p] = edge[p + w] = 1;
-        }
+    }
     long n = (long)block_select(f, fr, edge, edges);
     free(edge);
     return n;
