@@ -5,7 +5,6 @@
 #define _GNU_SOURCE /* close_range */
 #include "cli_launch_run.h"
 #include "cli.h"
-#include "clrt.h"
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>

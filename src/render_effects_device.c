@@ -185,9 +185,6 @@ static iacsg_status launch_all(fx_device *x, int mode, const int *pixels, const 
     return st;
 }
 
-/* A display colour's channel from the linear light of a ray weighing w (kernels/light.h: gamma 2). */
-static float display_channel(float light, float w) { return sqrtf(fminf(fmaxf(light / w, 0.0f), 1.0f)); }
-
 /* -aa's corners agree where each channel of their display colours spans at most this: half the edge test's
  * contrast, so that their mean is as close to the pixel's as all the grid's rays' (a sphere's highlight at -aa 4,
  * against the plain render: 6.1e-3 so, as with 16 rays; 1.0e-2 at 1/16). */
@@ -216,9 +213,9 @@ static iacsg_status launch_aa_adaptive(fx_device *x, const int *pixels, size_t n
         const float *c = x->corners + 12 * q;
         int differ = x->corner_kids[q];
         for (int ch = 0; ch < 3 && !differ; ch++) {
-            float lo = display_channel(c[ch], w), hi = lo;
+            float lo = fx_display(c[ch] / w), hi = lo; /* the display colour of each corner's own light */
             for (int k = 1; k < 4; k++) {
-                float v = display_channel(c[3 * k + ch], w);
+                float v = fx_display(c[3 * k + ch] / w);
                 lo = fminf(lo, v);
                 hi = fmaxf(hi, v);
             }

@@ -28,12 +28,14 @@ void fx_put_real(const iacsg_renderer *r, void *block, size_t k, double v) {
         ((float *)block)[k] = (float)v;
 }
 
+float fx_display(float light) {
+    float v = light > 0 ? light : 0; /* clamped to [0, 1] (NaN to 0) by comparisons: fminf and fmaxf are calls */
+    return sqrtf(v < 1 ? v : 1);
+}
+
 void fx_encode(float *rgb, int pixel) {
-    for (int c = 0; c < 3; c++) { /* clamped to [0, 1] (NaN to 0) by comparisons: fminf and fmaxf are calls */
-        float v = rgb[3 * (size_t)pixel + c];
-        v = v > 0 ? v : 0;
-        rgb[3 * (size_t)pixel + c] = sqrtf(v < 1 ? v : 1);
-    }
+    for (int c = 0; c < 3; c++)
+        rgb[3 * (size_t)pixel + c] = fx_display(rgb[3 * (size_t)pixel + c]);
 }
 
 /* PoCL compiles a kernel at its first launch: one launch over no rays makes that happen when the kernel is made,

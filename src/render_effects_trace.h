@@ -62,7 +62,9 @@ void fx_put_real(const iacsg_renderer *r, void *block, size_t k, double v);
 /* Makes the host array of a CL_MEM_USE_HOST_PTR buffer current after the kernels wrote it (a no-op on a CPU
  * device). */
 iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_error *err);
-/* A pixel's summed linear light (3 floats of rgb) to its display colour, in place (kernels/light.h: gamma 2). */
+/* A channel's linear light to its display value (kernels/light.h: gamma 2, clamped to [0, 1], NaN to 0); fx_encode:
+ * a pixel's summed linear light (3 floats of rgb) to its display colour, in place. */
+float fx_display(float light);
 void fx_encode(float *rgb, int pixel);
 
 /* Makes r->fx (without its kernel) when it is not there yet. */
