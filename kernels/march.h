@@ -1,6 +1,6 @@
 /* kernels/march.h -- a secondary ray's first root of F from off the surface it leaves, by marching
  * (effects_march), in SIMD lanes: the first-root path's effects (kernels/effects.cl, F the expression) and the
- * segment path's secondary rays (kernels/scene_effects.cl, F the union of its regions, kernels/scene_union.h).
+ * segment path's secondary rays (kernels/scene_rays.h, F the union of its regions, kernels/scene_union.h).
  * Needs packet.h and the emitted iacsg_Fdv (PACKET_FDV).
  */
 #ifndef KERNELS_MARCH_H

@@ -11,9 +11,12 @@
  * (scene_trace.h) with the work-item's slice of the per-ray buffers; a ray that overflows them is appended to
  * `overflow` and writes nothing. A listed pixel is traced with its own packet and its block's tile pass, so
  * exactly as in the first pass. Then, in SIMD lanes, the normals (the hit solid's gradient, facing the eye) and
- * the colours (light.h, each pixel's item's albedo). Outputs per pixel: rgb, depth (the claimed partition's start,
- * +inf on a miss), normal, ids (the item, -1 on a miss), overlap (another region certainly in the claimed
- * partition, or -1), and with KERNEL_STATS the evaluations, segments and partitions of each ray.
+ * the colours (light.h, each pixel's item's albedo), or with the effects' block `fx` (where no path can have a
+ * child: src/render_effects.c) the effects' lights, each light's shadow rays traced as a packet with the same
+ * buffers (scene_rays.h; one that overflows lists its pixel as above). Outputs per pixel: rgb, depth (the claimed
+ * partition's start, +inf on a miss), normal, ids (the item, -1 on a miss), overlap (another region certainly in
+ * the claimed partition, or -1), and with KERNEL_STATS the evaluations, segments and partitions of each ray (and
+ * with `fx` its shadow rays and their evaluations, fx_counts).
  *
  * iacsg_render_scene_samples: -aa's sample rays (src/render_effects_samples.c) as the camera rays of an image aa
  * times as wide and high, the listed packets of listed blocks traced as above, each packet's lanes written to an
@@ -23,6 +26,7 @@
 #include "scene_trace.h"
 #include "light.h"
 #include "scene_union.h"
+#include "scene_rays.h"
 
 /* The unit normal at o + t d of the solid: its gradient (scene_solid_f_grad). */
 static void scene_gradient(scene_prims q, int solid, const ia_real o[3], const ia_real d[3], ia_real t, ia_real time,
@@ -59,6 +63,8 @@ typedef struct {
     __global uint *counts;
     __global int *overflow, *noverflow;
     int out0; /* where a packet's lanes write: -1 their pixels, else out0 + lane (-aa's samples) */
+    __constant ia_real *fx; /* the effects' block where the packets apply them (scene_packet_lit), else 0 */
+    __global uint *fx_counts; /* with them and KERNEL_STATS: each pixel's shadow rays and their evaluations */
 } scene_frame;
 
 /* The rays of the packet of pixels from (i0, j0) (camera_ray), their directions' reciprocals (ik, for the BVH),
@@ -178,6 +184,103 @@ static void scene_store_colors(const scene_frame *f, const int pixel[PACKET_LANE
     }
 }
 
+/* The display colours of the effects' background (f->fx's top and bottom) in rows `row`. */
+static void scene_fx_background(const scene_frame *f, shade_colorv row, shade_colorv bg[3]) {
+    float top[3], bottom[3];
+    for (int c = 0; c < 3; c++) {
+        top[c] = (float)f->fx[EFFECTS_BG_TOP + c];
+        bottom[c] = (float)f->fx[EFFECTS_BG_BOTTOM + c];
+    }
+    shade_background(row, f->height, top, bottom, bg);
+}
+
+/* The display colours of a packet's lanes by the effects' block (src/render_effects.c applies it in this kernel
+ * where it can: render_effects_in_camera), as kernels/scene_centre.cl and iacsg_scene_shade give them after the
+ * frame: each hit (at t_k along its ray; unit normal n, facing the ray) lit by each light of the block, seen where
+ * it is in front of the surface and, with shadows, where its shadow ray from off the surface (effects_offset) meets
+ * no item (every item is opaque: scene_rays_trace's `whether`); a miss the block's background. A lane whose shadow
+ * ray overflows the work-item's buffers is listed to be traced again (pixel[k] -1), as a camera ray that overflows.
+ * With KERNEL_STATS each pixel's shadow rays and their evaluations go to f->fx_counts. */
+static void scene_packet_lit(__constant ia_real *params, const scene_frame *f, const scene_view *camera,
+                             const scene_ray *ray, ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES],
+                             const ia_real t_k[PACKET_LANES], ia_maskv hit, const ia_realv n[3],
+                             int pixel[PACKET_LANES], shade_colorv row, const shade_colorv albedo[3],
+                             ia_realv specular, ia_realv shininess, shade_colorv rgb[3]) {
+    __constant ia_real *fx = f->fx;
+    int nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
+    scene_view view = {camera->box, camera->link, camera->nodes, camera->surfaces, camera->nsurfaces, camera->eps,
+                       camera->time, 0};
+    scene_ray r = *ray; /* its buffers, not the camera rays' shared direction */
+    r.walks.dirs = 0;
+    r.walks.lanes = 0;
+    ia_realv o[3], d[3], p[3], so[3], t = IAV_LOAD(t_k), vis[EFFECTS_MAX_LIGHTS];
+    for (int c = 0; c < 3; c++) {
+        o[c] = IAV_LOAD(ok[c]);
+        d[c] = IAV_LOAD(dk[c]);
+        p[c] = o[c] + t * d[c];
+    }
+    ia_realv off = effects_offset(view.eps, p, t);
+    for (int c = 0; c < 3; c++) /* off the surface, on the side its normal faces (the ray's) */
+        so[c] = p[c] + off * n[c];
+    ia_real units[EFFECTS_MAX_LIGHTS][3];
+    shade_light_units(params, fx, units);
+    kernel_u32 cast_k[PACKET_LANES], evals_k[PACKET_LANES];
+    for (int k = 0; k < PACKET_LANES; k++)
+        cast_k[k] = evals_k[k] = 0;
+    for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* shade_effects reads the first nlights */
+        vis[l] = IAV_R(l < nlights);
+    for (int l = 0; shadows && l < nlights; l++) {
+        __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
+        ia_realv towards[3], sd[3];
+        shade_towards(L, units[l], p, towards);
+        ia_maskv cast = hit & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
+        ia_realv dist = shade_towards(L, units[l], so, sd);
+        vis[l] = select(IAV_R(0), IAV_R(1), cast);
+        if (!iav_any(cast))
+            continue;
+        ia_real sk[3][PACKET_LANES], sdk[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
+        ia_real meets[PACKET_LANES], pass[PACKET_LANES], seen[PACKET_LANES];
+        for (int c = 0; c < 3; c++) {
+            IAV_STORE(so[c], sk[c]);
+            IAV_STORE(sd[c], sdk[c]);
+        }
+        IAV_STORE(IAV_R(0), tn);
+        IAV_STORE(dist, tf);
+        IAV_STORE(vis[l], meets);
+        IAV_STORE(vis[l], seen);
+        IAV_STORE(IAV_R(0), pass);
+        int found[PACKET_LANES];
+        weave_hit hits[PACKET_LANES];
+        kernel_u32 evals[PACKET_LANES];
+        scene_rays_trace(&view, &r, params, 1, sk, sdk, tn, tf, meets, pass, found, hits, evals);
+        for (int k = 0; k < PACKET_LANES; k++) {
+            if (found[k] == SCENE_TRACE_OVERFLOW && pixel[k] >= 0) {
+                f->overflow[atomic_inc(f->noverflow)] = pixel[k];
+                pixel[k] = -1;
+            }
+            cast_k[k] += seen[k] != 0;
+            evals_k[k] += evals[k];
+            seen[k] = found[k] == 0 ? seen[k] : 0;
+        }
+        vis[l] = IAV_LOAD(seen);
+    }
+    shade_colorv id_rgb[3], lin[3], bg[3];
+    for (int c = 0; c < 3; c++)
+        id_rgb[c] = (shade_colorv)(0); /* no -shade ids here */
+    shade_effects(fx, units, p, t, n, d, vis, albedo, specular, shininess, id_rgb, lin);
+    scene_fx_background(f, row, bg);
+    IAV_CAT(int, IA_VW) on = IAV_CAT(convert_int, IA_VW)(hit) != 0;
+    for (int c = 0; c < 3; c++) /* display-encoded as fx_encode (fmax takes 0 over NaN) */
+        rgb[c] = select(bg[c], sqrt(fmin(fmax(lin[c], 0.0f), 1.0f)), on);
+#ifdef KERNEL_STATS
+    for (int k = 0; k < PACKET_LANES; k++)
+        if (pixel[k] >= 0) {
+            f->fx_counts[2 * pixel[k]] = cast_k[k];
+            f->fx_counts[2 * pixel[k] + 1] = evals_k[k];
+        }
+#endif
+}
+
 /* A packet none of whose rays can hit (none meets the bounds, or its beam meets no solid's box and there is no
  * surface): its pixels get the background of their rows and no hit, as the traced path would give them, without
  * its per-ray scaffolding (an empty frame's packets cost 6x as much through it: the per-lane arrays' stores read
@@ -197,8 +300,11 @@ static void scene_packet_empty(__constant ia_real *params, const scene_frame *f,
     shade_colorv albedo[3], rgb[3];
     for (int c = 0; c < 3; c++)
         albedo[c] = (shade_colorv)(0);
-    shade_combine((ia_maskv)0, IAV_CAT(vload, IA_VW)(0, rows), f->height, albedo, IAV_R(0), IAV_R(0), IAV_R(0),
-                  IAV_R(0), rgb);
+    if (f->fx)
+        scene_fx_background(f, IAV_CAT(vload, IA_VW)(0, rows), rgb);
+    else
+        shade_combine((ia_maskv)0, IAV_CAT(vload, IA_VW)(0, rows), f->height, albedo, IAV_R(0), IAV_R(0), IAV_R(0),
+                      IAV_R(0), rgb);
     scene_store_colors(f, pixel, rgb, 0);
 }
 
@@ -257,7 +363,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         return;
     }
 #endif
-    ia_real gk[3][PACKET_LANES], on[PACKET_LANES];
+    ia_real gk[3][PACKET_LANES], on[PACKET_LANES], t_hit[PACKET_LANES];
     float color[3][PACKET_LANES], rows[PACKET_LANES];
     ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
     for (int k = 0; k < PACKET_LANES; k++) {
@@ -289,6 +395,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
             found = 0;
         }
         on[k] = found;
+        t_hit[k] = found ? hit.t : 0;
         ia_real gradient[3] = {0, 0, 0};
         if (found) /* at a point, for shading */
             scene_gradient(ray->walks.prims, hit.solid, o, d, hit.t, params[PARAM_TIME_LO], gradient);
@@ -297,7 +404,9 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
             color[c][k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_RGB + c] : 0;
         }
         specular[k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SPECULAR] : 0;
-        shininess[k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SHININESS] : 1;
+        /* a miss: the exponent that lets light.h's shade_highlight square (48) where the hits' do, so that a hit's
+         * highlight does not hang on its packet's misses (a traced-again lane's packet is misses but it) */
+        shininess[k] = found ? f->albedo[SCENE_MATERIAL_FLOATS * hit.item + SCENE_MATERIAL_SHININESS] : 48;
         if (pixel[k] >= 0)
             scene_store_hit(f, pixel[k], found, &hit, ray->evals + block_evals + from_evals[k], ray->segments,
                             ray->partitions);
@@ -311,15 +420,18 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     }
     ia_maskv hit_v = IAV_LOAD(on) != 0;
     shade_colorv row_v = IAV_CAT(vload, IA_VW)(0, rows);
-    if (iav_any(hit_v)) {
+    if (iav_any(hit_v))
         shade_normals(g, d_v, n);
+    for (int c = 0; c < 3 && !iav_any(hit_v); c++)
+        n[c] = IAV_R(0);
+    if (f->fx)
+        scene_packet_lit(params, f, view, ray, ok, dk, t_hit, hit_v, n, pixel, row_v, albedo_v, IAV_LOAD(specular),
+                         IAV_LOAD(shininess), rgb_v);
+    else if (iav_any(hit_v))
         shade_lit_materials(params, hit_v, n, d_v, row_v, height, albedo_v, IAV_LOAD(specular), IAV_LOAD(shininess),
                             rgb_v);
-    } else { /* a packet with no hit: its background only, no normals nor lighting */
-        for (int c = 0; c < 3; c++)
-            n[c] = IAV_R(0);
+    else /* a packet with no hit: its background only, no normals nor lighting */
         shade_combine(hit_v, row_v, height, albedo_v, IAV_R(0), IAV_R(0), IAV_R(0), IAV_R(0), rgb_v);
-    }
     for (int c = 0; c < 3; c++)
         n[c] = select(IAV_R(0), n[c], hit_v);
     scene_store_colors(f, pixel, rgb_v, n);
@@ -397,7 +509,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                  __global float *rgb, __global float *depth, __global float *normal,
                                  __global float *ids, __global int *overlap, __global uint *counts,
                                  __global int *overflow, __global int *noverflow, int row_end,
-                                 __global const ia_real *prims) {
+                                 __global const ia_real *prims, __constant ia_real *fx, __global uint *fx_counts) {
     size_t slot = get_global_id(1) * get_global_size(0) + get_global_id(0);
     int bx = (int)get_global_id(0) * SCENE_BLOCK, by = (block_row0 + (int)get_global_id(1)) * SCENE_BLOCK;
     if (!pixels && (bx >= width || by >= height))
@@ -410,7 +522,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                    cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
                                    flags, &dirs, SCENE_LANES_OF(lanes), prims);
     scene_frame f = {flags, width, height, row_end, items, nodes, albedo, rgb, depth, normal, ids,
-                     overlap, counts, overflow, noverflow, -1};
+                     overlap, counts, overflow, noverflow, -1, fx, fx_counts};
     scene_tile tiles[PACKET_LANES];
     if (pixels) {
         for (int k = 0; k < PACKET_LANES; k++) {
@@ -470,7 +582,7 @@ __kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, 
                                    cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
                                    flags, &dirs, SCENE_LANES_OF(lanes), prims);
     scene_frame f = {flags, width, height, height, items, nodes, albedo, rgb, depth, normal, ids,
-                     overlap, counts, overflow, noverflow, 0};
+                     overlap, counts, overflow, noverflow, 0, 0, 0};
     int bx = block[SCENE_SAMPLES_BX] * SCENE_BLOCK, by = block[SCENE_SAMPLES_BY] * SCENE_BLOCK;
     int out = block[SCENE_SAMPLES_SLOT];
     scene_tile tiles[PACKET_LANES];

@@ -1,5 +1,6 @@
 /* kernels/scene_centre.cl -- the segment path's centre paths kept on the device (src/render_effects.c, where no
- * path can have a child, or each at most one that the device traces: see below), from the camera kernel's hits:
+ * path can have a child and the camera kernel does not light them itself, -shade ids and depth; or each has at
+ * most one child, which the device traces: see below), from the camera kernel's hits:
  *
  *   the listed pixels, PACKET_LANES per work-item --> each one's camera ray (camera_ray: the ray the camera kernel
  *   traced), its hit (the frame's depth, normal, id) and row: iacsg_scene_shade's inputs

@@ -483,7 +483,7 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     else
         frame->rgb = render_image_alloc(3 * n);
     int in_camera = render_effects_in_camera(r, view), fx_depth, fx_normal;
-    render_effects_expr_aovs(r, view, &fx_depth, &fx_normal);
+    render_effects_aovs(r, view, &fx_depth, &fx_normal);
     render_fx_camera fx_camera = {0};
     cl_kernel kernel = r->kernel;
     if (st == IACSG_OK && in_camera)

@@ -13,9 +13,11 @@
  * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
  * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
  * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children; where no
- * path can have a child (every item opaque, no reflected ray), or none more than one and no shadow rays are cast,
- * a scene's centre paths and their children stay on the device (kernels/scene_centre.cl: centre_on_device), the
- * host only encoding their colours and following the children whose hits have children. So an
+ * path can have a child (every item opaque, no reflected ray), the scene's camera kernel lights its hits itself,
+ * shadow rays and all (kernels/render_scene.cl: scene_packet_lit; render_effects_in_camera), but for -shade ids
+ * and depth, whose centre paths stay on the device (kernels/scene_centre.cl: centre_on_device), as where none has
+ * more than one child and no shadow rays are cast, the host only encoding their colours and following the children
+ * whose hits have children. So an
  * occluder or a reflected surface that a ray crosses inside the bounds is never missed, and with the default rig
  * and no effect but -aa or -background a pixel gets the colour the plain render gives it.
  */
@@ -696,8 +698,9 @@ static iacsg_status centre_on_device(fx_frame *f, iacsg_frame *frame, const int 
 }
 
 /* The segment path: the centre rays' colours FX_CHUNK hits at a time (a miss is its background, and a hit keeps
- * the kernel's colour where the host's would be the same); then -aa decides its edges on them. */
-static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *err) {
+ * the kernel's colour where the host's would be the same; none where the camera kernel applied the effects:
+ * in_camera); then -aa decides its edges on them. */
+static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, int in_camera, iacsg_error *err) {
     iacsg_status st = IACSG_OK;
     fx_path *paths = malloc(FX_CHUNK * sizeof *paths);
     int *listed = pixel_list(f);
@@ -714,7 +717,7 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, iacsg_error *er
         col_s[i] = image_s(f, i + 0.5);
     for (int j = 0; j < f->view->height; j++)
         row_v[j] = image_v(f, j + 0.5);
-    size_t count = block_select(f, frame, NULL, listed);
+    size_t count = in_camera ? 0 : block_select(f, frame, NULL, listed);
     int on_device = !has_children(f->r, f->e) || children_on_device(f);
     if (on_device)
         st = centre_on_device(f, frame, listed, count, err);
@@ -750,7 +753,7 @@ static iacsg_status frame_open(fx_frame *f, iacsg_renderer *r, const iacsg_view 
     return st;
 }
 
-void render_effects_expr_aovs(const iacsg_renderer *r, const iacsg_view *view, int *depth, int *normals) {
+void render_effects_aovs(const iacsg_renderer *r, const iacsg_view *view, int *depth, int *normals) {
     const iacsg_effects *e = view->effects;
     int on = effects_on(r, e);
     int centre_pass = on && !render_effects_in_camera(r, view) && (!kernel_colors_hold(r, e) || e->background);
@@ -760,8 +763,11 @@ void render_effects_expr_aovs(const iacsg_renderer *r, const iacsg_view *view, i
 
 int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view) {
     const iacsg_effects *e = view->effects;
-    return !r->scene && !r->tape && effects_on(r, e) && e->shade != IACSG_SHADE_DEPTH && expr_kid_slots(e) == 0 &&
-           !kernel_colors_hold(r, e);
+    if (!effects_on(r, e) || kernel_colors_hold(r, e))
+        return 0;
+    if (r->scene)
+        return !has_children(r, e) && e->shade != IACSG_SHADE_DEPTH && e->shade != IACSG_SHADE_IDS;
+    return !r->tape && e->shade != IACSG_SHADE_DEPTH && expr_kid_slots(e) == 0;
 }
 
 int render_effects_camera_final(const iacsg_renderer *r, const iacsg_view *view) {
@@ -780,8 +786,10 @@ iacsg_status render_effects_camera_open(iacsg_renderer *r, const iacsg_view *vie
     if (st == IACSG_OK)
         st = fx_footprint(view, &c->footprint, err);
     if (st == IACSG_OK && r->config.stats) {
-        if (!(c->counts_host = calloc(2 * packets, sizeof(cl_uint)))) /* 0 for the packets of rows not traced */
+        /* in huge pages where it can (a megapixel's 8 MB in small pages: ~2,000 page faults when summed) */
+        if (!(c->counts_host = render_in_place_alloc(2 * packets * sizeof(cl_uint))))
             return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for the effects' counts");
+        memset(c->counts_host, 0, 2 * packets * sizeof(cl_uint)); /* 0 for the packets of rows not traced */
         c->packets = packets;
         cl_int rc = CL_SUCCESS;
         c->counts = clCreateBuffer(r->rt.context, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR,
@@ -833,7 +841,8 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
             f.item_listed[i] = !(r->fx && i < r->fx->nitems && item_keeps(&f, i));
     }
     if (st == IACSG_OK && left)
-        st = r->scene ? apply_scene(&f, frame, err) : apply_expr(&f, frame, in_camera != NULL, err);
+        st = r->scene ? apply_scene(&f, frame, in_camera != NULL, err)
+                      : apply_expr(&f, frame, in_camera != NULL, err);
     free(f.palette);
     free(f.item_listed);
     fx_buf *bufs[] = {&f.shadow_rays, &f.shadow_hits, &f.shadow_of, &f.kids[0], &f.kids[1],

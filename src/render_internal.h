@@ -66,9 +66,10 @@ iacsg_status render_scene_trace_args(iacsg_renderer *r, const iacsg_view *view, 
 void render_scene_trace_release(void *held);
 const float *render_scene_materials(const iacsg_renderer *r); /* SCENE_MATERIAL_FLOATS per item */
 
-/* The effects that the first-root path's camera kernel applies itself (kernels/render.cl: render_effects), where
- * render_effects_in_camera says it can: the effects' block, a union's groups all on, the secondary rays' Newton
- * window, and with stats per packet the secondary rays and their evaluations (counts, over counts_host). */
+/* The effects that the camera kernel applies itself (kernels/render.cl: render_effects; kernels/render_scene.cl:
+ * scene_packet_lit), where render_effects_in_camera says it can: the effects' block, a union's groups all on, the
+ * secondary rays' Newton window, and with stats the secondary rays and their evaluations (counts, over counts_host;
+ * 2 per `packets`: the first-root path's packets, the segment path's pixels). */
 typedef struct {
     cl_mem block, all_groups, counts;
     double footprint;
@@ -76,10 +77,12 @@ typedef struct {
     size_t packets;
 } render_fx_camera;
 
-/* Whether the camera kernel can shade the frame's pixels with its effects: the first-root path's compiled code,
- * no path that lists a reflected ray (reflections off a transparent surface), no -shade depth (its range needs
- * every hit first), and hits to shade again (not only -aa or -background, where the kernel's colours stand: the
- * pass after the frame colours the misses only, and each hit keeps the plain render's colour exactly). */
+/* Whether the camera kernel can shade the frame's pixels with its effects, where there are hits to shade again
+ * (not only -aa or -background, where the kernel's colours stand: the pass after the frame colours the misses
+ * only, and each hit keeps the plain render's colour exactly). The first-root path's compiled code: no path that
+ * lists a reflected ray (reflections off a transparent surface), no -shade depth (its range needs every hit
+ * first). The segment path: no path with a child (every item opaque, no reflected ray), lit or -shade gradient or
+ * normals (-shade ids' palette and depth's range are the pass after's). */
 int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view);
 /* Whether the first-root path's camera kernel's colours are the frame's: no effect, or the effects it applies
  * itself without -aa (no pass after it writes a colour). */
@@ -93,9 +96,9 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
                                   const render_fx_camera *in_camera, iacsg_error *err);
 /* Whether the effects need the frame's depth and normals (which the frame then computes, and drops after). */
 int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view);
-/* Of those, what the first-root path's effects need after its camera kernel: the depths for the pass over the
- * centre hits or for -aa's edges, the normals for that pass. */
-void render_effects_expr_aovs(const iacsg_renderer *r, const iacsg_view *view, int *depth, int *normals);
+/* Of those, what the effects need after the camera kernel: the depths for the pass over the centre hits or for
+ * -aa's edges, the normals for that pass. */
+void render_effects_aovs(const iacsg_renderer *r, const iacsg_view *view, int *depth, int *normals);
 /* Keeps what the effects need of a scene's materials (its items' reflect). */
 iacsg_status render_effects_keep_scene(iacsg_renderer *r, const struct iacsg_scene *s, iacsg_error *err);
 void render_effects_free(render_fx *fx);

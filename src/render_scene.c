@@ -94,7 +94,8 @@ typedef struct {
     cl_mem params, box, rgb, depth, normal, ids, overlap, counts, list[2], nlist[2];
     cl_mem cand_solid, cand_range, cand_pos, cand_level, cand_index, cand_newton, cand_newton_t, state;
     int cand_cap;
-    size_t slots; /* work-items the per-ray buffers have room for */
+    size_t slots;                /* work-items the per-ray buffers have room for */
+    const render_fx_camera *fx; /* the effects the kernel applies (render_effects_in_camera), or NULL */
 } scene_buffers;
 
 static void release_scene_buffers(scene_buffers *b) {
@@ -177,7 +178,9 @@ static iacsg_status set_scene_args(iacsg_renderer *r, const iacsg_view *view, co
                 {29, sizeof(cl_mem), b->normal ? &b->normal : NULL},
                 {30, sizeof(cl_mem), b->ids ? &b->ids : NULL},
                 {31, sizeof(cl_mem), &b->overlap},     {32, sizeof(cl_mem), b->counts ? &b->counts : NULL},
-                {35, sizeof row_end, &row_end},       {36, sizeof(cl_mem), &s->prims}};
+                {35, sizeof row_end, &row_end},       {36, sizeof(cl_mem), &s->prims},
+                {37, sizeof(cl_mem), b->fx ? &b->fx->block : NULL},
+                {38, sizeof(cl_mem), b->fx && b->fx->counts ? &b->fx->counts : NULL}};
     for (size_t a = 0; a < sizeof args / sizeof args[0]; a++)
         CLRT_CHECK(err, clSetKernelArg(k, (cl_uint)args[a].index, args[a].size, args[a].value));
     return IACSG_OK;
@@ -416,10 +419,10 @@ static void summarize(const cl_int *overlap, const cl_uint *counts, const float 
 
 static iacsg_status read_scene_back(iacsg_renderer *r, const scene_buffers *b, size_t n, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
-    cl_mem in_place[6] = {b->rgb, b->depth, b->normal, b->ids, b->overlap, b->counts};
-    size_t sizes[6] = {3 * n * sizeof(float), n * sizeof(float), 3 * n * sizeof(float), n * sizeof(float),
-                       n * sizeof(cl_int), 3 * n * sizeof(cl_uint)};
-    for (int k = 0; k < 6; k++) { /* mapping a USE_HOST_PTR buffer makes its host array current */
+    cl_mem in_place[7] = {b->rgb, b->depth, b->normal, b->ids, b->overlap, b->counts, b->fx ? b->fx->counts : NULL};
+    size_t sizes[7] = {3 * n * sizeof(float), n * sizeof(float),   3 * n * sizeof(float), n * sizeof(float),
+                       n * sizeof(cl_int),    3 * n * sizeof(cl_uint), 2 * n * sizeof(cl_uint)};
+    for (int k = 0; k < 7; k++) { /* mapping a USE_HOST_PTR buffer makes its host array current */
         if (!in_place[k])
             continue;
         cl_int rc = CL_SUCCESS;
@@ -445,14 +448,15 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
     frame->width = view->width;
     frame->height = view->height;
     frame->rgb = render_image_alloc(3 * n);
-    int fx = render_effects_need_aovs(r, view);
-    frame->depth = view->no_depth && !fx ? NULL : render_image_alloc(n);
-    frame->normal = view->no_normals && !fx ? NULL : render_image_alloc(3 * n);
+    int fx_depth, fx_normal;
+    render_effects_aovs(r, view, &fx_depth, &fx_normal);
+    frame->depth = view->no_depth && !fx_depth ? NULL : render_image_alloc(n);
+    frame->normal = view->no_normals && !fx_normal ? NULL : render_image_alloc(3 * n);
     frame->ids = render_image_alloc(n); /* the overlaps' statistics need them */
     cl_int *overlap = render_in_place_alloc(n * sizeof(cl_int));
     cl_uint *counts = r->config.stats ? render_in_place_alloc(3 * n * sizeof(cl_uint)) : NULL;
-    if (!frame->rgb || (!frame->depth && (!view->no_depth || fx)) || (!frame->normal && (!view->no_normals || fx)) ||
-        !frame->ids || !overlap || (r->config.stats && !counts))
+    if (!frame->rgb || (!frame->depth && (!view->no_depth || fx_depth)) ||
+        (!frame->normal && (!view->no_normals || fx_normal)) || !frame->ids || !overlap || (r->config.stats && !counts))
         st = iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for a %dx%d image", view->width,
                              view->height);
     scene_buffers b = {0};
@@ -460,6 +464,11 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
     /* rgb, depth, normal, ids, overlap, two lists of re-traced pixels (and 3 counts with stats) */
     if (st == IACSG_OK)
         st = render_check_device_memory(r, view, n, r->config.stats ? 15 : 12, err);
+    render_fx_camera fx_camera = {0};
+    if (st == IACSG_OK && render_effects_in_camera(r, view)) {
+        st = render_effects_camera_open(r, view, n, &fx_camera, err); /* counts: 2 a pixel */
+        b.fx = &fx_camera;
+    }
     if (st == IACSG_OK)
         st = frame_buffers_of(r, view, params, n, frame, overlap, counts, &b, err);
     double t0 = render_now_seconds();
@@ -477,7 +486,7 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
         frame->rays = (long long)traced;
         frame->ray_buffer_bytes = (long long)slot_bytes(r, b.cand_cap);
         summarize(overlap + at, counts ? counts + 3 * at : NULL, frame->ids + at, traced, frame);
-        st = render_effects_apply(r, view, frame, NULL, err);
+        st = render_effects_apply(r, view, frame, b.fx, err);
         float **unasked[] = {view->no_depth ? &frame->depth : NULL, view->no_normals ? &frame->normal : NULL};
         for (int k = 0; k < 2; k++)
             if (unasked[k]) {
@@ -490,6 +499,7 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
         }
     }
     release_scene_buffers(&b);
+    render_effects_camera_close(&fx_camera);
     free(overlap);
     free(counts);
     if (st != IACSG_OK)

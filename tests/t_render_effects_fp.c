@@ -21,11 +21,12 @@ static void render_expr(const char *expr, const iacsg_view *view, iacsg_frame *f
 }
 
 /* The same for a scene file's text (regions: the segment path). */
-static void render_scene_text(const char *text, const iacsg_view *view, iacsg_frame *fr) {
+/* A scene's frame, its rays given room for `candidates` solids each (0: the default). */
+static void render_scene_room(const char *text, const iacsg_view *view, int candidates, iacsg_frame *fr) {
     iacsg_error err = {0};
     iacsg_scene *s = NULL;
     CHECK(iacsg_scene_parse(text, "<test>", &s, &err) == IACSG_OK, "%s", err.message);
-    iacsg_render_config config = {.fp64 = FP64};
+    iacsg_render_config config = {.fp64 = FP64, .ray_candidates = candidates};
     iacsg_renderer *r = NULL;
     iacsg_status st = iacsg_renderer_create_scene(s, &config, &r, &err);
     iacsg_scene_destroy(s);
@@ -33,6 +34,10 @@ static void render_scene_text(const char *text, const iacsg_view *view, iacsg_fr
     st = iacsg_render(r, view, fr, &err);
     iacsg_renderer_destroy(r);
     CHECK(st == IACSG_OK, "%s", err.message);
+}
+
+static void render_scene_text(const char *text, const iacsg_view *view, iacsg_frame *fr) {
+    render_scene_room(text, view, 0, fr);
 }
 
 /* The view of the shadow and antialiasing scenes: the plane z = 0 and a sphere above it, seen from above. */
@@ -370,6 +375,36 @@ TEST_FP(effects_scene_centre_on_device) {
     iacsg_frame_free(&fr[1]);
     CHECK(dark > 100 && lit > 100, "%ld shadowed and %ld lit ground pixels: the view does not test both", dark, lit);
     CHECK(off <= n / 100, "%ld of %ld pixels differ from the host's paths by more than 2e-3", off, n);
+}
+
+/* The camera kernel's shadow rays (kernels/render_scene.cl: scene_packet_lit) use its work-item's per-ray buffers: a
+ * pixel whose shadow ray meets more solids' boxes than they hold is traced again with more room, as a camera ray
+ * that overflows. With room for one solid a ray, the ground's pixels whose shadow rays pass the boxes of the ball
+ * and the cap that overlaps it (regions not disjoint: each ray is woven) overflow (more pixels are traced again
+ * than without shadows), and the frame is the one with the default room: the same colours, depths and ids.
+ * Dropping the listing of a shadow ray that overflows fails it. */
+TEST_FP(effects_scene_shadow_rays_overflow) {
+    iacsg_effects fx = shadow_effects();
+    iacsg_view view = ground_view(96);
+    iacsg_frame fr[3];
+    for (int k = 0; k < 3; k++) {
+        view.effects = k < 2 ? &fx : NULL;
+        render_scene_room("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
+                          "solid cap = move(sphere(0.3), 0.2, 0, 0.9)\n"
+                          "region b = ball : m\nregion c = cap : m\nregion g = z : m\n",
+                          &view, k == 0 ? 0 : 1, &fr[k]);
+    }
+    long n = (long)view.width * view.height, off = 0;
+    for (long px = 0; px < n; px++)
+        off += colour_difference(&fr[0], &fr[1], px) > 0 || fr[0].depth[px] != fr[1].depth[px] ||
+               fr[0].ids[px] != fr[1].ids[px];
+    long long again = fr[1].retraced_rays, camera_again = fr[2].retraced_rays;
+    for (int k = 0; k < 3; k++)
+        iacsg_frame_free(&fr[k]);
+    CHECK(again > camera_again, "%lld rays traced again with shadows, %lld without: no shadow ray overflowed",
+          again, camera_again);
+    CHECK(off == 0, "%ld of %ld pixels differ from the frame with room for every solid", off, n);
+    test_note("%lld pixels traced again with shadows, %lld without", again, camera_again);
 }
 
 /* A reflecting ground's one bounce, its children leaves (every item opaque, no shadows), kept on the device
