@@ -11,12 +11,12 @@
  * (scene_trace.h) with the work-item's slice of the per-ray buffers; a ray that overflows them is appended to
  * `overflow` and writes nothing. A listed pixel is traced with its own packet and its block's tile pass, so
  * exactly as in the first pass. Then, in SIMD lanes, the normals (the hit solid's gradient, facing the eye) and
- * the colours (light.h, each pixel's item's albedo), or with the effects' block `fx` (where no path can have a
- * child: src/render_effects.c) the effects' lights, each light's shadow rays traced as a packet with the same
- * buffers (scene_rays.h; one that overflows lists its pixel as above). Outputs per pixel: rgb, depth (the claimed
- * partition's start, +inf on a miss), normal, ids (the item, -1 on a miss), overlap (another region certainly in
- * the claimed partition, or -1), and with KERNEL_STATS the evaluations, segments and partitions of each ray (and
- * with `fx` its shadow rays and their evaluations, fx_counts).
+ * the colours (light.h, each pixel's item's albedo), or with the effects' block `fx` (every item opaque, at most
+ * one bounce: src/render_effects.c) the effects' lights, each light's shadow rays and the reflected rays traced as
+ * packets with the same buffers (scene_rays.h; one that overflows lists its pixel as above). Outputs per pixel: rgb,
+ * depth (the claimed partition's start, +inf on a miss), normal, ids (the item, -1 on a miss), overlap (another
+ * region certainly in the claimed partition, or -1), and with KERNEL_STATS the evaluations, segments and
+ * partitions of each ray (and with `fx` its secondary rays and their evaluations, fx_counts).
  *
  * iacsg_render_scene_samples: -aa's sample rays (src/render_effects_samples.c) as the camera rays of an image aa
  * times as wide and high, the listed packets of listed blocks traced as above, each packet's lanes written to an
@@ -64,7 +64,7 @@ typedef struct {
     __global int *overflow, *noverflow;
     int out0; /* where a packet's lanes write: -1 their pixels, else out0 + lane (-aa's samples) */
     __constant ia_real *fx; /* the effects' block where the packets apply them (scene_packet_lit), else 0 */
-    __global uint *fx_counts; /* with them and KERNEL_STATS: each pixel's shadow rays and their evaluations */
+    __global uint *fx_counts; /* with them and KERNEL_STATS: each pixel's secondary rays and their evaluations */
 } scene_frame;
 
 /* The rays of the packet of pixels from (i0, j0) (camera_ray), their directions' reciprocals (ik, for the BVH),
@@ -194,39 +194,25 @@ static void scene_fx_background(const scene_frame *f, shade_colorv row, shade_co
     shade_background(row, f->height, top, bottom, bg);
 }
 
-/* The display colours of a packet's lanes by the effects' block (src/render_effects.c applies it in this kernel
- * where it can: render_effects_in_camera), as kernels/scene_centre.cl and iacsg_scene_shade give them after the
- * frame: each hit (at t_k along its ray; unit normal n, facing the ray) lit by each light of the block, seen where
- * it is in front of the surface and, with shadows, where its shadow ray from off the surface (effects_offset) meets
- * no item (every item is opaque: scene_rays_trace's `whether`); a miss the block's background. A lane whose shadow
- * ray overflows the work-item's buffers is listed to be traced again (pixel[k] -1), as a camera ray that overflows.
- * With KERNEL_STATS each pixel's shadow rays and their evaluations go to f->fx_counts. */
-static void scene_packet_lit(__constant ia_real *params, const scene_frame *f, const scene_view *camera,
-                             const scene_ray *ray, ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES],
-                             const ia_real t_k[PACKET_LANES], ia_maskv hit, const ia_realv n[3],
-                             int pixel[PACKET_LANES], shade_colorv row, const shade_colorv albedo[3],
-                             ia_realv specular, ia_realv shininess, shade_colorv rgb[3]) {
+/* The linear colours of the hits (lanes of `hit`) at t along rays o + t d, unit normals n facing them, by the
+ * effects' block f->fx (units: its lights' directions, shade_light_units): each light seen where it is in front
+ * of the surface and, with shadows, where its shadow ray from off the surface (effects_offset) meets no item (every
+ * item is opaque: scene_rays_trace's `whether`), traced in lanes with r's buffers. A lane whose shadow ray
+ * overflows them is listed to be traced again (pixel[k] -1), as a camera ray that overflows. rays_k, evals_k: each
+ * lane's shadow rays and their evaluations, added. */
+static void scene_lanes_light(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
+                              const ia_real units[EFFECTS_MAX_LIGHTS][3], const ia_realv o[3], const ia_realv d[3],
+                              ia_realv t, ia_maskv hit, const ia_realv n[3], int pixel[PACKET_LANES],
+                              const shade_colorv albedo[3], ia_realv specular, ia_realv shininess,
+                              kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES], shade_colorv lin[3]) {
     __constant ia_real *fx = f->fx;
     int nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
-    scene_view view = {camera->box, camera->link, camera->nodes, camera->surfaces, camera->nsurfaces, camera->eps,
-                       camera->time, 0};
-    scene_ray r = *ray; /* its buffers, not the camera rays' shared direction */
-    r.walks.dirs = 0;
-    r.walks.lanes = 0;
-    ia_realv o[3], d[3], p[3], so[3], t = IAV_LOAD(t_k), vis[EFFECTS_MAX_LIGHTS];
-    for (int c = 0; c < 3; c++) {
-        o[c] = IAV_LOAD(ok[c]);
-        d[c] = IAV_LOAD(dk[c]);
+    ia_realv p[3], so[3], vis[EFFECTS_MAX_LIGHTS];
+    for (int c = 0; c < 3; c++)
         p[c] = o[c] + t * d[c];
-    }
-    ia_realv off = effects_offset(view.eps, p, t);
+    ia_realv off = effects_offset(view->eps, p, t);
     for (int c = 0; c < 3; c++) /* off the surface, on the side its normal faces (the ray's) */
         so[c] = p[c] + off * n[c];
-    ia_real units[EFFECTS_MAX_LIGHTS][3];
-    shade_light_units(params, fx, units);
-    kernel_u32 cast_k[PACKET_LANES], evals_k[PACKET_LANES];
-    for (int k = 0; k < PACKET_LANES; k++)
-        cast_k[k] = evals_k[k] = 0;
     for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* shade_effects reads the first nlights */
         vis[l] = IAV_R(l < nlights);
     for (int l = 0; shadows && l < nlights; l++) {
@@ -252,30 +238,151 @@ static void scene_packet_lit(__constant ia_real *params, const scene_frame *f, c
         int found[PACKET_LANES];
         weave_hit hits[PACKET_LANES];
         kernel_u32 evals[PACKET_LANES];
-        scene_rays_trace(&view, &r, params, 1, sk, sdk, tn, tf, meets, pass, found, hits, evals);
+        scene_rays_trace(view, r, params, 1, sk, sdk, tn, tf, meets, pass, found, hits, evals);
         for (int k = 0; k < PACKET_LANES; k++) {
             if (found[k] == SCENE_TRACE_OVERFLOW && pixel[k] >= 0) {
                 f->overflow[atomic_inc(f->noverflow)] = pixel[k];
                 pixel[k] = -1;
             }
-            cast_k[k] += seen[k] != 0;
+            rays_k[k] += seen[k] != 0;
             evals_k[k] += evals[k];
             seen[k] = found[k] == 0 ? seen[k] : 0;
         }
         vis[l] = IAV_LOAD(seen);
     }
-    shade_colorv id_rgb[3], lin[3], bg[3];
+    shade_colorv id_rgb[3];
     for (int c = 0; c < 3; c++)
         id_rgb[c] = (shade_colorv)(0); /* no -shade ids here */
     shade_effects(fx, units, p, t, n, d, vis, albedo, specular, shininess, id_rgb, lin);
+}
+
+/* The hits of the packet's reflected rays (lanes of `mirror`: from so, directions md), traced in lanes with r's
+ * buffers (no item lets light through: none passing), and their linear colours (scene_lanes_light, lit as their
+ * parents by the block's lights, shadows and all); a miss the linear background of its pixel's row (bg, display).
+ * A lane whose ray overflows r's buffers is listed to be traced again (pixel[k] -1). */
+static void scene_lanes_mirror(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
+                               const ia_real units[EFFECTS_MAX_LIGHTS][3], const ia_realv so[3], const ia_realv md[3],
+                               ia_maskv mirror, const shade_colorv bg[3], int pixel[PACKET_LANES],
+                               kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES],
+                               shade_colorv lin[3]) {
+    ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES], meets[PACKET_LANES];
+    ia_real pass[PACKET_LANES], on[PACKET_LANES], t_k[PACKET_LANES], nk[3][PACKET_LANES];
+    ia_real specular_k[PACKET_LANES], shininess_k[PACKET_LANES];
+    float albedo_k[3][PACKET_LANES];
+    for (int c = 0; c < 3; c++) {
+        IAV_STORE(so[c], ok[c]);
+        IAV_STORE(md[c], dk[c]);
+    }
+    IAV_STORE(IAV_R(0), tn);
+    IAV_STORE(IAV_R(IA_INF), tf);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), mirror), meets);
+    IAV_STORE(IAV_R(0), pass);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), mirror), on);
+    int found[PACKET_LANES];
+    weave_hit hits[PACKET_LANES];
+    kernel_u32 evals[PACKET_LANES];
+    scene_rays_trace(view, r, params, 0, ok, dk, tn, tf, meets, pass, found, hits, evals);
+    for (int k = 0; k < PACKET_LANES; k++) {
+        if (found[k] == SCENE_TRACE_OVERFLOW && pixel[k] >= 0) {
+            f->overflow[atomic_inc(f->noverflow)] = pixel[k];
+            pixel[k] = -1;
+        }
+        rays_k[k] += on[k] != 0;
+        evals_k[k] += evals[k];
+        int got = found[k] == 1 && on[k] != 0, item = got ? hits[k].item : 0;
+        ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]}, g[3] = {0, 0, 0};
+        if (got)
+            scene_gradient(r->walks.prims, hits[k].solid, o, d, hits[k].t, params[PARAM_TIME_LO], g);
+        ia_real len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), facing = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
+        int ok_g = len > 0 && isfinite(len);
+        for (int c = 0; c < 3; c++) { /* facing the ray; -d where the gradient vanishes (as iacsg_scene_trace_rays) */
+            nk[c][k] = !got ? 0 : ok_g ? (facing > 0 ? -g[c] : g[c]) / len : -d[c];
+            albedo_k[c][k] = f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_RGB + c];
+        }
+        on[k] = got;
+        t_k[k] = got ? hits[k].t : 0;
+        specular_k[k] = f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_SPECULAR];
+        shininess_k[k] = got ? f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_SHININESS] : 48;
+    }
+    ia_realv n[3];
+    shade_colorv albedo[3], shown[3];
+    for (int c = 0; c < 3; c++) {
+        n[c] = IAV_LOAD(nk[c]);
+        albedo[c] = IAV_CAT(vload, IA_VW)(0, albedo_k[c]);
+    }
+    ia_maskv hit = IAV_LOAD(on) != 0;
+    scene_lanes_light(params, f, view, r, units, so, md, IAV_LOAD(t_k), hit, n, pixel, albedo, IAV_LOAD(specular_k),
+                      IAV_LOAD(shininess_k), rays_k, evals_k, shown);
+    IAV_CAT(int, IA_VW) at = IAV_CAT(convert_int, IA_VW)(hit) != 0;
+    for (int c = 0; c < 3; c++)
+        lin[c] = select(bg[c] * bg[c], shown[c], at);
+}
+
+/* The display colours of a packet's lanes by the effects' block (src/render_effects.c applies it in this kernel
+ * where it can: render_effects_in_camera), as kernels/scene_centre.cl, iacsg_scene_shade and the host's paths give
+ * them after the frame: each hit (at t_k along its ray; item_k; unit normal n, facing the ray) lit by the block's
+ * lights (scene_lanes_light); where the block has bounces (at most one, every item opaque: src/render_effects.c) and
+ * the hit's material reflects a fraction k (not under EFFECTS_MIN_WEIGHT), its colour weighs 1 - k and its
+ * reflected ray's (scene_lanes_mirror) k, as the host's fx_path_weights; a miss the block's background. With
+ * KERNEL_STATS each pixel's secondary rays and their evaluations go to f->fx_counts. */
+static void scene_packet_lit(__constant ia_real *params, const scene_frame *f, const scene_view *camera,
+                             const scene_ray *ray, ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES],
+                             const ia_real t_k[PACKET_LANES], const int item_k[PACKET_LANES], ia_maskv hit,
+                             const ia_realv n[3], int pixel[PACKET_LANES], shade_colorv row,
+                             const shade_colorv albedo[3], ia_realv specular, ia_realv shininess, shade_colorv rgb[3]) {
+    __constant ia_real *fx = f->fx;
+    scene_view view = {camera->box, camera->link, camera->nodes, camera->surfaces, camera->nsurfaces, camera->eps,
+                       camera->time, 0};
+    scene_ray r = *ray; /* its buffers, not the camera rays' shared direction */
+    r.walks.dirs = 0;
+    r.walks.lanes = 0;
+    ia_realv o[3], d[3], t = IAV_LOAD(t_k);
+    for (int c = 0; c < 3; c++) {
+        o[c] = IAV_LOAD(ok[c]);
+        d[c] = IAV_LOAD(dk[c]);
+    }
+    ia_real units[EFFECTS_MAX_LIGHTS][3];
+    shade_light_units(params, fx, units);
+    kernel_u32 rays_k[PACKET_LANES], evals_k[PACKET_LANES];
+    ia_real reflect_k[PACKET_LANES];
+    for (int k = 0; k < PACKET_LANES; k++) {
+        rays_k[k] = evals_k[k] = 0;
+        reflect_k[k] = item_k[k] >= 0 ? f->albedo[SCENE_MATERIAL_FLOATS * item_k[k] + SCENE_MATERIAL_REFLECT] : 0;
+    }
+    shade_colorv lin[3], bg[3];
+    scene_lanes_light(params, f, &view, &r, units, o, d, t, hit, n, pixel, albedo, specular, shininess, rays_k,
+                      evals_k, lin);
     scene_fx_background(f, row, bg);
+    ia_realv k = IAV_LOAD(reflect_k);
+    ia_maskv mirror = hit & (k >= (ia_real)EFFECTS_MIN_WEIGHT);
+    int lit = (int)fx[EFFECTS_SHADE] == EFFECTS_SHADE_LIT || (int)fx[EFFECTS_SHADE] == EFFECTS_SHADE_GRADIENT;
+    if (fx[EFFECTS_BOUNCES] > 0 && lit && iav_any(hit & (k > 0))) {
+        ia_realv p[3], so[3], md[3], dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+        for (int c = 0; c < 3; c++)
+            p[c] = o[c] + t * d[c];
+        ia_realv off = effects_offset(view.eps, p, t);
+        for (int c = 0; c < 3; c++) { /* the mirror direction d - 2 (d.n) n, from off the surface */
+            so[c] = p[c] + off * n[c];
+            md[c] = d[c] - 2 * dn * n[c];
+        }
+        ia_realv len = sqrt(md[0] * md[0] + md[1] * md[1] + md[2] * md[2]);
+        for (int c = 0; c < 3; c++)
+            md[c] = md[c] / len;
+        shade_colorv seen[3];
+        if (iav_any(mirror))
+            scene_lanes_mirror(params, f, &view, &r, units, so, md, mirror, bg, pixel, rays_k, evals_k, seen);
+        shade_colorv kc = IAV_CAT(convert_float, IA_VW)(k);
+        IAV_CAT(int, IA_VW) mirrored = IAV_CAT(convert_int, IA_VW)(mirror) != 0;
+        for (int c = 0; c < 3; c++)
+            lin[c] = lin[c] * (1 - kc) + select((shade_colorv)(0), kc * seen[c], mirrored);
+    }
     IAV_CAT(int, IA_VW) on = IAV_CAT(convert_int, IA_VW)(hit) != 0;
     for (int c = 0; c < 3; c++) /* display-encoded as fx_encode (fmax takes 0 over NaN) */
         rgb[c] = select(bg[c], sqrt(fmin(fmax(lin[c], 0.0f), 1.0f)), on);
 #ifdef KERNEL_STATS
     for (int k = 0; k < PACKET_LANES; k++)
         if (pixel[k] >= 0) {
-            f->fx_counts[2 * pixel[k]] = cast_k[k];
+            f->fx_counts[2 * pixel[k]] = rays_k[k];
             f->fx_counts[2 * pixel[k] + 1] = evals_k[k];
         }
 #endif
@@ -364,6 +471,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     }
 #endif
     ia_real gk[3][PACKET_LANES], on[PACKET_LANES], t_hit[PACKET_LANES];
+    int item_hit[PACKET_LANES];
     float color[3][PACKET_LANES], rows[PACKET_LANES];
     ia_real specular[PACKET_LANES], shininess[PACKET_LANES];
     for (int k = 0; k < PACKET_LANES; k++) {
@@ -396,6 +504,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         }
         on[k] = found;
         t_hit[k] = found ? hit.t : 0;
+        item_hit[k] = found ? hit.item : -1;
         ia_real gradient[3] = {0, 0, 0};
         if (found) /* at a point, for shading */
             scene_gradient(ray->walks.prims, hit.solid, o, d, hit.t, params[PARAM_TIME_LO], gradient);
@@ -425,8 +534,8 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     for (int c = 0; c < 3 && !iav_any(hit_v); c++)
         n[c] = IAV_R(0);
     if (f->fx)
-        scene_packet_lit(params, f, view, ray, ok, dk, t_hit, hit_v, n, pixel, row_v, albedo_v, IAV_LOAD(specular),
-                         IAV_LOAD(shininess), rgb_v);
+        scene_packet_lit(params, f, view, ray, ok, dk, t_hit, item_hit, hit_v, n, pixel, row_v, albedo_v,
+                         IAV_LOAD(specular), IAV_LOAD(shininess), rgb_v);
     else if (iav_any(hit_v))
         shade_lit_materials(params, hit_v, n, d_v, row_v, height, albedo_v, IAV_LOAD(specular), IAV_LOAD(shininess),
                             rgb_v);

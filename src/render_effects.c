@@ -13,11 +13,11 @@
  * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
  * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
  * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children; where no
- * path can have a child (every item opaque, no reflected ray), the scene's camera kernel lights its hits itself,
- * shadow rays and all (kernels/render_scene.cl: scene_packet_lit; render_effects_in_camera), but for -shade ids
- * and depth, whose centre paths stay on the device (kernels/scene_centre.cl: centre_on_device), as where none has
- * more than one child and no shadow rays are cast, the host only encoding their colours and following the children
- * whose hits have children. So an
+ * path can have a child but a reflected ray whose hit has none (every item opaque, at most one bounce), the
+ * scene's camera kernel lights its hits itself, shadow rays, reflected rays and all (kernels/render_scene.cl:
+ * scene_packet_lit; render_effects_in_camera), but for -shade ids and depth, whose centre paths stay on the device
+ * (kernels/scene_centre.cl: centre_on_device), as where none has more than one child and no shadow rays are cast,
+ * the host only encoding their colours and following the children whose hits have children. So an
  * occluder or a reflected surface that a ray crosses inside the bounds is never missed, and with the default rig
  * and no effect but -aa or -background a pixel gets the colour the plain render gives it.
  */
@@ -765,8 +765,9 @@ int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view) {
     const iacsg_effects *e = view->effects;
     if (!effects_on(r, e) || kernel_colors_hold(r, e))
         return 0;
-    if (r->scene)
-        return !has_children(r, e) && e->shade != IACSG_SHADE_DEPTH && e->shade != IACSG_SHADE_IDS;
+    if (r->scene) /* at most a reflected ray a path, whose hit has no child */
+        return !transparent(r, e) && (e->bounces <= 1 || !reflects(r, e)) && e->shade != IACSG_SHADE_DEPTH &&
+               e->shade != IACSG_SHADE_IDS;
     return !r->tape && e->shade != IACSG_SHADE_DEPTH && expr_kid_slots(e) == 0;
 }
 

@@ -81,8 +81,8 @@ typedef struct {
  * (not only -aa or -background, where the kernel's colours stand: the pass after the frame colours the misses
  * only, and each hit keeps the plain render's colour exactly). The first-root path's compiled code: no path that
  * lists a reflected ray (reflections off a transparent surface), no -shade depth (its range needs every hit
- * first). The segment path: no path with a child (every item opaque, no reflected ray), lit or -shade gradient or
- * normals (-shade ids' palette and depth's range are the pass after's). */
+ * first). The segment path: every item opaque, at most one bounce (a reflected ray's hit has no child), lit or
+ * -shade gradient or normals (-shade ids' palette and depth's range are the pass after's). */
 int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view);
 /* Whether the first-root path's camera kernel's colours are the frame's: no effect, or the effects it applies
  * itself without -aa (no pass after it writes a colour). */

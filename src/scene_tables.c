@@ -315,6 +315,7 @@ iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_err
         const scene_material *mat = it->material >= 0 ? &s->materials[it->material] : NULL;
         m[SCENE_MATERIAL_SPECULAR] = mat ? mat->specular : SCENE_DEFAULT_SPECULAR;
         m[SCENE_MATERIAL_SHININESS] = mat ? mat->shininess : SCENE_DEFAULT_SHININESS;
+        m[SCENE_MATERIAL_REFLECT] = mat ? mat->reflect : 0;
         if (it->kind == SCENE_SURFACE)
             t->surfaces[t->nsurfaces++] = i;
     }

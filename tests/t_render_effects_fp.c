@@ -377,22 +377,15 @@ TEST_FP(effects_scene_centre_on_device) {
     CHECK(off <= n / 100, "%ld of %ld pixels differ from the host's paths by more than 2e-3", off, n);
 }
 
-/* The camera kernel's shadow rays (kernels/render_scene.cl: scene_packet_lit) use its work-item's per-ray buffers: a
- * pixel whose shadow ray meets more solids' boxes than they hold is traced again with more room, as a camera ray
- * that overflows. With room for one solid a ray, the ground's pixels whose shadow rays pass the boxes of the ball
- * and the cap that overlaps it (regions not disjoint: each ray is woven) overflow (more pixels are traced again
- * than without shadows), and the frame is the one with the default room: the same colours, depths and ids.
- * Dropping the listing of a shadow ray that overflows fails it. */
-TEST_FP(effects_scene_shadow_rays_overflow) {
-    iacsg_effects fx = shadow_effects();
+/* Fails unless the frames of `scene` with `fx` given room for one solid a ray (then some secondary rays overflow:
+ * more pixels are traced again than without the effects) and with the default room are the same: colours,
+ * depths and ids. */
+static void check_secondary_overflow(const char *scene, const iacsg_effects *fx, const char *what) {
     iacsg_view view = ground_view(96);
     iacsg_frame fr[3];
     for (int k = 0; k < 3; k++) {
-        view.effects = k < 2 ? &fx : NULL;
-        render_scene_room("material m = rgb(0.8, 0.52, 0.28)\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
-                          "solid cap = move(sphere(0.3), 0.2, 0, 0.9)\n"
-                          "region b = ball : m\nregion c = cap : m\nregion g = z : m\n",
-                          &view, k == 0 ? 0 : 1, &fr[k]);
+        view.effects = k < 2 ? fx : NULL;
+        render_scene_room(scene, &view, k == 0 ? 0 : 1, &fr[k]);
     }
     long n = (long)view.width * view.height, off = 0;
     for (long px = 0; px < n; px++)
@@ -401,10 +394,30 @@ TEST_FP(effects_scene_shadow_rays_overflow) {
     long long again = fr[1].retraced_rays, camera_again = fr[2].retraced_rays;
     for (int k = 0; k < 3; k++)
         iacsg_frame_free(&fr[k]);
-    CHECK(again > camera_again, "%lld rays traced again with shadows, %lld without: no shadow ray overflowed",
-          again, camera_again);
+    CHECK(again > camera_again, "%lld rays traced again with %s, %lld without: none of them overflowed", again, what,
+          camera_again);
     CHECK(off == 0, "%ld of %ld pixels differ from the frame with room for every solid", off, n);
-    test_note("%lld pixels traced again with shadows, %lld without", again, camera_again);
+    test_note("%lld pixels traced again with %s, %lld without", again, what, camera_again);
+}
+
+/* The camera kernel's secondary rays (kernels/render_scene.cl: scene_packet_lit) use its work-item's per-ray
+ * buffers: a pixel whose shadow ray or reflected ray meets more solids' boxes than they hold is traced again with
+ * more room, as a camera ray that overflows. With room for one solid a ray, the ground's pixels whose shadow rays,
+ * or reflected rays, pass the boxes of the ball and the cap that overlaps it (regions not disjoint: each ray is
+ * woven) overflow, and the frame is the one with the default room. Dropping the listing of either kind of ray that
+ * overflows fails it. */
+TEST_FP(effects_scene_secondary_rays_overflow) {
+    static const char *scene = "material m = rgb(0.8, 0.52, 0.28)\nmaterial g = rgb(0.7, 0.7, 0.68) reflect 0.5\n"
+                               "solid ball = move(sphere(0.5), 0, 0, 0.6)\nsolid cap = move(sphere(0.3), 0.2, 0, 0.9)\n"
+                               "region b = ball : m\nregion c = cap : m\nregion ground = z : %s\n";
+    char text[400];
+    iacsg_effects fx = shadow_effects();
+    snprintf(text, sizeof text, scene, "m");
+    check_secondary_overflow(text, &fx, "shadow rays");
+    fx.shadows = 0;
+    fx.bounces = 1;
+    snprintf(text, sizeof text, scene, "g");
+    check_secondary_overflow(text, &fx, "reflected rays");
 }
 
 /* A reflecting ground's one bounce, its children leaves (every item opaque, no shadows), kept on the device
