@@ -20,7 +20,7 @@
  *
  * iacsg_render_scene_samples: -aa's sample rays (src/render_effects_samples.c) as the camera rays of an image aa
  * times as wide and high, the listed packets of listed blocks traced as above, each packet's lanes written to an
- * output slot of its own instead of its pixels.
+ * output slot of its own instead of its pixels, with the effects' block their colours in linear light.
  */
 #include "packet_camera.h"
 #include "scene_trace.h"
@@ -65,6 +65,9 @@ typedef struct {
     int out0; /* where a packet's lanes write: -1 their pixels, else out0 + lane (-aa's samples) */
     __constant ia_real *fx; /* the effects' block where the packets apply them (scene_packet_lit), else 0 */
     __global uint *fx_counts; /* with them and KERNEL_STATS: each pixel's secondary rays and their evaluations */
+    int linear; /* with them: the colours in linear light, unclamped (-aa's samples, summed by the host), else shown */
+    int aa;     /* the image's pixels per view pixel across (-aa's samples: their pixel's row is row / aa) */
+    ia_real fx_eps; /* the secondary rays' leaves (the view's eps, also for -aa's samples) */
 } scene_frame;
 
 /* The rays of the packet of pixels from (i0, j0) (camera_ray), their directions' reciprocals (ik, for the BVH),
@@ -191,7 +194,7 @@ static void scene_fx_background(const scene_frame *f, shade_colorv row, shade_co
         top[c] = (float)f->fx[EFFECTS_BG_TOP + c];
         bottom[c] = (float)f->fx[EFFECTS_BG_BOTTOM + c];
     }
-    shade_background(row, f->height, top, bottom, bg);
+    shade_background(row, f->height / f->aa, top, bottom, bg);
 }
 
 /* The linear colours of the hits (lanes of `hit`) at t along rays o + t d, unit normals n facing them, by the
@@ -256,32 +259,39 @@ static void scene_lanes_light(__constant ia_real *params, const scene_frame *f, 
     shade_effects(fx, units, p, t, n, d, vis, albedo, specular, shininess, id_rgb, lin);
 }
 
-/* The hits of the packet's reflected rays (lanes of `mirror`: from so, directions md), traced in lanes with r's
- * buffers (no item lets light through: none passing), and their linear colours (scene_lanes_light, lit as their
- * parents by the block's lights, shadows and all); a miss the linear background of its pixel's row (bg, display).
- * A lane whose ray overflows r's buffers is listed to be traced again (pixel[k] -1). */
-static void scene_lanes_mirror(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
-                               const ia_real units[EFFECTS_MAX_LIGHTS][3], const ia_realv so[3], const ia_realv md[3],
-                               ia_maskv mirror, const shade_colorv bg[3], int pixel[PACKET_LANES],
-                               kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES],
-                               shade_colorv lin[3]) {
+/* What the packet's lanes hit: where, what and the material there, in lanes (a secondary ray's, scene_lanes_hits). */
+typedef struct {
+    ia_maskv on;     /* the lanes that hit */
+    ia_realv t, n[3]; /* how far along the ray; the unit normal there, facing the ray */
+    int item[PACKET_LANES];
+    shade_colorv albedo[3];
+    ia_realv specular, shininess;
+} scene_lanes_hit;
+
+/* The hits of the packet's secondary rays (lanes of `live`: from o, directions d, each passing pass_k[k], weave.h),
+ * traced in lanes with r's buffers and leaves of the view's eps (scene_rays_trace; no item is opaque-only here:
+ * not `whether`). A lane whose ray overflows r's buffers is listed to be traced again (pixel[k] -1). rays_k,
+ * evals_k: each lane's rays and their evaluations, added. */
+static void scene_lanes_hits(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
+                             const ia_realv o[3], const ia_realv d[3], ia_maskv live,
+                             const ia_real pass_k[PACKET_LANES], int pixel[PACKET_LANES],
+                             kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES], scene_lanes_hit *h) {
     ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES], meets[PACKET_LANES];
-    ia_real pass[PACKET_LANES], on[PACKET_LANES], t_k[PACKET_LANES], nk[3][PACKET_LANES];
+    ia_real on[PACKET_LANES], t_k[PACKET_LANES], nk[3][PACKET_LANES];
     ia_real specular_k[PACKET_LANES], shininess_k[PACKET_LANES];
     float albedo_k[3][PACKET_LANES];
     for (int c = 0; c < 3; c++) {
-        IAV_STORE(so[c], ok[c]);
-        IAV_STORE(md[c], dk[c]);
+        IAV_STORE(o[c], ok[c]);
+        IAV_STORE(d[c], dk[c]);
     }
     IAV_STORE(IAV_R(0), tn);
     IAV_STORE(IAV_R(IA_INF), tf);
-    IAV_STORE(select(IAV_R(0), IAV_R(1), mirror), meets);
-    IAV_STORE(IAV_R(0), pass);
-    IAV_STORE(select(IAV_R(0), IAV_R(1), mirror), on);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), live), meets);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
     int found[PACKET_LANES];
     weave_hit hits[PACKET_LANES];
     kernel_u32 evals[PACKET_LANES];
-    scene_rays_trace(view, r, params, 0, ok, dk, tn, tf, meets, pass, found, hits, evals);
+    scene_rays_trace(view, r, params, 0, ok, dk, tn, tf, meets, pass_k, found, hits, evals);
     for (int k = 0; k < PACKET_LANES; k++) {
         if (found[k] == SCENE_TRACE_OVERFLOW && pixel[k] >= 0) {
             f->overflow[atomic_inc(f->noverflow)] = pixel[k];
@@ -290,32 +300,104 @@ static void scene_lanes_mirror(__constant ia_real *params, const scene_frame *f,
         rays_k[k] += on[k] != 0;
         evals_k[k] += evals[k];
         int got = found[k] == 1 && on[k] != 0, item = got ? hits[k].item : 0;
-        ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]}, g[3] = {0, 0, 0};
+        ia_real ro[3] = {ok[0][k], ok[1][k], ok[2][k]}, rd[3] = {dk[0][k], dk[1][k], dk[2][k]}, g[3] = {0, 0, 0};
         if (got)
-            scene_gradient(r->walks.prims, hits[k].solid, o, d, hits[k].t, params[PARAM_TIME_LO], g);
-        ia_real len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), facing = g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
+            scene_gradient(r->walks.prims, hits[k].solid, ro, rd, hits[k].t, params[PARAM_TIME_LO], g);
+        ia_real len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        ia_real facing = g[0] * rd[0] + g[1] * rd[1] + g[2] * rd[2];
         int ok_g = len > 0 && isfinite(len);
         for (int c = 0; c < 3; c++) { /* facing the ray; -d where the gradient vanishes (as iacsg_scene_trace_rays) */
-            nk[c][k] = !got ? 0 : ok_g ? (facing > 0 ? -g[c] : g[c]) / len : -d[c];
+            nk[c][k] = !got ? 0 : ok_g ? (facing > 0 ? -g[c] : g[c]) / len : -rd[c];
             albedo_k[c][k] = f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_RGB + c];
         }
         on[k] = got;
         t_k[k] = got ? hits[k].t : 0;
+        h->item[k] = got ? hits[k].item : -1;
         specular_k[k] = f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_SPECULAR];
         shininess_k[k] = got ? f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_SHININESS] : 48;
     }
-    ia_realv n[3];
-    shade_colorv albedo[3], shown[3];
     for (int c = 0; c < 3; c++) {
-        n[c] = IAV_LOAD(nk[c]);
-        albedo[c] = IAV_CAT(vload, IA_VW)(0, albedo_k[c]);
+        h->n[c] = IAV_LOAD(nk[c]);
+        h->albedo[c] = IAV_CAT(vload, IA_VW)(0, albedo_k[c]);
     }
-    ia_maskv hit = IAV_LOAD(on) != 0;
-    scene_lanes_light(params, f, view, r, units, so, md, IAV_LOAD(t_k), hit, n, pixel, albedo, IAV_LOAD(specular_k),
-                      IAV_LOAD(shininess_k), rays_k, evals_k, shown);
-    IAV_CAT(int, IA_VW) at = IAV_CAT(convert_int, IA_VW)(hit) != 0;
+    h->on = IAV_LOAD(on) != 0;
+    h->t = IAV_LOAD(t_k);
+    h->specular = IAV_LOAD(specular_k);
+    h->shininess = IAV_LOAD(shininess_k);
+}
+
+/* The linear colours that the packet's reflected rays (lanes of `mirror`: from so, directions md; no item lets
+ * light through, so none passes a region) bring back: their hits lit as their parents (scene_lanes_light, shadows
+ * and all); a miss the linear background of its pixel's row (bg, display). */
+static void scene_lanes_mirror(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
+                               const ia_real units[EFFECTS_MAX_LIGHTS][3], const ia_realv so[3], const ia_realv md[3],
+                               ia_maskv mirror, const shade_colorv bg[3], int pixel[PACKET_LANES],
+                               kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES],
+                               shade_colorv lin[3]) {
+    ia_real none[PACKET_LANES];
+    IAV_STORE(IAV_R(0), none);
+    scene_lanes_hit h;
+    scene_lanes_hits(params, f, view, r, so, md, mirror, none, pixel, rays_k, evals_k, &h);
+    shade_colorv shown[3];
+    scene_lanes_light(params, f, view, r, units, so, md, h.t, h.on, h.n, pixel, h.albedo, h.specular, h.shininess,
+                      rays_k, evals_k, shown);
+    IAV_CAT(int, IA_VW) at = IAV_CAT(convert_int, IA_VW)(h.on) != 0;
     for (int c = 0; c < 3; c++)
         lin[c] = select(bg[c] * bg[c], shown[c], at);
+}
+
+/* The linear colours of the packet's hits through their transparent layers (no reflected ray, no shadows:
+ * src/render_effects.c), as the host's paths and fx_path_weights give them: a hit on an item of opacity a shows
+ * a of the weight left (its colour: lit, scene_lanes_light) and lets 1 - a on, from just past its surface in the
+ * same direction (into a region: passing through it, weave.h), to the next hit; a ray that meets nothing, or a
+ * weight under EFFECTS_MIN_WEIGHT or the EFFECTS_MAX_LAYERS-th layer, ends in the background of the pixel's row
+ * (bg, display). In: the camera rays' hits (o, d, h); lin: their colours lit, replaced by the layers' sum. */
+static void scene_lanes_layers(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
+                               const ia_real units[EFFECTS_MAX_LIGHTS][3], const ia_realv o_in[3], const ia_realv d[3],
+                               scene_lanes_hit *h, const shade_colorv bg[3], int pixel[PACKET_LANES],
+                               kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES],
+                               shade_colorv lin[3]) {
+    ia_realv o[3], w = IAV_R(1);
+    shade_colorv sum[3], bg2[3];
+    for (int c = 0; c < 3; c++) {
+        o[c] = o_in[c];
+        sum[c] = (shade_colorv)(0);
+        bg2[c] = bg[c] * bg[c];
+    }
+    for (int layer = 0; layer < EFFECTS_MAX_LAYERS; layer++) {
+        ia_real opacity_k[PACKET_LANES], pass_k[PACKET_LANES];
+        for (int k = 0; k < PACKET_LANES; k++) {
+            int item = max(h->item[k], 0);
+            opacity_k[k] = f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_OPACITY];
+            pass_k[k] = f->items[SCENE_ITEM_INTS * item + SCENE_ITEM_KIND] == SCENE_KIND_REGION ? 1 + item : 0;
+        }
+        ia_realv a = IAV_LOAD(opacity_k), through = w * (1 - a);
+        ia_maskv on = h->on, last = layer + 1 >= EFFECTS_MAX_LAYERS ? on : (ia_maskv)0;
+        ia_maskv ends = on & (through > 0) & ((through < (ia_real)EFFECTS_MIN_WEIGHT) | last);
+        ia_maskv on_through = on & (through > 0) & ~ends;
+        if (layer > 0)
+            scene_lanes_light(params, f, view, r, units, o, d, h->t, on, h->n, pixel, h->albedo, h->specular,
+                              h->shininess, rays_k, evals_k, lin);
+        shade_colorv shown = IAV_CAT(convert_float, IA_VW)(select(IAV_R(0), w * a, on));
+        shade_colorv left = IAV_CAT(convert_float, IA_VW)(select(IAV_R(0), through, ends));
+        for (int c = 0; c < 3; c++)
+            sum[c] += shown * lin[c] + left * bg2[c];
+        if (!iav_any(on_through))
+            break;
+        ia_realv p[3];
+        for (int c = 0; c < 3; c++)
+            p[c] = o[c] + h->t * d[c];
+        ia_realv off = effects_offset(view->eps, p, h->t);
+        for (int c = 0; c < 3; c++) /* on from just past the surface */
+            o[c] = select(o[c], p[c] - off * h->n[c], on_through);
+        scene_lanes_hits(params, f, view, r, o, d, on_through, pass_k, pixel, rays_k, evals_k, h);
+        shade_colorv missed = IAV_CAT(convert_float, IA_VW)(select(IAV_R(0), through, on_through & ~h->on));
+        for (int c = 0; c < 3; c++)
+            sum[c] += missed * bg2[c];
+        w = select(IAV_R(0), through, on_through);
+    }
+    for (int c = 0; c < 3; c++)
+        lin[c] = sum[c];
 }
 
 /* The display colours of a packet's lanes by the effects' block (src/render_effects.c applies it in this kernel
@@ -331,7 +413,7 @@ static void scene_packet_lit(__constant ia_real *params, const scene_frame *f, c
                              const ia_realv n[3], int pixel[PACKET_LANES], shade_colorv row,
                              const shade_colorv albedo[3], ia_realv specular, ia_realv shininess, shade_colorv rgb[3]) {
     __constant ia_real *fx = f->fx;
-    scene_view view = {camera->box, camera->link, camera->nodes, camera->surfaces, camera->nsurfaces, camera->eps,
+    scene_view view = {camera->box, camera->link, camera->nodes, camera->surfaces, camera->nsurfaces, f->fx_eps,
                        camera->time, 0};
     scene_ray r = *ray; /* its buffers, not the camera rays' shared direction */
     r.walks.dirs = 0;
@@ -345,9 +427,12 @@ static void scene_packet_lit(__constant ia_real *params, const scene_frame *f, c
     shade_light_units(params, fx, units);
     kernel_u32 rays_k[PACKET_LANES], evals_k[PACKET_LANES];
     ia_real reflect_k[PACKET_LANES];
+    int layers = 0; /* a hit lets light through */
     for (int k = 0; k < PACKET_LANES; k++) {
+        __global const float *m = f->albedo + SCENE_MATERIAL_FLOATS * max(item_k[k], 0);
         rays_k[k] = evals_k[k] = 0;
-        reflect_k[k] = item_k[k] >= 0 ? f->albedo[SCENE_MATERIAL_FLOATS * item_k[k] + SCENE_MATERIAL_REFLECT] : 0;
+        reflect_k[k] = item_k[k] >= 0 ? m[SCENE_MATERIAL_REFLECT] : 0;
+        layers |= item_k[k] >= 0 && m[SCENE_MATERIAL_OPACITY] < 1;
     }
     shade_colorv lin[3], bg[3];
     scene_lanes_light(params, f, &view, &r, units, o, d, t, hit, n, pixel, albedo, specular, shininess, rays_k,
@@ -376,11 +461,18 @@ static void scene_packet_lit(__constant ia_real *params, const scene_frame *f, c
         for (int c = 0; c < 3; c++)
             lin[c] = lin[c] * (1 - kc) + select((shade_colorv)(0), kc * seen[c], mirrored);
     }
+    if (lit && layers) { /* no reflected ray then (src/render_effects.c) */
+        scene_lanes_hit h = {hit, t, {n[0], n[1], n[2]}, {0}, {albedo[0], albedo[1], albedo[2]}, specular, shininess};
+        for (int k = 0; k < PACKET_LANES; k++)
+            h.item[k] = item_k[k];
+        scene_lanes_layers(params, f, &view, &r, units, o, d, &h, bg, pixel, rays_k, evals_k, lin);
+    }
     IAV_CAT(int, IA_VW) on = IAV_CAT(convert_int, IA_VW)(hit) != 0;
     for (int c = 0; c < 3; c++) /* display-encoded as fx_encode (fmax takes 0 over NaN) */
-        rgb[c] = select(bg[c], sqrt(fmin(fmax(lin[c], 0.0f), 1.0f)), on);
+        rgb[c] = f->linear ? select(bg[c] * bg[c], lin[c], on)
+                           : select(bg[c], sqrt(fmin(fmax(lin[c], 0.0f), 1.0f)), on);
 #ifdef KERNEL_STATS
-    for (int k = 0; k < PACKET_LANES; k++)
+    for (int k = 0; k < PACKET_LANES && f->fx_counts; k++)
         if (pixel[k] >= 0) {
             f->fx_counts[2 * pixel[k]] = rays_k[k];
             f->fx_counts[2 * pixel[k] + 1] = evals_k[k];
@@ -400,18 +492,20 @@ static void scene_packet_empty(__constant ia_real *params, const scene_frame *f,
     for (int k = 0; k < PACKET_LANES; k++) {
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
         pixel[k] = scene_lane_output(f, i, j, k, only);
-        rows[k] = (float)min(j, f->height - 1);
+        rows[k] = (float)(min(j, f->height - 1) / f->aa);
         if (pixel[k] >= 0)
             scene_store_hit(f, pixel[k], 0, &none, block_evals, 0, 0);
     }
     shade_colorv albedo[3], rgb[3];
     for (int c = 0; c < 3; c++)
         albedo[c] = (shade_colorv)(0);
-    if (f->fx)
+    if (f->fx) {
         scene_fx_background(f, IAV_CAT(vload, IA_VW)(0, rows), rgb);
-    else
-        shade_combine((ia_maskv)0, IAV_CAT(vload, IA_VW)(0, rows), f->height, albedo, IAV_R(0), IAV_R(0), IAV_R(0),
-                      IAV_R(0), rgb);
+        for (int c = 0; c < 3 && f->linear; c++)
+            rgb[c] *= rgb[c];
+    } else
+        shade_combine((ia_maskv)0, IAV_CAT(vload, IA_VW)(0, rows), f->height / f->aa, albedo, IAV_R(0), IAV_R(0),
+                      IAV_R(0), IAV_R(0), rgb);
     scene_store_colors(f, pixel, rgb, 0);
 }
 
@@ -477,7 +571,7 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
     for (int k = 0; k < PACKET_LANES; k++) {
         int i = i0 + k % PACKET_W, j = j0 + k / PACKET_W;
         pixel[k] = scene_lane_output(f, i, j, k, only);
-        rows[k] = (float)min(j, height - 1);
+        rows[k] = (float)(min(j, height - 1) / f->aa);
         weave_hit hit = {0, -1, -1, -1};
         ray->evals = ray->segments = ray->partitions = 0;
         view->lane = k;
@@ -537,10 +631,10 @@ static void scene_packet(__constant ia_real *params, const scene_frame *f, scene
         scene_packet_lit(params, f, view, ray, ok, dk, t_hit, item_hit, hit_v, n, pixel, row_v, albedo_v,
                          IAV_LOAD(specular), IAV_LOAD(shininess), rgb_v);
     else if (iav_any(hit_v))
-        shade_lit_materials(params, hit_v, n, d_v, row_v, height, albedo_v, IAV_LOAD(specular), IAV_LOAD(shininess),
-                            rgb_v);
+        shade_lit_materials(params, hit_v, n, d_v, row_v, height / f->aa, albedo_v, IAV_LOAD(specular),
+                            IAV_LOAD(shininess), rgb_v);
     else /* a packet with no hit: its background only, no normals nor lighting */
-        shade_combine(hit_v, row_v, height, albedo_v, IAV_R(0), IAV_R(0), IAV_R(0), IAV_R(0), rgb_v);
+        shade_combine(hit_v, row_v, height / f->aa, albedo_v, IAV_R(0), IAV_R(0), IAV_R(0), IAV_R(0), rgb_v);
     for (int c = 0; c < 3; c++)
         n[c] = select(IAV_R(0), n[c], hit_v);
     scene_store_colors(f, pixel, rgb_v, n);
@@ -631,7 +725,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                    cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
                                    flags, &dirs, SCENE_LANES_OF(lanes), prims);
     scene_frame f = {flags, width, height, row_end, items, nodes, albedo, rgb, depth, normal, ids,
-                     overlap, counts, overflow, noverflow, -1, fx, fx_counts};
+                     overlap, counts, overflow, noverflow, -1, fx, fx_counts, 0, 1, params[PARAM_EPS]};
     scene_tile tiles[PACKET_LANES];
     if (pixels) {
         for (int k = 0; k < PACKET_LANES; k++) {
@@ -664,7 +758,10 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
  * to slot s, outputs PACKET_LANES s + lane (rgb, depth, normal, ids, overlap, counts as iacsg_render_scene's). A
  * sample's pixel of 4x4 samples is one packet, a coherent beam: the BVH cut, the union's leaf and the claim at it
  * serve all 16 rays. The per-ray buffers hold every solid (src/render_scene.c: render_scene_trace_args), so no ray
- * overflows; `overflow` lists any that would. */
+ * overflows; `overflow` lists any that would. With the effects' block fx, each sample's colour is lit by it
+ * (scene_packet_lit, shadow and reflected rays and all, with leaves of fx_eps, the view's, as the host's paths;
+ * the background of its pixel's row) in linear light, with KERNEL_STATS its secondary rays and their evaluations
+ * to fx_counts (2 a slot's lane). */
 __kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, int width, int height,
                                          __global const int *blocks, int nblocks, int first_block,
                                          __global const float *albedo, __global float *rgb, __global float *depth,
@@ -677,7 +774,9 @@ __kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, 
                                          __global ia_real *cand_range, __global ia_real *cand_pos,
                                          __global int *cand_level, __global bisect_index *cand_index,
                                          __global int *cand_newton, __global ia_real *cand_newton_t, int cand_cap,
-                                         __global uchar *state, int nsolids, __global const ia_real *prims) {
+                                         __global uchar *state, int nsolids, __global const ia_real *prims,
+                                         __constant ia_real *fx, __global uint *fx_counts, int aa,
+                                         ia_real fx_eps) {
     size_t slot = get_global_id(0);
     int listed = first_block + (int)slot;
     if (listed >= nblocks)
@@ -691,7 +790,7 @@ __kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, 
                                    cand_level, cand_index, cand_newton, cand_newton_t, cand_cap, state, nsolids, slot,
                                    flags, &dirs, SCENE_LANES_OF(lanes), prims);
     scene_frame f = {flags, width, height, height, items, nodes, albedo, rgb, depth, normal, ids,
-                     overlap, counts, overflow, noverflow, 0, 0, 0};
+                     overlap, counts, overflow, noverflow, 0, fx, fx_counts, fx != 0, aa, fx_eps};
     int bx = block[SCENE_SAMPLES_BX] * SCENE_BLOCK, by = block[SCENE_SAMPLES_BY] * SCENE_BLOCK;
     int out = block[SCENE_SAMPLES_SLOT];
     scene_tile tiles[PACKET_LANES];

@@ -56,14 +56,15 @@ enum { SCENE_ITEM_KIND = 0, SCENE_ITEM_ROOT = 1, SCENE_ITEM_SIZE = 2, SCENE_ITEM
  * region, and the term's tree nodes[root .. root + size), relinearised like a region's. A solid's entries are in
  * the regions' order. */
 enum { SCENE_TERM_ITEM = 0, SCENE_TERM_ROOT = 1, SCENE_TERM_SIZE = 2, SCENE_TERM_INTS = 3 };
-/* An item's material: SCENE_MATERIAL_FLOATS floats, its linear albedo, highlight weight and exponent, and the
- * fraction of light it reflects. */
+/* An item's material: SCENE_MATERIAL_FLOATS floats, its linear albedo, highlight weight and exponent, the
+ * fraction of light it reflects and its opacity. */
 enum {
     SCENE_MATERIAL_RGB = 0,
     SCENE_MATERIAL_SPECULAR = 3,
     SCENE_MATERIAL_SHININESS = 4,
     SCENE_MATERIAL_REFLECT = 5,
-    SCENE_MATERIAL_FLOATS = 6
+    SCENE_MATERIAL_OPACITY = 6,
+    SCENE_MATERIAL_FLOATS = 7
 };
 #define SCENE_KIND_REGION 0
 #define SCENE_KIND_SURFACE 1

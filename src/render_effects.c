@@ -446,6 +446,16 @@ static int item_keeps(const fx_frame *f, int i) {
     return rig_alone(f->e) && !(f->e->bounces > 0 && m->reflect > 0) && m->opacity >= 1;
 }
 
+/* Whether a scene's camera kernel (and -aa's samples) can light its hits with the effects (kernels/render_scene.cl:
+ * scene_packet_lit), lit or -shade gradient or normals (-shade ids' palette and depth's range are the host's): where
+ * every item is opaque, at most one bounce (a reflected ray's hit has no child); where some item lets light
+ * through, no reflected ray and no shadows (a shadow ray through a transparent item is the host's). */
+static int scene_lit_in_kernel(const iacsg_renderer *r, const iacsg_effects *e) {
+    int mirrors = reflects(r, e) && e->bounces > 0;
+    return e->shade != IACSG_SHADE_DEPTH && e->shade != IACSG_SHADE_IDS &&
+           (transparent(r, e) ? !mirrors && !e->shadows : !mirrors || e->bounces == 1);
+}
+
 /* The reflected rays a first-root path's path may list for a next launch: only off a transparent surface (off an
  * opaque one the path goes on in its lane), one per layer at most. */
 static int expr_kid_slots(const iacsg_effects *e) {
@@ -545,17 +555,21 @@ static iacsg_status trace_samples(fx_frame *f, const int *pixels, size_t npixels
     fx_hit *hits = reserve(&f->hits, (n + 1) * sizeof *hits);
     if (!hits)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for -aa's samples");
-    iacsg_status st = fx_scene_samples(&f->tracer, f->e->aa, aa_eps(f), pixels, npixels, hits, err);
+    iacsg_status st = fx_scene_samples(&f->tracer, f->e->aa, aa_eps(f), pixels, npixels, hits, NULL, NULL, err);
     for (size_t i = 0; st == IACSG_OK && i < n; i++)
         paths[i].hit = hits[i];
     return st;
 }
 
 /* -aa N on the segment path: the pixels on an edge get N x N rays of their own, on a regular grid in the pixel,
- * each weighing 1 / N^2; their centre rays' colours are replaced. */
+ * each weighing 1 / N^2; their centre rays' colours are replaced. Where the camera kernel can light the samples
+ * (scene_lit_in_kernel) it gives their colours; else they are paths of the host's. */
 static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, fx_path *paths, iacsg_error *err) {
     const iacsg_view *v = f->view;
-    int aa = f->e->aa, w = v->width;
+    int aa = f->e->aa, w = v->width, lit = scene_lit_in_kernel(f->r, f->e);
+    float *colours = lit ? reserve(&f->colors, (3 * FX_CHUNK + 1) * sizeof *colours) : NULL;
+    if (lit && !colours)
+        return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for -aa's samples");
     int *edges = pixel_list(f);
     if (!edges)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
@@ -579,11 +593,19 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, fx_path *paths, iacs
                     memset(q, 0, sizeof *q);
                     q->pixel = pixel;
                     q->w = 1.0 / (aa * aa);
-                    camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
+                    if (!lit)
+                        camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
                 }
         }
-        st = trace_samples(f, edges + first, k - first, paths, n, err);
-        if (st == IACSG_OK)
+        if (lit)
+            st = fx_scene_samples(&f->tracer, aa, aa_eps(f), edges + first, k - first, NULL, f->block, colours, err);
+        for (size_t q = 0; lit && st == IACSG_OK && q < n; q++) {
+            double lin[3] = {colours[3 * q], colours[3 * q + 1], colours[3 * q + 2]};
+            add(f->accum, paths[q].pixel, paths[q].w, lin);
+        }
+        if (!lit)
+            st = trace_samples(f, edges + first, k - first, paths, n, err);
+        if (st == IACSG_OK && !lit)
             st = run_paths(f, paths, n, err);
         for (size_t q = first; st == IACSG_OK && q < k; q++)
             fx_encode(fr->rgb, edges[q]);
@@ -765,9 +787,8 @@ int render_effects_in_camera(const iacsg_renderer *r, const iacsg_view *view) {
     const iacsg_effects *e = view->effects;
     if (!effects_on(r, e) || kernel_colors_hold(r, e))
         return 0;
-    if (r->scene) /* at most a reflected ray a path, whose hit has no child */
-        return !transparent(r, e) && (e->bounces <= 1 || !reflects(r, e)) && e->shade != IACSG_SHADE_DEPTH &&
-               e->shade != IACSG_SHADE_IDS;
+    if (r->scene)
+        return scene_lit_in_kernel(r, e);
     return !r->tape && e->shade != IACSG_SHADE_DEPTH && expr_kid_slots(e) == 0;
 }
 

@@ -5,7 +5,8 @@
  *     is its pixel (aa i + a, aa j + b), whose centre is the sample's point) --> sorted by block and packet of
  *     that image: a list of blocks, each with the mask of its packets that hold samples and their output slots
  *   --> the kernel: per block its tile pass, per listed packet the camera rays' trace (beam, union leaf, claim)
- *   --> each sample's hit (depth, normal, item) from its slot's lane.
+ *   --> each sample's hit (depth, normal, item) from its slot's lane; or, with the effects' block, its colour (lit in
+ *       the kernel: kernels/render_scene.cl's scene_packet_lit, in linear light).
  *
  * Why: the samples of one pixel are a coherent packet (at -aa 4 exactly one, 16 rays in a pixel), which the camera
  * kernel traces with one BVH cut, one search of the regions' union in SIMD lanes and one claim at its leaf, where
@@ -98,8 +99,20 @@ static iacsg_status list_samples(int width, int aa, const int *pixels, size_t np
     return IACSG_OK;
 }
 
-/* The kernel's outputs, PACKET_LANES a slot, in host arrays the device writes in place. */
-enum { OUT_RGB, OUT_DEPTH, OUT_NORMAL, OUT_IDS, OUT_OVERLAP, OUT_COUNTS, OUT_NOVERFLOW, OUT_OVERFLOW, OUT_ALL };
+/* The kernel's outputs, PACKET_LANES a slot, in host arrays the device writes in place; arguments 8 on in this
+ * order. */
+enum {
+    OUT_RGB,
+    OUT_DEPTH,
+    OUT_NORMAL,
+    OUT_IDS,
+    OUT_OVERLAP,
+    OUT_COUNTS,
+    OUT_OVERFLOW,
+    OUT_NOVERFLOW,
+    OUT_FX_COUNTS, /* with the effects and -stats: each lane's secondary rays and their evaluations */
+    OUT_ALL
+};
 
 typedef struct {
     void *host[OUT_ALL];
@@ -115,12 +128,14 @@ static void release_outputs(sample_outputs *o) {
     }
 }
 
-static iacsg_status make_outputs(iacsg_renderer *r, size_t lanes, sample_outputs *o, iacsg_error *err) {
-    size_t each[OUT_ALL] = {3 * sizeof(float), sizeof(float),   3 * sizeof(float), sizeof(float),
-                            sizeof(cl_int),    3 * sizeof(cl_uint), 0,              sizeof(cl_int)};
+static iacsg_status make_outputs(iacsg_renderer *r, size_t lanes, int lit, sample_outputs *o, iacsg_error *err) {
+    size_t each[OUT_ALL] = {3 * sizeof(float),   sizeof(float),  3 * sizeof(float), sizeof(float), sizeof(cl_int),
+                            3 * sizeof(cl_uint), sizeof(cl_int), 0,                 2 * sizeof(cl_uint)};
     memset(o, 0, sizeof *o);
     for (int k = 0; k < OUT_ALL; k++) {
-        if (k == OUT_COUNTS && !r->config.stats)
+        if ((k == OUT_COUNTS || k == OUT_FX_COUNTS) && !r->config.stats)
+            continue;
+        if (k == OUT_FX_COUNTS && !lit)
             continue;
         o->bytes[k] = k == OUT_NOVERFLOW ? sizeof(cl_int) : each[k] * (lanes > 0 ? lanes : 1);
         o->host[k] = calloc(1, o->bytes[k]); /* noverflow starts at 0 */
@@ -145,7 +160,7 @@ typedef struct {
  * compiles the kernel) with the samples' image's camera `params`, in launches of as many work-items as the
  * per-ray buffers have room for, and makes the outputs current on the host. */
 static iacsg_status launch_samples(fx_tracer *t, const iacsg_view *samples_view, cl_mem params, const sample_list *l,
-                                   sample_outputs *o, iacsg_error *err) {
+                                   cl_mem block, sample_outputs *o, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     cl_kernel k = r->fx->samples;
     cl_int rc = CL_SUCCESS, flags = samples_view->camera.ortho_height > 0 ? RENDER_ORTHO : 0;
@@ -164,13 +179,23 @@ static iacsg_status launch_samples(fx_tracer *t, const iacsg_view *samples_view,
     size_t slots = nblocks > 0 ? (size_t)nblocks : 1;
     iacsg_status st = rc == CL_SUCCESS ? render_scene_trace_args(r, samples_view, k, 16, &slots, &held, err)
                                        : clrt_record(err, rc, "clCreateBuffer(albedo)", __func__, __LINE__);
-    kernel_arg args[8 + OUT_ALL] = {{sizeof(cl_mem), &params}, {sizeof flags, &flags}, {sizeof width, &width},
-                           {sizeof height, &height},  {sizeof(cl_mem), &blocks}, {sizeof nblocks, &nblocks},
-                           {0, NULL},                 {sizeof(cl_mem), &albedo}};
-    for (int a = 0; a < OUT_ALL; a++)
+    cl_int aa = samples_view->width / t->view->width;
+    char fx_eps[sizeof(double)]; /* the secondary rays' leaves: the view's eps, as the host's paths */
+    fx_put_real(r, fx_eps, 0, t->view->eps);
+    kernel_arg args[8 + OUT_FX_COUNTS] = {{sizeof(cl_mem), &params}, {sizeof flags, &flags}, {sizeof width, &width},
+                                          {sizeof height, &height},  {sizeof(cl_mem), &blocks},
+                                          {sizeof nblocks, &nblocks}, {0, NULL}, {sizeof(cl_mem), &albedo}};
+    for (int a = 0; a < OUT_FX_COUNTS; a++)
         args[8 + a] = (kernel_arg){sizeof(cl_mem), o->mem[a] ? &o->mem[a] : NULL};
-    for (cl_uint a = 0; a < 8 + OUT_ALL && st == IACSG_OK; a++) {
-        rc = a == 6 ? CL_SUCCESS : clSetKernelArg(k, a, args[a].bytes, args[a].v); /* 6: each launch's first block */
+    /* after the scene's arguments (render_scene_trace_args: 16 to 35): the effects' block, their counts, aa, eps */
+    kernel_arg fx_args[4] = {{sizeof(cl_mem), block ? &block : NULL},
+                             {sizeof(cl_mem), o->mem[OUT_FX_COUNTS] ? &o->mem[OUT_FX_COUNTS] : NULL},
+                             {sizeof aa, &aa},
+                             {fx_real_bytes(r), fx_eps}};
+    for (cl_uint a = 0; a < 8 + OUT_FX_COUNTS + 4 && st == IACSG_OK; a++) {
+        const kernel_arg *g = a < 8 + OUT_FX_COUNTS ? &args[a] : &fx_args[a - 8 - OUT_FX_COUNTS];
+        cl_uint index = a < 8 + OUT_FX_COUNTS ? a : 36 + a - 8 - OUT_FX_COUNTS;
+        rc = a == 6 ? CL_SUCCESS : clSetKernelArg(k, index, g->bytes, g->v); /* 6: each launch's first block */
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clSetKernelArg(iacsg_render_scene_samples)", __func__, __LINE__);
     }
@@ -220,9 +245,9 @@ static iacsg_status samples_kernel(fx_tracer *t, iacsg_error *err) {
     sample_outputs o = {0};
     iacsg_status st = samples_params(t, 1, t->view->eps, &v, &params, err);
     if (st == IACSG_OK)
-        st = make_outputs(r, 0, &o, err);
+        st = make_outputs(r, 0, 0, &o, err);
     if (st == IACSG_OK)
-        st = launch_samples(t, &v, params, &none, &o, err);
+        st = launch_samples(t, &v, params, &none, NULL, &o, err);
     release_outputs(&o);
     if (params)
         clReleaseMemObject(params);
@@ -231,38 +256,49 @@ static iacsg_status samples_kernel(fx_tracer *t, iacsg_error *err) {
 }
 
 iacsg_status fx_scene_samples(fx_tracer *t, int aa, double eps, const int *pixels, size_t npixels, fx_hit *hits,
-                              iacsg_error *err) {
+                              const double *block, float *rgb, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     sample_list l = {0};
     sample_outputs o = {0};
     iacsg_view v;
-    cl_mem params = NULL;
+    cl_mem params = NULL, fx = NULL;
     iacsg_status st = samples_kernel(t, err);
+    if (st == IACSG_OK && block)
+        st = fx_block_buffer(r, block, &fx, err);
     if (st == IACSG_OK)
         st = list_samples(t->view->width, aa, pixels, npixels, &l, err);
     if (st == IACSG_OK)
         st = samples_params(t, aa, eps, &v, &params, err);
     if (st == IACSG_OK)
-        st = make_outputs(r, PACKET_LANES * l.nslots, &o, err);
+        st = make_outputs(r, PACKET_LANES * l.nslots, block != NULL, &o, err);
     if (st == IACSG_OK)
-        st = launch_samples(t, &v, params, &l, &o, err);
+        st = launch_samples(t, &v, params, &l, fx, &o, err);
     if (st == IACSG_OK && *(const cl_int *)o.host[OUT_NOVERFLOW] != 0) /* the buffers hold every solid */
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "-aa's sample rays overflowed their buffers");
     const float *depth = o.host[OUT_DEPTH], *normal = o.host[OUT_NORMAL], *ids = o.host[OUT_IDS];
-    const cl_uint *counts = o.host[OUT_COUNTS];
+    const float *colour = o.host[OUT_RGB];
+    const cl_uint *counts = o.host[OUT_COUNTS], *fx_counts = o.host[OUT_FX_COUNTS];
     size_t n = npixels * (size_t)aa * (size_t)aa;
     for (size_t s = 0; st == IACSG_OK && s < n; s++) {
         size_t at = l.out[s];
-        fx_hit *h = &hits[s];
-        h->t = isinf(depth[at]) ? INFINITY : depth[at];
-        h->item = isinf(depth[at]) ? -1 : (int)ids[at];
-        memcpy(h->n, normal + 3 * at, sizeof h->n);
+        if (rgb)
+            memcpy(rgb + 3 * s, colour + 3 * at, 3 * sizeof(float));
+        if (hits) {
+            fx_hit *h = &hits[s];
+            h->t = isinf(depth[at]) ? INFINITY : depth[at];
+            h->item = isinf(depth[at]) ? -1 : (int)ids[at];
+            memcpy(h->n, normal + 3 * at, sizeof h->n);
+        }
         t->evals += counts ? counts[3 * at] : 0;
+        t->rays += fx_counts ? fx_counts[2 * at] : 0;
+        t->evals += fx_counts ? fx_counts[2 * at + 1] : 0;
     }
     t->rays += st == IACSG_OK ? (long long)n : 0;
     release_outputs(&o);
     if (params)
         clReleaseMemObject(params);
+    if (fx)
+        clReleaseMemObject(fx);
     free(l.blocks);
     free(l.out);
     return st;

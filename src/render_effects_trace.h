@@ -119,9 +119,11 @@ iacsg_status fx_trace(fx_tracer *t, const fx_ray *rays, size_t n, double eps, in
 
 /* The segment path's -aa samples (src/render_effects_samples.c): the aa x aa sample rays of each of
  * pixels[0 .. npixels), sample (a, b) of pixel q through (i + (a + 1/2) / aa, j + (b + 1/2) / aa) into
- * hits[aa^2 q + aa b + a], traced by the camera kernel's packets with leaves of width eps. */
+ * hits[aa^2 q + aa b + a], traced by the camera kernel's packets with leaves of width eps. With the effects' block
+ * `block` (where the camera kernel can light them: render_effects.c), each sample's colour lit by it, in linear
+ * light, into rgb (3 floats a sample; hits then only counted). */
 iacsg_status fx_scene_samples(fx_tracer *t, int aa, double eps, const int *pixels, size_t npixels, fx_hit *hits,
-                              iacsg_error *err);
+                              const double *block, float *rgb, iacsg_error *err);
 
 /* Ray y as reals i of `reals` (EFFECTS_RAY_REALS each, kernels/effects.h), in the working precision. */
 void fx_put_ray(const iacsg_renderer *r, void *reals, size_t i, const fx_ray *y);

@@ -316,6 +316,7 @@ iacsg_status scene_tables_build(const iacsg_scene *s, scene_tables *t, iacsg_err
         m[SCENE_MATERIAL_SPECULAR] = mat ? mat->specular : SCENE_DEFAULT_SPECULAR;
         m[SCENE_MATERIAL_SHININESS] = mat ? mat->shininess : SCENE_DEFAULT_SHININESS;
         m[SCENE_MATERIAL_REFLECT] = mat ? mat->reflect : 0;
+        m[SCENE_MATERIAL_OPACITY] = mat ? mat->opacity : 1;
         if (it->kind == SCENE_SURFACE)
             t->surfaces[t->nsurfaces++] = i;
     }

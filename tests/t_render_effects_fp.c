@@ -454,11 +454,11 @@ TEST_FP(effects_scene_reflect_on_device) {
 }
 
 /* Transparency on the device: a glass ball over a ground that lets light through too, no shadows. The centre paths
- * and their layer rays through the ball go to the device (kernels/scene_centre.cl), the layer rays that meet the
- * ground come back to the host's paths (a child with a child); against the host's paths of the same scene, made
- * to take them by a reflecting region outside the bounds (a material that reflects with -bounces beside one that
- * lets light through: at most one child a path no longer holds). At most 0.25 % of the pixels may differ by more
- * than 2e-3 (a layer ray's start from the device's float hit), and the glass must show. */
+ * and their layers, through the ball and into the ground, are the camera kernel's (kernels/render_scene.cl:
+ * scene_lanes_layers); against the host's paths of the same scene, made to take them by a reflecting region
+ * outside the bounds (a material that reflects with -bounces beside one that lets light through: the host's). At
+ * most 0.25 % of the pixels may differ by more than 2e-3 (a layer ray's start from the device's float hit), and
+ * the glass must show. */
 TEST_FP(effects_scene_glass_on_device) {
     static const char *far[2] = {"", "region far = move(sphere(0.1), 0, 0, 9) : shiny\n"};
     iacsg_frame fr[3];
