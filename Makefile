@@ -51,7 +51,8 @@ SCENE_KERNEL_SOURCES = kernels/compat.h kernels/params.h kernels/camera.h kernel
                        kernels/segments_lanes.h kernels/segments_lanes_frame.h kernels/segments.h \
                        kernels/classify.h kernels/weave.h kernels/tile_rays.h kernels/surface.h kernels/scene_trace.h \
                        kernels/effects.h kernels/light.h kernels/packet.h kernels/tile.h kernels/scene_union.h \
-                       kernels/march.h kernels/scene_rays.h kernels/render_scene.cl kernels/scene_effects.cl kernels/scene_centre.cl
+                       kernels/march.h kernels/scene_rays.h kernels/scene_frame.h kernels/scene_lit.h kernels/render_scene.cl \
+                       kernels/scene_effects.cl kernels/scene_centre.cl
 # BRL-CAD's primitives and their table's layout, between the ia/ headers and the scene's solids (which call them).
 PRIM_KERNEL_SOURCES = kernels/compat.h kernels/prim.h kernels/scene_prims.h
 TEST_CL_SOURCES = $(sort $(wildcard tests/*.cl))
