@@ -22,6 +22,38 @@ static void scene_fx_background(const scene_frame *f, shade_colorv row, shade_co
     shade_background(row, f->height / f->aa, top, bottom, bg);
 }
 
+/* Traces the packet's secondary rays from o along d over [0, tf] (lanes of `live`, each passing pass_k[k], weave.h)
+ * with r's buffers (scene_rays_trace; `whether`: every item opaque, a ray may end on a proven crossing), their
+ * origins and directions into ok, dk; found, hits as scene_rays_trace's. A lane whose ray overflows the buffers is
+ * listed to be traced again (pixel[k] -1), as a camera ray that overflows. rays_k, evals_k: each lane's rays and
+ * their evaluations, added. */
+static void scene_lanes_trace(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
+                              int whether, const ia_realv o[3], const ia_realv d[3], ia_realv tf, ia_maskv live,
+                              const ia_real pass_k[PACKET_LANES], int pixel[PACKET_LANES],
+                              kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES],
+                              ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], int found[PACKET_LANES],
+                              weave_hit hits[PACKET_LANES]) {
+    ia_real tn_k[PACKET_LANES], tf_k[PACKET_LANES], meets[PACKET_LANES], cast[PACKET_LANES];
+    for (int c = 0; c < 3; c++) {
+        IAV_STORE(o[c], ok[c]);
+        IAV_STORE(d[c], dk[c]);
+    }
+    IAV_STORE(IAV_R(0), tn_k);
+    IAV_STORE(tf, tf_k);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), live), meets);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), live), cast);
+    kernel_u32 evals[PACKET_LANES];
+    scene_rays_trace(view, r, params, whether, ok, dk, tn_k, tf_k, meets, pass_k, found, hits, evals);
+    for (int k = 0; k < PACKET_LANES; k++) {
+        if (found[k] == SCENE_TRACE_OVERFLOW && pixel[k] >= 0) {
+            f->overflow[atomic_inc(f->noverflow)] = pixel[k];
+            pixel[k] = -1;
+        }
+        rays_k[k] += cast[k] != 0;
+        evals_k[k] += evals[k];
+    }
+}
+
 /* The linear colours of the hits (lanes of `hit`) at t along rays o + t d, unit normals n facing them, by the
  * effects' block f->fx (units: its lights' directions, shade_light_units): each light seen where it is in front
  * of the surface and, with shadows, where its shadow ray from off the surface (effects_offset) meets no item (every
@@ -52,31 +84,15 @@ static void scene_lanes_light(__constant ia_real *params, const scene_frame *f, 
         vis[l] = select(IAV_R(0), IAV_R(1), cast);
         if (!iav_any(cast))
             continue;
-        ia_real sk[3][PACKET_LANES], sdk[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES];
-        ia_real meets[PACKET_LANES], pass[PACKET_LANES], seen[PACKET_LANES];
-        for (int c = 0; c < 3; c++) {
-            IAV_STORE(so[c], sk[c]);
-            IAV_STORE(sd[c], sdk[c]);
-        }
-        IAV_STORE(IAV_R(0), tn);
-        IAV_STORE(dist, tf);
-        IAV_STORE(vis[l], meets);
-        IAV_STORE(vis[l], seen);
-        IAV_STORE(IAV_R(0), pass);
+        ia_real sk[3][PACKET_LANES], sdk[3][PACKET_LANES], pass[PACKET_LANES], seen[PACKET_LANES];
         int found[PACKET_LANES];
         weave_hit hits[PACKET_LANES];
-        kernel_u32 evals[PACKET_LANES];
-        scene_rays_trace(view, r, params, 1, sk, sdk, tn, tf, meets, pass, found, hits, evals);
-        for (int k = 0; k < PACKET_LANES; k++) {
-            if (found[k] == SCENE_TRACE_OVERFLOW && pixel[k] >= 0) {
-                f->overflow[atomic_inc(f->noverflow)] = pixel[k];
-                pixel[k] = -1;
-            }
-            rays_k[k] += seen[k] != 0;
-            evals_k[k] += evals[k];
-            seen[k] = found[k] == 0 ? seen[k] : 0;
-        }
-        vis[l] = IAV_LOAD(seen);
+        IAV_STORE(IAV_R(0), pass);
+        scene_lanes_trace(params, f, view, r, 1, so, sd, dist, cast, pass, pixel, rays_k, evals_k, sk, sdk, found,
+                          hits);
+        for (int k = 0; k < PACKET_LANES; k++) /* seen where the ray meets nothing */
+            seen[k] = found[k] == 0;
+        vis[l] = select(IAV_R(0), IAV_LOAD(seen), cast);
     }
     shade_colorv id_rgb[3];
     for (int c = 0; c < 3; c++)
@@ -94,36 +110,20 @@ typedef struct {
 } scene_lanes_hit;
 
 /* The hits of the packet's secondary rays (lanes of `live`: from o, directions d, each passing pass_k[k], weave.h),
- * traced in lanes with r's buffers and leaves of the view's eps (scene_rays_trace; no item is opaque-only here:
- * not `whether`). A lane whose ray overflows r's buffers is listed to be traced again (pixel[k] -1). rays_k,
- * evals_k: each lane's rays and their evaluations, added. */
+ * traced in lanes (scene_lanes_trace, not `whether`), with their normals and materials. */
 static void scene_lanes_hits(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
                              const ia_realv o[3], const ia_realv d[3], ia_maskv live,
                              const ia_real pass_k[PACKET_LANES], int pixel[PACKET_LANES],
                              kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES], scene_lanes_hit *h) {
-    ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], tn[PACKET_LANES], tf[PACKET_LANES], meets[PACKET_LANES];
-    ia_real on[PACKET_LANES], t_k[PACKET_LANES], nk[3][PACKET_LANES];
+    ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], on[PACKET_LANES], t_k[PACKET_LANES], nk[3][PACKET_LANES];
     ia_real specular_k[PACKET_LANES], shininess_k[PACKET_LANES];
     float albedo_k[3][PACKET_LANES];
-    for (int c = 0; c < 3; c++) {
-        IAV_STORE(o[c], ok[c]);
-        IAV_STORE(d[c], dk[c]);
-    }
-    IAV_STORE(IAV_R(0), tn);
-    IAV_STORE(IAV_R(IA_INF), tf);
-    IAV_STORE(select(IAV_R(0), IAV_R(1), live), meets);
-    IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
     int found[PACKET_LANES];
     weave_hit hits[PACKET_LANES];
-    kernel_u32 evals[PACKET_LANES];
-    scene_rays_trace(view, r, params, 0, ok, dk, tn, tf, meets, pass_k, found, hits, evals);
+    scene_lanes_trace(params, f, view, r, 0, o, d, IAV_R(IA_INF), live, pass_k, pixel, rays_k, evals_k, ok, dk, found,
+                      hits);
+    IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
     for (int k = 0; k < PACKET_LANES; k++) {
-        if (found[k] == SCENE_TRACE_OVERFLOW && pixel[k] >= 0) {
-            f->overflow[atomic_inc(f->noverflow)] = pixel[k];
-            pixel[k] = -1;
-        }
-        rays_k[k] += on[k] != 0;
-        evals_k[k] += evals[k];
         int got = found[k] == 1 && on[k] != 0, item = got ? hits[k].item : 0;
         ia_real ro[3] = {ok[0][k], ok[1][k], ok[2][k]}, rd[3] = {dk[0][k], dk[1][k], dk[2][k]}, g[3] = {0, 0, 0};
         if (got)
