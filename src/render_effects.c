@@ -12,12 +12,12 @@
  * this file's block), else after the frame (render_effects_device.c launches them: this file lists the pixels),
  * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
  * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
- * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children; where no
- * path can have a child but a reflected ray whose hit has none (every item opaque, at most one bounce), the
- * scene's camera kernel lights its hits itself, shadow rays, reflected rays and all (kernels/render_scene.cl:
- * scene_packet_lit; render_effects_in_camera), but for -shade ids and depth, whose centre paths stay on the device
- * (kernels/scene_centre.cl: centre_on_device), as where none has more than one child and no shadow rays are cast,
- * the host only encoding their colours and following the children whose hits have children. So an
+ * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children; where
+ * scene_lit_in_kernel says so (every item opaque and at most one bounce, or no reflection and no shadows), the
+ * scene's camera kernel and its -aa samples light their hits themselves, shadow rays, a reflected ray or
+ * transparent layers and all (kernels/scene_lit.h), but for -shade ids and depth, whose centre paths stay on the
+ * device (kernels/scene_centre.cl: centre_on_device), as where none has more than one child and no shadow rays are
+ * cast, the host only encoding their colours and following the children whose hits have children. So an
  * occluder or a reflected surface that a ray crosses inside the bounds is never missed, and with the default rig
  * and no effect but -aa or -background a pixel gets the colour the plain render gives it.
  */
@@ -446,7 +446,7 @@ static int item_keeps(const fx_frame *f, int i) {
     return rig_alone(f->e) && !(f->e->bounces > 0 && m->reflect > 0) && m->opacity >= 1;
 }
 
-/* Whether a scene's camera kernel (and -aa's samples) can light its hits with the effects (kernels/render_scene.cl:
+/* Whether a scene's camera kernel (and -aa's samples) can light its hits with the effects (kernels/scene_lit.h:
  * scene_packet_lit), lit or -shade gradient or normals (-shade ids' palette and depth's range are the host's): where
  * every item is opaque, at most one bounce (a reflected ray's hit has no child); where some item lets light
  * through, no reflected ray and no shadows (a shadow ray through a transparent item is the host's). */

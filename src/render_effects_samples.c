@@ -6,7 +6,7 @@
  *     that image: a list of blocks, each with the mask of its packets that hold samples and their output slots
  *   --> the kernel: per block its tile pass, per listed packet the camera rays' trace (beam, union leaf, claim)
  *   --> each sample's hit (depth, normal, item) from its slot's lane; or, with the effects' block, its colour (lit in
- *       the kernel: kernels/render_scene.cl's scene_packet_lit, in linear light).
+ *       the kernel: kernels/scene_lit.h's scene_packet_lit, in linear light).
  *
  * Why: the samples of one pixel are a coherent packet (at -aa 4 exactly one, 16 rays in a pixel), which the camera
  * kernel traces with one BVH cut, one search of the regions' union in SIMD lanes and one claim at its leaf, where

@@ -400,7 +400,7 @@ static void check_secondary_overflow(const char *scene, const iacsg_effects *fx,
     test_note("%lld pixels traced again with %s, %lld without", again, what, camera_again);
 }
 
-/* The camera kernel's secondary rays (kernels/render_scene.cl: scene_packet_lit) use its work-item's per-ray
+/* The camera kernel's secondary rays (kernels/scene_lit.h: scene_packet_lit) use its work-item's per-ray
  * buffers: a pixel whose shadow ray or reflected ray meets more solids' boxes than they hold is traced again with
  * more room, as a camera ray that overflows. With room for one solid a ray, the ground's pixels whose shadow rays,
  * or reflected rays, pass the boxes of the ball and the cap that overlaps it (regions not disjoint: each ray is
