@@ -114,12 +114,15 @@ $(BUILD)/libiacsg_mpi.so: $(BUILD)/pic/src/mpi/share.o
 $(BUILD)/iacsg-tests: $(TEST_OBJ) $(BUILD)/libiacsg.a
 	$(CC) $(LDFLAGS_ALL) -o $@ $(TEST_OBJ) $(BUILD)/libiacsg.a $(LIBS)
 
+# The tests of C files as X(name) lines for tests/main.c's table (TEST_FP's: below).
+LIST_TESTS = sed -n 's/^TEST(\([a-zA-Z0-9_]*\)).*/X(\1)/p'
+
 # The compiler's tests alone (tests/t_fuzz_regressions.c), for valgrind's leak check (tests/run.sh), linked as the
 # command is, without OpenImageIO: valgrind cannot always run its libraries' start-up (3.19 on an AMD EPYC stops
 # with SIGILL at libhwy's rdtscp, before the first test).
 $(BUILD)/compile-tests/tests.inc: tests/t_fuzz_regressions.c
 	@mkdir -p $(dir $@)
-	sed -n 's/^TEST(\([a-zA-Z0-9_]*\)).*/X(\1)/p' $< > $@.tmp
+	$(LIST_TESTS) $< > $@.tmp
 	mv $@.tmp $@
 $(BUILD)/compile-tests/main.o: tests/main.c $(BUILD)/compile-tests/tests.inc
 	$(CC) -I$(BUILD)/compile-tests $(CFLAGS_ALL) $(TEST_MAIN_DEFS) -MMD -MP -c $< -o $@
@@ -155,7 +158,7 @@ TEST_MAIN_DEFS = -DIACSG_SOURCE_DIR_DEFAULT='"$(CURDIR)"' -DIACSG_BINARY_DEFAULT
 $(BUILD)/tests/main.o: CFLAGS += $(TEST_MAIN_DEFS)
 $(BUILD)/tests.inc: $(TEST_C) $(TEST_FP_C)
 	@mkdir -p $(dir $@)
-	sed -n 's/^TEST(\([a-zA-Z0-9_]*\)).*/X(\1)/p' $(TEST_C) > $@.tmp
+	$(LIST_TESTS) $(TEST_C) > $@.tmp
 	sed -n 's/^TEST_FP(\([a-zA-Z0-9_]*\)).*/X(\1_f32)\nX(\1_f64)/p' $(TEST_FP_C) >> $@.tmp
 	mv $@.tmp $@
 
