@@ -104,8 +104,7 @@ static void signal_command(const char *dir, const char *prefix, const char *sign
     snprintf(cmd, sizeof cmd,
              "cd '%s' && export LD_LIBRARY_PATH=/nonexistent-launch-sig-%d IACSG_LAUNCH_TRACE=1 && "
              "'%s' sphere -size 8x8 -o warm.png >/dev/null 2>&1; "
-             "for p in $(pgrep -x iacsg-launch); do { tr '\\0' '\\n' </proc/$p/environ; } 2>/dev/null | "
-             "grep -qx \"LD_LIBRARY_PATH=$LD_LIBRARY_PATH\" && server=$p; done; [ -n \"$server\" ] || exit 3; "
+             TEST_SH_FIND_SERVER("iacsg-launch")
              "%s '%s' 'min(sphere,torus)' -size 2048x2048 -frames 200 -o long.png >/dev/null 2>err.txt & c=$!; "
              "for i in $(seq 100); do [ -n \"$(pgrep -x -P $server iacsg)\" ] && break; sleep 0.05; done; "
              "[ -n \"$(pgrep -x -P $server iacsg)\" ] || { kill -KILL $c; exit 4; }; "

@@ -103,8 +103,7 @@ TEST(writer_server_lost_mid_command) {
     CHECK(rc == 0 && strstr(how, "server"), "exit %d, writer %s", rc, how);
     snprintf(cmd, sizeof cmd,
              "cd '%s' && export LD_LIBRARY_PATH=/nonexistent-lost-%d IACSG_WRITER_TRACE=1 && "
-             "for p in $(pgrep -x iacsg-writer); do tr '\\0' '\\n' </proc/$p/environ 2>/dev/null | "
-             "grep -qx \"LD_LIBRARY_PATH=$LD_LIBRARY_PATH\" && server=$p; done; [ -n \"$server\" ] || exit 3; "
+             TEST_SH_FIND_SERVER("iacsg-writer")
              "'%s' '%s/tests/data/brlcad/havoc.asc' havoc -size 1024x1024 -o b.png >/dev/null 2>err.txt & "
              "sleep 0.3; kill $server; wait $!",
              dir, (int)getpid(), test_binary_path(), test_source_dir());

@@ -68,5 +68,11 @@ int test_run_traced(const char *dir, const char *before, const char *args, const
                     size_t size);
 /* dir/name's text without its lines that start with `prefix` (NULL if it cannot be read; the caller frees it). */
 char *test_read_without(const char *dir, const char *name, const char *prefix);
+/* Shell text that sets $server to the process named `name` (a string literal: iacsg-launch, iacsg-writer) whose
+ * environment holds this shell's LD_LIBRARY_PATH (a test gives its servers one of its own), or exits 3 when there is
+ * none; a process gone between pgrep and the read of its environment is passed over quietly. */
+#define TEST_SH_FIND_SERVER(name)                                                                                   \
+    "for p in $(pgrep -x " name "); do { tr '\\0' '\\n' </proc/$p/environ; } 2>/dev/null | "                       \
+    "grep -qx \"LD_LIBRARY_PATH=$LD_LIBRARY_PATH\" && server=$p; done; [ -n \"$server\" ] || exit 3; "
 
 #endif
