@@ -461,11 +461,13 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
                              view->height);
     scene_buffers b = {0};
     b.cand_cap = r->config.ray_candidates > 0 ? r->config.ray_candidates : SCENE_RAY_CANDIDATES;
-    /* rgb, depth, normal, ids, overlap, two lists of re-traced pixels (and 3 counts with stats) */
+    /* rgb, depth, normal, ids, overlap, two lists of re-traced pixels (and 3 counts with stats, 2 more where the
+     * kernel counts its effects' rays) */
+    int fx_in_camera = render_effects_in_camera(r, view);
     if (st == IACSG_OK)
-        st = render_check_device_memory(r, view, n, r->config.stats ? 15 : 12, err);
+        st = render_check_device_memory(r, view, n, r->config.stats ? 15 + 2 * fx_in_camera : 12, err);
     render_fx_camera fx_camera = {0};
-    if (st == IACSG_OK && render_effects_in_camera(r, view)) {
+    if (st == IACSG_OK && fx_in_camera) {
         st = render_effects_camera_open(r, view, n, &fx_camera, err); /* counts: 2 a pixel */
         b.fx = &fx_camera;
     }
