@@ -31,11 +31,32 @@ typedef struct {
     size_t sample;
 } sample_place;
 
-static int by_packet(const void *a, const void *b) {
-    const sample_place *x = a, *y = b;
-    if (x->block != y->block)
-        return x->block < y->block ? -1 : 1;
-    return (x->packet > y->packet) - (x->packet < y->packet);
+/* The order of a launch's samples: by block, then packet. */
+static unsigned long long packet_key(const sample_place *p) {
+    return (unsigned long long)p->block * SCENE_BLOCK_PACKETS + (unsigned long long)p->packet;
+}
+
+/* Sorts places[0 .. n) by packet_key, equal keys in their order, by digits of 11 bits from the lowest (linear:
+ * qsort's comparisons of a chunk's 16,384 samples were ~1 ms of one CPU a chunk, the device idle); tmp: room for n.
+ * Returns where the sorted places are (places or tmp). */
+static sample_place *sort_by_packet(sample_place *places, sample_place *tmp, size_t n) {
+    enum { DIGIT = 11, BUCKETS = 1 << DIGIT };
+    unsigned long long most = 0;
+    for (size_t s = 0; s < n; s++)
+        most = packet_key(&places[s]) > most ? packet_key(&places[s]) : most;
+    for (int shift = 0; shift == 0 || (shift < 64 && most >> shift != 0); shift += DIGIT) {
+        size_t at[BUCKETS + 1] = {0};
+        for (size_t s = 0; s < n; s++)
+            at[1 + (packet_key(&places[s]) >> shift & (BUCKETS - 1))]++;
+        for (int b = 0; b < BUCKETS; b++)
+            at[b + 1] += at[b];
+        for (size_t s = 0; s < n; s++)
+            tmp[at[packet_key(&places[s]) >> shift & (BUCKETS - 1)]++] = places[s];
+        sample_place *swap = places;
+        places = tmp;
+        tmp = swap;
+    }
+    return places;
 }
 
 /* The place of pixel (vi, vj) of the samples' image, blocks_x blocks wide (kernels/scene_data.h's numbering). */
@@ -61,13 +82,14 @@ static iacsg_status list_samples(int width, int aa, const int *pixels, size_t np
                                  iacsg_error *err) {
     size_t per = (size_t)aa * (size_t)aa, n = npixels * per;
     long long blocks_x = ((long long)width * aa + SCENE_BLOCK - 1) / SCENE_BLOCK;
-    sample_place *places = malloc((n + 1) * sizeof *places);
+    sample_place *places = malloc((n + 1) * sizeof *places), *tmp = malloc((n + 1) * sizeof *tmp);
     l->blocks = malloc((n + 1) * SCENE_SAMPLES_INTS * sizeof *l->blocks);
     l->out = malloc((n + 1) * sizeof *l->out);
     l->nblocks = 0;
     l->nslots = 0;
-    if (!places || !l->blocks || !l->out) {
+    if (!places || !tmp || !l->blocks || !l->out) {
         free(places);
+        free(tmp);
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory for -aa's samples");
     }
     for (size_t q = 0; q < npixels; q++)
@@ -77,11 +99,11 @@ static iacsg_status list_samples(int width, int aa, const int *pixels, size_t np
                 place_of(pixels[q] % width * aa + a, pixels[q] / width * aa + b, blocks_x, &places[s]);
                 places[s].sample = s;
             }
-    qsort(places, n, sizeof *places, by_packet);
+    const sample_place *sorted = sort_by_packet(places, tmp, n);
     int *block = NULL;
     for (size_t s = 0; s < n; s++) {
-        const sample_place *p = &places[s];
-        int new_block = s == 0 || p->block != places[s - 1].block;
+        const sample_place *p = &sorted[s];
+        int new_block = s == 0 || p->block != sorted[s - 1].block;
         if (new_block) {
             block = l->blocks + SCENE_SAMPLES_INTS * (size_t)l->nblocks++;
             block[SCENE_SAMPLES_BX] = (int)(p->block % blocks_x);
@@ -89,13 +111,14 @@ static iacsg_status list_samples(int width, int aa, const int *pixels, size_t np
             block[SCENE_SAMPLES_MASK] = block[SCENE_SAMPLES_MASK + 1] = 0;
             block[SCENE_SAMPLES_SLOT] = (int)l->nslots;
         }
-        if (new_block || p->packet != places[s - 1].packet) {
+        if (new_block || p->packet != sorted[s - 1].packet) {
             block[SCENE_SAMPLES_MASK + p->packet / 32] |= (int)(1u << (p->packet % 32));
             l->nslots++;
         }
         l->out[p->sample] = PACKET_LANES * (l->nslots - 1) + (size_t)p->lane;
     }
     free(places);
+    free(tmp);
     return IACSG_OK;
 }
 
