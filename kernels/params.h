@@ -32,6 +32,10 @@ enum {
 
 /* The pixels of a tile (kernels/tile.h) are those of one work-group of the render kernel. */
 #define TILE_SIZE 8
+/* The runs of a tile that its transparent layers search (kernels/tile.h: tile_runs), and the layers of a path
+ * that use them (the further ones search their whole rays: their start drifts further off the camera ray). */
+#define TILE_RUNS 6
+#define TILE_RUN_LAYERS 4
 
 /* A work-item of the render kernel traces PACKET_W x PACKET_H pixels of one tile in as many SIMD lanes
  * (kernels/packet.h); the host builds the program with -D IA_VW=PACKET_LANES. */

@@ -6,8 +6,9 @@
  * tile may hold surface, the first root by stackless bisection (packet.h) from the tile's first coarse leaf on
  * (tile.h); then the normal and the colour at the leaf's midpoint (shade.h), or where the host gave an effects
  * block the colour with the effects (kernels/effects.cl: effects_centre traces the hit's shadow rays, reflected
- * rays and layers in the packet's lanes). Outputs, indexed by pixel of the whole image: rgb (3 floats,
- * display-encoded), depth (the leaf's start t, +inf on a miss), normal (3 floats, 0 on a miss), and with
+ * rays and layers in the packet's lanes; the layers search only their tile's runs, tile.h: tile_runs). Outputs,
+ * indexed by pixel of the whole image: rgb (3 floats, display-encoded), depth (the leaf's start t, +inf on a
+ * miss), normal (3 floats, 0 on a miss), and with
  * KERNEL_STATS the evaluation counts (per tile, and per packet their sum and maximum, and the effects' secondary
  * rays and their evaluations).
  */
@@ -38,9 +39,12 @@ static inline ulong in_image(const ulong groups[IA_VW], const ia_real valid[IA_V
  * tiles[2k], tiles[2k+1]: the level and index of tile k's first coarse leaf (row-major, tiles_x per row), as
  * reals (exact: the index has fewer bits than the mantissa, see traverse.h); level -1 when no ray of the tile
  * can meet the surface. tile_groups_of[SEGMENTS k + s]: for a union in groups, those that can matter in tile k
- * on segment s of the frame's tree. */
+ * on segment s of the frame's tree. runs (NULL: none), per tile of the block: its runs for its rays' transparent
+ * layers (tile.h: tile_runs), from its first coarse leaf on (a layer starts past its camera ray's hit, which is
+ * past that leaf's start). */
 static void block_tiles(PACKET_TAPE_PARAM __constant ia_real *params, int flags, int width, int height, int tx0,
-                        int ty0, __global ia_real *tiles, __global uint *evals, __global ulong *tile_groups_of) {
+                        int ty0, __global ia_real *tiles, __global uint *evals, __global ulong *tile_groups_of,
+                        tile_layer_runs *runs) {
     int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE, ortho = flags & RENDER_ORTHO;
     iav base_v[3], dir_v[3];
     ia_real valid[IA_VW];
@@ -94,6 +98,29 @@ static void block_tiles(PACKET_TAPE_PARAM __constant ia_real *params, int flags,
         }
     }
 #endif
+    if (runs) { /* for the layers: the tile's boxes grown by how far the layers' rays may be off the camera rays */
+        iav grown[3];
+        ia_real margin = tile_layer_margin(params);
+        for (int c = 0; c < 3; c++)
+            grown[c] = iav_add(base_v[c], iav_const(-margin, margin));
+        ia_realv lo[TILE_RUNS], hi[TILE_RUNS];
+        packet_int n;
+        tile_runs(PACKET_TAPE_ARG ~(ulong)0, grown, dir_v, spread, ortho, t0, w, params[PARAM_EPS], found, level, leaf,
+                  time, lo, hi, &n, &counts);
+        ia_real lo_k[TILE_RUNS][IA_VW], hi_k[TILE_RUNS][IA_VW], n_k[IA_VW];
+        for (int r = 0; r < TILE_RUNS; r++) {
+            IAV_STORE(lo[r], lo_k[r]);
+            IAV_STORE(hi[r], hi_k[r]);
+        }
+        IAV_STORE(packet_to_real(n), n_k);
+        for (int k = 0; k < IA_VW; k++) {
+            runs[k].n = (int)n_k[k];
+            for (int r = 0; r < TILE_RUNS; r++) {
+                runs[k].lo[r] = lo_k[r][k];
+                runs[k].hi[r] = hi_k[r][k];
+            }
+        }
+    }
     ia_real level_r[IA_VW], leaf_r[IA_VW];
     bisect_index count[IA_VW];
     IAV_STORE(select((ia_realv)-1, packet_to_real(level), found), level_r);
@@ -254,7 +281,8 @@ typedef struct {
 static void effects_centre(__constant ia_real *params, __constant ia_real *fx, __global const ulong *all_groups,
                            ia_real footprint, packet_int row, int height, ia_maskv live, ia_maskv hit,
                            const ia_realv o_ray[3], const ia_realv d_ray[3], ia_realv hit_lo, const ia_realv n_hit[3],
-                           shade_colorv color[3], packet_index *rays, packet_index *evals);
+                           const tile_layer_runs *runs, shade_colorv color[3], packet_index *rays,
+                           packet_index *evals);
 #endif
 
 #ifdef KERNEL_STATS
@@ -281,7 +309,7 @@ static uint lanes_max(packet_index v) {
 static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags, int width, int height, int i0, int j0,
                          __global const ia_real *tiles, __global float *rgb, __global float *depth,
                          __global float *normal, __global uint *evals, __global const ulong *tile_groups_of,
-                         const render_effects *fx) {
+                         const render_effects *fx, const tile_layer_runs *runs) {
     if (i0 >= width || j0 >= height)
         return;
     size_t tile = tile_index(i0 / TILE_SIZE, j0 / TILE_SIZE, (width + TILE_SIZE - 1) / TILE_SIZE);
@@ -320,7 +348,7 @@ static void trace_packet(PACKET_TAPE_PARAM __constant ia_real *params, int flags
 #ifndef IACSG_TAPE
     if (fx->block) /* a miss needs no ray: where the tile pass proved them all misses, o and d are 0 */
         effects_centre(params, fx->block, fx->all_groups, fx->footprint, row, height, (col < width) & (row < height),
-                       hit, o, d, hit_lo, n, color, &fx_rays, &fx_evals);
+                       hit, o, d, hit_lo, n, runs, color, &fx_rays, &fx_evals);
     else
 #endif
         shade_pixels(params, hit, n, d, row, height, color);
@@ -350,13 +378,18 @@ static void render_block(PACKET_TAPE_PARAM __constant ia_real *params, int flags
     int tx0 = (int)get_global_id(0) * PACKET_W, ty0 = (block_row0 + (int)get_global_id(1)) * PACKET_H;
     if (tx0 >= tiles_x || ty0 >= tiles_y)
         return;
-    block_tiles(PACKET_TAPE_ARG params, flags, width, height, tx0, ty0, tiles, tile_evals, tile_groups_of);
+    /* the tiles' runs for the transparent layers, where the effects have them (the previews are opaque) */
+    tile_layer_runs runs[IA_VW];
+    int layered = fx->block && fx->block[EFFECTS_OPACITY] < 1 && fx->block[EFFECTS_SHADE] < EFFECTS_SHADE_NORMALS;
+    block_tiles(PACKET_TAPE_ARG params, flags, width, height, tx0, ty0, tiles, tile_evals, tile_groups_of,
+                layered ? runs : 0);
     for (int ty = ty0; ty < min(ty0 + PACKET_H, tiles_y); ty++)
         for (int tx = tx0; tx < min(tx0 + PACKET_W, tiles_x); tx++)
             for (int j = 0; j < TILE_SIZE; j += PACKET_H)
                 for (int i = 0; i < TILE_SIZE; i += PACKET_W)
                     trace_packet(PACKET_TAPE_ARG params, flags, width, height, tx * TILE_SIZE + i, ty * TILE_SIZE + j,
-                                 tiles, rgb, depth, normal, evals, tile_groups_of, fx);
+                                 tiles, rgb, depth, normal, evals, tile_groups_of, fx,
+                                 layered ? &runs[(ty - ty0) * PACKET_W + (tx - tx0)] : 0);
 }
 
 /* One work-item per block of tiles (render_block), run for bands of block rows. One kernel rather than a tile

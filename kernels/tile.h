@@ -14,6 +14,12 @@
 #include "packet.h"
 #include "tile_rays.h"
 
+/* A tile's runs (tile_runs) in its camera rays' t, for their transparent layers (kernels/effects.cl). */
+typedef struct {
+    ia_real lo[TILE_RUNS], hi[TILE_RUNS];
+    int n;
+} tile_layer_runs;
+
 #if IA_DEVICE && defined(IA_VW) && !defined(IACSG_SCALAR_CODE) /* (as packet.h) */
 /* The PACKET_W x PACKET_H tiles from (tx0, ty0) in SIMD lanes, a tile a lane: their rays as boxes (tile_rays_of)
  * in base and dir, and their angular (perspective) or linear (orthographic) sizes in *spread; valid[k] is 1 where
@@ -76,6 +82,56 @@ IA_FN ia_maskv tile_first_leaves(PACKET_TAPE_PARAM ulong groups, const iav base[
         packet_advance(&searching, zero & ~leaf, &level, &i);
     }
     return found;
+}
+
+/* How far the ray of a path's TILE_RUN_LAYERS-th layer may be off its camera ray, in each coordinate: each layer
+ * starts off the hit before it (march.h: effects_offset, at most 4 eps + 4e-6 (1 + |p|_1 + t) over the bounds and
+ * the frame's t), the hit point and the layer's start t rounded (well under 1e-6 of their size). */
+IA_FN ia_real tile_layer_margin(const KERNEL_CONSTANT ia_real *params) {
+    ia_real big = 0;
+    for (int c = 0; c < 6; c++)
+        big = fmax(big, fabs(params[PARAM_BOX + c]));
+    ia_real size = 1 + 3 * big + fabs(params[PARAM_TMAX]);
+    return TILE_RUN_LAYERS * (4 * params[PARAM_EPS] + (ia_real)5e-6 * size);
+}
+
+/* The runs of IA_VW tiles at once, a tile a lane (for the transparent layers of the tile's rays, kernels/effects.cl):
+ * the walk of tile_first_leaves from each lane's node (level, i) to the end of the tree, each coarse leaf that may
+ * hold surface joined to the run before it where they touch, else the start of the next run (the TILE_RUNS-th run
+ * takes every later leaf in, across the gaps). Every part of the tree past the lane's node and outside its runs is
+ * proven root-free for every ray in its tile's box. *nruns: the runs of each lane (0: none). */
+IA_FN void tile_runs(PACKET_TAPE_PARAM ulong groups, const iav base[3], const iav dir[3], ia_realv spread, int ortho,
+                     ia_real t0, ia_real w, ia_real eps, ia_maskv searching, packet_int level, packet_index i,
+                     iav time, ia_realv run_lo[TILE_RUNS], ia_realv run_hi[TILE_RUNS], packet_int *nruns,
+                     packet_index *evals) {
+    packet_int n = (packet_int)0;
+    ia_realv last_hi = IAV_R(-IA_INF);
+    for (int k = 0; k < TILE_RUNS; k++)
+        run_lo[k] = run_hi[k] = IAV_R(0);
+    while (iav_any(searching)) {
+        ia_realv lo = packet_node_bound(t0, w, level, i), hi = packet_node_bound(t0, w, level, i + 1);
+        iav t = iav_make(lo, hi), box[3];
+        for (int k = 0; k < 3; k++) /* tile_box */
+            box[k] = iav_add(base[k], iav_mul(t, dir[k]));
+        iav f = packet_F_live(PACKET_TAPE_ARG groups, searching, box[0], box[1], box[2], time);
+        PACKET_COUNT(*evals, searching);
+        ia_maskv zero = searching & iav_contains_zero(f);
+        ia_realv footprint = ortho ? spread : spread * hi;
+        ia_maskv leaf = zero & ((hi - lo <= fmax(footprint, IAV_R(eps))) | (level == BISECT_MAX_LEVEL));
+        if (iav_any(leaf)) {
+            /* nodes touch exactly: their bounds are t0 + w (i 2^-level), the product exact */
+            ia_maskv joins = leaf & ((lo <= last_hi) | (n == TILE_RUNS));
+            ia_maskv starts = leaf & ~joins;
+            for (int k = 0; k < TILE_RUNS; k++) {
+                run_lo[k] = select(run_lo[k], lo, starts & (n == k));
+                run_hi[k] = select(run_hi[k], hi, (starts & (n == k)) | (joins & (n == k + 1)));
+            }
+            n = select(n, n + 1, starts);
+            last_hi = select(last_hi, hi, leaf);
+        }
+        packet_advance(&searching, zero & ~leaf, &level, &i);
+    }
+    *nruns = n;
 }
 
 /* Of the groups of a union set in `among`, those that are not certainly positive in each lane's tile over

@@ -792,6 +792,47 @@ TEST_FP(effects_transparent_shell) {
     check_layers("max(x^2 + y^2 + z^2 - 0.25, 0.2116 - x^2 - y^2 - z^2)", 0.42, shell_normals);
 }
 
+/* The camera kernel's transparent layers search only their tile's runs, the parts of their rays where the tile
+ * pass found that surface may be (kernels/tile.h: tile_runs); the host's paths (a reflection of weight 1e-6 lists
+ * no ray but sends the layers there) search the whole of each ray. In perspective, through a thin disc onto a
+ * file of 12 small balls 0.2 apart, each off the axis at its own angle: a tile's box meets most of them, its rays
+ * only a few, so that a ray's first layers past the disc lie in runs past the TILE_RUNS-th (the last run takes
+ * the rest in), and a ray crosses up to 26 surfaces (its layers past the TILE_RUN_LAYERS-th search it whole). A
+ * surface that the runs left out would leave a layer out of a pixel (dropping the last run: 133 pixels off). */
+TEST_FP(effects_transparent_runs_against_host) {
+    char expr[2000] = "max(abs(z - 1.3) - 0.02, x^2 + y^2 - 0.2)";
+    for (int k = 0; k < 12; k++) {
+        size_t len = strlen(expr);
+        char ball[80];
+        snprintf(ball, sizeof ball, "min(move(sphere(0.04), %.3f, %.3f, %.1f), ", 0.07 * cos(k * 2.4),
+                 0.07 * sin(k * 2.4), 1.0 - 0.2 * k);
+        memmove(expr + strlen(ball), expr, len + 1);
+        memcpy(expr, ball, strlen(ball));
+        strcat(expr, ")");
+    }
+    iacsg_view view = {.width = 128, .height = 128, .eps = 1e-5,
+                       .camera = {.eye = {0.05, 0.03, 4}, .at = {0, 0, 0}, .up = {0, 1, 0}, .fov = 12},
+                       .bounds = {-1.5, -1.5, -1.5, 1.5, 1.5, 1.5}};
+    iacsg_effects fx[2] = {{.transparency = 0.7}, {.transparency = 0.7, .reflect = 1e-6, .bounces = 1}};
+    iacsg_frame fr[2];
+    for (int k = 0; k < 2; k++) {
+        view.effects = &fx[k];
+        render_expr(expr, &view, &fr[k]);
+    }
+    long n = (long)view.width * view.height, off = 0, hits = 0;
+    double worst = 0;
+    for (long px = 0; px < n; px++) {
+        hits += isfinite(fr[0].depth[px]);
+        off += colour_difference(&fr[0], &fr[1], px) > 2.5 / 255;
+        worst = fmax(worst, colour_difference(&fr[0], &fr[1], px));
+    }
+    for (int k = 0; k < 2; k++)
+        iacsg_frame_free(&fr[k]);
+    CHECK(hits > n / 4, "only %ld pixels meet the solid", hits);
+    CHECK(off == 0, "%ld of %ld pixels differ from the host's paths by more than 2.5/255 (most %g)", off, n, worst);
+    test_note("%ld pixels meet the solid; the camera kernel's layers within %.1e of the host's", hits, worst);
+}
+
 /* The AOVs stay the centre ray's: with -aa 4, shadows and reflections the depth, normals and ids are those of
  * the plain render, byte for byte, on both paths (only the colours change). */
 /* The plain render and the render with effects fx of `text`, seen from above and aside (64x64). */
