@@ -580,33 +580,36 @@ static iacsg_status antialias(fx_frame *f, iacsg_frame *fr, fx_path *paths, iacs
     }
     size_t nedges = (size_t)found;
     iacsg_status st = IACSG_OK;
-    size_t per_chunk = FX_CHUNK / ((size_t)aa * aa), k = 0;
+    size_t samples = (size_t)aa * aa, per_chunk = FX_CHUNK / samples, k = 0;
     while (st == IACSG_OK && k < nedges) { /* the edge pixels in block order, per_chunk at a time */
-        size_t n = 0, first = k;
-        for (; k < nedges && k - first < per_chunk; k++) {
-            int pixel = edges[k], i = pixel % w, j = pixel / w;
-            for (int c = 0; c < 3; c++) /* the samples' light replaces the centre ray's colour */
-                fr->rgb[3 * (size_t)pixel + c] = 0;
-            for (int b = 0; b < aa; b++)
-                for (int a = 0; a < aa; a++) {
-                    fx_path *q = &paths[n++];
-                    memset(q, 0, sizeof *q);
-                    q->pixel = pixel;
-                    q->w = 1.0 / (aa * aa);
-                    if (!lit)
-                        camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &q->ray);
-                }
-        }
-        if (lit)
+        size_t first = k;
+        k = first + (nedges - first < per_chunk ? nedges - first : per_chunk);
+        for (size_t q = first; q < k; q++) /* the samples' light replaces the centre ray's colour */
+            for (int c = 0; c < 3; c++)
+                fr->rgb[3 * (size_t)edges[q] + c] = 0;
+        if (lit) { /* sample s of the chunk is sample s mod aa^2 of its pixel */
             st = fx_scene_samples(&f->tracer, aa, aa_eps(f), edges + first, k - first, NULL, f->block, colours, err);
-        for (size_t q = 0; lit && st == IACSG_OK && q < n; q++) {
-            double lin[3] = {colours[3 * q], colours[3 * q + 1], colours[3 * q + 2]};
-            add(f->accum, paths[q].pixel, paths[q].w, lin);
-        }
-        if (!lit)
+            for (size_t s = 0; st == IACSG_OK && s < (k - first) * samples; s++) {
+                double lin[3] = {colours[3 * s], colours[3 * s + 1], colours[3 * s + 2]};
+                add(f->accum, edges[first + s / samples], 1.0 / samples, lin);
+            }
+        } else {
+            size_t n = 0;
+            for (size_t q = first; q < k; q++) {
+                int pixel = edges[q], i = pixel % w, j = pixel / w;
+                for (int b = 0; b < aa; b++)
+                    for (int a = 0; a < aa; a++) {
+                        fx_path *p = &paths[n++];
+                        memset(p, 0, sizeof *p);
+                        p->pixel = pixel;
+                        p->w = 1.0 / samples;
+                        camera_ray_at(f, i + (a + 0.5) / aa, j + (b + 0.5) / aa, &p->ray);
+                    }
+            }
             st = trace_samples(f, edges + first, k - first, paths, n, err);
-        if (st == IACSG_OK && !lit)
-            st = run_paths(f, paths, n, err);
+            if (st == IACSG_OK)
+                st = run_paths(f, paths, n, err);
+        }
         for (size_t q = first; st == IACSG_OK && q < k; q++)
             fx_encode(fr->rgb, edges[q]);
     }
