@@ -128,9 +128,7 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
         ia_realv off = effects_offset(eps, p, t), vis[EFFECTS_MAX_LIGHTS];
         for (int l = 0; l < nlights; l++) {
             __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
-            ia_realv towards[3];
-            shade_towards(L, units[l], p, towards);
-            ia_maskv ray = live & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
+            ia_maskv ray = shade_facing(L, units[l], p, n, live);
             vis[l] = select(IAV_R(0), IAV_R(1), ray);
             ia_realv so[3], sd[3], sp = off, sn[3] = {n[0], n[1], n[2]};
             for (int c = 0; c < 3; c++)

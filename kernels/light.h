@@ -156,6 +156,14 @@ IA_FN ia_realv shade_towards(const KERNEL_CONSTANT ia_real *L, const ia_real uni
     return IAV_R(IA_INF);
 }
 
+/* The lanes of `on` where light L (as shade_towards) is in front of the surface at p, its normal n. */
+IA_FN ia_maskv shade_facing(const KERNEL_CONSTANT ia_real *L, const ia_real unit[3], const ia_realv p[3],
+                            const ia_realv n[3], ia_maskv on) {
+    ia_realv towards[3];
+    shade_towards(L, unit, p, towards);
+    return on & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
+}
+
 /* nh^shininess, 0 where nh is 0: by squaring where every lane's exponent is the first-root path's 48, else by
  * exp2 and log2. */
 IA_FN ia_realv shade_highlight(ia_realv nh, ia_realv shininess) {

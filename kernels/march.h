@@ -17,6 +17,15 @@ static ia_realv effects_offset(ia_real eps, const ia_realv p[3], ia_realv t) {
     return 4 * eps + (ia_real)4e-6 * (1 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]) + fabs(t));
 }
 
+/* The start so of a ray off the surface at p (at t along its ray), on the side its normal n faces: p + off n;
+ * returns off (effects_offset). */
+static ia_realv effects_off_surface(ia_real eps, const ia_realv p[3], ia_realv t, const ia_realv n[3], ia_realv so[3]) {
+    ia_realv off = effects_offset(eps, p, t);
+    for (int c = 0; c < 3; c++)
+        so[c] = p[c] + off * n[c];
+    return off;
+}
+
 /* The farthest end t of the rays of `lanes` (0 where there is none), by a tree of halves: stored and read back
  * lane by lane, the loads waited on the store's pieces (a third of effects_trace's CPU samples with transparency). */
 static ia_real march_farthest(ia_realv t, ia_maskv lanes) {

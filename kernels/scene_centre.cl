@@ -63,9 +63,7 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
         rays[EFFECTS_RAY_REALS * (size_t)(first + k) + 7] = IA_INF;
     }
     ia_maskv hit = IAV_LOAD(on_k) != 0;
-    ia_realv off = effects_offset(eps, p, t), so[3];
-    for (int c = 0; c < 3; c++) /* off the surface, on the side its normal faces (the ray's) */
-        so[c] = p[c] + off * nv[c];
+    ia_realv so[3], off = effects_off_surface(eps, p, t, nv, so); /* on the side the normal faces (the ray's) */
     if (kind) { /* the mirror direction d - 2 (d.n) n from off the surface (as the shadow rays start), or d on
                  * from just past it */
         ia_realv dn = d[0] * nv[0] + d[1] * nv[1] + d[2] * nv[2], kd[3];
@@ -92,9 +90,8 @@ __kernel void iacsg_scene_centre(__constant ia_real *params, __constant ia_real 
         ia_realv seen = IAV_R(!shadows); /* without shadows every light, as the host's paths had it */
         if (shadows) {
             __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
-            ia_realv towards[3], sd[3];
-            shade_towards(L, units[l], p, towards);
-            ia_maskv ray = hit & (nv[0] * towards[0] + nv[1] * towards[1] + nv[2] * towards[2] > 0);
+            ia_realv sd[3];
+            ia_maskv ray = shade_facing(L, units[l], p, nv, hit);
             ia_realv dist = shade_towards(L, units[l], so, sd);
             ia_real s_k[EFFECTS_RAY_REALS][IA_VW];
             for (int c = 0; c < 3; c++) {

@@ -70,16 +70,13 @@ static void scene_lanes_light(__constant ia_real *params, const scene_frame *f, 
     ia_realv p[3], so[3], vis[EFFECTS_MAX_LIGHTS];
     for (int c = 0; c < 3; c++)
         p[c] = o[c] + t * d[c];
-    ia_realv off = effects_offset(view->eps, p, t);
-    for (int c = 0; c < 3; c++) /* off the surface, on the side its normal faces (the ray's) */
-        so[c] = p[c] + off * n[c];
+    effects_off_surface(view->eps, p, t, n, so); /* on the side the normal faces (the ray's) */
     for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* shade_effects reads the first nlights */
         vis[l] = IAV_R(l < nlights);
     for (int l = 0; shadows && l < nlights; l++) {
         __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
-        ia_realv towards[3], sd[3];
-        shade_towards(L, units[l], p, towards);
-        ia_maskv cast = hit & (n[0] * towards[0] + n[1] * towards[1] + n[2] * towards[2] > 0);
+        ia_realv sd[3];
+        ia_maskv cast = shade_facing(L, units[l], p, n, hit);
         ia_realv dist = shade_towards(L, units[l], so, sd);
         vis[l] = select(IAV_R(0), IAV_R(1), cast);
         if (!iav_any(cast))
