@@ -1,11 +1,12 @@
 /* kernels/scene_lit.h -- the effects that the segment path's camera kernels apply to a packet's hits themselves
  * (kernels/render_scene.cl: scene_packet; src/render_effects.c: render_effects_in_camera), in SIMD lanes:
  *
- *   the hits --> each lit by the effects' lights, a light seen where its shadow ray meets no item
- *     (scene_lanes_light; the shadow rays traced as packets with the work-item's buffers, scene_rays.h)
+ *   the hits --> each lit by the effects' lights, as far as its shadow ray lets a light through: seen where it
+ *     meets no item, or through the transparent items it meets (scene_lanes_light, scene_lanes_transmitted; the
+ *     shadow rays traced as packets with the work-item's buffers, scene_rays.h)
  *   --> where a material reflects (one bounce, every item opaque): the reflected rays traced, their hits lit
- *     (scene_lanes_mirror); where one lets light through (no reflection, no shadows): the layers behind, each
- *     traced, lit and weighed (scene_lanes_layers)
+ *     (scene_lanes_mirror); where one lets light through (no reflection): the layers behind, each traced, lit
+ *     and weighed (scene_lanes_layers)
  *   --> the colours (display-encoded, or in linear light for -aa's samples) and the misses' background.
  * A secondary ray that overflows the buffers lists its pixel to be traced again, as a camera ray does.
  */
@@ -54,49 +55,6 @@ static void scene_lanes_trace(__constant ia_real *params, const scene_frame *f, 
     }
 }
 
-/* The linear colours of the hits (lanes of `hit`) at t along rays o + t d, unit normals n facing them, by the
- * effects' block f->fx (units: its lights' directions, shade_light_units): each light seen where it is in front
- * of the surface and, with shadows, where its shadow ray from off the surface (effects_offset) meets no item (every
- * item is opaque: scene_rays_trace's `whether`), traced in lanes with r's buffers. A lane whose shadow ray
- * overflows them is listed to be traced again (pixel[k] -1), as a camera ray that overflows. rays_k, evals_k: each
- * lane's shadow rays and their evaluations, added. */
-static void scene_lanes_light(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
-                              const ia_real units[EFFECTS_MAX_LIGHTS][3], const ia_realv o[3], const ia_realv d[3],
-                              ia_realv t, ia_maskv hit, const ia_realv n[3], int pixel[PACKET_LANES],
-                              const shade_colorv albedo[3], ia_realv specular, ia_realv shininess,
-                              kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES], shade_colorv lin[3]) {
-    __constant ia_real *fx = f->fx;
-    int nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
-    ia_realv p[3], so[3], vis[EFFECTS_MAX_LIGHTS];
-    for (int c = 0; c < 3; c++)
-        p[c] = o[c] + t * d[c];
-    effects_off_surface(view->eps, p, t, n, so); /* on the side the normal faces (the ray's) */
-    for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* shade_effects reads the first nlights */
-        vis[l] = IAV_R(l < nlights);
-    for (int l = 0; shadows && l < nlights; l++) {
-        __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
-        ia_realv sd[3];
-        ia_maskv cast = shade_facing(L, units[l], p, n, hit);
-        ia_realv dist = shade_towards(L, units[l], so, sd);
-        vis[l] = select(IAV_R(0), IAV_R(1), cast);
-        if (!iav_any(cast))
-            continue;
-        ia_real sk[3][PACKET_LANES], sdk[3][PACKET_LANES], pass[PACKET_LANES], seen[PACKET_LANES];
-        int found[PACKET_LANES];
-        weave_hit hits[PACKET_LANES];
-        IAV_STORE(IAV_R(0), pass);
-        scene_lanes_trace(params, f, view, r, 1, so, sd, dist, cast, pass, pixel, rays_k, evals_k, sk, sdk, found,
-                          hits);
-        for (int k = 0; k < PACKET_LANES; k++) /* seen where the ray meets nothing */
-            seen[k] = found[k] == 0;
-        vis[l] = select(IAV_R(0), IAV_LOAD(seen), cast);
-    }
-    shade_colorv id_rgb[3];
-    for (int c = 0; c < 3; c++)
-        id_rgb[c] = (shade_colorv)(0); /* no -shade ids here */
-    shade_effects(fx, units, p, t, n, d, vis, albedo, specular, shininess, id_rgb, lin);
-}
-
 /* What the packet's lanes hit: where, what and the material there, in lanes (a secondary ray's, scene_lanes_hits). */
 typedef struct {
     ia_maskv on;     /* the lanes that hit */
@@ -106,10 +64,10 @@ typedef struct {
     ia_realv specular, shininess;
 } scene_lanes_hit;
 
-/* The hits of the packet's secondary rays (lanes of `live`: from o, directions d, each passing pass_k[k], weave.h),
- * traced in lanes (scene_lanes_trace, not `whether`), with their normals and materials. */
+/* The hits of the packet's secondary rays (lanes of `live`: from o, directions d, over [0, tf], each passing
+ * pass_k[k], weave.h), traced in lanes (scene_lanes_trace, not `whether`), with their normals and materials. */
 static void scene_lanes_hits(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
-                             const ia_realv o[3], const ia_realv d[3], ia_maskv live,
+                             const ia_realv o[3], const ia_realv d[3], ia_realv tf, ia_maskv live,
                              const ia_real pass_k[PACKET_LANES], int pixel[PACKET_LANES],
                              kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES], scene_lanes_hit *h) {
     ia_real ok[3][PACKET_LANES], dk[3][PACKET_LANES], on[PACKET_LANES], t_k[PACKET_LANES], nk[3][PACKET_LANES];
@@ -117,8 +75,7 @@ static void scene_lanes_hits(__constant ia_real *params, const scene_frame *f, c
     float albedo_k[3][PACKET_LANES];
     int found[PACKET_LANES];
     weave_hit hits[PACKET_LANES];
-    scene_lanes_trace(params, f, view, r, 0, o, d, IAV_R(IA_INF), live, pass_k, pixel, rays_k, evals_k, ok, dk, found,
-                      hits);
+    scene_lanes_trace(params, f, view, r, 0, o, d, tf, live, pass_k, pixel, rays_k, evals_k, ok, dk, found, hits);
     IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
     for (int k = 0; k < PACKET_LANES; k++) {
         int got = found[k] == 1 && on[k] != 0, item = got ? hits[k].item : 0;
@@ -148,6 +105,104 @@ static void scene_lanes_hits(__constant ia_real *params, const scene_frame *f, c
     h->shininess = IAV_LOAD(shininess_k);
 }
 
+/* What of light L (unit: its direction where it is at infinity) reaches the lanes of `cast` along their shadow
+ * rays (from so, directions sd, dist to the light) where some item lets light through, as the host's
+ * shadow_fractions: 1 - opacity of each item a ray meets (a region is a volume, entered once: the ray goes on from
+ * inside it, passing it; a surface is crossed), none past an opaque one; for at most EFFECTS_MAX_LAYERS items, or
+ * until less than EFFECTS_MIN_WEIGHT of the light is left. Each leg traced in lanes (scene_lanes_hits) from just
+ * past the last item's surface, aimed at the light again. */
+static ia_realv scene_lanes_transmitted(__constant ia_real *params, const scene_frame *f, const scene_view *view,
+                                        scene_ray *r, __constant ia_real *L, const ia_real unit[3],
+                                        const ia_realv so_in[3], const ia_realv sd_in[3], ia_realv dist,
+                                        ia_maskv cast, int pixel[PACKET_LANES], kernel_u32 rays_k[PACKET_LANES],
+                                        kernel_u32 evals_k[PACKET_LANES]) {
+    ia_realv so[3], sd[3], vis = select(IAV_R(0), IAV_R(1), cast);
+    ia_real pass_k[PACKET_LANES];
+    IAV_STORE(IAV_R(0), pass_k);
+    for (int c = 0; c < 3; c++) {
+        so[c] = so_in[c];
+        sd[c] = sd_in[c];
+    }
+    ia_maskv ray = cast;
+    for (int layer = 0; layer < EFFECTS_MAX_LAYERS && iav_any(ray); layer++) {
+        scene_lanes_hit h;
+        scene_lanes_hits(params, f, view, r, so, sd, dist, ray, pass_k, pixel, rays_k, evals_k, &h);
+        ia_real opacity_k[PACKET_LANES];
+        for (int k = 0; k < PACKET_LANES; k++) {
+            int item = max(h.item[k], 0);
+            opacity_k[k] = f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_OPACITY];
+            pass_k[k] = f->items[SCENE_ITEM_INTS * item + SCENE_ITEM_KIND] == SCENE_KIND_REGION ? 1 + item : 0;
+        }
+        ia_maskv met = ray & h.on;
+        vis = select(vis, vis * (1 - IAV_LOAD(opacity_k)), met);
+        ray = met & (vis >= (ia_real)EFFECTS_MIN_WEIGHT);
+        if (!iav_any(ray))
+            break;
+        ia_realv p[3], next[3], towards[3];
+        for (int c = 0; c < 3; c++)
+            p[c] = so[c] + h.t * sd[c];
+        ia_realv off = effects_offset(view->eps, p, h.t);
+        for (int c = 0; c < 3; c++) /* on from just past it: its normal faces the shadow ray */
+            next[c] = p[c] - off * h.n[c];
+        ia_realv far = shade_towards(L, unit, next, towards);
+        for (int c = 0; c < 3; c++) {
+            so[c] = select(so[c], next[c], ray);
+            sd[c] = select(sd[c], towards[c], ray);
+        }
+        dist = select(dist, far, ray);
+    }
+    return vis;
+}
+
+/* The linear colours of the hits (lanes of `hit`) at t along rays o + t d, unit normals n facing them, by the
+ * effects' block f->fx (units: its lights' directions, shade_light_units): each light seen where it is in front
+ * of the surface and, with shadows, as far as its shadow ray from off the surface (effects_offset) lets it through:
+ * where every item is opaque, where the ray meets no item (scene_rays_trace's `whether`); else what the items it
+ * meets let through (scene_lanes_transmitted; f->fx's opacity is the scene's least); traced in lanes with r's
+ * buffers. A lane whose shadow ray overflows them is listed to be traced again (pixel[k] -1), as a camera ray that
+ * overflows. rays_k, evals_k: each lane's shadow rays and their evaluations, added. */
+static void scene_lanes_light(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
+                              const ia_real units[EFFECTS_MAX_LIGHTS][3], const ia_realv o[3], const ia_realv d[3],
+                              ia_realv t, ia_maskv hit, const ia_realv n[3], int pixel[PACKET_LANES],
+                              const shade_colorv albedo[3], ia_realv specular, ia_realv shininess,
+                              kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES], shade_colorv lin[3]) {
+    __constant ia_real *fx = f->fx;
+    int nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
+    ia_realv p[3], so[3], vis[EFFECTS_MAX_LIGHTS];
+    for (int c = 0; c < 3; c++)
+        p[c] = o[c] + t * d[c];
+    effects_off_surface(view->eps, p, t, n, so); /* on the side the normal faces (the ray's) */
+    for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* shade_effects reads the first nlights */
+        vis[l] = IAV_R(l < nlights);
+    for (int l = 0; shadows && l < nlights; l++) {
+        __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
+        ia_realv sd[3];
+        ia_maskv cast = shade_facing(L, units[l], p, n, hit);
+        ia_realv dist = shade_towards(L, units[l], so, sd);
+        vis[l] = select(IAV_R(0), IAV_R(1), cast);
+        if (!iav_any(cast))
+            continue;
+        if (fx[EFFECTS_OPACITY] < 1) { /* some item lets light through */
+            vis[l] = scene_lanes_transmitted(params, f, view, r, L, units[l], so, sd, dist, cast, pixel, rays_k,
+                                             evals_k);
+            continue;
+        }
+        ia_real sk[3][PACKET_LANES], sdk[3][PACKET_LANES], pass[PACKET_LANES], seen[PACKET_LANES];
+        int found[PACKET_LANES];
+        weave_hit hits[PACKET_LANES];
+        IAV_STORE(IAV_R(0), pass);
+        scene_lanes_trace(params, f, view, r, 1, so, sd, dist, cast, pass, pixel, rays_k, evals_k, sk, sdk, found,
+                          hits);
+        for (int k = 0; k < PACKET_LANES; k++) /* seen where the ray meets nothing */
+            seen[k] = found[k] == 0;
+        vis[l] = select(IAV_R(0), IAV_LOAD(seen), cast);
+    }
+    shade_colorv id_rgb[3];
+    for (int c = 0; c < 3; c++)
+        id_rgb[c] = (shade_colorv)(0); /* no -shade ids here */
+    shade_effects(fx, units, p, t, n, d, vis, albedo, specular, shininess, id_rgb, lin);
+}
+
 /* The linear colours that the packet's reflected rays (lanes of `mirror`: from so, directions md; no item lets
  * light through, so none passes a region) bring back: their hits lit as their parents (scene_lanes_light, shadows
  * and all); a miss the linear background of its pixel's row (bg, display). */
@@ -159,7 +214,7 @@ static void scene_lanes_mirror(__constant ia_real *params, const scene_frame *f,
     ia_real none[PACKET_LANES];
     IAV_STORE(IAV_R(0), none);
     scene_lanes_hit h;
-    scene_lanes_hits(params, f, view, r, so, md, mirror, none, pixel, rays_k, evals_k, &h);
+    scene_lanes_hits(params, f, view, r, so, md, IAV_R(IA_INF), mirror, none, pixel, rays_k, evals_k, &h);
     shade_colorv shown[3];
     scene_lanes_light(params, f, view, r, units, so, md, h.t, h.on, h.n, pixel, h.albedo, h.specular, h.shininess,
                       rays_k, evals_k, shown);
@@ -168,7 +223,7 @@ static void scene_lanes_mirror(__constant ia_real *params, const scene_frame *f,
         lin[c] = select(bg[c] * bg[c], shown[c], at);
 }
 
-/* The linear colours of the packet's hits through their transparent layers (no reflected ray, no shadows:
+/* The linear colours of the packet's hits through their transparent layers (no reflected ray:
  * src/render_effects.c), as the host's paths and fx_path_weights give them: a hit on an item of opacity a shows
  * a of the weight left (its colour: lit, scene_lanes_light) and lets 1 - a on, from just past its surface in the
  * same direction (into a region: passing through it, weave.h), to the next hit; a ray that meets nothing, or a
@@ -212,7 +267,7 @@ static void scene_lanes_layers(__constant ia_real *params, const scene_frame *f,
         ia_realv off = effects_offset(view->eps, p, h->t);
         for (int c = 0; c < 3; c++) /* on from just past the surface */
             o[c] = select(o[c], p[c] - off * h->n[c], on_through);
-        scene_lanes_hits(params, f, view, r, o, d, on_through, pass_k, pixel, rays_k, evals_k, h);
+        scene_lanes_hits(params, f, view, r, o, d, IAV_R(IA_INF), on_through, pass_k, pixel, rays_k, evals_k, h);
         shade_colorv missed = IAV_CAT(convert_float, IA_VW)(select(IAV_R(0), through, on_through & ~h->on));
         for (int c = 0; c < 3; c++)
             sum[c] += missed * bg2[c];

@@ -449,11 +449,11 @@ static int item_keeps(const fx_frame *f, int i) {
 /* Whether a scene's camera kernel (and -aa's samples) can light its hits with the effects (kernels/scene_lit.h:
  * scene_packet_lit), lit or -shade gradient or normals (-shade ids' palette and depth's range are the host's): where
  * every item is opaque, at most one bounce (a reflected ray's hit has no child); where some item lets light
- * through, no reflected ray and no shadows (a shadow ray through a transparent item is the host's). */
+ * through, no reflected ray. */
 static int scene_lit_in_kernel(const iacsg_renderer *r, const iacsg_effects *e) {
     int mirrors = reflects(r, e) && e->bounces > 0;
     return e->shade != IACSG_SHADE_DEPTH && e->shade != IACSG_SHADE_IDS &&
-           (transparent(r, e) ? !mirrors && !e->shadows : !mirrors || e->bounces == 1);
+           (transparent(r, e) ? !mirrors : !mirrors || e->bounces == 1);
 }
 
 /* The reflected rays a first-root path's path may list for a next launch: only off a transparent surface (off an
@@ -636,7 +636,9 @@ static void effects_block(const fx_frame *f, double b[EFFECTS_COUNT]) {
     b[EFFECTS_SPECULAR] = SCENE_DEFAULT_SPECULAR;
     b[EFFECTS_SHININESS] = SCENE_DEFAULT_SHININESS;
     b[EFFECTS_REFLECT] = e->reflect;
-    b[EFFECTS_OPACITY] = 1 - e->transparency;
+    b[EFFECTS_OPACITY] = 1 - e->transparency; /* a scene's: its items' least (kernels/scene_lit.h) */
+    for (int i = 0; f->r->scene && f->r->fx && i < f->r->fx->nitems; i++)
+        b[EFFECTS_OPACITY] = fmin(b[EFFECTS_OPACITY], f->r->fx->items[i].opacity);
     b[EFFECTS_DEPTH_LO] = f->depth_lo;
     b[EFFECTS_DEPTH_HI] = f->depth_hi;
     b[EFFECTS_NLIGHTS] = f->nlights;

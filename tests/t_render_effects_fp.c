@@ -453,17 +453,17 @@ TEST_FP(effects_scene_reflect_on_device) {
     test_note("%ld ground pixels reflect, %ld of them the ball; %ld pixels off the host's", shown, ball, off);
 }
 
-/* Transparency on the device: a glass ball over a ground that lets light through too, no shadows. The centre paths
- * and their layers, through the ball and into the ground, are the camera kernel's (kernels/render_scene.cl:
- * scene_lanes_layers); against the host's paths of the same scene, made to take them by a reflecting region
- * outside the bounds (a material that reflects with -bounces beside one that lets light through: the host's). At
- * most 0.25 % of the pixels may differ by more than 2e-3 (a layer ray's start from the device's float hit), and
- * the glass must show. */
-TEST_FP(effects_scene_glass_on_device) {
+/* Transparency on the device: a glass ball under a glass lid over a ground that lets light through too, without
+ * shadows and with them (the ball's shadow is cast through the lid too). The centre paths and their layers, through
+ * the glass and into the ground, and their shadow rays through the lid and the ball, are the camera kernel's (kernels/scene_lit.h: scene_lanes_layers, scene_lanes_transmitted); against the
+ * host's paths of the same scene, made to take them by a reflecting region outside the bounds (a material that
+ * reflects with -bounces beside one that lets light through: the host's). At most 0.25 % of the pixels may differ
+ * by more than 2e-3 (a layer ray's start from the device's float hit), and the glass must show. */
+static void check_scene_glass(int shadows) {
     static const char *far[2] = {"", "region far = move(sphere(0.1), 0, 0, 9) : shiny\n"};
     iacsg_frame fr[3];
     iacsg_view view = ground_view(96);
-    iacsg_effects fx = {.bounces = 1, .nlights = 1};
+    iacsg_effects fx = {.bounces = 1, .nlights = 1, .shadows = shadows};
     fx.lights[0] = (iacsg_light){IACSG_LIGHT_POINT, {shadow_light[0], shadow_light[1], shadow_light[2]}, 0.9};
     view.effects = &fx;
     for (int k = 0; k < 3; k++) {
@@ -471,7 +471,8 @@ TEST_FP(effects_scene_glass_on_device) {
         snprintf(text, sizeof text,
                  "material glass = rgb(0.3, 0.6, 0.9) opacity %s\nmaterial clay = rgb(0.8, 0.52, 0.28) opacity 0.7\n"
                  "material shiny = rgb(0.5, 0.5, 0.5) reflect 0.5\nsolid ball = move(sphere(0.5), 0, 0, 0.6)\n"
-                 "region b = ball : glass\nregion g = z \\ ball : clay\n%s",
+                 "region b = ball : glass\nregion g = z \\ ball : clay\n"
+                 "region lid = move(box(0.6, 0.6, 0.04), 0.3, 0.2, 1.3) : glass\n%s",
                  k < 2 ? "0.4" : "1", far[k == 1]);
         render_scene_text(text, &view, &fr[k]);
     }
@@ -484,7 +485,13 @@ TEST_FP(effects_scene_glass_on_device) {
         iacsg_frame_free(&fr[k]);
     CHECK(shown > n / 20, "%ld ball pixels show what is behind: the view does not test it", shown);
     CHECK(off <= n / 400, "%ld of %ld pixels differ from the host's paths by more than 2e-3", off, n);
-    test_note("%ld ball pixels show what is behind; %ld pixels off the host's", shown, off);
+    test_note("%s: %ld ball pixels show what is behind; %ld pixels off the host's", shadows ? "shadows" : "no shadows",
+              shown, off);
+}
+
+TEST_FP(effects_scene_glass_on_device) {
+    check_scene_glass(0);
+    check_scene_glass(1);
 }
 
 /* The unit sphere seen along -z, orthographic: the point (s, v) of the image plane is on it iff s^2 + v^2 < 1. */
