@@ -53,9 +53,27 @@ IA_FN void tile_block_lanes(__constant ia_real *params, int ortho, int width, in
     *spread = IAV_LOAD(size);
 }
 
+/* Node (level, i) of the frame's tree [t0, t0 + w], [*lo, *hi], over each lane's tile box (base + t dir): in *zero
+ * the lanes of `searching` where 0 may be in F over it, and returned those where it is a coarse leaf, no longer
+ * than the tile is wide there (splitting t further would not shrink the box much), or eps. Counts the lanes'
+ * evaluations (KERNEL_STATS). */
+IA_FN ia_maskv tile_node(PACKET_TAPE_PARAM ulong groups, const iav base[3], const iav dir[3], ia_realv spread,
+                         int ortho, ia_real t0, ia_real w, ia_real eps, ia_maskv searching, packet_int level,
+                         packet_index i, iav time, ia_maskv *zero, ia_realv *lo, ia_realv *hi, packet_index *evals) {
+    *lo = packet_node_bound(t0, w, level, i);
+    *hi = packet_node_bound(t0, w, level, i + 1);
+    iav t = iav_make(*lo, *hi), box[3];
+    for (int k = 0; k < 3; k++) /* tile_box */
+        box[k] = iav_add(base[k], iav_mul(t, dir[k]));
+    iav f = packet_F_live(PACKET_TAPE_ARG groups, searching, box[0], box[1], box[2], time);
+    PACKET_COUNT(*evals, searching);
+    *zero = searching & iav_contains_zero(f);
+    ia_realv footprint = ortho ? spread : spread * *hi;
+    return *zero & ((*hi - *lo <= fmax(footprint, IAV_R(eps))) | (level == BISECT_MAX_LEVEL));
+}
+
 /* Searches the frame's tree (frame_root) for the first coarse leaf of IA_VW tiles at once, one per lane (as
- * packet.h walks rays): a node where 0 may be in F over the tile's box, no longer than the tile is wide there
- * (splitting t further would not shrink the box much), or eps. Returns the lanes of `searching` whose tile may
+ * packet.h walks rays): a node where 0 may be in F over the tile's box (tile_node). Returns the lanes of `searching` whose tile may
  * hold surface, with their leaves' levels and indices; *evals counts each lane's evaluations (KERNEL_STATS).
  * base, dir: the lanes' tile_rays; spread: their angular (perspective) or linear (orthographic) sizes. */
 IA_FN ia_maskv tile_first_leaves(PACKET_TAPE_PARAM ulong groups, const iav base[3], const iav dir[3],
@@ -66,15 +84,10 @@ IA_FN ia_maskv tile_first_leaves(PACKET_TAPE_PARAM ulong groups, const iav base[
     packet_int level = (packet_int)0;
     packet_index i = (packet_index)0;
     while (iav_any(searching)) {
-        ia_realv lo = packet_node_bound(t0, w, level, i), hi = packet_node_bound(t0, w, level, i + 1);
-        iav t = iav_make(lo, hi), box[3];
-        for (int k = 0; k < 3; k++) /* tile_box */
-            box[k] = iav_add(base[k], iav_mul(t, dir[k]));
-        iav f = packet_F_live(PACKET_TAPE_ARG groups, searching, box[0], box[1], box[2], time);
-        PACKET_COUNT(*evals, searching);
-        ia_maskv zero = searching & iav_contains_zero(f);
-        ia_realv footprint = ortho ? spread : spread * hi;
-        ia_maskv leaf = zero & ((hi - lo <= fmax(footprint, IAV_R(eps))) | (level == BISECT_MAX_LEVEL));
+        ia_maskv zero;
+        ia_realv lo, hi;
+        ia_maskv leaf = tile_node(PACKET_TAPE_ARG groups, base, dir, spread, ortho, t0, w, eps, searching, level, i,
+                                  time, &zero, &lo, &hi, evals);
         *leaf_level = select(*leaf_level, level, leaf);
         *leaf_i = select(*leaf_i, i, leaf);
         found |= leaf;
@@ -109,15 +122,10 @@ IA_FN void tile_runs(PACKET_TAPE_PARAM ulong groups, const iav base[3], const ia
     for (int k = 0; k < TILE_RUNS; k++)
         run_lo[k] = run_hi[k] = IAV_R(0);
     while (iav_any(searching)) {
-        ia_realv lo = packet_node_bound(t0, w, level, i), hi = packet_node_bound(t0, w, level, i + 1);
-        iav t = iav_make(lo, hi), box[3];
-        for (int k = 0; k < 3; k++) /* tile_box */
-            box[k] = iav_add(base[k], iav_mul(t, dir[k]));
-        iav f = packet_F_live(PACKET_TAPE_ARG groups, searching, box[0], box[1], box[2], time);
-        PACKET_COUNT(*evals, searching);
-        ia_maskv zero = searching & iav_contains_zero(f);
-        ia_realv footprint = ortho ? spread : spread * hi;
-        ia_maskv leaf = zero & ((hi - lo <= fmax(footprint, IAV_R(eps))) | (level == BISECT_MAX_LEVEL));
+        ia_maskv zero;
+        ia_realv lo, hi;
+        ia_maskv leaf = tile_node(PACKET_TAPE_ARG groups, base, dir, spread, ortho, t0, w, eps, searching, level, i,
+                                  time, &zero, &lo, &hi, evals);
         if (iav_any(leaf)) {
             /* nodes touch exactly: their bounds are t0 + w (i 2^-level), the product exact */
             ia_maskv joins = leaf & ((lo <= last_hi) | (n == TILE_RUNS));
