@@ -105,6 +105,19 @@ static void scene_lanes_hits(__constant ia_real *params, const scene_frame *f, c
     h->shininess = IAV_LOAD(shininess_k);
 }
 
+/* The opacity of the items that the packet's hits met (h->item, -1 for none: item 0's, unread), and what a ray
+ * on through each passes (pass_k, weave.h): a region is a volume, entered once and passed from inside; a surface
+ * is crossed (0). */
+static ia_realv scene_lanes_opacity(const scene_frame *f, const scene_lanes_hit *h, ia_real pass_k[PACKET_LANES]) {
+    ia_real opacity_k[PACKET_LANES];
+    for (int k = 0; k < PACKET_LANES; k++) {
+        int item = max(h->item[k], 0);
+        opacity_k[k] = f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_OPACITY];
+        pass_k[k] = f->items[SCENE_ITEM_INTS * item + SCENE_ITEM_KIND] == SCENE_KIND_REGION ? 1 + item : 0;
+    }
+    return IAV_LOAD(opacity_k);
+}
+
 /* What of light L (unit: its direction where it is at infinity) reaches the lanes of `cast` along their shadow
  * rays (from so, directions sd, dist to the light) where some item lets light through, as the host's
  * shadow_fractions: 1 - opacity of each item a ray meets (a region is a volume, entered once: the ray goes on from
@@ -127,14 +140,9 @@ static ia_realv scene_lanes_transmitted(__constant ia_real *params, const scene_
     for (int layer = 0; layer < EFFECTS_MAX_LAYERS && iav_any(ray); layer++) {
         scene_lanes_hit h;
         scene_lanes_hits(params, f, view, r, so, sd, dist, ray, pass_k, pixel, rays_k, evals_k, &h);
-        ia_real opacity_k[PACKET_LANES];
-        for (int k = 0; k < PACKET_LANES; k++) {
-            int item = max(h.item[k], 0);
-            opacity_k[k] = f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_OPACITY];
-            pass_k[k] = f->items[SCENE_ITEM_INTS * item + SCENE_ITEM_KIND] == SCENE_KIND_REGION ? 1 + item : 0;
-        }
+        ia_realv a = scene_lanes_opacity(f, &h, pass_k);
         ia_maskv met = ray & h.on;
-        vis = select(vis, vis * (1 - IAV_LOAD(opacity_k)), met);
+        vis = select(vis, vis * (1 - a), met);
         ray = met & (vis >= (ia_real)EFFECTS_MIN_WEIGHT);
         if (!iav_any(ray))
             break;
@@ -242,13 +250,8 @@ static void scene_lanes_layers(__constant ia_real *params, const scene_frame *f,
         bg2[c] = bg[c] * bg[c];
     }
     for (int layer = 0; layer < EFFECTS_MAX_LAYERS; layer++) {
-        ia_real opacity_k[PACKET_LANES], pass_k[PACKET_LANES];
-        for (int k = 0; k < PACKET_LANES; k++) {
-            int item = max(h->item[k], 0);
-            opacity_k[k] = f->albedo[SCENE_MATERIAL_FLOATS * item + SCENE_MATERIAL_OPACITY];
-            pass_k[k] = f->items[SCENE_ITEM_INTS * item + SCENE_ITEM_KIND] == SCENE_KIND_REGION ? 1 + item : 0;
-        }
-        ia_realv a = IAV_LOAD(opacity_k), through = w * (1 - a);
+        ia_real pass_k[PACKET_LANES];
+        ia_realv a = scene_lanes_opacity(f, h, pass_k), through = w * (1 - a);
         ia_maskv on = h->on, last = layer + 1 >= EFFECTS_MAX_LAYERS ? on : (ia_maskv)0;
         ia_maskv ends = on & (through > 0) & ((through < (ia_real)EFFECTS_MIN_WEIGHT) | last);
         ia_maskv on_through = on & (through > 0) & ~ends;

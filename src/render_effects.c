@@ -13,9 +13,9 @@
  * as are -aa's edges; a scene's secondary rays traced by kernels/scene_effects.cl in packets of neighbouring
  * pixels' rays and their hits shaded there (render_effects_trace.c), its -aa samples as packets of the camera
  * kernel's (render_effects_samples.c), while this file keeps the paths, their shadow rays and children; where
- * scene_lit_in_kernel says so (every item opaque and at most one bounce, or no reflection and no shadows), the
- * scene's camera kernel and its -aa samples light their hits themselves, shadow rays, a reflected ray or
- * transparent layers and all (kernels/scene_lit.h), but for -shade ids and depth, whose centre paths stay on the
+ * scene_lit_in_kernel says so (every item opaque and at most one bounce, or no reflection), the scene's camera
+ * kernel and its -aa samples light their hits themselves, shadow rays (through transparent items too), a reflected
+ * ray or transparent layers and all (kernels/scene_lit.h), but for -shade ids and depth, whose centre paths stay on the
  * device (kernels/scene_centre.cl: centre_on_device), as where none has more than one child and no shadow rays are
  * cast, the host only encoding their colours and following the children whose hits have children. So an
  * occluder or a reflected surface that a ray crosses inside the bounds is never missed, and with the default rig
@@ -110,12 +110,17 @@ static int reflects(const iacsg_renderer *r, const iacsg_effects *e) {
     return any;
 }
 
+/* The least opacity of a scene's items (1 where every one is opaque). */
+static double scene_least_opacity(const iacsg_renderer *r) {
+    double least = 1;
+    for (int i = 0; r->fx && i < r->fx->nitems; i++)
+        least = fmin(least, r->fx->items[i].opacity);
+    return least;
+}
+
 /* Whether a material of the renderer's lets light through (an expression's: e->transparency). */
 static int transparent(const iacsg_renderer *r, const iacsg_effects *e) {
-    int any = !r->scene && e->transparency > 0;
-    for (int i = 0; r->scene && r->fx && i < r->fx->nitems; i++)
-        any |= r->fx->items[i].opacity < 1;
-    return any;
+    return r->scene ? scene_least_opacity(r) < 1 : e->transparency > 0;
 }
 
 /* Whether a path may have a child: a reflected ray, or one through a transparent hit. */
@@ -636,9 +641,8 @@ static void effects_block(const fx_frame *f, double b[EFFECTS_COUNT]) {
     b[EFFECTS_SPECULAR] = SCENE_DEFAULT_SPECULAR;
     b[EFFECTS_SHININESS] = SCENE_DEFAULT_SHININESS;
     b[EFFECTS_REFLECT] = e->reflect;
-    b[EFFECTS_OPACITY] = 1 - e->transparency; /* a scene's: its items' least (kernels/scene_lit.h) */
-    for (int i = 0; f->r->scene && f->r->fx && i < f->r->fx->nitems; i++)
-        b[EFFECTS_OPACITY] = fmin(b[EFFECTS_OPACITY], f->r->fx->items[i].opacity);
+    /* a scene's: its items' least (kernels/scene_lit.h), as transparent() reads it */
+    b[EFFECTS_OPACITY] = f->r->scene ? scene_least_opacity(f->r) : 1 - e->transparency;
     b[EFFECTS_DEPTH_LO] = f->depth_lo;
     b[EFFECTS_DEPTH_HI] = f->depth_hi;
     b[EFFECTS_NLIGHTS] = f->nlights;
