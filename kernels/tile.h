@@ -127,7 +127,7 @@ IA_FN void tile_runs(PACKET_TAPE_PARAM ulong groups, const iav base[3], const ia
         ia_maskv leaf = tile_node(PACKET_TAPE_ARG groups, base, dir, spread, ortho, t0, w, eps, searching, level, i,
                                   time, &zero, &lo, &hi, evals);
         if (iav_any(leaf)) {
-            /* nodes touch exactly: their bounds are t0 + w (i 2^-level), the product exact */
+            /* touching nodes share a bound bit for bit: both are t0 + w (i 2^-level) of the same i 2^-level */
             ia_maskv joins = leaf & ((lo <= last_hi) | (n == TILE_RUNS));
             ia_maskv starts = leaf & ~joins;
             for (int k = 0; k < TILE_RUNS; k++) {
