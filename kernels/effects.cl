@@ -35,7 +35,8 @@
 static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *all_groups, const ia_realv o[3],
                               const ia_realv d[3], ia_realv tn, ia_realv tf, ia_maskv on, ia_realv leaving,
                               ia_real eps, ia_real newton, int whether, ia_realv *t, int normals, ia_realv n[3],
-                              const march_runs *runs, packet_index *rays, packet_index *evals) {
+                              const march_runs *runs, march_crossing *crossing, packet_index *rays,
+                              packet_index *evals) {
     ia_realv t_near, t_far;
     ia_maskv searching = on & packet_clip(params, o, d, &t_near, &t_far);
     t_near = fmax(t_near, tn);
@@ -47,11 +48,14 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
     iav times = iav_const(time, params[PARAM_TIME_HI]);
     ia_real w = march_farthest(t_far, searching);
     ia_maskv hit = (ia_maskv)0;
+    if (crossing && !iav_any(searching & (leaving > 0)))
+        crossing->lanes = (ia_maskv)0; /* else effects_march's in and out */
 #ifdef PACKET_NEWTON
     ia_maskv marching = searching & (leaving > 0);
     if (iav_any(marching)) {
         ia_maskv walking = marching;
-        hit = effects_march(o, d, &t_near, &t_far, &walking, leaving, runs, eps, whether, times, &lo, &hi, evals);
+        hit = effects_march(o, d, &t_near, &t_far, &walking, leaving, runs, crossing, eps, whether, times, &lo, &hi,
+                            evals);
         searching &= ~marching | walking;
     }
 #else
@@ -103,6 +107,7 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
                           const tile_layer_runs *runs, shade_colorv acc[3], packet_index *rays,
                           packet_index *evals) {
     march_runs layer_runs = {runs, IAV_R(0), (ia_maskv)0}; /* tau0: where the layers start on their camera rays */
+    march_crossing crossing = {(ia_maskv)0, IAV_R(0), iav_point(0)}; /* the last layer's hits that are proven */
     shade_colorv bg[3];
     effects_background(fx, row, height, bg);
     int shade = (int)fx[EFFECTS_SHADE], nlights = (int)fx[EFFECTS_NLIGHTS], shadows = fx[EFFECTS_SHADOWS] != 0;
@@ -138,7 +143,7 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
                     so[c] = select(so[c], so[c] + sp * sn[c], ray);
                 ia_realv dist = shade_towards(L, units[l], so, sd), st;
                 ia_maskv blocked = effects_trace(params, all_groups, so, sd, IAV_R(0), dist, ray, sp, eps, footprint,
-                                                 a >= 1, &st, a < 1, sn, 0, rays, evals);
+                                                 a >= 1, &st, a < 1, sn, 0, 0, rays, evals);
                 vis[l] = select(vis[l], vis[l] * (1 - a), blocked);
                 ray = layer + 1 < EFFECTS_MAX_LAYERS ? blocked & (vis[l] >= (ia_real)EFFECTS_MIN_WEIGHT) : (ia_maskv)0;
                 for (int c = 0; c < 3; c++) { /* on from past it: its normal faces the shadow ray */
@@ -180,7 +185,7 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
             }
             bounces = select(bounces, bounces + 1, live);
             hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, off, eps, footprint, 0, &t,
-                                1, n, 0, rays, evals);
+                                1, n, 0, 0, rays, evals);
             continue;
         }
         if (iav_any(mirror)) { /* transparent: the lane goes on through, the reflected ray is listed */
@@ -211,14 +216,16 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
         live &= ~spent;
         if (!iav_any(live))
             break;
-        /* on through the surface: from just past it, the same direction */
+        /* on through the surface, the same direction: past a proven crossing along the same line from the end of
+         * its step (F off 0 since the leaf, and known there), else from just past the hit */
+        ia_maskv restart = live & ~crossing.lanes;
         for (int c = 0; c < 3; c++)
-            o[c] = select(o[c], p[c] - off * n[c], live);
+            o[c] = select(o[c], p[c] - off * n[c], restart);
         layers = select(layers, layers + 1, live);
-        layer_runs.tau0 = select(layer_runs.tau0, layer_runs.tau0 + t, live);
+        layer_runs.tau0 = select(layer_runs.tau0, layer_runs.tau0 + t, restart);
         layer_runs.lanes = layers <= TILE_RUN_LAYERS;
-        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, off, eps, footprint, 0, &t, 1,
-                            n, runs ? &layer_runs : 0, rays, evals);
+        hit = effects_trace(params, all_groups, o, d, select(IAV_R(0), crossing.b, crossing.lanes), IAV_R(IA_INF),
+                            live, off, eps, footprint, 0, &t, 1, n, runs ? &layer_runs : 0, &crossing, rays, evals);
     }
 }
 
@@ -352,7 +359,7 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
         int camera = mode == EFFECTS_MODE_AA;
         hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live,
                             camera ? IAV_R(0) : effects_offset(eps, o, IAV_R(0)),
-                            camera ? aa_eps : eps, footprint, 0, &t, 1, n, 0, &rays, &evals);
+                            camera ? aa_eps : eps, footprint, 0, &t, 1, n, 0, 0, &rays, &evals);
     }
     shade_colorv acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
     int nk[IA_VW];

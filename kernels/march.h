@@ -61,6 +61,16 @@ static void march_next_run(const march_runs *m, ia_realv t, ia_realv *lo, ia_rea
     }
 }
 
+/* A transparent layer's proven crossing, for the next layer on along the same line: in the lanes of `lanes` the
+ * march proved F's root in its step [., b] unique (F' of one sign over it) and closed in on it by Newton, so the hit
+ * leaf holds it and F is off 0 over (the leaf's end, b], with F at b in fb. In (effects_march): the lanes that start
+ * at b with F there fb; out: the lanes whose hit is such a crossing's. */
+typedef struct {
+    ia_maskv lanes;
+    ia_realv b;
+    iav fb;
+} march_crossing;
+
 #ifdef PACKET_FDV
 /* A secondary ray starts next to a surface it leaves (or crosses): bisection must halve its first nodes down to its
  * distance from that surface before one excludes it, some 2 log2(length / distance) evaluations, and then halve its way
@@ -87,24 +97,36 @@ static void march_next_run(const march_runs *m, ia_realv t, ia_realv *lo, ia_rea
  * 9.1, 28.4 (before the steps towards the root). The lanes of `runs` (NULL: none) step only inside its runs: a
  * step ends at the end of the run a is in, and from there a moves over the gap to the next run, where F is
  * evaluated afresh and the next step is that run's length (a transparent layer of the reference view, 9.67 ->
- * 5.34 evaluations); past the last run the lane is out. */
+ * 5.34 evaluations); past the last run the lane is out. The lanes of `crossing` (NULL: none) start past a proven
+ * crossing with F known there (no evaluation; the first step, in runs, the rest of the run), and it says on the way
+ * out which hits are proven crossings (a layer of the reference view 5.34 -> FIXME evaluations). */
 static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv *t_near, ia_realv *t_far_io,
-                              ia_maskv *going_io, ia_realv leaving, const march_runs *runs, ia_real eps,
-                              int whether, iav time, ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
+                              ia_maskv *going_io, ia_realv leaving, const march_runs *runs, march_crossing *crossing,
+                              ia_real eps, int whether, iav time, ia_realv *hit_lo, ia_realv *hit_hi,
+                              packet_index *evals) {
     ia_realv a = *t_near, t_far = *t_far_io, w = EFFECTS_MARCH_FIRST * leaving;
-    ia_maskv going = *going_io & (a < t_far), hit = (ia_maskv)0, fresh = going, short_before = (ia_maskv)0;
+    ia_maskv going = *going_io & (a < t_far), hit = (ia_maskv)0, short_before = (ia_maskv)0;
+    iav fa = iav_point(0);
+    ia_maskv known = (ia_maskv)0; /* the lanes whose F at a is known: past a proven crossing */
+    ia_realv cross_b = a; /* the end of the step of each lane's crossing, and F there */
+    iav cross_fb = fa;
+    if (crossing) {
+        known = going & crossing->lanes & (a == crossing->b) & ((crossing->fb.lo > 0) | (crossing->fb.hi < 0));
+        fa = iav__pick(fa, crossing->fb, known);
+    }
     ia_realv run_end = IAV_R(IA_INF); /* the end of the run a lies in (in a gap: a moves to the next run) */
     ia_maskv in_runs = runs ? going & runs->lanes : (ia_maskv)0;
     if (iav_any(in_runs)) {
         ia_realv run_lo;
         march_next_run(runs, a, &run_lo, &run_end);
         run_end = select(IAV_R(IA_INF), run_end, in_runs);
+        known &= ~(in_runs & (run_lo > a)); /* moved on to the next run: F there unknown */
         a = select(a, fmax(a, run_lo), in_runs); /* +inf past the last run */
+        w = select(w, run_end - a, known & in_runs);
         going &= a < t_far;
     }
-    ia_maskv handed = (ia_maskv)0;
+    ia_maskv fresh = going & ~known, handed = (ia_maskv)0, proven = (ia_maskv)0;
     iav hs = iav_point(1); /* the handed lanes' slope over [a, t_far] */
-    iav fa = iav_point(0);
     ia_maskv inside = (ia_maskv)0; /* the lanes that start inside a solid (F(a) < 0): a layer through it */
     ia_realv a0 = a, t_mid = IAV_R(IA_INF); /* their start, and where F' along them is 0 by the first step */
     /* the last two points of F of the handed lanes' Newton steps, for a secant; none before the first (f1 - f0 = 0:
@@ -174,6 +196,8 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         else
             handed |= crossed;
         hs = iav_make(select(hs.lo, s.lo, crossed), select(hs.hi, s.hi, crossed));
+        cross_b = select(cross_b, b, crossed);
+        cross_fb = iav__pick(cross_fb, f_b, crossed);
         t_far = select(t_far, b, crossed);
         ia_realv cross_lo = a;
         ia_maskv narrowed = (ia_maskv)0;
@@ -307,12 +331,18 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         *hit_lo = select(*hit_lo, a, leaf);
         *hit_hi = select(*hit_hi, t_far, leaf);
         hit |= leaf;
+        proven |= leaf;
         going |= handed & ~ok; /* to the walk */
         handed &= ok & ~leaf;
     }
     *t_near = a;
     *t_far_io = t_far;
     *going_io &= going | handed; /* the lanes the walk goes on with: neither hit nor out */
+    if (crossing) {
+        crossing->lanes = proven;
+        crossing->b = cross_b;
+        crossing->fb = cross_fb;
+    }
     return hit;
 }
 #endif

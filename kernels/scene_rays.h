@@ -27,7 +27,7 @@ static ia_maskv scene_rays_root(const ia_realv o[3], const ia_realv d[3], ia_rea
     ia_maskv hit = (ia_maskv)0;
 #ifdef PACKET_FDV
     if (march)
-        hit = effects_march(o, d, &a, &b, &walking, leaving, 0, eps, whether, time, lo, hi, counts);
+        hit = effects_march(o, d, &a, &b, &walking, leaving, 0, 0, eps, whether, time, lo, hi, counts);
 #else
     if (march)
         hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, whether, time, lo, hi, counts);
