@@ -135,20 +135,24 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
             __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
             ia_maskv ray = shade_facing(L, units[l], p, n, live);
             vis[l] = select(IAV_R(0), IAV_R(1), ray);
-            ia_realv so[3], sd[3], sp = off, sn[3] = {n[0], n[1], n[2]};
+            ia_realv so[3], sd[3], sp = off, sn[3] = {n[0], n[1], n[2]}, st;
             for (int c = 0; c < 3; c++)
                 so[c] = p[c];
+            /* through transparent surfaces as the layers go: past a proven crossing along the same line */
+            march_crossing past = {(ia_maskv)0, IAV_R(0), iav_point(0)};
             for (int layer = 0; shadows && shade < EFFECTS_SHADE_NORMALS && iav_any(ray); layer++) {
+                ia_maskv restart = ray & ~past.lanes;
                 for (int c = 0; c < 3; c++) /* off the surface it leaves, on the light's side */
-                    so[c] = select(so[c], so[c] + sp * sn[c], ray);
-                ia_realv dist = shade_towards(L, units[l], so, sd), st;
-                ia_maskv blocked = effects_trace(params, all_groups, so, sd, IAV_R(0), dist, ray, sp, eps, footprint,
-                                                 a >= 1, &st, a < 1, sn, 0, 0, rays, evals);
+                    so[c] = select(so[c], so[c] + sp * sn[c], restart);
+                ia_realv dist = shade_towards(L, units[l], so, sd);
+                ia_maskv blocked = effects_trace(params, all_groups, so, sd, select(IAV_R(0), past.b, past.lanes), dist,
+                                                 ray, sp, eps, footprint, a >= 1, &st, a < 1, sn, 0,
+                                                 a < 1 ? &past : 0, rays, evals);
                 vis[l] = select(vis[l], vis[l] * (1 - a), blocked);
                 ray = layer + 1 < EFFECTS_MAX_LAYERS ? blocked & (vis[l] >= (ia_real)EFFECTS_MIN_WEIGHT) : (ia_maskv)0;
                 for (int c = 0; c < 3; c++) { /* on from past it: its normal faces the shadow ray */
                     ia_realv q = so[c] + st * sd[c];
-                    so[c] = select(so[c], q, ray);
+                    so[c] = select(so[c], q, ray & ~past.lanes);
                     sn[c] = -sn[c];
                 }
                 sp = effects_offset(eps, so, st);

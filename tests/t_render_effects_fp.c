@@ -169,16 +169,18 @@ TEST_FP(effects_shadow_boundary_distance) {
     check_shadows(view, fr);
 }
 
-/* The ground of the shadow scene under a ball that lets `fraction` of the light through: a pixel of the ground is
+/* The ground of the shadow scene under a ball that lets `fraction` of the light through (`hollow_fraction` where
+ * the light's way also passes through a hollow of radius `hollow` in it, 0: none): a pixel of the ground is
  * `opacity` of its lit colour (the expression's clay albedo, the light times the fraction that reaches it) and
  * 1 - opacity of the background (the default gradient at its row, kernels/light.h), in linear light. Pixels
- * within 2e-3 of the shadow's edge, or whose ray meets the ball, are left out. */
-static void check_ground_light(const iacsg_view view, iacsg_frame fr, double opacity, double fraction) {
+ * within 2e-3 of the shadow's edges, or whose ray meets the ball, are left out. */
+static void check_ground_light(const iacsg_view view, iacsg_frame fr, double opacity, double fraction, double hollow,
+                               double hollow_fraction) {
     sphere ball = {{0, 0, 0.6}, 0.5};
     ia_real p[PARAM_COUNT];
     view_params(&view, p);
     const double a = opacity, *light = shadow_light;
-    long lit = 0, dark = 0, bad = 0;
+    long lit = 0, dark = 0, bad = 0, through_hollow = 0;
     double worst = 0;
     static const double top[3] = {0.42f, 0.46f, 0.52f}, bottom[3] = {0.13f, 0.14f, 0.17f};
     static const double albedo[3] = {0.80f, 0.52f, 0.28f};
@@ -193,10 +195,10 @@ static void check_ground_light(const iacsg_view view, iacsg_frame fr, double opa
                 hit[k] = o[k] + t * d[k];
                 l[k] = light[k] - hit[k];
             }
-            double edge = segment_distance(ball.c, hit, light) - ball.r;
-            if (fabs(hit[0]) > 1.99 || fabs(hit[1]) > 1.99 || fabs(edge) < 2e-3)
+            double dist = segment_distance(ball.c, hit, light), edge = dist - ball.r;
+            if (fabs(hit[0]) > 1.99 || fabs(hit[1]) > 1.99 || fabs(edge) < 2e-3 || fabs(dist - hollow) < 2e-3)
                 continue;
-            double len = sqrt(dot(l, l)), T = edge < 0 ? fraction : 1;
+            double len = sqrt(dot(l, l)), T = dist < hollow ? hollow_fraction : edge < 0 ? fraction : 1;
             for (int k = 0; k < 3; k++) {
                 l[k] /= len;
                 h[k] = l[k] - d[k];
@@ -215,13 +217,15 @@ static void check_ground_light(const iacsg_view view, iacsg_frame fr, double opa
             }
             lit += T == 1;
             dark += T < 1;
+            through_hollow += dist < hollow;
         }
     }
     iacsg_frame_free(&fr);
     CHECK(worst <= 1e-4, "a pixel of the ground is %g off its colour under the light that reaches it", worst);
     CHECK(lit > 5000 && dark > 500, "too few pixels: %ld lit, %ld in the shadow", lit, dark);
-    test_note("%ld pixels lit, %ld in the shadow of the transparent ball (%g of the light), within %.1e", lit, dark,
-              fraction, worst);
+    CHECK(hollow == 0 || through_hollow > 500, "only %ld pixels lit through the hollow", through_hollow);
+    test_note("%ld pixels lit, %ld in the shadow of the transparent ball (%g of the light; %ld of them through its "
+              "hollow, %g), within %.1e", lit, dark, fraction, through_hollow, hollow_fraction, worst);
 }
 
 /* The shadow scene with -opacity 0.6: the ball lets (1 - 0.6)^2 of the light through (a shadow ray crosses its
@@ -234,7 +238,20 @@ TEST_FP(effects_shadow_through_transparent) {
     view.effects = &fx;
     iacsg_frame fr;
     render_expr("min(move(sphere(0.5), 0, 0, 0.6), z)", &view, &fr);
-    check_ground_light(view, fr, 0.6, 0.4 * 0.4);
+    check_ground_light(view, fr, 0.6, 0.4 * 0.4, 0, 0);
+}
+
+/* The same ball hollow, a shell 0.04 thick: a shadow ray through the hollow crosses four surfaces, each within
+ * 0.04 of the one before (kernels/effects.cl: the shadow ray goes on past a proven crossing along its line; a
+ * crossing's step taken past the next surface shows as light let through twice, not four times). */
+TEST_FP(effects_shadow_through_transparent_shell) {
+    iacsg_view view = ground_view(160);
+    iacsg_effects fx = shadow_effects();
+    fx.transparency = 0.4;
+    view.effects = &fx;
+    iacsg_frame fr;
+    render_expr("min(max(x^2 + y^2 + (z - 0.6)^2 - 0.25, 0.2116 - x^2 - y^2 - (z - 0.6)^2), z)", &view, &fr);
+    check_ground_light(view, fr, 0.6, 0.4 * 0.4, 0.46, 0.4 * 0.4 * 0.4 * 0.4);
 }
 
 /* The same as regions: a ball of opacity 0.6, a volume that a shadow ray enters once, lets 0.4 of the light
@@ -247,7 +264,7 @@ TEST_FP(effects_shadow_through_transparent_region) {
     render_scene_text("material glass = rgb(0.3, 0.6, 0.9) opacity 0.6\nmaterial clay = rgb(0.8, 0.52, 0.28)\n"
                       "region ball = move(sphere(0.5), 0, 0, 0.6) : glass\nregion ground = z : clay\n",
                       &view, &fr);
-    check_ground_light(view, fr, 1, 0.4);
+    check_ground_light(view, fr, 1, 0.4, 0, 0);
 }
 
 /* The shadows' check on a scene file of the same ball above the ground (the segment path's shadow rays). */
