@@ -17,7 +17,9 @@
  * groups of a union, so an occluder or a surface a ray crosses inside the bounds is never missed; in the camera
  * kernel a transparent layer's ray, its camera ray's continuation, searches only the runs of its tile's rays where
  * the tile pass found that surface may be (tile.h: tile_runs, over boxes grown by how far the layers' rays may lie
- * off their camera rays; layer rays 9.67 -> 5.34 evaluations on the reference view). The rays of a packet come
+ * off their camera rays; layer rays 9.67 -> 5.34 evaluations on the reference view); a layer's or a shadow ray's
+ * way on past a surface it crossed by a proven crossing (march.h: march_crossing) starts along the same line from
+ * the end of that crossing's step, F known there (5.34 -> 4.29). The rays of a packet come
  * from neighbouring pixels (a camera packet's, or listed by the host in blocks of 4 x 4), so that they take
  * similar steps. The normals are render.cl's packet_gradients (this file is appended to the first-root path's
  * program after render.cl).
@@ -30,8 +32,9 @@
  * miss) and, where `normals`, the unit normal there facing the ray in n. With `whether` (no normals), a hit's *t
  * may be the start of a longer part of the ray that certainly holds the first root (effects_march). A ray that
  * starts next to a surface (`leaving`, its distance from it) first leaves it by effects_march, which searches only
- * the runs of the lanes in `runs` (NULL: none). The tree is [0, w], w the farthest end of the packet's rays (so no
- * level of it is spent on a node that holds a whole ray). Counts the rays and their evaluations (KERNEL_STATS). */
+ * the runs of the lanes in `runs` (NULL: none) and starts those of `crossing` (NULL: none; in and out, march.h) past
+ * a proven crossing, F known there. The tree is [0, w], w the farthest end of the packet's rays (so no level of it
+ * is spent on a node that holds a whole ray). Counts the rays and their evaluations (KERNEL_STATS). */
 static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *all_groups, const ia_realv o[3],
                               const ia_realv d[3], ia_realv tn, ia_realv tf, ia_maskv on, ia_realv leaving,
                               ia_real eps, ia_real newton, int whether, ia_realv *t, int normals, ia_realv n[3],
