@@ -4,7 +4,9 @@
 # not the kernel build, nor the process), the median of RUNS runs with the variants taken in turn, so that a
 # ratio compares runs under the same load; and the secondary rays' interval evaluations (exact, load-free).
 # Prints markdown rows; tests/bench/NOTES.md's section "Ray-tracing effects" holds runs of it. BENCH_ONLY: the views
-# to run, of "reference regions" (both by default).
+# to run, of "reference regions unions gyroid" (all by default): issue 12's two views, and beside them two other
+# kinds of shape: Fig. 7's multiple unions (its pseudo-cube's x^500 has no derivative code, so its secondary rays
+# walk rather than march) and a gyroid in a ball (trigonometric, many surfaces a ray).
 set -eu
 # a first run's program saved before the next starts, not by a detached saver beside the timed runs (as bench.sh)
 export IACSG_CACHE_SAVE=${IACSG_CACHE_SAVE:-wait}
@@ -64,7 +66,7 @@ table() {
     done
 }
 
-only=${BENCH_ONLY:-reference regions}
+only=${BENCH_ONLY:-reference regions unions gyroid}
 echo "| view | effect | render s (median of $runs) | against plain | evaluations per secondary ray |"
 echo "|---|---|---|---|---|"
 if [[ " $only " == *" reference "* ]]; then
@@ -74,4 +76,12 @@ fi
 if [[ " $only " == *" regions "* ]]; then
     view=(-size 1024x1024 -eps 1e-5)
     table regions fig2.csg
+fi
+if [[ " $only " == *" unions "* ]]; then
+    view=(-size 1024x1024 -eps 1e-5)
+    table "multiple unions" "$here/examples/fig7_multiple_unions.csg"
+fi
+if [[ " $only " == *" gyroid "* ]]; then
+    view=(-size 1024x1024 -eps 1e-5)
+    table "gyroid in a ball" "max(sin(4*x)*cos(4*y)+sin(4*y)*cos(4*z)+sin(4*z)*cos(4*x), x^2+y^2+z^2-3.61)"
 fi
