@@ -50,11 +50,10 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
     ia_real time = params[PARAM_TIME_LO];
     iav times = iav_const(time, params[PARAM_TIME_HI]);
     ia_real w = march_farthest(t_far, searching);
-    ia_maskv hit = (ia_maskv)0;
-    if (crossing && !iav_any(searching & (leaving > 0)))
+    ia_maskv hit = (ia_maskv)0, marching = searching & (leaving > 0);
+    if (crossing && !iav_any(marching))
         crossing->lanes = (ia_maskv)0; /* else effects_march's in and out */
 #ifdef PACKET_NEWTON
-    ia_maskv marching = searching & (leaving > 0);
     if (iav_any(marching)) {
         ia_maskv walking = marching;
         hit = effects_march(o, d, &t_near, &t_far, &walking, leaving, runs, crossing, eps, whether, times, &lo, &hi,
@@ -62,7 +61,7 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
         searching &= ~marching | walking;
     }
 #else
-    (void)leaving, (void)runs;
+    (void)runs;
 #endif
     if (iav_any(searching))
         hit |= packet_first_root(all_groups, o, d, 0, w, (packet_int)0, (packet_index)0, t_near, t_far, searching,

@@ -73,8 +73,9 @@ IA_FN ia_maskv tile_node(PACKET_TAPE_PARAM ulong groups, const iav base[3], cons
 }
 
 /* Searches the frame's tree (frame_root) for the first coarse leaf of IA_VW tiles at once, one per lane (as
- * packet.h walks rays): a node where 0 may be in F over the tile's box (tile_node). Returns the lanes of `searching` whose tile may
- * hold surface, with their leaves' levels and indices; *evals counts each lane's evaluations (KERNEL_STATS).
+ * packet.h walks rays): a node where 0 may be in F over the tile's box (tile_node). Returns the lanes of
+ * `searching` whose tile may hold surface, with their leaves' levels and indices; *evals counts each lane's
+ * evaluations (KERNEL_STATS).
  * base, dir: the lanes' tile_rays; spread: their angular (perspective) or linear (orthographic) sizes. */
 IA_FN ia_maskv tile_first_leaves(PACKET_TAPE_PARAM ulong groups, const iav base[3], const iav dir[3],
                                  ia_realv spread, int ortho, ia_real t0, ia_real w, ia_real eps, ia_maskv searching,
