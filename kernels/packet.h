@@ -42,10 +42,14 @@ IA_FN packet_int packet_log2_of_power(packet_index p) {
 #define PACKET_COUNT(counts, lanes) ((void)(counts))
 #endif
 
-/* node_bound lane by lane: t0 + w * (i * 2^-level), 2^-level from its exponent bits (node_scale). */
+/* node_scale lane by lane: 2^-level from its exponent bits. */
+IA_FN ia_realv packet_node_scale(packet_int level) {
+    return packet_as_real(packet_to_index(PACKET_EXP_BIAS - level) << PACKET_MANT_BITS);
+}
+
+/* node_bound lane by lane: t0 + w * (i * 2^-level). */
 IA_FN ia_realv packet_node_bound(ia_real t0, ia_real w, packet_int level, packet_index i) {
-    ia_realv scale = packet_as_real(packet_to_index(PACKET_EXP_BIAS - level) << PACKET_MANT_BITS);
-    return t0 + w * (packet_to_real(i) * scale);
+    return t0 + w * (packet_to_real(i) * packet_node_scale(level));
 }
 
 /* An interpreted expression's tape (kernels/tape_eval.h, a program with IACSG_TAPE) travels as the first argument
@@ -190,24 +194,29 @@ IAV_INLINE iav packet_F_nodes(PACKET_TAPE_PARAM const __global ulong *segment_gr
     return packet_F_live(PACKET_TAPE_ARG packet_groups(segment_groups, live, level, i), live, x, y, z, t);
 }
 
-/* node_at for each lane's t, at one level for all. */
-IA_FN packet_index packet_node_at(ia_real t0, ia_real w, int level, ia_realv t) {
-    bisect_index last = (((bisect_index)1) << level) - 1;
-    ia_realv u = (t - t0) / w / node_scale(level);
-    packet_index j = packet_to_index(fmin(fmax(u, IAV_R(0)), (ia_real)last)); /* u > 0 ? u : 0, truncated */
-    packet_int lv = (packet_int)level;
+/* node_at for the t of each lane of `lanes` at its level lv (0 in the other lanes). */
+IA_FN packet_index packet_node_at_levels(ia_real t0, ia_real w, packet_int lv, ia_maskv lanes, ia_realv t) {
+    packet_index last = (((packet_index)1) << packet_to_index(lv)) - 1;
+    ia_realv u = (t - t0) / w / packet_node_scale(lv);
+    packet_index j = packet_to_index(fmin(fmax(u, IAV_R(0)), packet_to_real(last))); /* u > 0 ? u : 0, truncated */
+    j = select((packet_index)0, j, lanes);
     while (1) {
-        ia_maskv back = (j > 0) & (packet_node_bound(t0, w, lv, j) > t);
+        ia_maskv back = lanes & (j > 0) & (packet_node_bound(t0, w, lv, j) > t);
         if (!iav_any(back))
             break;
         j = select(j, j - 1, back);
     }
     while (1) {
-        ia_maskv forward = (j < last) & (packet_node_bound(t0, w, lv, j + 1) <= t);
+        ia_maskv forward = lanes & (j < last) & (packet_node_bound(t0, w, lv, j + 1) <= t);
         if (!iav_any(forward))
             return j;
         j = select(j, j + 1, forward);
     }
+}
+
+/* node_at for each lane's t, at one level for all. */
+IA_FN packet_index packet_node_at(ia_real t0, ia_real w, int level, ia_realv t) {
+    return packet_node_at_levels(t0, w, (packet_int)level, (ia_maskv)-1, t);
 }
 
 /* ray_extent lane by lane. */
@@ -243,30 +252,16 @@ IA_FN void packet_advance_some(ia_maskv *searching, ia_maskv moving, ia_maskv do
 
 /* The lanes of `moving` (Newton's, stalled on their part [t, t + width] of their node) go on by the walk from the
  * node holding t at the deepest level whose nodes are no narrower than the part, one level below theirs at least:
- * the part of their node before t is root-free (Newton's proof), so the halvings down to there are skipped. The
- * node starts at or before t (packet_node_at's search, lane by lane). */
+ * the part of their node before t is root-free (Newton's proof), so the halvings down to there are skipped. */
 IA_FN void packet_resume_at(ia_real t0, ia_real w, ia_maskv moving, ia_realv t, ia_realv width, packet_int *level,
                             packet_index *i) {
-    ia_realv node = packet_node_bound(t0, w, *level, (packet_index)1) - t0;
-    packet_int down = packet_to_int(floor(log2(fmax(node / width, IAV_R(2)))));
-    packet_int lv = min(*level + select((packet_int)1, down, moving), (packet_int)BISECT_MAX_LEVEL);
-    ia_realv scale = packet_as_real(packet_to_index(PACKET_EXP_BIAS - lv) << PACKET_MANT_BITS);
-    packet_index last = (((packet_index)1) << packet_to_index(lv)) - 1;
-    packet_index j = packet_to_index(fmin(fmax((t - t0) / w / scale, IAV_R(0)), packet_to_real(last)));
-    while (1) {
-        ia_maskv back = moving & (j > 0) & (packet_node_bound(t0, w, lv, j) > t);
-        if (!iav_any(back))
-            break;
-        j = select(j, j - 1, back);
-    }
-    while (1) {
-        ia_maskv forward = moving & (j < last) & (packet_node_bound(t0, w, lv, j + 1) <= t);
-        if (!iav_any(forward))
-            break;
-        j = select(j, j + 1, forward);
-    }
-    *level = select(*level, lv, moving);
-    *i = select(*i, j, moving);
+    ia_realv node = w * packet_node_scale(*level);
+    /* log2 of node / width, at least 1, kept in range where width is 0 or NaN (lanes not moving) */
+    ia_realv halvings = fmin(floor(log2(fmax(node / width, IAV_R(2)))), (ia_real)BISECT_MAX_LEVEL);
+    packet_int lv = min(*level + select((packet_int)1, packet_to_int(halvings), moving), (packet_int)BISECT_MAX_LEVEL);
+    lv = select(*level, lv, moving);
+    *i = select(*i, packet_node_at_levels(t0, w, lv, moving, t), moving);
+    *level = lv;
 }
 
 /* Interval Newton along the ray, where the compiler emitted iacsg_Fdv (implicits/emit.c: newton_pays): from a
@@ -513,7 +508,7 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
             *hit_hi = select(*hit_hi, nb, leaf);
             hit |= leaf;
             searching &= ~leaf;
-            bisect_only |= stuck; /* Newton does not converge on this ray: bisect its node, and later ones */
+            bisect_only |= stuck; /* Newton does not converge on this ray: the walk from its part, and later nodes */
             newton &= ~(leaf | stuck | empty);
             packet_advance_some(&searching, empty, (ia_maskv)0, &level, &i);
             if (iav_any(stuck))
