@@ -258,8 +258,7 @@ IA_FN void packet_resume_at(ia_real t0, ia_real w, ia_maskv moving, ia_realv t, 
     ia_realv node = w * packet_node_scale(*level);
     /* log2 of node / width, at least 1, kept in range where width is 0 or NaN (lanes not moving) */
     ia_realv halvings = fmin(floor(log2(fmax(node / width, IAV_R(2)))), (ia_real)BISECT_MAX_LEVEL);
-    packet_int lv = min(*level + select((packet_int)1, packet_to_int(halvings), moving), (packet_int)BISECT_MAX_LEVEL);
-    lv = select(*level, lv, moving);
+    packet_int lv = select(*level, min(*level + packet_to_int(halvings), (packet_int)BISECT_MAX_LEVEL), moving);
     *i = select(*i, packet_node_at_levels(t0, w, lv, moving, t), moving);
     *level = lv;
 }
@@ -385,6 +384,22 @@ IA_FN iav packet_mean_value(PACKET_TAPE_PARAM const __global ulong *segment_grou
     out->fc = fm;
     return iav_make(select(f.lo, fmax(f.lo, form.lo), use), select(f.hi, fmin(f.hi, form.hi), use));
 }
+
+/* Newton's step from c in the lanes of `lanes`, whose slope over [a, b] excludes 0: [a, b] n (c - F(c) / F') into
+ * [*lo, *hi]; returns the lanes where that is not empty (the others hold no root). Never narrower than half a leaf:
+ * the step after this one is the leaf's test, F over it, and unrounded (IA_FAST) F over a box far below the widths
+ * at which its rounding errors show missed the root in a fifth of the reference view's rays. The part grows inside
+ * [a, b], so it keeps every root; the leaf's start is still at or before the first one. */
+IA_FN ia_maskv packet_newton_step(ia_realv c, iav fc, iav slope, ia_maskv lanes, ia_realv a, ia_realv b, ia_real eps,
+                                  ia_realv *lo, ia_realv *hi) {
+    /* lanes not stepping divide by 1: a pole there would send every lane down iav_div's slow path */
+    iav n = iav_sub(iav_make(c, c), iav_div(fc, iav__pick(iav_point(1), slope, lanes)));
+    *lo = fmax(a, n.lo);
+    *hi = fmin(b, n.hi);
+    ia_maskv kept = lanes & (*lo <= *hi);
+    *hi = fmin(b, fmax(*hi, *lo + (ia_real)0.5 * eps));
+    return kept;
+}
 #endif
 
 /* The first root of each lane of `searching` in [t_near, t_far] of its ray o + t*d, from its node (level, i) on
@@ -446,12 +461,10 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
              * the form's F and F' (no evaluation), and Newton's turns from there */
             ia_maskv monotone = form.use & zero & ~leaf & ((form.slope.lo > 0) | (form.slope.hi < 0));
             if (newton_on && iav_any(monotone)) {
-                iav n = iav_sub(iav_make(form.c, form.c), iav_div(form.fc, iav__pick(iav_point(1), form.slope,
-                                                                                      monotone)));
-                ia_realv n_lo = fmax(a, n.lo), n_hi = fmin(b, n.hi);
-                zero &= ~(monotone & ~(n_lo <= n_hi)); /* N misses the node: no root in it */
-                monotone &= n_lo <= n_hi;
-                n_hi = fmin(b, fmax(n_hi, n_lo + (ia_real)0.5 * eps)); /* as a Newton turn's, below */
+                ia_realv n_lo, n_hi;
+                ia_maskv kept = packet_newton_step(form.c, form.fc, form.slope, monotone, a, b, eps, &n_lo, &n_hi);
+                zero &= ~(monotone & ~kept); /* N misses the node: no root in it */
+                monotone = kept;
                 na = select(na, n_lo, monotone);
                 nb = select(nb, n_hi, monotone);
                 refine |= monotone;
@@ -484,23 +497,19 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
             ia_maskv empty = stepping & ~zero;
             if (iav_any(step)) {
                 ia_realv m = na * (ia_real)0.5 + nb * (ia_real)0.5;
-                iav at_m = iav_make(m, m);
 #ifndef IACSG_TAPE /* a tape's came with f, over the same parts */
+                iav at_m = iav_make(m, m);
                 fm = packet_F_live(packet_groups(segment_groups, step, level, i), step, packet_extent(o[0], d[0], at_m),
                                    packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
 #endif
                 PACKET_COUNT(*evals, step);
-                /* lanes not stepping divide by 1: a pole there would send every lane down iav_div's slow path */
-                iav n = iav_sub(at_m, iav_div(fm, iav__pick(iav_point(1), slope, step)));
-                ia_realv a = fmax(na, n.lo), b = fmin(nb, n.hi);
-                empty |= step & ~(a <= b);
-                step &= a <= b;
-                stuck |= step & (b - a > (ia_real)0.5 * (nb - na)); /* no longer converging: bisect instead */
-                /* Never narrower than half a leaf: the step after this one is the leaf's test, F over it, and
-                 * unrounded (IA_FAST) F over a box far below the widths at which its rounding errors show missed
-                 * the root in a fifth of the reference view's rays. [a, b] grows inside [na, nb], so it keeps
-                 * every root; the leaf's start is still at or before the first one. */
-                b = fmin(nb, fmax(b, a + (ia_real)0.5 * eps));
+                ia_realv a, b;
+                ia_maskv kept = packet_newton_step(m, fm, slope, step, na, nb, eps, &a, &b);
+                empty |= step & ~kept;
+                step = kept;
+                /* no longer converging: bisect instead (the half leaf's floor never decides it: a step's part is
+                 * wider than eps) */
+                stuck |= step & (b - a > (ia_real)0.5 * (nb - na));
                 na = select(na, a, step);
                 nb = select(nb, b, step);
             }
