@@ -467,12 +467,12 @@ static int expr_kid_slots(const iacsg_effects *e) {
     return e->bounces > 0 && e->reflect > 0 && e->transparency > 0 ? EFFECTS_MAX_LAYERS : 0;
 }
 
-/* The traced pixels in blocks of 4x4 that are `edge` (or, edge NULL, that get a path: a miss where -background
- * changes it, a hit where the kernel's colour does not stand), in that order, into out (room for every traced
- * pixel); returns how many. Block order, so that the secondary rays of a packet (kernels/effects.cl) come from
- * neighbouring pixels. One pass that lists as it goes: a list of every pixel first, then filtered, cost a
- * megapixel's 4 MB (its page faults) and a pass more, all on one CPU. */
-static size_t block_select(const fx_frame *f, const iacsg_frame *fr, const unsigned char *edge, int *out) {
+/* The traced pixels in blocks of 4x4 that get a path (a miss where -background changes it, a hit where the
+ * kernel's colour does not stand), in that order, into out (room for every traced pixel); returns how many. Block
+ * order, so that the secondary rays of a packet (kernels/effects.cl) come from neighbouring pixels. One pass that
+ * lists as it goes: a list of every pixel first, then filtered, cost a megapixel's 4 MB (its page faults) and a
+ * pass more, all on one CPU. */
+static size_t block_select(const fx_frame *f, const iacsg_frame *fr, int *out) {
     const iacsg_view *v = f->view;
     /* in locals, and item_keeps by its table: the stores to out may alias what f points to, and reloading it for
      * each of a megapixel's hits was most of this pass */
@@ -486,9 +486,7 @@ static size_t block_select(const fx_frame *f, const iacsg_frame *fr, const unsig
             for (int j = bj; j < bj + PACKET_H && j < row1; j++)
                 for (int i = bi; i < bi + PACKET_W && i < width; i++) {
                     int pixel = j * width + i;
-                    if (edge ? edge[pixel]
-                             : isinf(depth[pixel]) ? background
-                                                   : !keep && (!item_listed || item_listed[(int)ids[pixel]]))
+                    if (isinf(depth[pixel]) ? background : !keep && (!item_listed || item_listed[(int)ids[pixel]]))
                         out[n++] = pixel;
                 }
     return n;
@@ -532,17 +530,9 @@ static void centre_path(const fx_frame *f, const iacsg_frame *fr, const double *
 /* The traced pixels on an edge (fx_find_edges), in block order, into edges; returns how many, or -1 out of
  * memory. */
 static long edge_pixels(const fx_frame *f, const iacsg_frame *fr, int *edges) {
-    const iacsg_view *v = f->view;
     int row0, row1;
-    traced_rows(v, &row0, &row1);
-    unsigned char *edge = calloc((size_t)v->width * (size_t)v->height + 1, 1);
-    if (!edge || fx_find_edges(fr, row0, row1, (float)FX_AA_CONTRAST, (float)FX_AA_DEPTH, edge) != 0) {
-        free(edge);
-        return -1;
-    }
-    long n = (long)block_select(f, fr, edge, edges);
-    free(edge);
-    return n;
+    traced_rows(f->view, &row0, &row1);
+    return fx_find_edges(fr, row0, row1, (float)FX_AA_CONTRAST, (float)FX_AA_DEPTH, edges);
 }
 
 /* -aa's rays' leaves: eps, or a quarter of a sample's footprint where that is wider. A ray that passes that close
@@ -670,7 +660,7 @@ static iacsg_status apply_expr(fx_frame *f, iacsg_frame *frame, int in_camera, i
     iacsg_status st = IACSG_OK;
     size_t n;
     if (!in_camera) {
-        n = block_select(f, frame, NULL, listed);
+        n = block_select(f, frame, listed);
         double centre[2] = {0, f->tracer.footprint}; /* Newton's window for the walks of the secondary rays */
         st = fx_device_run(&f->tracer, f->block, kid_slots, EFFECTS_MODE_CENTRE, listed, n, 1, centre, frame, err);
     }
@@ -748,7 +738,7 @@ static iacsg_status apply_scene(fx_frame *f, iacsg_frame *frame, int in_camera, 
         col_s[i] = image_s(f, i + 0.5);
     for (int j = 0; j < f->view->height; j++)
         row_v[j] = image_v(f, j + 0.5);
-    size_t count = in_camera ? 0 : block_select(f, frame, NULL, listed);
+    size_t count = in_camera ? 0 : block_select(f, frame, listed);
     int on_device = !has_children(f->r, f->e) || children_on_device(f);
     if (on_device)
         st = centre_on_device(f, frame, listed, count, err);
