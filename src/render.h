@@ -125,8 +125,8 @@ typedef struct {
     void (*progress)(double done, void *ctx);
     void *progress_ctx;
     /* Called after each band of rows, when not NULL: a nonzero return stops the render, which then returns
-     * IACSG_ERR_CANCELLED and no frame. With it (or progress) the bands are narrow (64 rows), so that a frame
-     * stops soon after. */
+     * IACSG_ERR_CANCELLED and no frame. With it (or progress) the first band is narrow (64 rows) and the next ones
+     * grow while each takes under 20 ms, so that a frame stops within some 40 ms of a cancel. */
     int (*cancel)(void *ctx);
     void *cancel_ctx;
     /* Trace only rows [row_first, row_first + row_count) of the image (row_count 0: all of them), as a band of

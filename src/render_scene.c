@@ -347,7 +347,9 @@ static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_
     cl_mem none = NULL;
     if (st == IACSG_OK)
         st = set_launch_args(r, 0, &none, 0, &b->list[0], &b->nlist[0], err);
-    return st == IACSG_OK ? render_launch_bands(r, r->kernel, view, groups_x, SCENE_BLOCK, (int)band, err) : st;
+    if (st == IACSG_OK)
+        st = render_launch_bands(r, r->kernel, view, groups_x, SCENE_BLOCK, (int)band, (int)band, err);
+    return st;
 }
 
 /* Traces the listed rays again with four times the room until none overflows. */

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 typedef struct {
     const char *name, *expr;
@@ -90,7 +91,8 @@ static int cancel_at_second(void *ctx) {
 }
 
 /* A cancel callback is asked after each band of rows; its nonzero answer stops the render, with no frame. With
- * one, bands are narrow (64 rows), so that a frame that would be one launch without it can still be stopped. */
+ * one, the first band is narrow (64 rows), so that a frame that would be one launch without it can still be
+ * stopped. */
 TEST(render_cancel_stops) {
     iacsg_error err = {0};
     iacsg_expr *e = NULL;
@@ -113,4 +115,56 @@ TEST(render_cancel_stops) {
     iacsg_renderer_destroy(r);
     CHECK(st == IACSG_OK && fr.rgb, "%s", err.message);
     iacsg_frame_free(&fr);
+}
+
+typedef struct {
+    int calls, rising;
+    double last;
+} progress_log;
+
+static void log_progress(double done, void *ctx) {
+    progress_log *p = ctx;
+    p->rising &= done > p->last;
+    p->last = done;
+    p->calls++;
+}
+
+/* With a progress callback the bands start narrow and grow (a launch each): the frame is the same, pixel for
+ * pixel, as in one launch, every row traced once, and the fractions rise to 1. */
+TEST(render_progress_bands_cover_the_frame) {
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse("min(sphere, (1 - sqrt(x^2 + y^2))^2 + z^2 - 0.125)", "<test>", &e, &err) == IACSG_OK,
+          "%s", err.message);
+    iacsg_render_config config = {0};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    iacsg_view v = {.width = 24, .height = 2000, .eps = 1e-4, .bounds = {-2, -2, -2, 2, 2, 2},
+                    .camera = {.eye = {0, -4, 1}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fov = 60}};
+    iacsg_frame whole = {0}, banded = {0};
+    st = iacsg_render(r, &v, &whole, &err);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    progress_log log = {0, 1, 0};
+    v.progress = log_progress;
+    v.progress_ctx = &log;
+    st = iacsg_render(r, &v, &banded, &err);
+    iacsg_renderer_destroy(r);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    size_t n = (size_t)v.width * (size_t)v.height;
+    long hits = 0;
+    for (size_t p = 0; p < n; p++) {
+        CHECK(memcmp(&whole.depth[p], &banded.depth[p], sizeof(float)) == 0 &&
+                  memcmp(&whole.rgb[3 * p], &banded.rgb[3 * p], 3 * sizeof(float)) == 0,
+              "pixel (%d, %d): depth %g in one launch, %g in bands", (int)(p % (size_t)v.width),
+              (int)(p / (size_t)v.width), whole.depth[p], banded.depth[p]);
+        hits += !isinf(whole.depth[p]);
+    }
+    test_note("%d bands, %ld of %zu pixels hit", log.calls, hits, n);
+    CHECK(log.calls >= 2 && log.rising && log.last == 1, "%d progress calls, rising %d, last %g", log.calls,
+          log.rising, log.last);
+    CHECK(hits > (long)n / 4, "%ld hits: the view misses the solid", hits);
+    iacsg_frame_free(&whole);
+    iacsg_frame_free(&banded);
 }
