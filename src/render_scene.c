@@ -27,6 +27,10 @@ extern const char iacsg_cl_prim[];          /* the primitives' inclusion functio
 
 /* The per-ray buffers of all work-items of one launch together stay below this; bands are cut to fit. */
 #define SCENE_SCRATCH_BUDGET (64.0 * 1024 * 1024)
+/* A band's blocks at most (2048 rows, as render.c's): each band is a launch, ~1-2 ms on PoCL here. Bands of 2
+ * blocks (64 rows) before, 16 launches a 1024x1024 frame; in one: Fig. 2's regions 68 -> 63 ms, machined_part.csg
+ * 112 -> 97, m35.asc 164 -> 150, havoc 274 -> 245 (medians of 9 in turn, images the same). */
+#define SCENE_BAND_BLOCKS 64
 _Static_assert(IACSG_ROW_ALIGN % SCENE_BLOCK == 0, "iacsg_view.row_first is aligned to whole blocks");
 
 struct render_scene {
@@ -337,9 +341,10 @@ static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_
     int rows = view->row_count ? view->row_count : view->height;
     size_t block_rows = ((size_t)rows + SCENE_BLOCK - 1) / SCENE_BLOCK;
     double per_row = (double)groups_x * (double)slot_bytes(r, b->cand_cap);
-    size_t band = (size_t)fmax(1, fmin((double)(view->progress ? 1 : 2), SCENE_SCRATCH_BUDGET / per_row));
-    band = band < block_rows ? band : block_rows;
-    iacsg_status st = scratch_buffers(r, b, groups_x * band, b->cand_cap, err);
+    size_t most = (size_t)fmax(1, fmin(SCENE_BAND_BLOCKS, SCENE_SCRATCH_BUDGET / per_row));
+    most = most < block_rows ? most : block_rows;
+    size_t band = view->progress || view->cancel ? 1 : most; /* render_launch_bands grows it up to most */
+    iacsg_status st = scratch_buffers(r, b, groups_x * most, b->cand_cap, err);
     if (st == IACSG_OK)
         st = zero_count(r, b->nlist[0], err);
     if (st == IACSG_OK)
@@ -348,7 +353,7 @@ static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_
     if (st == IACSG_OK)
         st = set_launch_args(r, 0, &none, 0, &b->list[0], &b->nlist[0], err);
     if (st == IACSG_OK)
-        st = render_launch_bands(r, r->kernel, view, groups_x, SCENE_BLOCK, (int)band, (int)band, err);
+        st = render_launch_bands(r, r->kernel, view, groups_x, SCENE_BLOCK, (int)band, (int)most, err);
     return st;
 }
 
