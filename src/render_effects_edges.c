@@ -11,7 +11,7 @@
  * compiler keeps them scalar at -O2) took 12-13 ms of the reference view's 75 ms -aa 4 frame, on one CPU; in
  * vectors a third of that. (A kernel on PoCL took 8-9 ms: tried, not kept.) Then the frame's byte map of edges
  * (a megapixel's page faults, ~3.5 ms here) and the pass that listed it in block order went, and the rows were
- * shared among the CPUs, which wait for this list with the device idle: 9.5 -> ~2.5 ms on two CPUs. */
+ * shared among the CPUs, which wait for this list with the device idle: 9.5 -> 3.5 ms on two CPUs. */
 #include "render_effects_edges.h"
 #include "kernels/params.h"
 #include <math.h>
