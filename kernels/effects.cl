@@ -96,6 +96,36 @@ static void effects_add(shade_colorv acc[3], ia_maskv on, ia_realv w, const shad
         acc[k] += select((shade_colorv)0, wc * c[k], lanes);
 }
 
+/* F at the point so every secondary ray off a hit's outer side starts from (p + off n: each light's shadow ray,
+ * the reflected ray), evaluated once for the lanes of `lanes` at the first ray that needs it and handed to the
+ * others' marches as known there (march.h: march_crossing at t = 0, where a ray's start is the point itself:
+ * packet_extent at t = 0 is so, whatever the direction). With the default rig's two lights, or a light and a
+ * reflection, a hit's rays had each evaluated it. Without the march (no derivative code) nothing is shared. */
+typedef struct {
+    ia_realv so[3];
+    ia_maskv lanes, done, counted; /* the hits', those F is known for, those whose rays used it (the statistics) */
+    iav f;
+} effects_start;
+
+/* The march's hint for rays from s->so in the lanes of `on`: F there, evaluated on first use. */
+static march_crossing effects_start_hint(effects_start *s, ia_maskv on, iav time, packet_index *evals) {
+#ifdef PACKET_FDV
+    if (!iav_any(s->done) && iav_any(on)) {
+        iav at = iav_point(0);
+        s->f = packet_F(~(ulong)0, packet_extent(s->so[0], IAV_R(0), at), packet_extent(s->so[1], IAV_R(0), at),
+                        packet_extent(s->so[2], IAV_R(0), at), time);
+        s->done = s->lanes;
+    }
+    PACKET_COUNT(*evals, on & s->done & ~s->counted); /* one evaluation a lane, however many rays use it */
+    s->counted |= on & s->done;
+    march_crossing hint = {on & s->done, IAV_R(0), s->f};
+#else
+    (void)time, (void)evals;
+    march_crossing hint = {(ia_maskv)0, IAV_R(0), s->f};
+#endif
+    return hint;
+}
+
 /* The paths of the lanes of `live` from their rays o + t d's first hits (where `hit`: at t, normal n) on, each of
  * weight `through`, its transparent layers and reflections so far `layers` and `bounces`, its pixel in row `row`:
  * each hit lit (its shadow rays traced), the reflected ray off an opaque hit and the ray through a transparent one
@@ -119,6 +149,7 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
         id_rgb[c] = (shade_colorv)(float)fx[EFFECTS_ID_RGB + c];
     }
     ia_real a = fx[EFFECTS_OPACITY], max_bounces = fx[EFFECTS_BOUNCES], eps = params[PARAM_EPS];
+    iav times = iav_const(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
     ia_real units[EFFECTS_MAX_LIGHTS][3];
     shade_light_units(params, fx, units);
     while (1) { /* one transparent layer a turn */
@@ -133,23 +164,26 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
          * shadow ray from off the surface (on the light's side) to the light lets through: each crossing of a
          * transparent surface on the way keeps 1 - A of it (a layer, as the camera rays see it), an opaque one none */
         ia_realv off = effects_offset(eps, p, t), vis[EFFECTS_MAX_LIGHTS];
+        effects_start start = {{p[0] + off * n[0], p[1] + off * n[1], p[2] + off * n[2]}, live, (ia_maskv)0,
+                               (ia_maskv)0, iav_point(0)};
         for (int l = 0; l < nlights; l++) {
             __constant ia_real *L = fx + EFFECTS_LIGHTS + EFFECTS_LIGHT_REALS * l;
             ia_maskv ray = shade_facing(L, units[l], p, n, live);
             vis[l] = select(IAV_R(0), IAV_R(1), ray);
-            ia_realv so[3], sd[3], sp = off, sn[3] = {n[0], n[1], n[2]}, st;
-            for (int c = 0; c < 3; c++)
-                so[c] = p[c];
-            /* through transparent surfaces as the layers go: past a proven crossing along the same line */
+            ia_realv so[3] = {start.so[0], start.so[1], start.so[2]}, sd[3], sp = off, sn[3] = {n[0], n[1], n[2]}, st;
+            /* through transparent surfaces as the layers go: past a proven crossing along the same line (the first
+             * from the hit's shared start, F known there) */
             march_crossing past = {(ia_maskv)0, IAV_R(0), iav_point(0)};
             for (int layer = 0; shadows && shade < EFFECTS_SHADE_NORMALS && iav_any(ray); layer++) {
-                ia_maskv restart = ray & ~past.lanes;
+                ia_maskv restart = layer > 0 ? ray & ~past.lanes : (ia_maskv)0;
                 for (int c = 0; c < 3; c++) /* off the surface it leaves, on the light's side */
                     so[c] = select(so[c], so[c] + sp * sn[c], restart);
+                if (layer == 0)
+                    past = effects_start_hint(&start, ray, times, evals);
                 ia_realv dist = shade_towards(L, units[l], so, sd);
                 ia_maskv blocked = effects_trace(params, all_groups, so, sd, select(IAV_R(0), past.b, past.lanes), dist,
-                                                 ray, sp, eps, footprint, a >= 1, &st, a < 1, sn, 0,
-                                                 a < 1 ? &past : 0, rays, evals);
+                                                 ray, sp, eps, footprint, a >= 1, &st, a < 1, sn, 0, &past, rays,
+                                                 evals);
                 vis[l] = select(vis[l], vis[l] * (1 - a), blocked);
                 ray = layer + 1 < EFFECTS_MAX_LAYERS ? blocked & (vis[l] >= (ia_real)EFFECTS_MIN_WEIGHT) : (ia_maskv)0;
                 for (int c = 0; c < 3; c++) { /* on from past it: its normal faces the shadow ray */
@@ -186,12 +220,13 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
             if (!iav_any(live))
                 break;
             for (int c = 0; c < 3; c++) {
-                o[c] = select(o[c], p[c] + off * n[c], live);
+                o[c] = select(o[c], start.so[c], live);
                 d[c] = select(d[c], r[c], live);
             }
             bounces = select(bounces, bounces + 1, live);
+            march_crossing from = effects_start_hint(&start, live, times, evals);
             hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, off, eps, footprint, 0, &t,
-                                1, n, 0, 0, rays, evals);
+                                1, n, 0, &from, rays, evals);
             continue;
         }
         if (iav_any(mirror)) { /* transparent: the lane goes on through, the reflected ray is listed */
