@@ -18,17 +18,19 @@
 #if defined(SCENE_REGIONS_DISJOINT) && defined(SCENE_UNION_PREPASS)
 #define SCENE_RAYS_MARCH 1
 /* g's first root on the lanes of `walking` over [a, b]: with `march`, the march off the surface the ray leaves
- * (march.h: `leaving` is the start's distance from it), then for the lanes it hands over (all of them without
- * `march`) bisection with Newton from any node; *lo, *hi its leaf (with `whether`, a part where g crosses 0, wider
- * than a leaf). */
+ * (march.h: `leaving` is the start's distance from it; g at a, where the caller evaluated it, in ga: the march does
+ * not evaluate it again), then for the lanes it hands over (all of them without `march`) bisection with Newton from
+ * any node; *lo, *hi its leaf (with `whether`, a part where g crosses 0, wider than a leaf). */
 static ia_maskv scene_rays_root(const ia_realv o[3], const ia_realv d[3], ia_realv a, ia_realv b, ia_maskv walking,
-                                int march, ia_realv leaving, ia_real eps, int whether, iav time, ia_realv *lo,
+                                int march, ia_realv leaving, iav ga, ia_real eps, int whether, iav time, ia_realv *lo,
                                 ia_realv *hi, packet_index *counts) {
     ia_maskv hit = (ia_maskv)0;
 #ifdef PACKET_FDV
+    march_crossing known = {walking, a, ga}; /* march.h takes it where g there is off 0 */
     if (march)
-        hit = effects_march(o, d, &a, &b, &walking, leaving, 0, 0, eps, whether, time, lo, hi, counts);
+        hit = effects_march(o, d, &a, &b, &walking, leaving, 0, &known, eps, whether, time, lo, hi, counts);
 #else
+    (void)ga;
     if (march)
         hit = march_enclosure(o, d, &a, b, &walking, leaving, eps, whether, time, lo, hi, counts);
 #endif
@@ -85,8 +87,9 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
     ia_maskv on = IAV_LOAD(meets) != 0, passing = on & (pass > 0), outside = (ia_maskv)0, inside = (ia_maskv)0;
     if (whether)
         on &= ~passing;
+    iav g = iav_point(0); /* at t_near, where some lane is on */
     if (iav_any(on)) {
-        iav g = scene_union_g_at(o, d, t_near, time);
+        g = scene_union_g_at(o, d, t_near, time);
         PACKET_COUNT(counts, on);
         outside = on & ~passing & (g.lo > 0);
         inside = passing & (g.hi < 0);
@@ -99,9 +102,9 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
     ia_realv lo = IAV_R(0), hi = IAV_R(0), out_from = t_near, out_hi = IAV_R(-IA_INF);
     ia_maskv hit = (ia_maskv)0, crossed = (ia_maskv)0;
     if (iav_any(outside | inside)) {
-        hit = scene_rays_root(o, d, t_near, t_far, outside, 1, leaving, eps, whether, time, &lo, &hi, &counts);
+        hit = scene_rays_root(o, d, t_near, t_far, outside, 1, leaving, g, eps, whether, time, &lo, &hi, &counts);
         if (iav_any(inside)) /* no march (see above) */
-            hit |= scene_rays_root(o, d, t_near, t_far, inside, 0, leaving, eps, 0, time, &lo, &hi, &counts);
+            hit |= scene_rays_root(o, d, t_near, t_far, inside, 0, leaving, g, eps, 0, time, &lo, &hi, &counts);
         crossed = hit & (hi - lo > eps); /* `whether`: a part where g crosses 0, not a leaf */
         hit &= ~crossed;
         out_from = select(out_from, select(IAV_R(IA_INF), lo, hit | crossed), outside | inside);
@@ -114,12 +117,13 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
         out_hi = select(out_hi, IAV_R(-IA_INF), left); /* else woven from the leaf on, passing through */
         if (iav_any(left)) {
             PACKET_COUNT(counts, left);
-            beyond = left & (scene_union_g_at(o, d, hi, time).lo > 0);
+            g = scene_union_g_at(o, d, hi, time);
+            beyond = left & (g.lo > 0);
         }
     }
-    if (iav_any(beyond)) { /* out of every region: the next root of g, claimed by any region */
+    if (iav_any(beyond)) { /* out of every region: the next root of g (at hi: g), claimed by any region */
         ia_realv lo2 = IAV_R(0), hi2 = IAV_R(0);
-        ia_maskv hit2 = scene_rays_root(o, d, hi, t_far, beyond, 1, leaving, eps, 0, time, &lo2, &hi2, &counts);
+        ia_maskv hit2 = scene_rays_root(o, d, hi, t_far, beyond, 1, leaving, g, eps, 0, time, &lo2, &hi2, &counts);
         out_from = select(out_from, select(IAV_R(IA_INF), lo2, hit2), beyond);
         out_hi = select(out_hi, hi2, beyond & hit2);
         pass = select(pass, IAV_R(0), beyond);
