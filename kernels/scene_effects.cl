@@ -55,7 +55,7 @@ __kernel void iacsg_scene_trace_rays(__constant ia_real *params, __global const 
     weave_hit hits[PACKET_LANES];
     kernel_u32 ray_evals[PACKET_LANES];
     /* no overflow: the buffers hold every solid */
-    scene_rays_trace(&view, &r, params, whether, ok, dk, tn, tf, meets, pass, found, hits, ray_evals);
+    scene_rays_trace(&view, &r, params, whether, 0, ok, dk, tn, tf, meets, pass, found, hits, ray_evals);
     for (int k = 0; k < PACKET_LANES && first + k < nrays; k++) {
         int ray = first + k, hit = found[k] == 1;
         ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]}, t = hits[k].t;

@@ -23,13 +23,13 @@ static void scene_fx_background(const scene_frame *f, shade_colorv row, shade_co
     shade_background(row, f->height / f->aa, top, bottom, bg);
 }
 
-/* Traces the packet's secondary rays from o along d over [0, tf] (lanes of `live`, each passing pass_k[k], weave.h)
- * with r's buffers (scene_rays_trace; `whether`: every item opaque, a ray may end on a proven crossing), their
+/* Traces the packet's secondary rays from o along d over [0, tf] (lanes of `live`, each passing pass_k[k], weave.h;
+ * start NULL, or g at o shared with other rays from there: scene_rays_start) with r's buffers (scene_rays_trace; `whether`: every item opaque, a ray may end on a proven crossing), their
  * origins and directions into ok, dk; found, hits as scene_rays_trace's. A lane whose ray overflows the buffers is
  * listed to be traced again (pixel[k] -1), as a camera ray that overflows. rays_k, evals_k: each lane's rays and
  * their evaluations, added. */
 static void scene_lanes_trace(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
-                              int whether, const ia_realv o[3], const ia_realv d[3], ia_realv tf, ia_maskv live,
+                              int whether, scene_rays_start *start, const ia_realv o[3], const ia_realv d[3], ia_realv tf, ia_maskv live,
                               const ia_real pass_k[PACKET_LANES], int pixel[PACKET_LANES],
                               kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES],
                               ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], int found[PACKET_LANES],
@@ -44,7 +44,7 @@ static void scene_lanes_trace(__constant ia_real *params, const scene_frame *f, 
     IAV_STORE(select(IAV_R(0), IAV_R(1), live), meets);
     IAV_STORE(select(IAV_R(0), IAV_R(1), live), cast);
     kernel_u32 evals[PACKET_LANES];
-    scene_rays_trace(view, r, params, whether, ok, dk, tn_k, tf_k, meets, pass_k, found, hits, evals);
+    scene_rays_trace(view, r, params, whether, start, ok, dk, tn_k, tf_k, meets, pass_k, found, hits, evals);
     for (int k = 0; k < PACKET_LANES; k++) {
         if (found[k] == SCENE_TRACE_OVERFLOW && pixel[k] >= 0) {
             f->overflow[atomic_inc(f->noverflow)] = pixel[k];
@@ -75,7 +75,7 @@ static void scene_lanes_hits(__constant ia_real *params, const scene_frame *f, c
     float albedo_k[3][PACKET_LANES];
     int found[PACKET_LANES];
     weave_hit hits[PACKET_LANES];
-    scene_lanes_trace(params, f, view, r, 0, o, d, tf, live, pass_k, pixel, rays_k, evals_k, ok, dk, found, hits);
+    scene_lanes_trace(params, f, view, r, 0, 0, o, d, tf, live, pass_k, pixel, rays_k, evals_k, ok, dk, found, hits);
     IAV_STORE(select(IAV_R(0), IAV_R(1), live), on);
     for (int k = 0; k < PACKET_LANES; k++) {
         int got = found[k] == 1 && on[k] != 0, item = got ? hits[k].item : 0;
@@ -180,6 +180,7 @@ static void scene_lanes_light(__constant ia_real *params, const scene_frame *f, 
     for (int c = 0; c < 3; c++)
         p[c] = o[c] + t * d[c];
     effects_off_surface(view->eps, p, t, n, so); /* on the side the normal faces (the ray's) */
+    scene_rays_start start = {iav_point(0), (ia_maskv)0}; /* g at so, for each light's shadow ray */
     for (int l = 0; l < EFFECTS_MAX_LIGHTS; l++) /* shade_effects reads the first nlights */
         vis[l] = IAV_R(l < nlights);
     for (int l = 0; shadows && l < nlights; l++) {
@@ -199,8 +200,8 @@ static void scene_lanes_light(__constant ia_real *params, const scene_frame *f, 
         int found[PACKET_LANES];
         weave_hit hits[PACKET_LANES];
         IAV_STORE(IAV_R(0), pass);
-        scene_lanes_trace(params, f, view, r, 1, so, sd, dist, cast, pass, pixel, rays_k, evals_k, sk, sdk, found,
-                          hits);
+        scene_lanes_trace(params, f, view, r, 1, &start, so, sd, dist, cast, pass, pixel, rays_k, evals_k, sk, sdk,
+                          found, hits);
         for (int k = 0; k < PACKET_LANES; k++) /* seen where the ray meets nothing */
             seen[k] = found[k] == 0;
         vis[l] = select(IAV_R(0), IAV_LOAD(seen), cast);

@@ -15,6 +15,13 @@
 #ifndef KERNELS_SCENE_RAYS_H
 #define KERNELS_SCENE_RAYS_H
 
+/* g at the point several secondary rays start from (t = 0 along each: a hit's shadow rays, one a light), in the
+ * lanes of `valid` (none at first): the first ray's trace evaluates it, the others take it. */
+typedef struct {
+    iav g;
+    ia_maskv valid;
+} scene_rays_start;
+
 #if defined(SCENE_REGIONS_DISJOINT) && defined(SCENE_UNION_PREPASS)
 #define SCENE_RAYS_MARCH 1
 /* g's first root on the lanes of `walking` over [a, b]: with `march`, the march off the surface the ray leaves
@@ -53,7 +60,8 @@ static ia_maskv scene_rays_other(scene_ray *r, const int states[SCENE_REGIONS_UN
     return IAV_LOAD(other) != 0;
 }
 
-/* Where the packet's rays (ok, dk over [tn, tf]) where meets[k] is not 0 meet a region first, in lanes, and which
+/* Where the packet's rays (ok, dk over [tn, tf]; start NULL, or g at their shared origin: scene_rays_start) where
+ * meets[k] is not 0 meet a region first, in lanes, and which
  * region the claim there may not be (pass_k[k], in: 1 + the region a transparent layer's ray passes through,
  * weave.h, else 0; out: the ray's `passing` from `from` on). evals: each lane's evaluations.
  * - A ray that starts outside every region (g > 0 at t_near, its enclosure at the point): g's first root
@@ -72,7 +80,8 @@ static ia_maskv scene_rays_other(scene_ray *r, const int states[SCENE_REGIONS_UN
  * from there; with `whether` (the scene's items all opaque), crossed_k 1 where g certainly crosses 0 in [from,
  * leaf_hi]. */
 static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real eps, int whether,
-                             const ia_real ok[3][PACKET_LANES], const ia_real dk[3][PACKET_LANES],
+                             scene_rays_start *start, const ia_real ok[3][PACKET_LANES],
+                             const ia_real dk[3][PACKET_LANES],
                              const ia_real tn[PACKET_LANES], const ia_real tf[PACKET_LANES],
                              const ia_real meets[PACKET_LANES], ia_real pass_k[PACKET_LANES],
                              ia_real from[PACKET_LANES], ia_real leaf_hi[PACKET_LANES], ia_real crossed_k[PACKET_LANES],
@@ -88,12 +97,18 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
     if (whether)
         on &= ~passing;
     iav g = iav_point(0); /* at t_near, where some lane is on */
-    if (iav_any(on)) {
+    if (start && iav_any(on) && !iav_any(on & ~(start->valid & (t_near == 0)))) {
+        g = start->g; /* the rays' shared start, evaluated by an earlier one */
+    } else if (iav_any(on)) {
         g = scene_union_g_at(o, d, t_near, time);
         PACKET_COUNT(counts, on);
-        outside = on & ~passing & (g.lo > 0);
-        inside = passing & (g.hi < 0);
+        if (start) { /* at the start itself where t_near is 0 (packet_extent there is o, whatever d is) */
+            start->g = g;
+            start->valid = on & (t_near == 0);
+        }
     }
+    outside = on & ~passing & (g.lo > 0);
+    inside = passing & (g.hi < 0);
     if (iav_any(inside)) { /* in no region but its own at t_near */
         scene_union_states(o, d, t_near, t_near, inside, time, states, &counts);
         inside &= ~scene_rays_other(r, states, pass_k, inside);
@@ -150,7 +165,7 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
  * `whether`; solid), 0 where nothing is hit in [tn, tf] within the bounds, SCENE_TRACE_OVERFLOW where the ray meets
  * more boxes than r has room for; evals[k] the ray's interval evaluations. r's solids are all OUT after. */
 static void scene_rays_trace(const scene_view *view, scene_ray *r, __constant ia_real *params, int whether,
-                             ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real tn[PACKET_LANES],
+                             scene_rays_start *start, ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real tn[PACKET_LANES],
                              ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES],
                              const ia_real pass_in[PACKET_LANES], int found[PACKET_LANES],
                              weave_hit hits[PACKET_LANES], kernel_u32 evals[PACKET_LANES]) {
@@ -179,10 +194,10 @@ static void scene_rays_trace(const scene_view *view, scene_ray *r, __constant ia
     }
 #ifdef SCENE_RAYS_MARCH
     int states[SCENE_REGIONS_UNION][PACKET_LANES] = {{0}};
-    scene_rays_union(r, params, view->eps, whether, ok, dk, tn, tf, meets, pass, from, leaf_hi, crossed, states,
-                     from_evals);
+    scene_rays_union(r, params, view->eps, whether, start, ok, dk, tn, tf, meets, pass, from, leaf_hi, crossed,
+                     states, from_evals);
 #else
-    (void)whether;
+    (void)whether, (void)start;
 #endif
     for (int k = 0; k < PACKET_LANES; k++) {
         ia_real o[3] = {ok[0][k], ok[1][k], ok[2][k]}, d[3] = {dk[0][k], dk[1][k], dk[2][k]};
