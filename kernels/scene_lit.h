@@ -24,13 +24,13 @@ static void scene_fx_background(const scene_frame *f, shade_colorv row, shade_co
 }
 
 /* Traces the packet's secondary rays from o along d over [0, tf] (lanes of `live`, each passing pass_k[k], weave.h;
- * start NULL, or g at o shared with other rays from there: scene_rays_start) with r's buffers (scene_rays_trace; `whether`: every item opaque, a ray may end on a proven crossing), their
- * origins and directions into ok, dk; found, hits as scene_rays_trace's. A lane whose ray overflows the buffers is
- * listed to be traced again (pixel[k] -1), as a camera ray that overflows. rays_k, evals_k: each lane's rays and
- * their evaluations, added. */
+ * start NULL, or g at o shared with other rays from there: scene_rays_start) with r's buffers (scene_rays_trace;
+ * `whether`: every item opaque, a ray may end on a proven crossing), their origins and directions into ok, dk;
+ * found, hits as scene_rays_trace's. A lane whose ray overflows the buffers is listed to be traced again (pixel[k]
+ * -1), as a camera ray that overflows. rays_k, evals_k: each lane's rays and their evaluations, added. */
 static void scene_lanes_trace(__constant ia_real *params, const scene_frame *f, const scene_view *view, scene_ray *r,
-                              int whether, scene_rays_start *start, const ia_realv o[3], const ia_realv d[3], ia_realv tf, ia_maskv live,
-                              const ia_real pass_k[PACKET_LANES], int pixel[PACKET_LANES],
+                              int whether, scene_rays_start *start, const ia_realv o[3], const ia_realv d[3],
+                              ia_realv tf, ia_maskv live, const ia_real pass_k[PACKET_LANES], int pixel[PACKET_LANES],
                               kernel_u32 rays_k[PACKET_LANES], kernel_u32 evals_k[PACKET_LANES],
                               ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], int found[PACKET_LANES],
                               weave_hit hits[PACKET_LANES]) {

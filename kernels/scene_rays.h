@@ -165,7 +165,8 @@ static void scene_rays_union(scene_ray *r, __constant ia_real *params, ia_real e
  * `whether`; solid), 0 where nothing is hit in [tn, tf] within the bounds, SCENE_TRACE_OVERFLOW where the ray meets
  * more boxes than r has room for; evals[k] the ray's interval evaluations. r's solids are all OUT after. */
 static void scene_rays_trace(const scene_view *view, scene_ray *r, __constant ia_real *params, int whether,
-                             scene_rays_start *start, ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES], ia_real tn[PACKET_LANES],
+                             scene_rays_start *start, ia_real ok[3][PACKET_LANES], ia_real dk[3][PACKET_LANES],
+                             ia_real tn[PACKET_LANES],
                              ia_real tf[PACKET_LANES], ia_real meets[PACKET_LANES],
                              const ia_real pass_in[PACKET_LANES], int found[PACKET_LANES],
                              weave_hit hits[PACKET_LANES], kernel_u32 evals[PACKET_LANES]) {

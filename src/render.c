@@ -379,7 +379,8 @@ fail:
  * next one longer (up to 16 times, and up to `max_units`), so that a frame stops soon after a cancel but does not
  * pay a launch and its wait per narrow band: on PoCL here each cost ~2 ms, and a 1024x1024 reference view in 16
  * bands of 64 rows (the command's own, when stderr is a terminal) took 29-44 ms against 24-30 in one. Both paths:
- * units of blocks (here and in render_scene.c), each a divisor of IACSG_ROW_ALIGN so that a band starts on a whole unit. */
+ * units of blocks (here and in render_scene.c), each a divisor of IACSG_ROW_ALIGN so that a band starts on a whole
+ * unit. */
 iacsg_status render_launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, size_t groups_x,
                                  int unit_rows, int band_units, int max_units, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
