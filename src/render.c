@@ -373,19 +373,22 @@ fail:
 /* A waited band (progress or cancel) that took less than half this grows towards it. */
 #define BAND_SECONDS 0.04
 
-/* The view's rows, [row_first, row_first + row_count) or all of them, in bands of `band_units` units of `unit_rows`
+/* The view's rows, [row_first, row_first + row_count) or all of them, in bands of `max_units` units of `unit_rows`
  * rows, one launch each over `groups_x` x (the band's units) work-items, kernel argument 4 the band's first unit.
- * With a progress or cancel callback, waits for each band, and a band that took under BAND_SECONDS / 2 makes the
- * next one longer (up to 16 times, and up to `max_units`), so that a frame stops soon after a cancel but does not
+ * With a progress or cancel callback, waits for each band, the first `waited_units` long, and a band that took
+ * under BAND_SECONDS / 2 makes the next one longer (up to 16 times, and up to `max_units`), so that a frame stops
+ * soon after a cancel but does not
  * pay a launch and its wait per narrow band: on PoCL here each cost ~2 ms, and a 1024x1024 reference view in 16
  * bands of 64 rows (the command's own, when stderr is a terminal) took 29-44 ms against 24-30 in one. Both paths:
  * units of blocks (here and in render_scene.c), each a divisor of IACSG_ROW_ALIGN so that a band starts on a whole
  * unit. */
 iacsg_status render_launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, size_t groups_x,
-                                 int unit_rows, int band_units, int max_units, iacsg_error *err) {
+                                 int unit_rows, int waited_units, int max_units, iacsg_error *err) {
     cl_command_queue q = r->rt.queue;
     int first = view->row_first, end = view->row_count ? first + view->row_count : view->height;
-    for (int row0 = first, band = band_units * unit_rows, rows = 0; row0 < end; row0 += rows) {
+    int waited = view->progress || view->cancel;
+    int band = (waited && waited_units < max_units ? waited_units : max_units) * unit_rows;
+    for (int row0 = first, rows = 0; row0 < end; row0 += rows) {
         rows = end - row0 < band ? end - row0 : band;
         double started = render_now_seconds();
         cl_int unit0 = row0 / unit_rows;
@@ -393,7 +396,7 @@ iacsg_status render_launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_vie
         CLRT_CHECK(err, clSetKernelArg(k, 4, sizeof(cl_int), &unit0));
         size_t local[2] = {1, 1}; /* work-items are independent: let the device spread them over all its cores */
         CLRT_CHECK(err, clEnqueueNDRangeKernel(q, k, 2, NULL, global, local, 0, NULL, NULL));
-        if (!view->progress && !view->cancel)
+        if (!waited)
             continue;
         CLRT_CHECK(err, clFinish(q));
         if (view->progress)
@@ -412,9 +415,8 @@ fail:
 /* Each band of rows, one launch (each block's tiles, then its pixels). */
 static iacsg_status launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, iacsg_error *err) {
     size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
-    int band = view->progress || view->cancel ? BAND_ROWS_PROGRESS : BAND_ROWS;
-    return render_launch_bands(r, k, view, (tiles_x + PACKET_W - 1) / PACKET_W, BLOCK_ROWS, band / BLOCK_ROWS,
-                               BAND_ROWS / BLOCK_ROWS, err);
+    return render_launch_bands(r, k, view, (tiles_x + PACKET_W - 1) / PACKET_W, BLOCK_ROWS,
+                               BAND_ROWS_PROGRESS / BLOCK_ROWS, BAND_ROWS / BLOCK_ROWS, err);
 }
 
 /* Brings the images (and the counts, with stats) to the host and waits for them. */

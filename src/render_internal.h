@@ -49,9 +49,10 @@ iacsg_status render_fill_params(const iacsg_view *v, int fp64, void *block, iacs
 /* An error naming -size when a frame's buffers, `per_pixel` 4-byte values a pixel, cannot fit the device. */
 iacsg_status render_check_device_memory(const iacsg_renderer *r, const iacsg_view *view, size_t n, double per_pixel,
                                         iacsg_error *err);
-/* Launches kernel k (r->kernel, or the effects' camera kernel) over the view's rows in bands (render.c). */
+/* Launches kernel k (r->kernel, or the effects' camera kernel) over the view's rows in bands (render.c): of
+ * max_units units, or from waited_units on where a progress or cancel callback waits for each. */
 iacsg_status render_launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, size_t groups_x,
-                                 int unit_rows, int band_units, int max_units, iacsg_error *err);
+                                 int unit_rows, int waited_units, int max_units, iacsg_error *err);
 /* A host array of `bytes` that a device uses in place (CL_MEM_USE_HOST_PTR), page-aligned, in huge pages from
  * 2 MB on; and a frame's image of `count` floats in one. Both are freed with free(). */
 void *render_in_place_alloc(size_t bytes);

@@ -343,7 +343,6 @@ static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_
     double per_row = (double)groups_x * (double)slot_bytes(r, b->cand_cap);
     size_t most = (size_t)fmax(1, fmin(SCENE_BAND_BLOCKS, SCENE_SCRATCH_BUDGET / per_row));
     most = most < block_rows ? most : block_rows;
-    size_t band = view->progress || view->cancel ? 1 : most; /* render_launch_bands grows it up to most */
     iacsg_status st = scratch_buffers(r, b, groups_x * most, b->cand_cap, err);
     if (st == IACSG_OK)
         st = zero_count(r, b->nlist[0], err);
@@ -353,7 +352,7 @@ static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_
     if (st == IACSG_OK)
         st = set_launch_args(r, 0, &none, 0, &b->list[0], &b->nlist[0], err);
     if (st == IACSG_OK)
-        st = render_launch_bands(r, r->kernel, view, groups_x, SCENE_BLOCK, (int)band, (int)most, err);
+        st = render_launch_bands(r, r->kernel, view, groups_x, SCENE_BLOCK, 1, (int)most, err);
     return st;
 }
 
