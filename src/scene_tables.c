@@ -1,14 +1,13 @@
 /* src/scene_tables.c -- see scene_tables.h. */
 #include "scene_tables.h"
+#include "parallel.h"
 #include "scene_terms.h"
 #include "render.h"
 #include "implicits/prim_place.h"
 #include "kernels/scene_data.h"
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 void scene_palette(int id, float rgb[3]) {
     static const float palette[8][3] = {{0.80f, 0.30f, 0.22f}, {0.25f, 0.45f, 0.85f}, {0.90f, 0.70f, 0.20f},
@@ -115,26 +114,12 @@ static void prove_boxes(const iacsg_scene *s, const unsigned char *used) {
     for (int k = 0; k < s->nsolids; k++)
         if (used[k] && !s->solids[k].prim && !s->solids[k].box_known && !iacsg_expr_uses_time(s->solids[k].expr))
             todo[ntodo++] = k;
-    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    int threads = cpus < 2 ? 1 : cpus > BOX_THREADS_MAX ? BOX_THREADS_MAX : (int)cpus;
+    int threads = parallel_cpus(BOX_THREADS_MAX);
     if (ntodo >= BOX_THREADS_MIN && threads > 1) {
-        pthread_t id[BOX_THREADS_MAX];
         box_share share[BOX_THREADS_MAX];
-        int started = 0;
-        for (int k = 1; k < threads; k++) {
-            share[k] = (box_share){s->solids, todo, ntodo, k, threads};
-            if (pthread_create(&id[k], NULL, prove_share, &share[k]) != 0)
-                break;
-            started = k;
-        }
-        /* this thread takes share 0, and the shares of threads that did not start */
         for (int k = 0; k < threads; k++)
-            if (k == 0 || k > started) {
-                share[k] = (box_share){s->solids, todo, ntodo, k, threads};
-                prove_share(&share[k]);
-            }
-        for (int k = 1; k <= started; k++)
-            pthread_join(id[k], NULL);
+            share[k] = (box_share){s->solids, todo, ntodo, k, threads};
+        parallel_each(prove_share, share, sizeof share[0], threads);
     }
     free(todo);
 }
