@@ -22,8 +22,9 @@
 #define CAMERA_ULP_SQRT IA_ULP_SQRT
 #endif
 
-/* The screen coordinates s of column i and v of row j. Each is a chain of monotone rounded operations, so s
- * increases with i and v decreases with j also in floating point (kernels/tile.h relies on it). */
+/* The screen coordinates s of column i and v of row j (camera_ray_at's of doubled column 2 i + 1 and row 2 j + 1).
+ * Each is a chain of monotone rounded operations, so s increases with the doubled column and v decreases with the
+ * doubled row also in floating point (kernels/tile.h relies on it). */
 IA_FN ia_real camera_s(const KERNEL_CONSTANT ia_real *p, int i, int width) {
     return ((ia_real)(2 * i + 1) / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];
 }
@@ -31,10 +32,11 @@ IA_FN ia_real camera_v(const KERNEL_CONSTANT ia_real *p, int j, int height) {
     return ((ia_real)1 - (ia_real)(2 * j + 1) / (ia_real)height) * p[PARAM_SCALE_V];
 }
 
-/* Enclosures of camera_s of columns i0..i1 and camera_v of rows j0..j1. With a correctly rounded / they are
- * monotone in the index, so the ends' values are the bounds. Otherwise each quotient (2k + 1) / n may be
- * CAMERA_ULP_DIV ulps off either way, and need not be monotone: the ends' quotients widened by twice that (their
- * own error and a pixel's), then the rest in outward rounding, which contains its rounded results. */
+/* Enclosures of camera_s of columns i0..i1 and camera_v of rows j0..j1, and of the s and v of every ray between
+ * (doubled columns and rows between the ends' centres). With a correctly rounded / they are monotone in the doubled
+ * column or row, so the ends' values are the bounds. Otherwise each quotient x2 / n may be CAMERA_ULP_DIV ulps off
+ * either way, and need not be monotone: the ends' quotients widened by twice that (their own error and a ray's),
+ * then the rest in outward rounding, which contains its rounded results. */
 #if CAMERA_ULP_DIV == 0
 IA_FN ia_interval camera_s_range(const KERNEL_CONSTANT ia_real *p, int i0, int i1, int width) {
     return ia_make(camera_s(p, i0, width), camera_s(p, i1, width));
@@ -62,9 +64,12 @@ IA_FN ia_interval camera_as_rounded(ia_interval a, int k) {
     return k == 0 ? a : ia_make(ia_lo_k(a.lo, k), ia_hi_k(a.hi, k));
 }
 
-IA_FN void camera_ray(const KERNEL_CONSTANT ia_real *p, int ortho, int i, int j, int width, int height,
-                      ia_real o[3], ia_real d[3]) {
-    ia_real s = camera_s(p, i, width), v = camera_v(p, j, height);
+/* The ray through doubled column x2 and doubled row y2 (camera_s, camera_v; -aa's samples between the centres:
+ * packet_camera.h's packet_rays_at, the same operations in lanes). */
+IA_FN void camera_ray_at(const KERNEL_CONSTANT ia_real *p, int ortho, ia_real x2, ia_real y2, int width, int height,
+                         ia_real o[3], ia_real d[3]) {
+    ia_real s = (x2 / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];
+    ia_real v = ((ia_real)1 - y2 / (ia_real)height) * p[PARAM_SCALE_V];
     for (int k = 0; k < 3; k++) {
         ia_real offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
         o[k] = ortho ? p[PARAM_EYE + k] + offset : p[PARAM_EYE + k];
@@ -75,6 +80,11 @@ IA_FN void camera_ray(const KERNEL_CONSTANT ia_real *p, int ortho, int i, int j,
         for (int k = 0; k < 3; k++)
             d[k] = d[k] / len;
     }
+}
+
+IA_FN void camera_ray(const KERNEL_CONSTANT ia_real *p, int ortho, int i, int j, int width, int height,
+                      ia_real o[3], ia_real d[3]) {
+    camera_ray_at(p, ortho, (ia_real)(2 * i + 1), (ia_real)(2 * j + 1), width, height, o, d);
 }
 
 /* Where the ray enters and leaves the slab lo..hi of one axis (d != 0), enclosed: the exact crossings

@@ -76,6 +76,55 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
     return hit;
 }
 
+/* -aa's sample rays o + t d of the lanes of `on`, ray k through doubled column x2[k] and row y2[k] of pixel pix[k]
+ * (packet_rays_at), with leaves eps wide and Newton's window `newton`. A ray inside the box of its tile's centre
+ * rays (doubled columns and rows from its first pixel's centre's to its last's: tile_rays_of's box holds every ray
+ * between, its bounds monotone in them, or widened for an inexact /) is traced as the camera rays are (render.cl:
+ * trace_packet), from the tile's first coarse leaf in `tiles` (none where the tile pass proved the tile empty), with
+ * the tile's groups of a union (tile_groups_of) where every lane is in one tile; the others, on its outer border,
+ * from the root of the frame's tree with all_groups. Out: the start of the hit leaf in *t (+inf on a miss) and the
+ * unit normal there facing the ray in n. Counts the rays and their evaluations (KERNEL_STATS). Reference view at
+ * -aa 4: 33 -> N evaluations a sample (all from the root before; the camera rays 4.4). */
+static ia_maskv effects_trace_samples(__constant ia_real *params, int width, int height,
+                                      __global const ia_real *tiles, __global const ulong *tile_groups_of,
+                                      __global const ulong *all_groups, const int pix[IA_VW],
+                                      const ia_real x2[IA_VW], const ia_real y2[IA_VW], const ia_realv o[3],
+                                      const ia_realv d[3], ia_maskv on, ia_real eps, ia_real newton, ia_realv *t,
+                                      ia_realv n[3], packet_index *rays, packet_index *evals) {
+    int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE;
+    ia_real level_k[IA_VW], leaf_k[IA_VW];
+    size_t tile_k[IA_VW];
+    int one_tile = 1;
+    for (int k = 0; k < IA_VW; k++) {
+        int tx = pix[k] % width / TILE_SIZE, ty = pix[k] / width / TILE_SIZE;
+        int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
+        int i1 = min(i0 + TILE_SIZE, width) - 1, j1 = min(j0 + TILE_SIZE, height) - 1;
+        int inside = x2[k] >= (ia_real)(2 * i0 + 1) && x2[k] <= (ia_real)(2 * i1 + 1) &&
+                     y2[k] >= (ia_real)(2 * j0 + 1) && y2[k] <= (ia_real)(2 * j1 + 1);
+        tile_k[k] = tile_index(tx, ty, tiles_x);
+        level_k[k] = inside ? tiles[2 * tile_k[k]] : 0;
+        leaf_k[k] = inside ? tiles[2 * tile_k[k] + 1] : 0;
+        one_tile &= inside && tile_k[k] == tile_k[0]; /* (the lanes past the launch's paths repeat its last one) */
+    }
+    const __global ulong *groups = one_tile ? tile_groups_of + tile_k[0] * TILE_GROUPS_WORDS : all_groups;
+    ia_realv level_r = IAV_LOAD(level_k), t_near, t_far, lo = IAV_R(0), hi = IAV_R(0);
+    ia_maskv searching = on & (level_r >= 0) & packet_clip(params, o, d, &t_near, &t_far), hit = (ia_maskv)0;
+    PACKET_COUNT(*rays, on);
+    ia_real t0, w, time = params[PARAM_TIME_LO];
+    frame_root(params, &t0, &w);
+    packet_int level = select((packet_int)0, packet_to_int(level_r), searching);
+    packet_index start = max(packet_to_index(IAV_LOAD(leaf_k)), packet_node_at_levels(t0, w, level, searching, t_near));
+    if (iav_any(searching))
+        hit = packet_first_root(groups, o, d, t0, w, level, start, t_near, t_far, searching, eps, newton, 0,
+                                iav_const(time, params[PARAM_TIME_HI]), &lo, &hi, evals);
+    *t = select(IAV_R(IA_INF), lo, hit);
+    ia_realv g[3] = {IAV_R(0), IAV_R(0), IAV_R(0)};
+    if (iav_any(hit))
+        packet_gradients(groups, t0, w, hit, o, d, lo * (ia_real)0.5 + hi * (ia_real)0.5, time, g);
+    shade_normals(g, d, n);
+    return hit;
+}
+
 /* The background (the effects' block fx: top and bottom colours) of rows `row` of `height`, linear. */
 static void effects_background(__constant ia_real *fx, ia_realv row, int height, shade_colorv bg[3]) {
     float top[3], bottom[3];
@@ -332,7 +381,7 @@ __attribute__((noinline)) static void effects_centre(__constant ia_real *params,
 /* Paths first .. first + 15 of the launch. mode (kernels/effects.h): EFFECTS_MODE_CENTRE, path k the centre ray
  * of pixel pixels[k], its hit the frame's (depth, normal); EFFECTS_MODE_AA, path k the ray (k mod m) of the m
  * rays of the aa x aa grid in `aa_set` (effects_aa_cell) in pixel pixels[k / m], weight 1 / aa^2, traced with
- * leaves aa_eps (as camera rays);
+ * leaves aa_eps (as camera rays, from the frame's tile pass: `tiles` and `tile_groups_of`, render.cl's);
  * EFFECTS_MODE_PATHS, path k the ray paths[k] (EFFECTS_PATH_REALS) of pixel pixels[k]. Interval Newton's window
  * in the walks (packet.h): 32 `footprint`s, the camera rays'. Out per path: its colour (3 floats: linear light
  * times the weight, in `color`; a centre ray's in its pixel of the frame's `rgb`, display-encoded when it lists no
@@ -343,7 +392,8 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
                             int aa, __global const float *depth, __global const float *normal,
                             ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
                             __global float *rgb, __global float *color, __global ia_real *kids,
-                            __global int *nkids, int kid_slots, __global uint *stats, int aa_set) {
+                            __global int *nkids, int kid_slots, __global uint *stats, int aa_set,
+                            __global const ia_real *tiles, __global const ulong *tile_groups_of) {
     int first = (int)get_global_id(0) * IA_VW;
     if (first >= npaths)
         return;
@@ -396,11 +446,12 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
         hit = live & isfinite(t);
         for (int c = 0; c < 3; c++)
             n[c] = IAV_LOAD(n_k[c]);
+    } else if (mode == EFFECTS_MODE_AA) {
+        hit = effects_trace_samples(params, width, height, tiles, tile_groups_of, all_groups, pix, x2_k, y2_k, o, d,
+                                    live, aa_eps, footprint, &t, n, &rays, &evals);
     } else {
-        int camera = mode == EFFECTS_MODE_AA;
-        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live,
-                            camera ? IAV_R(0) : effects_offset(eps, o, IAV_R(0)),
-                            camera ? aa_eps : eps, footprint, 0, &t, 1, n, 0, 0, &rays, &evals);
+        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, effects_offset(eps, o, IAV_R(0)),
+                            eps, footprint, 0, &t, 1, n, 0, 0, &rays, &evals);
     }
     shade_colorv acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
     int nk[IA_VW];

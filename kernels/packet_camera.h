@@ -52,8 +52,8 @@ IA_FN packet_int packet_lane_numbers(void) {
 #endif
 }
 
-/* camera_ray through the points of the image whose coordinates, in pixels from its top left corner, are x2 / 2
- * and y2 / 2 (pixel (i, j)'s centre: x2 = 2 i + 1, y2 = 2 j + 1, exact). */
+/* camera_ray_at in lanes: the rays through the points of the image whose coordinates, in pixels from its top left
+ * corner, are x2 / 2 and y2 / 2 (pixel (i, j)'s centre: x2 = 2 i + 1, y2 = 2 j + 1, exact). */
 IA_FN void packet_rays_at(const KERNEL_CONSTANT ia_real *p, int ortho, ia_realv x2, ia_realv y2, int width,
                           int height, ia_realv o[3], ia_realv d[3]) {
     ia_realv s = (x2 / (ia_real)width - (ia_real)1) * p[PARAM_SCALE_S];

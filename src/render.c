@@ -543,7 +543,8 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
                             frame);
         if (frame->ids)
             ids_from_depth(frame->depth, n, frame->ids);
-        st = render_effects_apply(r, view, frame, in_camera ? &fx_camera : NULL, err);
+        render_frame_tiles tiles = {buffers.tiles, buffers.groups};
+        st = render_effects_apply(r, view, frame, in_camera ? &fx_camera : NULL, &tiles, err);
         if (view->no_normals && frame->normal) {
             free(frame->normal);
             frame->normal = NULL;

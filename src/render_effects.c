@@ -831,7 +831,8 @@ void render_effects_camera_close(render_fx_camera *c) {
 }
 
 iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame,
-                                  const render_fx_camera *in_camera, iacsg_error *err) {
+                                  const render_fx_camera *in_camera, const render_frame_tiles *tiles,
+                                  iacsg_error *err) {
     if (!effects_on(r, view->effects))
         return IACSG_OK;
     double t0 = render_now_seconds();
@@ -846,6 +847,8 @@ iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iac
     int left = !in_camera || view->effects->aa > 1; /* anything the camera kernel did not do */
     if (st == IACSG_OK && left)
         st = fx_tracer_open(&f.tracer, r, view, err);
+    if (tiles)
+        f.tracer.tiles = *tiles;
     f.accum = frame->rgb;
     depth_range(&f, frame);
     f.block[EFFECTS_DEPTH_LO] = f.depth_lo;

@@ -121,7 +121,9 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
                 {sizeof(cl_mem), &x->normal},    {rb, aa_eps},
                 {rb, footprint},                 {sizeof(cl_mem), &x->t->all_groups}, {sizeof(cl_mem), &x->rgb},
                 {sizeof(cl_mem), &mem[2]},       {sizeof(cl_mem), &mem[3]},  {sizeof(cl_mem), &mem[4]},
-                {sizeof slots, &slots},          {sizeof(cl_mem), &mem[5]},  {sizeof set, &set}};
+                {sizeof slots, &slots},          {sizeof(cl_mem), &mem[5]},  {sizeof set, &set},
+                {sizeof(cl_mem), x->t->tiles.leaves ? &x->t->tiles.leaves : NULL},
+                {sizeof(cl_mem), x->t->tiles.groups ? &x->t->tiles.groups : NULL}};
     for (cl_uint a = 0; a < sizeof args / sizeof args[0] && st == IACSG_OK; a++)
         st = set_arg(x->k, a, args[a].bytes, args[a].v, err);
     size_t global = n > 0 ? (n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */

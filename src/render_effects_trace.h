@@ -76,6 +76,7 @@ typedef struct {
     iacsg_renderer *r;
     const iacsg_view *view;
     cl_mem params, all_groups;
+    render_frame_tiles tiles; /* the frame's tile pass, where -aa's samples start (first-root path), or none */
     double footprint; /* a pixel's footprint at the bounds' farthest corner */
     void *host;       /* the rays and hits of a call, in the working precision; grows, reused by each call */
     long long rays;   /* secondary rays traced, and their interval evaluations (with config.stats) */

@@ -91,10 +91,16 @@ int render_effects_camera_final(const iacsg_renderer *r, const iacsg_view *view)
 iacsg_status render_effects_camera_open(iacsg_renderer *r, const iacsg_view *view, size_t packets,
                                         render_fx_camera *c, iacsg_error *err);
 void render_effects_camera_close(render_fx_camera *c);
+/* The first-root path's tile pass of a frame (kernels/render.cl: tiles, tile_groups_of): per tile its first coarse
+ * leaf and a union's groups, where -aa's samples inside the box of its pixels' centre rays start. */
+typedef struct {
+    cl_mem leaves, groups;
+} render_frame_tiles;
 /* The effects of a frame, after its camera rays (render_effects.c): a no-op without view->effects. in_camera:
- * the camera kernel's (then only -aa's edges are left), or NULL. */
+ * the camera kernel's (then only -aa's edges are left), or NULL; tiles: the first-root path's tile pass, or NULL. */
 iacsg_status render_effects_apply(iacsg_renderer *r, const iacsg_view *view, iacsg_frame *frame,
-                                  const render_fx_camera *in_camera, iacsg_error *err);
+                                  const render_fx_camera *in_camera, const render_frame_tiles *tiles,
+                                  iacsg_error *err);
 /* Whether the effects need the frame's depth and normals (which the frame then computes, and drops after). */
 int render_effects_need_aovs(const iacsg_renderer *r, const iacsg_view *view);
 /* Of those, what the effects need after the camera kernel: the depths for the pass over the centre hits or for

@@ -494,7 +494,7 @@ iacsg_status render_scene_frame(iacsg_renderer *r, const iacsg_view *view, iacsg
         frame->rays = (long long)traced;
         frame->ray_buffer_bytes = (long long)slot_bytes(r, b.cand_cap);
         summarize(overlap + at, counts ? counts + 3 * at : NULL, frame->ids + at, traced, frame);
-        st = render_effects_apply(r, view, frame, b.fx, err);
+        st = render_effects_apply(r, view, frame, b.fx, NULL, err);
         float **unasked[] = {view->no_depth ? &frame->depth : NULL, view->no_normals ? &frame->normal : NULL};
         for (int k = 0; k < 2; k++)
             if (unasked[k]) {

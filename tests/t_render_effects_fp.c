@@ -619,6 +619,42 @@ TEST_FP(effects_aa_corners_then_rest_cover_the_grid) {
  * pixel, one packet). */
 TEST_FP(effects_aa_edges_regions) { check_aa_edges(render_scene_text, "region ball = sphere\n"); }
 
+/* -aa's samples start where the frame's tile pass left their tile's rays only when they lie inside the box of its
+ * pixels' centre rays (kernels/effects.cl: effects_trace_samples). A box whose left and top faces pass a tenth of a
+ * pixel inside pixels column 7 and row 7, past their centres (64x64, tiles of 8): the tiles left of and above it
+ * are proven empty over their centre rays, yet half of those pixels' samples meet the box. Each such pixel is the
+ * blend of its coverage, 1/2, between the box's colour and its own background (not the corner pixel (7, 7): no
+ * neighbour across a side differs from it, so -aa's edge test passes it over). */
+TEST_FP(effects_aa_samples_past_their_tile) {
+    iacsg_view view = sphere_ortho_view(64);
+    double half = view.camera.ortho_height / 2, edge = (15.1 / 64 - 1) * half; /* doubled column and row 15.1 */
+    char text[256];
+    snprintf(text, sizeof text, "max(%.17g - x, x - 1, y - %.17g, -1 - y, abs(z) - 0.5)", edge, -edge);
+    iacsg_frame plain, aa;
+    render_expr(text, &view, &plain);
+    iacsg_effects fx = {.aa = 4};
+    view.effects = &fx;
+    render_expr(text, &view, &aa);
+    long checked = 0;
+    double worst = 0;
+    for (int k = 8; k < 40; k++)
+        for (int side = 0; side < 2; side++) { /* pixel (7, k), then (k, 7), and their neighbours inside the box */
+            int i = side ? k : 7, j = side ? 7 : k;
+            size_t px = (size_t)j * view.width + i, in = px + (side ? (size_t)view.width : 1);
+            CHECK(isinf(plain.depth[px]) && isfinite(plain.depth[in]), "pixel (%d, %d) should miss the box, its "
+                  "neighbour inside hit it", i, j);
+            for (int ch = 0; ch < 3; ch++) {
+                double S = plain.rgb[3 * in + ch], B = plain.rgb[3 * px + ch];
+                worst = fmax(worst, fabs(aa.rgb[3 * px + ch] - sqrt(0.5 * S * S + 0.5 * B * B)));
+            }
+            checked++;
+        }
+    iacsg_frame_free(&plain);
+    iacsg_frame_free(&aa);
+    CHECK(worst <= 1e-4, "a pixel is %g off the blend of its coverage", worst);
+    test_note("%ld pixels past their tiles' centre rays within %.1e of the blend of their coverage", checked, worst);
+}
+
 /* The colour's linear light (gamma 2, kernels/light.h). */
 static double linear(float shown) { return (double)shown * shown; }
 

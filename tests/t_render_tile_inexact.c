@@ -1,9 +1,10 @@
 /* tests/t_render_tile_inexact.c -- a device whose float / and sqrt are not correctly rounded (the OpenCL spec
- * allows 2.5 and 3 ulps): the tile pass's box still holds every pixel ray, and the renderer built for such a
- * device (forced on PoCL with IACSG_INEXACT_DIVIDE_SQRT) misses no pixel.
+ * allows 2.5 and 3 ulps): the tile pass's box still holds every pixel ray (and -aa's samples between the tile's
+ * centres), and the renderer built for such a device (forced on PoCL with IACSG_INEXACT_DIVIDE_SQRT) misses no
+ * pixel.
  *
  * The host model compiles kernels/tile.h with the device's non-correctly-rounded error bounds and draws each
- * pixel's ray as such a device may compute it: every / and sqrt of camera_ray's chain up to 2 floats off the
+ * pixel's ray, and a random sample's of it, as such a device may compute it: every / and sqrt of camera_ray's chain up to 2 floats off the
  * correctly rounded result (within 2.5 ulps of the exact one), each way. */
 #define CAMERA_ULP_DIV 3  /* ia/round.h's figures for a float device without -cl-fp32-correctly-rounded-... */
 #define CAMERA_ULP_SQRT 3
@@ -29,12 +30,12 @@ static float step_floats(float x, int steps) {
     return x;
 }
 
-/* Pixel (i, j)'s ray in camera_ray's order of operations, with the quotients of s and v, the sqrt and the three
- * divisions moved err[0..5] floats off their correctly rounded values. */
-static void inexact_ray(const float *p, int ortho, int i, int j, int w, int h, const int err[6], float o[3],
+/* The ray through doubled column x2 and row y2 in camera_ray_at's order of operations, with the quotients of s and
+ * v, the sqrt and the three divisions moved err[0..5] floats off their correctly rounded values. */
+static void inexact_ray(const float *p, int ortho, float x2, float y2, int w, int h, const int err[6], float o[3],
                         float d[3]) {
-    float s = (step_floats((float)(2 * i + 1) / (float)w, err[0]) - 1) * p[PARAM_SCALE_S];
-    float v = (1 - step_floats((float)(2 * j + 1) / (float)h, err[1])) * p[PARAM_SCALE_V];
+    float s = (step_floats(x2 / (float)w, err[0]) - 1) * p[PARAM_SCALE_S];
+    float v = (1 - step_floats(y2 / (float)h, err[1])) * p[PARAM_SCALE_V];
     for (int k = 0; k < 3; k++) {
         float offset = s * p[PARAM_RIGHT + k] + v * p[PARAM_UP + k];
         o[k] = ortho ? p[PARAM_EYE + k] + offset : p[PARAM_EYE + k];
@@ -61,26 +62,32 @@ TEST(render_tile_box_holds_inexact_rays) {
         tile_rays_of(p, ortho, i0, i1, j0, j1, w, h, &rays);
         tile_box(&rays, ia_make(a, b), box);
         for (int j = j0; j <= j1; j++)
-            for (int i = i0; i <= i1; i++) {
-                int errs[6];
-                for (int k = 0; k < 6; k++) /* the extremes half of the time */
-                    errs[k] = test_rand_u64(rng) & 1 ? (test_rand_u64(rng) & 1 ? 2 : -2)
-                                                     : (int)(test_rand_u64(rng) % 5) - 2;
-                float o[3], d[3];
-                inexact_ray(p, ortho, i, j, w, h, errs, o, d);
-                for (int k = 0; k < 3; k++) {
-                    ia_interval x = ray_extent(o[k], d[k], ia_make(a, b));
-                    CHECK(box[k].lo <= x.lo && x.hi <= box[k].hi,
-                          "%s view %dx%d, pixel (%d, %d) of tile (%d..%d, %d..%d), errors %d %d %d %d %d %d, axis %d: "
-                          "ray [%a, %a] outside the tile box [%a, %a]",
-                          ortho ? "orthographic" : "perspective", w, h, i, j, i0, i1, j0, j1, errs[0], errs[1],
-                          errs[2], errs[3], errs[4], errs[5], k, (double)x.lo, (double)x.hi, (double)box[k].lo,
-                          (double)box[k].hi);
+            for (int i = i0; i <= i1; i++)
+                for (int sample = 0; sample < 2; sample++) {
+                    float x2 = (float)(2 * i + 1), y2 = (float)(2 * j + 1);
+                    if (sample)
+                        random_sample(rng, i, j, &x2, &y2);
+                    if (x2 < 2 * i0 + 1 || x2 > 2 * i1 + 1 || y2 < 2 * j0 + 1 || y2 > 2 * j1 + 1)
+                        continue; /* past the tile's outer centres: a sample traced from the root */
+                    int errs[6];
+                    for (int k = 0; k < 6; k++) /* the extremes half of the time */
+                        errs[k] = test_rand_u64(rng) & 1 ? (test_rand_u64(rng) & 1 ? 2 : -2)
+                                                         : (int)(test_rand_u64(rng) % 5) - 2;
+                    float o[3], d[3];
+                    inexact_ray(p, ortho, x2, y2, w, h, errs, o, d);
+                    for (int k = 0; k < 3; k++) {
+                        ia_interval x = ray_extent(o[k], d[k], ia_make(a, b));
+                        CHECK(box[k].lo <= x.lo && x.hi <= box[k].hi,
+                              "%s view %dx%d, pixel (%d, %d) of tile (%d..%d, %d..%d), ray (%a, %a), errors %d %d %d "
+                              "%d %d %d, axis %d: ray [%a, %a] outside the tile box [%a, %a]",
+                              ortho ? "orthographic" : "perspective", w, h, i, j, i0, i1, j0, j1, (double)x2,
+                              (double)y2, errs[0], errs[1], errs[2], errs[3], errs[4], errs[5], k, (double)x.lo,
+                              (double)x.hi, (double)box[k].lo, (double)box[k].hi);
+                    }
+                    checked++;
                 }
-                checked++;
-            }
     }
-    test_note("%ld inexact pixel rays checked against their tile's box", checked);
+    test_note("%ld inexact pixel and sample rays checked against their tile's box", checked);
 }
 
 /* The build options of device 0 with IACSG_INEXACT_DIVIDE_SQRT set: no correctly rounded / and sqrt asked. */

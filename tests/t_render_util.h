@@ -170,6 +170,15 @@ static inline int random_tile_draw(test_rng_t *rng, random_tile *t) {
     return 1;
 }
 
+/* A random -aa sample of pixel (i, j): cell (a, b) of an N x N grid, N from 2 to 16, its doubled column and row as
+ * kernels/effects.cl computes them. */
+static inline void random_sample(test_rng_t *rng, int i, int j, ia_real *x2, ia_real *y2) {
+    int n = 2 + (int)(test_rand_u64(rng) % 15), a = (int)(test_rand_u64(rng) % (unsigned)n),
+        b = (int)(test_rand_u64(rng) % (unsigned)n);
+    *x2 = (ia_real)(2 * i) + (ia_real)(2 * a + 1) / (ia_real)n;
+    *y2 = (ia_real)(2 * j) + (ia_real)(2 * b + 1) / (ia_real)n;
+}
+
 /* The OpenCL C the compiler emits for expr, which must carry the derivative code of interval Newton (the
  * caller free()s it). */
 static inline char *newton_expr_cl(const char *expr) {
