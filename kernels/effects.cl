@@ -82,17 +82,21 @@ static ia_maskv effects_trace(__constant ia_real *params, __global const ulong *
  * between, its bounds monotone in them, or widened for an inexact /) is traced as the camera rays are (render.cl:
  * trace_packet), from the tile's first coarse leaf in `tiles` (none where the tile pass proved the tile empty); the
  * others, on its outer border, from the root of the frame's tree. The packet searches its tile's groups of a union
- * (tile_groups_of) where all its rays are inside one tile, else all_groups. Out: the start of the hit leaf in *t
- * (+inf on a miss) and the unit normal there facing the ray in n. Counts the rays and their evaluations
- * (KERNEL_STATS). Evaluations a sample at -aa 4 (all from the root before): reference view 33.1 -> 26.7 (its camera
- * rays 4.4), multiple unions 51.7 -> 44.4, gyroid in a ball 39.5 -> 32.3; where a packet holds rays from the root,
- * it waits for them, so its time falls less. */
+ * (tile_groups_of) where all its rays are inside one tile, else all_groups. A ray whose walk an earlier call left
+ * at a node goes on from it: from[k] (level, node; level -1: none). With `turns` above 0 the walks stop after that
+ * many turns (packet_first_root_turns): *left is then the lanes not done, their nodes in left_from. Out: the start
+ * of the hit leaf in *t (+inf on a miss) and the unit normal there facing the ray in n. Counts the rays, where
+ * `count_rays`, and their evaluations (KERNEL_STATS). Evaluations a sample at -aa 4 (all from the root before):
+ * reference view 33.1 -> 26.7 (its camera rays 4.4), multiple unions 51.7 -> 44.4, gyroid in a ball 39.5 -> 32.3;
+ * where a packet holds rays from the root, it waits for them, so its time falls less. */
 static ia_maskv effects_trace_samples(__constant ia_real *params, int width, int height,
                                       __global const ia_real *tiles, __global const ulong *tile_groups_of,
                                       __global const ulong *all_groups, const int pix[IA_VW],
-                                      const ia_real x2[IA_VW], const ia_real y2[IA_VW], const ia_realv o[3],
-                                      const ia_realv d[3], ia_maskv on, ia_real eps, ia_real newton, ia_realv *t,
-                                      ia_realv n[3], packet_index *rays, packet_index *evals) {
+                                      const ia_real x2[IA_VW], const ia_real y2[IA_VW],
+                                      const ia_real from[2][IA_VW], const ia_realv o[3], const ia_realv d[3],
+                                      ia_maskv on, ia_real eps, ia_real newton, int turns, ia_maskv *left,
+                                      ia_real left_from[2][IA_VW], ia_realv *t, ia_realv n[3], int count_rays,
+                                      packet_index *rays, packet_index *evals) {
     int tiles_x = (width + TILE_SIZE - 1) / TILE_SIZE;
     ia_real level_k[IA_VW], leaf_k[IA_VW];
     size_t tile_k[IA_VW];
@@ -106,19 +110,27 @@ static ia_maskv effects_trace_samples(__constant ia_real *params, int width, int
         tile_k[k] = tile_index(tx, ty, tiles_x);
         level_k[k] = inside ? tiles[2 * tile_k[k]] : 0;
         leaf_k[k] = inside ? tiles[2 * tile_k[k] + 1] : 0;
+        if (from && from[0][k] >= 0) { /* on from where an earlier walk left it */
+            level_k[k] = from[0][k];
+            leaf_k[k] = from[1][k];
+        }
         one_tile &= inside && tile_k[k] == tile_k[0]; /* (the lanes past the launch's paths repeat its last one) */
     }
     const __global ulong *groups = one_tile ? tile_groups_of + tile_k[0] * TILE_GROUPS_WORDS : all_groups;
     ia_realv level_r = IAV_LOAD(level_k), t_near, t_far, lo = IAV_R(0), hi = IAV_R(0);
     ia_maskv searching = on & (level_r >= 0) & packet_clip(params, o, d, &t_near, &t_far), hit = (ia_maskv)0;
-    PACKET_COUNT(*rays, on);
+    if (count_rays)
+        PACKET_COUNT(*rays, on);
     ia_real t0, w, time = params[PARAM_TIME_LO];
     frame_root(params, &t0, &w);
     packet_int level = select((packet_int)0, packet_to_int(level_r), searching);
-    packet_index start = max(packet_to_index(IAV_LOAD(leaf_k)), packet_node_at_levels(t0, w, level, searching, t_near));
+    packet_index node = max(packet_to_index(IAV_LOAD(leaf_k)), packet_node_at_levels(t0, w, level, searching, t_near));
     if (iav_any(searching))
-        hit = packet_first_root(groups, o, d, t0, w, level, start, t_near, t_far, searching, eps, newton, 0,
-                                iav_const(time, params[PARAM_TIME_HI]), &lo, &hi, evals);
+        hit = packet_first_root_turns(groups, o, d, t0, w, &level, &node, t_near, t_far, &searching, turns, eps, newton,
+                                      0, iav_const(time, params[PARAM_TIME_HI]), &lo, &hi, evals);
+    *left = searching;
+    IAV_STORE(select((ia_realv)-1, packet_to_real(level), searching), left_from[0]);
+    IAV_STORE(packet_to_real(node), left_from[1]);
     *t = select(IAV_R(IA_INF), lo, hit);
     ia_realv g[3] = {IAV_R(0), IAV_R(0), IAV_R(0)};
     if (iav_any(hit))
@@ -180,13 +192,13 @@ static march_crossing effects_start_hint(effects_start *s, ia_maskv on, iav time
 /* The paths of the lanes of `live` from their rays o + t d's first hits (where `hit`: at t, normal n) on, each of
  * weight `through`, its transparent layers and reflections so far `layers` and `bounces`, its pixel in row `row`:
  * each hit lit (its shadow rays traced), the reflected ray off an opaque hit and the ray through a transparent one
- * traced in the lane, a reflected ray off a transparent hit listed in kids (slot first + lane, nk[lane] of
- * kid_slots so far; none where kid_slots is 0), until every lane is out of weight, bounces or layers or has met the
- * background. Adds each lane's linear light to acc; counts the rays it traces and their evaluations. */
+ * traced in the lane, a reflected ray off a transparent hit listed in kids (lane k's slots from kid_slots path[k] on,
+ * nk[k] of them so far; none where kid_slots is 0), until every lane is out of weight, bounces or layers or has met
+ * the background. Adds each lane's linear light to acc; counts the rays it traces and their evaluations. */
 static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __global const ulong *all_groups,
                           ia_real footprint, ia_realv row, int height, ia_realv o[3], ia_realv d[3], ia_maskv live,
                           ia_maskv hit, ia_realv t, ia_realv n[3], ia_realv through, ia_realv layers,
-                          ia_realv bounces, __global ia_real *kids, int kid_slots, int first, int nk[IA_VW],
+                          ia_realv bounces, __global ia_real *kids, int kid_slots, const int *path, int nk[IA_VW],
                           const tile_layer_runs *runs, shade_colorv acc[3], packet_index *rays,
                           packet_index *evals) {
     march_runs layer_runs = {runs, IAV_R(0), (ia_maskv)0}; /* tau0: where the layers start on their camera rays */
@@ -296,7 +308,7 @@ static void effects_paths(__constant ia_real *params, __constant ia_real *fx, __
             for (int q = 0; q < IA_VW; q++) {
                 if (on[q] == 0 || nk[q] >= kid_slots)
                     continue;
-                __global ia_real *out = kids + EFFECTS_PATH_REALS * ((size_t)(first + q) * kid_slots + nk[q]++);
+                __global ia_real *out = kids + EFFECTS_PATH_REALS * ((size_t)path[q] * kid_slots + nk[q]++);
                 for (int f = 0; f < EFFECTS_PATH_REALS; f++)
                     out[f] = fields[f][q];
             }
@@ -388,26 +400,33 @@ __attribute__((noinline)) static void effects_centre(__constant ia_real *params,
  * in the walks (packet.h): 32 `footprint`s, the camera rays'. Out per path: its colour (3 floats: linear light
  * times the weight, in `color`; a centre ray's in its pixel of the frame's `rgb`, display-encoded when it lists no
  * reflected ray), the reflected rays it lists (nkids, in kids from kid_slots k on), and with `stats`
- * (KERNEL_STATS) the rays it traced and their interval evaluations. */
-__kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, int mode, int flags, int width,
-                            int height, __global const int *pixels, __global const ia_real *paths, int npaths,
-                            int aa, __global const float *depth, __global const float *normal,
-                            ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
-                            __global float *rgb, __global float *color, __global ia_real *kids,
-                            __global int *nkids, int kid_slots, __global uint *stats, int aa_set,
-                            __global const ia_real *tiles, __global const ulong *tile_groups_of) {
-    int first = (int)get_global_id(0) * IA_VW;
-    if (first >= npaths)
-        return;
-    int samples = mode == EFFECTS_MODE_AA ? effects_aa_rays(aa, aa_set) : 1, pix[IA_VW];
+ * (KERNEL_STATS) the rays it traced and their interval evaluations.
+ * -aa's walks in rounds (EFFECTS_MODE_AA, a packet waits for its slowest ray): where `left` is not NULL a walk
+ * stops after `turns` turns, and its path goes on in the next round, listed in `left` (EFFECTS_LEFT_REALS a path:
+ * its index, level and node) at counts[round] (counted atomically); where `from` is not NULL, this round's
+ * paths are the counts[round - 1] listed there by the last (each on from its node), in full packets. A path's
+ * outputs are written by the round that ends it (its statistics summed over the rounds). */
+static void effects_packet(__constant ia_real *params, __constant ia_real *fx, int mode, int flags, int width,
+                           int height, __global const int *pixels, __global const ia_real *paths, int first,
+                           int here, int aa, __global const float *depth, __global const float *normal,
+                           ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
+                           __global float *rgb, __global float *color, __global ia_real *kids,
+                           __global int *nkids, int kid_slots, __global uint *stats, int aa_set,
+                           __global const ia_real *tiles, __global const ulong *tile_groups_of,
+                           __global const ia_real *from, __global ia_real *left, __global int *counts, int round,
+                           int turns) {
+    int samples = mode == EFFECTS_MODE_AA ? effects_aa_rays(aa, aa_set) : 1, pix[IA_VW], path[IA_VW];
     ia_real valid_k[IA_VW], w_k[IA_VW], layers_k[IA_VW], bounces_k[IA_VW], row_k[IA_VW], x2_k[IA_VW], y2_k[IA_VW];
-    ia_real t_k[IA_VW];
+    ia_real t_k[IA_VW], from_k[2][IA_VW], left_k[2][IA_VW];
     ia_real o_k[3][IA_VW], d_k[3][IA_VW], n_k[3][IA_VW];
     for (int k = 0; k < IA_VW; k++) {
-        int path = min(first + k, npaths - 1);
-        valid_k[k] = first + k < npaths;
-        pix[k] = pixels[path / samples];
-        int i = pix[k] % width, j = pix[k] / width, s = path % samples;
+        int entry = min(first + k, here - 1);
+        path[k] = from ? (int)from[EFFECTS_LEFT_REALS * entry] : entry;
+        from_k[0][k] = from ? from[EFFECTS_LEFT_REALS * entry + 1] : -1;
+        from_k[1][k] = from ? from[EFFECTS_LEFT_REALS * entry + 2] : 0;
+        valid_k[k] = first + k < here;
+        pix[k] = pixels[path[k] / samples];
+        int i = pix[k] % width, j = pix[k] / width, s = path[k] % samples;
         row_k[k] = (ia_real)j;
         w_k[k] = mode == EFFECTS_MODE_AA ? (ia_real)1 / (ia_real)(aa * aa) : 1;
         layers_k[k] = bounces_k[k] = 0;
@@ -422,7 +441,7 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
         for (int c = 0; c < 3; c++)
             n_k[c][k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)normal[3 * pix[k] + c] : 0;
         if (mode == EFFECTS_MODE_PATHS) {
-            __global const ia_real *q = paths + EFFECTS_PATH_REALS * (size_t)path;
+            __global const ia_real *q = paths + EFFECTS_PATH_REALS * (size_t)path[k];
             for (int c = 0; c < 3; c++) {
                 o_k[c][k] = q[EFFECTS_PATH_O + c];
                 d_k[c][k] = q[EFFECTS_PATH_D + c];
@@ -434,7 +453,7 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
     }
     ia_realv o[3], d[3], n[3], t = IAV_LOAD(t_k), through = IAV_LOAD(w_k), layers = IAV_LOAD(layers_k);
     ia_realv bounces = IAV_LOAD(bounces_k);
-    ia_maskv live = IAV_LOAD(valid_k) != 0, hit;
+    ia_maskv live = IAV_LOAD(valid_k) != 0, hit, going_on = (ia_maskv)0;
     packet_index rays = (packet_index)0, evals = (packet_index)0;
     if (mode == EFFECTS_MODE_PATHS)
         for (int c = 0; c < 3; c++) {
@@ -449,8 +468,10 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
         for (int c = 0; c < 3; c++)
             n[c] = IAV_LOAD(n_k[c]);
     } else if (mode == EFFECTS_MODE_AA) {
-        hit = effects_trace_samples(params, width, height, tiles, tile_groups_of, all_groups, pix, x2_k, y2_k, o, d,
-                                    live, aa_eps, footprint, &t, n, &rays, &evals);
+        hit = effects_trace_samples(params, width, height, tiles, tile_groups_of, all_groups, pix, x2_k, y2_k,
+                                    from ? from_k : 0, o, d, live, aa_eps, footprint, left ? turns : 0,
+                                    &going_on, left_k, &t, n, !from, &rays, &evals);
+        live &= ~going_on; /* their outputs come from the round that ends them */
     } else {
         hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, effects_offset(eps, o, IAV_R(0)),
                             eps, footprint, 0, &t, 1, n, 0, 0, &rays, &evals);
@@ -460,27 +481,55 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
     for (int q = 0; q < IA_VW; q++)
         nk[q] = 0;
     effects_paths(params, fx, all_groups, footprint, IAV_LOAD(row_k), height, o, d, live, hit, t, n, through, layers,
-                  bounces, kids, kid_slots, first, nk, 0, acc, &rays, &evals);
+                  bounces, kids, kid_slots, path, nk, 0, acc, &rays, &evals);
     float out[3][IA_VW];
     bisect_index ray_count[IA_VW], eval_count[IA_VW];
+    ia_real on_k[IA_VW];
     for (int c = 0; c < 3; c++)
         IAV_CAT(vstore, IA_VW)(acc[c], 0, out[c]);
     IAV_STORE(rays, ray_count);
     IAV_STORE(evals, eval_count);
-    for (int q = 0; q < IA_VW && first + q < npaths; q++) {
+    IAV_STORE(select(IAV_R(0), IAV_R(1), going_on), on_k);
+    for (int q = 0; q < IA_VW && first + q < here; q++) {
+        int p = path[q];
+        if (stats) { /* with KERNEL_STATS (-stats); else 0 */
+            stats[2 * p] = (from ? stats[2 * p] : 0) + (uint)ray_count[q];
+            stats[2 * p + 1] = (from ? stats[2 * p + 1] : 0) + (uint)eval_count[q];
+        }
+        if (on_k[q] != 0) { /* on in the next round */
+            int at = atomic_inc(counts + round);
+            left[EFFECTS_LEFT_REALS * at] = (ia_real)p;
+            left[EFFECTS_LEFT_REALS * at + 1] = left_k[0][q];
+            left[EFFECTS_LEFT_REALS * at + 2] = left_k[1][q];
+            continue;
+        }
         /* a centre ray's pixel is its alone: its display colour where it listed no reflected ray (gamma 2, as
          * light.h encodes), else its linear light, which the reflected rays add to */
-        __global float *to = mode == EFFECTS_MODE_CENTRE ? rgb + 3 * (size_t)pix[q] : color + 3 * (first + q);
+        __global float *to = mode == EFFECTS_MODE_CENTRE ? rgb + 3 * (size_t)pix[q] : color + 3 * (size_t)p;
         int final = mode == EFFECTS_MODE_CENTRE && nk[q] == 0;
         for (int c = 0; c < 3; c++)
             to[c] = final ? sqrt(fmin(fmax(out[c][q], 0.0f), 1.0f)) : out[c][q];
         if (kids)
-            nkids[first + q] = nk[q];
-        if (stats) { /* with KERNEL_STATS (-stats); else 0 */
-            stats[2 * (first + q)] = (uint)ray_count[q];
-            stats[2 * (first + q) + 1] = (uint)eval_count[q];
-        }
+            nkids[p] = nk[q];
     }
+}
+
+/* The launch's packets of paths (effects_packet), a work-item's from its own on, as many work-items apart: a round
+ * past the first need not have a work-item per packet its paths may fill. */
+__kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, int mode, int flags, int width,
+                            int height, __global const int *pixels, __global const ia_real *paths, int npaths,
+                            int aa, __global const float *depth, __global const float *normal,
+                            ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
+                            __global float *rgb, __global float *color, __global ia_real *kids,
+                            __global int *nkids, int kid_slots, __global uint *stats, int aa_set,
+                            __global const ia_real *tiles, __global const ulong *tile_groups_of,
+                            __global const ia_real *from, __global ia_real *left, __global int *counts, int round,
+                            int turns) {
+    int here = from ? counts[round - 1] : npaths, step = (int)get_global_size(0) * IA_VW;
+    for (int first = (int)get_global_id(0) * IA_VW; first < here; first += step)
+        effects_packet(params, fx, mode, flags, width, height, pixels, paths, first, here, aa, depth, normal, aa_eps,
+                       footprint, all_groups, rgb, color, kids, nkids, kid_slots, stats, aa_set, tiles,
+                       tile_groups_of, from, left, counts, round, turns);
 }
 
 /* iacsg_render (render.cl) with the effects applied by the camera kernel itself (effects_centre), where no path

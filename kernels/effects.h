@@ -62,6 +62,10 @@ enum {
  * (n x n per listed pixel), or listed paths (reflected rays). */
 enum { EFFECTS_MODE_CENTRE = 0, EFFECTS_MODE_AA = 1, EFFECTS_MODE_PATHS = 2 };
 
+/* -aa's walks in rounds (kernels/effects.cl: iacsg_effects): a path left for the next round, its index, the level
+ * and node its walk stopped at. */
+#define EFFECTS_LEFT_REALS 3
+
 /* Which of -aa's n x n rays of a pixel a launch of EFFECTS_MODE_AA traces: all, the grid's four corners, or the
  * rest (src/render_effects_device.c traces the rest only where the corners differ). */
 enum { EFFECTS_AA_ALL = 0, EFFECTS_AA_CORNERS = 1, EFFECTS_AA_REST = 2 };

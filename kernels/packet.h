@@ -402,16 +402,21 @@ IA_FN ia_maskv packet_newton_step(ia_realv c, iav fc, iav slope, ia_maskv lanes,
 }
 #endif
 
-/* The first root of each lane of `searching` in [t_near, t_far] of its ray o + t*d, from its node (level, i) on
+/* The first root of each lane of *searching in [t_near, t_far] of its ray o + t*d, from its node (*level, *i) on
  * (no node before it may hold a root): the first clipped node whose enclosure holds 0 and that is no wider than
  * eps, or at the deepest level, or its part Newton narrowed to eps. A pixel's footprint at t is
- * footprint0 + t * footprint_t. Returns the lanes that hit, with their leaves in [*hit_lo, *hit_hi]. */
-IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment_groups, const ia_realv o[3],
-                                 const ia_realv d[3], ia_real t0, ia_real w, packet_int level, packet_index i,
-                                 ia_realv t_near,
-                                 ia_realv t_far, ia_maskv searching, ia_real eps, ia_real footprint0,
-                                 ia_real footprint_t, iav time, ia_realv *hit_lo, ia_realv *hit_hi,
-                                 packet_index *evals) {
+ * footprint0 + t * footprint_t. Returns the lanes that hit, with their leaves in [*hit_lo, *hit_hi]. With `turns`
+ * above 0 the walk stops after that many turns: *searching is then the lanes not done, each at its node in *level,
+ * *i (a lane in Newton's steps at the node they narrow), from which a later call goes on (a packet waits for its
+ * slowest lane: the lanes left over from many packets go on in full ones, kernels/effects.cl). */
+IA_FN ia_maskv packet_first_root_turns(PACKET_TAPE_PARAM const __global ulong *segment_groups, const ia_realv o[3],
+                                       const ia_realv d[3], ia_real t0, ia_real w, packet_int *level_io,
+                                       packet_index *i_io, ia_realv t_near, ia_realv t_far, ia_maskv *searching_io,
+                                       int turns, ia_real eps, ia_real footprint0, ia_real footprint_t, iav time,
+                                       ia_realv *hit_lo, ia_realv *hit_hi, packet_index *evals) {
+    packet_int level = *level_io;
+    packet_index i = *i_io;
+    ia_maskv searching = *searching_io;
     ia_maskv hit = (ia_maskv)0, newton = (ia_maskv)0, bisect_only = (ia_maskv)0;
     ia_realv na = IAV_R(0), nb = IAV_R(0);
 #ifndef PACKET_NEWTON
@@ -421,7 +426,7 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
 #else
     int newton_on = 1;
 #endif
-    while (iav_any(searching)) {
+    for (int turn = 0; iav_any(searching) && (turns == 0 || turn < turns); turn++) {
         ia_maskv bisecting = searching & ~newton;
 #ifdef PACKET_NEWTON
         /* one kind of step at a time, for the lanes that are the majority: a lane waits while the others step */
@@ -525,7 +530,20 @@ IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment
         }
 #endif
     }
+    *level_io = level;
+    *i_io = i;
+    *searching_io = searching;
     return hit;
+}
+
+/* packet_first_root_turns until every lane of `searching` is done. */
+IA_FN ia_maskv packet_first_root(PACKET_TAPE_PARAM const __global ulong *segment_groups, const ia_realv o[3],
+                                 const ia_realv d[3], ia_real t0, ia_real w, packet_int level, packet_index i,
+                                 ia_realv t_near, ia_realv t_far, ia_maskv searching, ia_real eps,
+                                 ia_real footprint0, ia_real footprint_t, iav time, ia_realv *hit_lo,
+                                 ia_realv *hit_hi, packet_index *evals) {
+    return packet_first_root_turns(PACKET_TAPE_ARG segment_groups, o, d, t0, w, &level, &i, t_near, t_far,
+                                   &searching, 0, eps, footprint0, footprint_t, time, hit_lo, hit_hi, evals);
 }
 
 #endif

@@ -32,6 +32,9 @@ typedef struct {
      * operations, compiling those the interpreter cannot hold (a part needing more registers than it has). */
     int tape;
     int tape_min_nodes; /* IACSG_TAPE_AUTO's threshold; 0: IACSG_TAPE_MIN_NODES (tests set it low) */
+    /* The first-root path's -aa: the turns of a sample's walk in a round before it goes on in the next, among the
+     * rays other packets left (src/render_effects_device.c; 0: FX_AA_TURNS; tests set it tiny). */
+    int aa_turns;
 } iacsg_render_config;
 
 enum { IACSG_TAPE_AUTO = 0, IACSG_TAPE_NEVER, IACSG_TAPE_ALWAYS };

@@ -596,6 +596,40 @@ static void check_aa_edges(void (*render)(const char *, const iacsg_view *, iacs
 
 TEST_FP(effects_aa_edges) { check_aa_edges(render_expr, "sphere"); }
 
+/* render_expr with -aa's walks in rounds of 2 turns (iacsg_render_config.aa_turns; src/render_effects_device.c):
+ * nearly every sample goes on from where the last round left it, some four times. */
+static void render_expr_short_rounds(const char *expr, const iacsg_view *view, iacsg_frame *fr) {
+    iacsg_render_config config = {.fp64 = FP64, .aa_turns = 2};
+    render_expr_text(expr, &config, view, fr);
+}
+
+/* The blends of the edges' coverage with the samples' walks in short rounds: the sphere, with interval Newton,
+ * whose steps a walk that goes on starts again from their node; and as (x^2 + y^2 + z^2)^0.75 - 1, whose pow has
+ * no derivative code (bisection alone). */
+TEST_FP(effects_aa_edges_in_rounds) {
+    check_aa_edges(render_expr_short_rounds, "sphere");
+    check_aa_edges(render_expr_short_rounds, "(x^2 + y^2 + z^2)^0.75 - 1");
+}
+
+/* Bisection alone (no Newton's steps to start again) takes the same nodes in rounds as in one walk: the same
+ * -aa 4 image, bit for bit, with rounds of 2 turns and of FX_AA_TURNS. */
+TEST_FP(effects_aa_rounds_same_image) {
+    iacsg_view view = sphere_ortho_view(96);
+    iacsg_effects fx = {.aa = 4};
+    view.effects = &fx;
+    const char *text = "(x^2 + y^2 + z^2)^0.75 - 1";
+    iacsg_frame whole, rounds;
+    render_expr(text, &view, &whole);
+    render_expr_short_rounds(text, &view, &rounds);
+    size_t n = (size_t)view.width * view.height;
+    long differ = 0;
+    for (size_t px = 0; px < n; px++)
+        differ += memcmp(whole.rgb + 3 * px, rounds.rgb + 3 * px, 3 * sizeof(float)) != 0;
+    iacsg_frame_free(&whole);
+    iacsg_frame_free(&rounds);
+    CHECK(differ == 0, "%ld pixels differ between walks in rounds of 2 turns and of the default", differ);
+}
+
 /* An expression's -aa N from N = 3 traces a pixel's corners, then the rest (kernels/effects.h): together every
  * cell of the N x N grid exactly once, the corners the grid's four. */
 TEST_FP(effects_aa_corners_then_rest_cover_the_grid) {
