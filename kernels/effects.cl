@@ -401,11 +401,15 @@ __attribute__((noinline)) static void effects_centre(__constant ia_real *params,
  * times the weight, in `color`; a centre ray's in its pixel of the frame's `rgb`, display-encoded when it lists no
  * reflected ray), the reflected rays it lists (nkids, in kids from kid_slots k on), and with `stats`
  * (KERNEL_STATS) the rays it traced and their interval evaluations.
- * -aa's walks in rounds (EFFECTS_MODE_AA, a packet waits for its slowest ray): where `left` is not NULL a walk
- * stops after `turns` turns, and its path goes on in the next round, listed in `left` (EFFECTS_LEFT_REALS a path:
- * its index, level and node) at counts[round] (counted atomically); where `from` is not NULL, this round's
- * paths are the counts[round - 1] listed there by the last (each on from its node), in full packets. A path's
- * outputs are written by the round that ends it (its statistics summed over the rounds). */
+ * -aa's walks in rounds (EFFECTS_MODE_AA; a packet waits for its slowest ray): where `left` is not NULL a walk
+ * stops after `turns` turns and its path goes on in the next round, listed in `left` (EFFECTS_LEFT_REALS a path:
+ * its index, level and node) at counts[round] (counted atomically); where `from` is not NULL, the round's paths
+ * are the counts[round - 1] listed there by the last (each on from its node), in full packets. Its outputs come
+ * from the round that ends it; or, where `hits` is not NULL, the rounds (round >= 0) only trace, each walk's end
+ * its path's hit in `hits` (4 a path: t, +inf on a miss, and the normal), and the launch after them (round -1)
+ * shades the paths in their order from those hits: the leftover lists' order is the atomics', and a secondary ray's
+ * steps depend on its packet (its tree is as long as its packet's farthest ray), so that shading them in the rounds
+ * made images with shadows, reflections or layers differ from run to run. Statistics are summed over the launches. */
 static void effects_packet(__constant ia_real *params, __constant ia_real *fx, int mode, int flags, int width,
                            int height, __global const int *pixels, __global const ia_real *paths, int first,
                            int here, int aa, __global const float *depth, __global const float *normal,
@@ -414,7 +418,8 @@ static void effects_packet(__constant ia_real *params, __constant ia_real *fx, i
                            __global int *nkids, int kid_slots, __global uint *stats, int aa_set,
                            __global const ia_real *tiles, __global const ulong *tile_groups_of,
                            __global const ia_real *from, __global ia_real *left, __global int *counts, int round,
-                           int turns) {
+                           int turns, __global ia_real *hits) {
+    int walking = hits && round >= 0, shading = hits && round < 0; /* -aa's rounds, then their shading */
     int samples = mode == EFFECTS_MODE_AA ? effects_aa_rays(aa, aa_set) : 1, pix[IA_VW], path[IA_VW];
     ia_real valid_k[IA_VW], w_k[IA_VW], layers_k[IA_VW], bounces_k[IA_VW], row_k[IA_VW], x2_k[IA_VW], y2_k[IA_VW];
     ia_real t_k[IA_VW], from_k[2][IA_VW], left_k[2][IA_VW];
@@ -437,9 +442,11 @@ static void effects_packet(__constant ia_real *params, __constant ia_real *fx, i
             x2_k[k] = (ia_real)(2 * i) + (ia_real)(2 * (cell % aa) + 1) / (ia_real)aa;
             y2_k[k] = (ia_real)(2 * j) + (ia_real)(2 * (cell / aa) + 1) / (ia_real)aa;
         }
-        t_k[k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)depth[pix[k]] : 0;
+        t_k[k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)depth[pix[k]] : shading ? hits[4 * path[k]] : 0;
         for (int c = 0; c < 3; c++)
-            n_k[c][k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)normal[3 * pix[k] + c] : 0;
+            n_k[c][k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)normal[3 * pix[k] + c]
+                        : shading                   ? hits[4 * path[k] + 1 + c]
+                                                    : 0;
         if (mode == EFFECTS_MODE_PATHS) {
             __global const ia_real *q = paths + EFFECTS_PATH_REALS * (size_t)path[k];
             for (int c = 0; c < 3; c++) {
@@ -463,7 +470,7 @@ static void effects_packet(__constant ia_real *params, __constant ia_real *fx, i
     else
         packet_rays_at(params, flags & RENDER_ORTHO, IAV_LOAD(x2_k), IAV_LOAD(y2_k), width, height, o, d);
     ia_real eps = params[PARAM_EPS];
-    if (mode == EFFECTS_MODE_CENTRE) {
+    if (mode == EFFECTS_MODE_CENTRE || shading) { /* the hits known: the frame's, or -aa's rounds' */
         hit = live & isfinite(t);
         for (int c = 0; c < 3; c++)
             n[c] = IAV_LOAD(n_k[c]);
@@ -480,27 +487,36 @@ static void effects_packet(__constant ia_real *params, __constant ia_real *fx, i
     int nk[IA_VW];
     for (int q = 0; q < IA_VW; q++)
         nk[q] = 0;
-    effects_paths(params, fx, all_groups, footprint, IAV_LOAD(row_k), height, o, d, live, hit, t, n, through, layers,
-                  bounces, kids, kid_slots, path, nk, 0, acc, &rays, &evals);
+    if (!walking)
+        effects_paths(params, fx, all_groups, footprint, IAV_LOAD(row_k), height, o, d, live, hit, t, n, through,
+                      layers, bounces, kids, kid_slots, path, nk, 0, acc, &rays, &evals);
     float out[3][IA_VW];
     bisect_index ray_count[IA_VW], eval_count[IA_VW];
-    ia_real on_k[IA_VW];
-    for (int c = 0; c < 3; c++)
+    ia_real on_k[IA_VW], hit_k[4][IA_VW];
+    for (int c = 0; c < 3; c++) {
         IAV_CAT(vstore, IA_VW)(acc[c], 0, out[c]);
+        IAV_STORE(n[c], hit_k[1 + c]);
+    }
+    IAV_STORE(t, hit_k[0]);
     IAV_STORE(rays, ray_count);
     IAV_STORE(evals, eval_count);
     IAV_STORE(select(IAV_R(0), IAV_R(1), going_on), on_k);
     for (int q = 0; q < IA_VW && first + q < here; q++) {
         int p = path[q];
         if (stats) { /* with KERNEL_STATS (-stats); else 0 */
-            stats[2 * p] = (from ? stats[2 * p] : 0) + (uint)ray_count[q];
-            stats[2 * p + 1] = (from ? stats[2 * p + 1] : 0) + (uint)eval_count[q];
+            stats[2 * p] = (from || shading ? stats[2 * p] : 0) + (uint)ray_count[q];
+            stats[2 * p + 1] = (from || shading ? stats[2 * p + 1] : 0) + (uint)eval_count[q];
         }
         if (on_k[q] != 0) { /* on in the next round */
             int at = atomic_inc(counts + round);
             left[EFFECTS_LEFT_REALS * at] = (ia_real)p;
             left[EFFECTS_LEFT_REALS * at + 1] = left_k[0][q];
             left[EFFECTS_LEFT_REALS * at + 2] = left_k[1][q];
+            continue;
+        }
+        if (walking) { /* its hit, for the shading after the rounds */
+            for (int f = 0; f < 4; f++)
+                hits[4 * p + f] = hit_k[f][q];
             continue;
         }
         /* a centre ray's pixel is its alone: its display colour where it listed no reflected ray (gamma 2, as
@@ -524,12 +540,12 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
                             __global int *nkids, int kid_slots, __global uint *stats, int aa_set,
                             __global const ia_real *tiles, __global const ulong *tile_groups_of,
                             __global const ia_real *from, __global ia_real *left, __global int *counts, int round,
-                            int turns) {
+                            int turns, __global ia_real *hits) {
     int here = from ? counts[round - 1] : npaths, step = (int)get_global_size(0) * IA_VW;
     for (int first = (int)get_global_id(0) * IA_VW; first < here; first += step)
         effects_packet(params, fx, mode, flags, width, height, pixels, paths, first, here, aa, depth, normal, aa_eps,
                        footprint, all_groups, rgb, color, kids, nkids, kid_slots, stats, aa_set, tiles,
-                       tile_groups_of, from, left, counts, round, turns);
+                       tile_groups_of, from, left, counts, round, turns, hits);
 }
 
 /* iacsg_render (render.cl) with the effects applied by the camera kernel itself (effects_centre), where no path

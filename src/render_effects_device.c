@@ -86,29 +86,35 @@ static iacsg_status set_arg(cl_kernel k, cl_uint at, size_t bytes, const void *v
  * round's leftover paths the next round's (kernels/effects.cl: iacsg_effects), the last round to their ends. A
  * packet waits for its slowest ray: the samples of the multiple unions' edges kept 47-50 % of their packets' lanes
  * busy (the reference view's and a gyroid's 63-66 %). The paths left after each round, the multiple unions' -aa 4
- * rest rays: 95,328 -> 28,378 -> 9,227 -> 3,495 -> 1,606; its -aa 4 frame 207 -> 171 ms (medians of 7 in turn),
- * the reference view's and the gyroid's as before (2 % of the reference view's samples go on after a round).
- * Rounds are queued in turn, with no wait between (a wait costs ~2 ms on PoCL): rounds that the host listed after
- * each launch gained half as much on the multiple unions and cost the gyroid 3 %. */
+ * rest rays: 95,328 -> 28,378 -> 9,227 -> 3,495 -> 1,606; its -aa 4 frame 195-207 -> 171-177 ms (medians of 7 in
+ * turn, three pairs), the reference view's and the gyroid's within the noise (2 % of the reference view's samples go
+ * on after a round; 3 rounds instead of 5: the multiple unions 184 ms). Rounds are queued in turn, with no wait
+ * between (a wait costs ~2 ms on PoCL): rounds that the host listed after each launch gained half as much on the
+ * multiple unions and cost the gyroid 3 %. */
 #define FX_AA_ROUNDS 5
 #define FX_AA_TURNS 48
 #define FX_AA_ITEMS 64 /* a round's work-items at least */
 
-/* The arguments of iacsg_effects from `at` on for -aa's round r of FX_AA_ROUNDS over lists[2] (NULL for another
- * mode: none). */
-static iacsg_status set_round_args(fx_device *x, cl_uint at, const cl_mem *lists, cl_mem counts, cl_int r,
-                                   iacsg_error *err) {
-    const cl_mem *from = lists && r > 0 ? &lists[(r + 1) % 2] : NULL;
-    const cl_mem *left = lists && r + 1 < FX_AA_ROUNDS ? &lists[r % 2] : NULL;
+/* The arguments of iacsg_effects from `at` on for -aa's round r of FX_AA_ROUNDS over lists[2] and counts, their
+ * hits in `hits` where it is not NULL (r = FX_AA_ROUNDS: the shading after them, round -1); none without buffers
+ * (another mode). */
+static iacsg_status set_round_args(fx_device *x, cl_uint at, const cl_mem buffers[4], cl_int r, iacsg_error *err) {
+    const cl_mem *lists = buffers, *counts = &buffers[2], *hits = &buffers[3];
+    int on = buffers[0] != NULL, tracing = on && r < FX_AA_ROUNDS;
+    const cl_mem *from = tracing && r > 0 ? &lists[(r + 1) % 2] : NULL;
+    const cl_mem *left = tracing && r + 1 < FX_AA_ROUNDS ? &lists[r % 2] : NULL;
     cl_int turns = x->t->r->config.aa_turns > 0 ? x->t->r->config.aa_turns : FX_AA_TURNS;
+    cl_int round = tracing ? r : -1;
     iacsg_status st = set_arg(x->k, at, sizeof(cl_mem), from, err);
     if (st == IACSG_OK)
         st = set_arg(x->k, at + 1, sizeof(cl_mem), left, err);
     if (st == IACSG_OK)
-        st = set_arg(x->k, at + 2, sizeof(cl_mem), lists ? &counts : NULL, err);
+        st = set_arg(x->k, at + 2, sizeof(cl_mem), tracing ? counts : NULL, err);
     if (st == IACSG_OK)
-        st = set_arg(x->k, at + 3, sizeof r, &r, err);
-    return st == IACSG_OK ? set_arg(x->k, at + 4, sizeof turns, &turns, err) : st;
+        st = set_arg(x->k, at + 3, sizeof round, &round, err);
+    if (st == IACSG_OK)
+        st = set_arg(x->k, at + 4, sizeof turns, &turns, err);
+    return st == IACSG_OK ? set_arg(x->k, at + 5, sizeof(cl_mem), *hits ? hits : NULL, err) : st;
 }
 
 /* One launch over paths [0, n) of `mode` (kernels/effects.cl's arguments), n at most launch_paths(kid_slots), in
@@ -117,7 +123,7 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
                            int aa, fx_generation *next, iacsg_error *err) {
     iacsg_renderer *r = x->t->r;
     size_t rb = fx_real_bytes(r);
-    cl_mem mem[6] = {0}, lists[2] = {0}, counts = 0; /* pixels, paths, colours, kids, nkids, stats; -aa's rounds */
+    cl_mem mem[6] = {0}, rounds_mem[4] = {0}; /* pixels, paths, colours, kids, nkids, stats; -aa's rounds' */
     size_t bytes[6] = {npixels * sizeof(int), n * EFFECTS_PATH_REALS * rb, 3 * n * sizeof(float),
                        n * (size_t)x->kid_slots * EFFECTS_PATH_REALS * rb, n * sizeof(int), 2 * n * sizeof(cl_uint)};
     void *host[6] = {(void *)pixels, (void *)recs, x->color, x->kids, x->nkids, x->stats};
@@ -131,13 +137,17 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clCreateBuffer(effects)", __func__, __LINE__);
     }
-    int rounds = mode == EFFECTS_MODE_AA && n > 0 ? FX_AA_ROUNDS : 1;
-    if (rounds > 1 && st == IACSG_OK) { /* the paths a round leaves, in turn, and how many each leaves */
+    /* -aa's rounds (else one launch): the paths a round leaves, in turn, and how many each leaves; where the paths
+     * trace secondary rays, the walks' hits and the shading after the rounds */
+    const iacsg_effects *e = x->view->effects;
+    int secondary = e->shadows || e->bounces > 0 || e->transparency > 0;
+    int launches = mode == EFFECTS_MODE_AA && n > 0 ? FX_AA_ROUNDS + secondary : 1;
+    if (launches > 1 && st == IACSG_OK) {
         cl_int rc = CL_SUCCESS, zero[FX_AA_ROUNDS] = {0};
-        for (int k = 0; k < 2 && rc == CL_SUCCESS; k++)
-            lists[k] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE, n * EFFECTS_LEFT_REALS * rb, NULL, &rc);
-        if (rc == CL_SUCCESS)
-            counts = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof zero, zero, &rc);
+        size_t sizes[4] = {n * EFFECTS_LEFT_REALS * rb, n * EFFECTS_LEFT_REALS * rb, sizeof zero, 4 * n * rb};
+        for (int k = 0; k < 3 + secondary && rc == CL_SUCCESS; k++)
+            rounds_mem[k] = clCreateBuffer(r->rt.context, CL_MEM_READ_WRITE | (k == 2 ? CL_MEM_COPY_HOST_PTR : 0),
+                                           sizes[k], k == 2 ? zero : NULL, &rc);
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clCreateBuffer(effects)", __func__, __LINE__);
     }
@@ -168,11 +178,13 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
         st = set_arg(x->k, a, args[a].bytes, args[a].v, err);
     size_t global = n > 0 ? (n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */
     cl_int rc = CL_SUCCESS;
-    for (cl_int round = 0; round < rounds && st == IACSG_OK && rc == CL_SUCCESS; round++) {
-        st = set_round_args(x, sizeof args / sizeof args[0], rounds > 1 ? lists : NULL, counts, round, err);
+    for (cl_int round = 0; round < launches && st == IACSG_OK && rc == CL_SUCCESS; round++) {
+        st = set_round_args(x, sizeof args / sizeof args[0], rounds_mem, round, err);
         /* a round leaves about a third of its paths: a quarter of the last round's work-items, each packet after
-         * its own as many packets on (empty work-items cost a launch ~40 % of a gyroid's -aa 4 samples' time) */
-        size_t items = (global >> (2 * round)) > FX_AA_ITEMS ? global >> (2 * round) : FX_AA_ITEMS;
+         * its own as many packets on (empty work-items cost a launch ~40 % of a gyroid's -aa 4 samples' time); the
+         * shading, a work-item a packet */
+        int shift = round < FX_AA_ROUNDS ? 2 * round : 0;
+        size_t items = (global >> shift) > FX_AA_ITEMS ? global >> shift : FX_AA_ITEMS;
         items = items < global ? items : global;
         if (st == IACSG_OK)
             rc = clEnqueueNDRangeKernel(r->rt.queue, x->k, 1, NULL, &items, &local, 0, NULL, NULL);
@@ -213,7 +225,8 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
             next->n++;
         }
     }
-    cl_mem all[] = {mem[0], mem[1], mem[2], mem[3], mem[4], mem[5], lists[0], lists[1], counts};
+    cl_mem all[] = {mem[0],        mem[1],        mem[2],        mem[3],       mem[4],
+                    mem[5],        rounds_mem[0], rounds_mem[1], rounds_mem[2], rounds_mem[3]};
     for (size_t b = 0; b < sizeof all / sizeof all[0]; b++)
         if (all[b])
             clReleaseMemObject(all[b]);

@@ -612,22 +612,31 @@ TEST_FP(effects_aa_edges_in_rounds) {
 }
 
 /* Bisection alone (no Newton's steps to start again) takes the same nodes in rounds as in one walk: the same
- * -aa 4 image, bit for bit, with rounds of 2 turns and of FX_AA_TURNS. */
+ * -aa 4 image, bit for bit, with rounds of 2 turns and of FX_AA_TURNS; and with shadows and a reflection, whose
+ * rays go in packets of the paths in their order after the rounds (in the rounds' order, the order of their
+ * atomic lists, they changed from run to run). */
 TEST_FP(effects_aa_rounds_same_image) {
-    iacsg_view view = sphere_ortho_view(96);
-    iacsg_effects fx = {.aa = 4};
-    view.effects = &fx;
-    const char *text = "(x^2 + y^2 + z^2)^0.75 - 1";
-    iacsg_frame whole, rounds;
-    render_expr(text, &view, &whole);
-    render_expr_short_rounds(text, &view, &rounds);
-    size_t n = (size_t)view.width * view.height;
-    long differ = 0;
-    for (size_t px = 0; px < n; px++)
-        differ += memcmp(whole.rgb + 3 * px, rounds.rgb + 3 * px, 3 * sizeof(float)) != 0;
-    iacsg_frame_free(&whole);
-    iacsg_frame_free(&rounds);
-    CHECK(differ == 0, "%ld pixels differ between walks in rounds of 2 turns and of the default", differ);
+    iacsg_view view = ground_view(96);
+    iacsg_effects plain = {.aa = 4}, lit = shadow_effects();
+    lit.aa = 4;
+    lit.bounces = 1;
+    lit.reflect = 0.3;
+    const iacsg_effects *fx[2] = {&plain, &lit};
+    const char *text = "min((x^2 + y^2 + (z - 0.6)^2)^0.75 - 0.5^1.5, z)";
+    for (int k = 0; k < 2; k++) {
+        view.effects = fx[k];
+        iacsg_frame whole, rounds;
+        render_expr(text, &view, &whole);
+        render_expr_short_rounds(text, &view, &rounds);
+        size_t n = (size_t)view.width * view.height;
+        long differ = 0;
+        for (size_t px = 0; px < n; px++)
+            differ += memcmp(whole.rgb + 3 * px, rounds.rgb + 3 * px, 3 * sizeof(float)) != 0;
+        iacsg_frame_free(&whole);
+        iacsg_frame_free(&rounds);
+        CHECK(differ == 0, "%s: %ld pixels differ between walks in rounds of 2 turns and of the default",
+              k ? "shadows and a reflection" : "plain", differ);
+    }
 }
 
 /* An expression's -aa N from N = 3 traces a pixel's corners, then the rest (kernels/effects.h): together every
