@@ -392,6 +392,21 @@ __attribute__((noinline)) static void effects_centre(__constant ia_real *params,
         color[c] = sqrt(fmin(fmax(acc[c], 0.0f), 1.0f));
 }
 
+/* The arguments of a launch of iacsg_effects (described at effects_packet, below). */
+typedef struct {
+    __constant ia_real *params, *fx;
+    int mode, flags, width, height, aa, kid_slots, aa_set, round, turns;
+    __global const int *pixels;
+    __global const ia_real *paths, *tiles, *from;
+    __global const float *depth, *normal;
+    ia_real aa_eps, footprint;
+    __global const ulong *all_groups, *tile_groups_of;
+    __global float *rgb, *color;
+    __global ia_real *kids, *left, *hits;
+    __global int *nkids, *counts;
+    __global uint *stats;
+} effects_launch;
+
 /* Paths first .. first + 15 of the launch. mode (kernels/effects.h): EFFECTS_MODE_CENTRE, path k the centre ray
  * of pixel pixels[k], its hit the frame's (depth, normal); EFFECTS_MODE_AA, path k the ray (k mod m) of the m
  * rays of the aa x aa grid in `aa_set` (effects_aa_cell) in pixel pixels[k / m], weight 1 / aa^2, traced with
@@ -410,45 +425,37 @@ __attribute__((noinline)) static void effects_centre(__constant ia_real *params,
  * shades the paths in their order from those hits: the leftover lists' order is the atomics', and a secondary ray's
  * steps depend on its packet (its tree is as long as its packet's farthest ray), so that shading them in the rounds
  * made images with shadows, reflections or layers differ from run to run. Statistics are summed over the launches. */
-static void effects_packet(__constant ia_real *params, __constant ia_real *fx, int mode, int flags, int width,
-                           int height, __global const int *pixels, __global const ia_real *paths, int first,
-                           int here, int aa, __global const float *depth, __global const float *normal,
-                           ia_real aa_eps, ia_real footprint, __global const ulong *all_groups,
-                           __global float *rgb, __global float *color, __global ia_real *kids,
-                           __global int *nkids, int kid_slots, __global uint *stats, int aa_set,
-                           __global const ia_real *tiles, __global const ulong *tile_groups_of,
-                           __global const ia_real *from, __global ia_real *left, __global int *counts, int round,
-                           int turns, __global ia_real *hits) {
-    int walking = hits && round >= 0, shading = hits && round < 0; /* -aa's rounds, then their shading */
-    int samples = mode == EFFECTS_MODE_AA ? effects_aa_rays(aa, aa_set) : 1, pix[IA_VW], path[IA_VW];
+static void effects_packet(const effects_launch *a, int first, int here) {
+    int walking = a->hits && a->round >= 0, shading = a->hits && a->round < 0; /* -aa's rounds, then their shading */
+    int samples = a->mode == EFFECTS_MODE_AA ? effects_aa_rays(a->aa, a->aa_set) : 1, pix[IA_VW], path[IA_VW];
     ia_real valid_k[IA_VW], w_k[IA_VW], layers_k[IA_VW], bounces_k[IA_VW], row_k[IA_VW], x2_k[IA_VW], y2_k[IA_VW];
     ia_real t_k[IA_VW], from_k[2][IA_VW], left_k[2][IA_VW];
     ia_real o_k[3][IA_VW], d_k[3][IA_VW], n_k[3][IA_VW];
     for (int k = 0; k < IA_VW; k++) {
         int entry = min(first + k, here - 1);
-        path[k] = from ? (int)from[EFFECTS_LEFT_REALS * entry] : entry;
-        from_k[0][k] = from ? from[EFFECTS_LEFT_REALS * entry + 1] : -1;
-        from_k[1][k] = from ? from[EFFECTS_LEFT_REALS * entry + 2] : 0;
+        path[k] = a->from ? (int)a->from[EFFECTS_LEFT_REALS * entry] : entry;
+        from_k[0][k] = a->from ? a->from[EFFECTS_LEFT_REALS * entry + 1] : -1;
+        from_k[1][k] = a->from ? a->from[EFFECTS_LEFT_REALS * entry + 2] : 0;
         valid_k[k] = first + k < here;
-        pix[k] = pixels[path[k] / samples];
-        int i = pix[k] % width, j = pix[k] / width, s = path[k] % samples;
+        pix[k] = a->pixels[path[k] / samples];
+        int i = pix[k] % a->width, j = pix[k] / a->width, s = path[k] % samples;
         row_k[k] = (ia_real)j;
-        w_k[k] = mode == EFFECTS_MODE_AA ? (ia_real)1 / (ia_real)(aa * aa) : 1;
+        w_k[k] = a->mode == EFFECTS_MODE_AA ? (ia_real)1 / (ia_real)(a->aa * a->aa) : 1;
         layers_k[k] = bounces_k[k] = 0;
         x2_k[k] = (ia_real)(2 * i + 1); /* the centre ray's, exactly as the camera kernel's (packet_rays) */
         y2_k[k] = (ia_real)(2 * j + 1);
-        if (mode == EFFECTS_MODE_AA) {
-            int cell = effects_aa_cell(aa, aa_set, s);
-            x2_k[k] = (ia_real)(2 * i) + (ia_real)(2 * (cell % aa) + 1) / (ia_real)aa;
-            y2_k[k] = (ia_real)(2 * j) + (ia_real)(2 * (cell / aa) + 1) / (ia_real)aa;
+        if (a->mode == EFFECTS_MODE_AA) {
+            int cell = effects_aa_cell(a->aa, a->aa_set, s);
+            x2_k[k] = (ia_real)(2 * i) + (ia_real)(2 * (cell % a->aa) + 1) / (ia_real)a->aa;
+            y2_k[k] = (ia_real)(2 * j) + (ia_real)(2 * (cell / a->aa) + 1) / (ia_real)a->aa;
         }
-        t_k[k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)depth[pix[k]] : shading ? hits[4 * path[k]] : 0;
+        t_k[k] = a->mode == EFFECTS_MODE_CENTRE ? (ia_real)a->depth[pix[k]] : shading ? a->hits[4 * path[k]] : 0;
         for (int c = 0; c < 3; c++)
-            n_k[c][k] = mode == EFFECTS_MODE_CENTRE ? (ia_real)normal[3 * pix[k] + c]
-                        : shading                   ? hits[4 * path[k] + 1 + c]
-                                                    : 0;
-        if (mode == EFFECTS_MODE_PATHS) {
-            __global const ia_real *q = paths + EFFECTS_PATH_REALS * (size_t)path[k];
+            n_k[c][k] = a->mode == EFFECTS_MODE_CENTRE ? (ia_real)a->normal[3 * pix[k] + c]
+                        : shading                      ? a->hits[4 * path[k] + 1 + c]
+                                                       : 0;
+        if (a->mode == EFFECTS_MODE_PATHS) {
+            __global const ia_real *q = a->paths + EFFECTS_PATH_REALS * (size_t)path[k];
             for (int c = 0; c < 3; c++) {
                 o_k[c][k] = q[EFFECTS_PATH_O + c];
                 d_k[c][k] = q[EFFECTS_PATH_D + c];
@@ -462,34 +469,34 @@ static void effects_packet(__constant ia_real *params, __constant ia_real *fx, i
     ia_realv bounces = IAV_LOAD(bounces_k);
     ia_maskv live = IAV_LOAD(valid_k) != 0, hit, going_on = (ia_maskv)0;
     packet_index rays = (packet_index)0, evals = (packet_index)0;
-    if (mode == EFFECTS_MODE_PATHS)
+    if (a->mode == EFFECTS_MODE_PATHS)
         for (int c = 0; c < 3; c++) {
             o[c] = IAV_LOAD(o_k[c]);
             d[c] = IAV_LOAD(d_k[c]);
         }
     else
-        packet_rays_at(params, flags & RENDER_ORTHO, IAV_LOAD(x2_k), IAV_LOAD(y2_k), width, height, o, d);
-    ia_real eps = params[PARAM_EPS];
-    if (mode == EFFECTS_MODE_CENTRE || shading) { /* the hits known: the frame's, or -aa's rounds' */
+        packet_rays_at(a->params, a->flags & RENDER_ORTHO, IAV_LOAD(x2_k), IAV_LOAD(y2_k), a->width, a->height, o, d);
+    ia_real eps = a->params[PARAM_EPS];
+    if (a->mode == EFFECTS_MODE_CENTRE || shading) { /* the hits known: the frame's, or -aa's rounds' */
         hit = live & isfinite(t);
         for (int c = 0; c < 3; c++)
             n[c] = IAV_LOAD(n_k[c]);
-    } else if (mode == EFFECTS_MODE_AA) {
-        hit = effects_trace_samples(params, width, height, tiles, tile_groups_of, all_groups, pix, x2_k, y2_k,
-                                    from ? from_k : 0, o, d, live, aa_eps, footprint, left ? turns : 0,
-                                    &going_on, left_k, &t, n, !from, &rays, &evals);
+    } else if (a->mode == EFFECTS_MODE_AA) {
+        hit = effects_trace_samples(a->params, a->width, a->height, a->tiles, a->tile_groups_of, a->all_groups, pix,
+                                    x2_k, y2_k, a->from ? from_k : 0, o, d, live, a->aa_eps, a->footprint,
+                                    a->left ? a->turns : 0, &going_on, left_k, &t, n, !a->from, &rays, &evals);
         live &= ~going_on; /* their outputs come from the round that ends them */
     } else {
-        hit = effects_trace(params, all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live, effects_offset(eps, o, IAV_R(0)),
-                            eps, footprint, 0, &t, 1, n, 0, 0, &rays, &evals);
+        hit = effects_trace(a->params, a->all_groups, o, d, IAV_R(0), IAV_R(IA_INF), live,
+                            effects_offset(eps, o, IAV_R(0)), eps, a->footprint, 0, &t, 1, n, 0, 0, &rays, &evals);
     }
     shade_colorv acc[3] = {(shade_colorv)0, (shade_colorv)0, (shade_colorv)0};
     int nk[IA_VW];
     for (int q = 0; q < IA_VW; q++)
         nk[q] = 0;
     if (!walking)
-        effects_paths(params, fx, all_groups, footprint, IAV_LOAD(row_k), height, o, d, live, hit, t, n, through,
-                      layers, bounces, kids, kid_slots, path, nk, 0, acc, &rays, &evals);
+        effects_paths(a->params, a->fx, a->all_groups, a->footprint, IAV_LOAD(row_k), a->height, o, d, live, hit, t, n,
+                      through, layers, bounces, a->kids, a->kid_slots, path, nk, 0, acc, &rays, &evals);
     float out[3][IA_VW];
     bisect_index ray_count[IA_VW], eval_count[IA_VW];
     ia_real on_k[IA_VW], hit_k[4][IA_VW];
@@ -503,30 +510,30 @@ static void effects_packet(__constant ia_real *params, __constant ia_real *fx, i
     IAV_STORE(select(IAV_R(0), IAV_R(1), going_on), on_k);
     for (int q = 0; q < IA_VW && first + q < here; q++) {
         int p = path[q];
-        if (stats) { /* with KERNEL_STATS (-stats); else 0 */
-            stats[2 * p] = (from || shading ? stats[2 * p] : 0) + (uint)ray_count[q];
-            stats[2 * p + 1] = (from || shading ? stats[2 * p + 1] : 0) + (uint)eval_count[q];
+        if (a->stats) { /* with KERNEL_STATS (-stats); else 0 */
+            a->stats[2 * p] = (a->from || shading ? a->stats[2 * p] : 0) + (uint)ray_count[q];
+            a->stats[2 * p + 1] = (a->from || shading ? a->stats[2 * p + 1] : 0) + (uint)eval_count[q];
         }
         if (on_k[q] != 0) { /* on in the next round */
-            int at = atomic_inc(counts + round);
-            left[EFFECTS_LEFT_REALS * at] = (ia_real)p;
-            left[EFFECTS_LEFT_REALS * at + 1] = left_k[0][q];
-            left[EFFECTS_LEFT_REALS * at + 2] = left_k[1][q];
+            int at = atomic_inc(a->counts + a->round);
+            a->left[EFFECTS_LEFT_REALS * at] = (ia_real)p;
+            a->left[EFFECTS_LEFT_REALS * at + 1] = left_k[0][q];
+            a->left[EFFECTS_LEFT_REALS * at + 2] = left_k[1][q];
             continue;
         }
         if (walking) { /* its hit, for the shading after the rounds */
             for (int f = 0; f < 4; f++)
-                hits[4 * p + f] = hit_k[f][q];
+                a->hits[4 * p + f] = hit_k[f][q];
             continue;
         }
         /* a centre ray's pixel is its alone: its display colour where it listed no reflected ray (gamma 2, as
          * light.h encodes), else its linear light, which the reflected rays add to */
-        __global float *to = mode == EFFECTS_MODE_CENTRE ? rgb + 3 * (size_t)pix[q] : color + 3 * (size_t)p;
-        int final = mode == EFFECTS_MODE_CENTRE && nk[q] == 0;
+        __global float *to = a->mode == EFFECTS_MODE_CENTRE ? a->rgb + 3 * (size_t)pix[q] : a->color + 3 * (size_t)p;
+        int final = a->mode == EFFECTS_MODE_CENTRE && nk[q] == 0;
         for (int c = 0; c < 3; c++)
             to[c] = final ? sqrt(fmin(fmax(out[c][q], 0.0f), 1.0f)) : out[c][q];
-        if (kids)
-            nkids[p] = nk[q];
+        if (a->kids)
+            a->nkids[p] = nk[q];
     }
 }
 
@@ -541,11 +548,12 @@ __kernel void iacsg_effects(__constant ia_real *params, __constant ia_real *fx, 
                             __global const ia_real *tiles, __global const ulong *tile_groups_of,
                             __global const ia_real *from, __global ia_real *left, __global int *counts, int round,
                             int turns, __global ia_real *hits) {
+    effects_launch launch = {params, fx,         mode,   flags, width, height, aa,   kid_slots, aa_set, round,
+                             turns,  pixels,     paths,  tiles, from,  depth,  normal, aa_eps, footprint,
+                             all_groups, tile_groups_of, rgb, color, kids, left, hits, nkids, counts, stats};
     int here = from ? counts[round - 1] : npaths, step = (int)get_global_size(0) * IA_VW;
     for (int first = (int)get_global_id(0) * IA_VW; first < here; first += step)
-        effects_packet(params, fx, mode, flags, width, height, pixels, paths, first, here, aa, depth, normal, aa_eps,
-                       footprint, all_groups, rgb, color, kids, nkids, kid_slots, stats, aa_set, tiles,
-                       tile_groups_of, from, left, counts, round, turns, hits);
+        effects_packet(&launch, first, here);
 }
 
 /* iacsg_render (render.cl) with the effects applied by the camera kernel itself (effects_centre), where no path
