@@ -385,6 +385,14 @@ IA_FN ia_interval ia_atan(ia_interval a) {
     return ia_make(fmax(ia_lo_k(atan(a.lo), IA_ULP_ATAN), -half_pi), fmin(ia_hi_k(atan(a.hi), IA_ULP_ATAN), half_pi));
 }
 
+/* Where a^b (ia_pow) may be undefined over a box, from the bounds a and b of its operands (the lower ones; the
+ * point code's points): a < 0, or a <= 0 with b <= 0; and where it is undefined over all of it (the upper ones): a
+ * < 0, or a = 0 with b <= 0 (implicits/ops.def's columns, as C on the host and OpenCL C in the emitted code). In &
+ * and |: b is often a constant, and clang warns of && and || with a constant operand when it builds a program
+ * ("1 warning generated." on stderr). */
+#define IA_POW_MAY_BE_UNDEFINED(a, b) (((a) < 0) | (((a) <= 0) & ((b) <= 0)))
+#define IA_POW_UNDEFINED(a, b) (((a) < 0) | (((a) == 0) & ((b) <= 0)))
+
 /* a^b for real exponents, on the domain of IEEE 1788 pow: x > 0, or x = 0 with y > 0. a is clipped to
  * [0, +inf); a wholly negative, or a = [0,0] with b <= 0, gives empty. x^y is monotone in x for each y and in y
  * for each x, so the range over the box is the hull of the four corners (C's pow gives the right limits at 0

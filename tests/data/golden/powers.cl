@@ -43,8 +43,8 @@ IA_FN iav iacsg_Fv(iav x, iav y, iav z, iav t) {
     ia_maskv v13_u = v11_u;
     ia_maskv v13_e = v11_e;
     iav v15 = iav_pow(y, iav_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
-    ia_maskv v15_u = (y.lo < 0 || (y.lo <= 0 && iav_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).lo <= 0));
-    ia_maskv v15_e = (y.hi < 0 || (y.hi == 0 && iav_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).hi <= 0));
+    ia_maskv v15_u = (IA_POW_MAY_BE_UNDEFINED(y.lo, iav_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).lo));
+    ia_maskv v15_e = (IA_POW_UNDEFINED(y.hi, iav_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).hi));
     iav v16 = iav_add(v13, v15);
     ia_maskv v16_u = v13_u || v15_u;
     ia_maskv v16_e = v13_e || v15_e;
@@ -91,7 +91,7 @@ IA_FN ia_realv iacsg_f_gradv(ia_realv x, ia_realv y, ia_realv z, ia_realv t, ia_
     ia_realv v13_dy = v11_dy;
     ia_realv v13_dz = v11_dz;
     ia_realv v15 = iav_pow_point(y, IAV_R(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
-    v15 = select(v15, IAV_R(NAN), y < 0 || (y <= 0 && IAV_R(IACSG_K(0x1.8p+0f, 0x1.8p+0)) <= 0));
+    v15 = select(v15, IAV_R(NAN), IA_POW_MAY_BE_UNDEFINED(y, IAV_R(IACSG_K(0x1.8p+0f, 0x1.8p+0))));
     ia_realv v15_dy = v15 * (IAV_R(0) * log(y) + IAV_R(IACSG_K(0x1.8p+0f, 0x1.8p+0)) * IAV_R(1) / y);
     ia_realv v16 = v13 + v15;
     ia_realv v16_dx = v13_dx;
@@ -117,7 +117,7 @@ IA_FN ia_interval iacsg_F(ia_interval x, ia_interval y, ia_interval z, ia_interv
     ia_interval v13 = ia_add(v11, v12);
     int v13_u = v11_u;
     ia_interval v15 = ia_pow(y, ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
-    int v15_u = (y.lo < 0 || (y.lo <= 0 && ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).lo <= 0));
+    int v15_u = (IA_POW_MAY_BE_UNDEFINED(y.lo, ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).lo));
     ia_interval v16 = ia_add(v13, v15);
     int v16_u = v13_u || v15_u;
     return ia_or_outside(v16, v16_u);
@@ -147,7 +147,7 @@ IA_FN ia_interval iacsg_Fd(ia_interval x, ia_interval y, ia_interval z, ia_inter
     int v13_u = v11_u;
     ia_interval v13_t = ia_add(v11_t, v12_t);
     ia_interval v15 = ia_pow(y, ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)));
-    int v15_u = (y.lo < 0 || (y.lo <= 0 && ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).lo <= 0));
+    int v15_u = (IA_POW_MAY_BE_UNDEFINED(y.lo, ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)).lo));
     undefined |= v15_u;
     ia_interval v15_t = ia_mul(v15, ia_add(ia_mul(ia_point(0), ia_log(y)), ia_div(ia_mul(ia_point(IACSG_K(0x1.8p+0f, 0x1.8p+0)), dy), y)));
     ia_interval v16 = ia_add(v13, v15);
@@ -176,7 +176,7 @@ IA_FN ia_real iacsg_f_grad(ia_real x, ia_real y, ia_real z, ia_real t, ia_real *
     ia_real v13 = v11 + v12;
     iacsg_grad v13_d = v11_d + v12_d;
     ia_real v15 = pow(y, IACSG_K(0x1.8p+0f, 0x1.8p+0));
-    v15 = y < 0 || (y <= 0 && IACSG_K(0x1.8p+0f, 0x1.8p+0) <= 0) ? (ia_real)NAN : v15;
+    v15 = IA_POW_MAY_BE_UNDEFINED(y, IACSG_K(0x1.8p+0f, 0x1.8p+0)) ? (ia_real)NAN : v15;
     iacsg_grad v15_d = v15 * ((iacsg_grad)0 * log(y) + IACSG_K(0x1.8p+0f, 0x1.8p+0) * (iacsg_grad)(0, 1, 0, 0) / y);
     ia_real v16 = v13 + v15;
     iacsg_grad v16_d = v13_d + v15_d;
