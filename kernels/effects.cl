@@ -103,8 +103,8 @@ static ia_maskv effects_trace_samples(__constant ia_real *params, int width, int
     int one_tile = 1;
     for (int k = 0; k < IA_VW; k++) {
         int tx = pix[k] % width / TILE_SIZE, ty = pix[k] / width / TILE_SIZE;
-        int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
-        int i1 = min(i0 + TILE_SIZE, width) - 1, j1 = min(j0 + TILE_SIZE, height) - 1;
+        int i0, i1, j0, j1;
+        tile_pixels(tx, ty, width, height, &i0, &i1, &j0, &j1);
         int inside = x2[k] >= (ia_real)(2 * i0 + 1) && x2[k] <= (ia_real)(2 * i1 + 1) &&
                      y2[k] >= (ia_real)(2 * j0 + 1) && y2[k] <= (ia_real)(2 * j1 + 1);
         tile_k[k] = tile_index(tx, ty, tiles_x);

@@ -21,6 +21,14 @@ typedef struct {
 } tile_layer_runs;
 
 #if IA_DEVICE && defined(IA_VW) && !defined(IACSG_SCALAR_CODE) /* (as packet.h) */
+/* The pixels of tile (tx, ty): columns *i0..*i1, rows *j0..*j1 (the frame's last tiles may be narrower). */
+IA_FN void tile_pixels(int tx, int ty, int width, int height, int *i0, int *i1, int *j0, int *j1) {
+    *i0 = tx * TILE_SIZE;
+    *j0 = ty * TILE_SIZE;
+    *i1 = min(*i0 + TILE_SIZE, width) - 1;
+    *j1 = min(*j0 + TILE_SIZE, height) - 1;
+}
+
 /* The PACKET_W x PACKET_H tiles from (tx0, ty0) in SIMD lanes, a tile a lane: their rays as boxes (tile_rays_of)
  * in base and dir, and their angular (perspective) or linear (orthographic) sizes in *spread; valid[k] is 1 where
  * lane k's tile is in the frame, else 0 (such a lane gets its edge tile's finite box, and should search nothing). */
@@ -33,8 +41,8 @@ IA_FN void tile_block_lanes(__constant ia_real *params, int ortho, int width, in
         valid[k] = tx < tiles_x && ty < tiles_y;
         tx = min(tx, tiles_x - 1);
         ty = min(ty, tiles_y - 1);
-        int i0 = tx * TILE_SIZE, j0 = ty * TILE_SIZE;
-        int i1 = min(i0 + TILE_SIZE, width) - 1, j1 = min(j0 + TILE_SIZE, height) - 1;
+        int i0, i1, j0, j1;
+        tile_pixels(tx, ty, width, height, &i0, &i1, &j0, &j1);
         tile_rays rays;
         tile_rays_of(params, ortho, i0, i1, j0, j1, width, height, &rays);
         for (int c = 0; c < 3; c++) {

@@ -128,6 +128,8 @@ static int has_children(const iacsg_renderer *r, const iacsg_effects *e) {
     return transparent(r, e) || (e->bounces > 0 && reflects(r, e));
 }
 
+int fx_traces_secondary(const iacsg_renderer *r, const iacsg_effects *e) { return e->shadows || has_children(r, e); }
+
 /* Whether the hits are lit (light.h's shading, in colour or by the normal's direction), not a preview. */
 static int lit_shading(const iacsg_effects *e) {
     return e->shade == IACSG_SHADE_LIT || e->shade == IACSG_SHADE_GRADIENT;

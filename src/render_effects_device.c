@@ -139,8 +139,7 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
     }
     /* -aa's rounds (else one launch): the paths a round leaves, in turn, and how many each leaves; where the paths
      * trace secondary rays, the walks' hits and the shading after the rounds */
-    const iacsg_effects *e = x->view->effects;
-    int secondary = e->shadows || e->bounces > 0 || e->transparency > 0;
+    int secondary = fx_traces_secondary(r, x->view->effects);
     int launches = mode == EFFECTS_MODE_AA && n > 0 ? FX_AA_ROUNDS + secondary : 1;
     if (launches > 1 && st == IACSG_OK) {
         cl_int rc = CL_SUCCESS, zero[FX_AA_ROUNDS] = {0};

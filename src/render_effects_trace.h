@@ -67,6 +67,9 @@ iacsg_status fx_sync_to_host(cl_command_queue q, cl_mem m, size_t bytes, iacsg_e
 float fx_display(float light);
 void fx_encode(float *rgb, int pixel);
 
+/* Whether a frame's paths trace secondary rays: shadow rays, reflected rays or rays through transparent hits. */
+int fx_traces_secondary(const iacsg_renderer *r, const iacsg_effects *e);
+
 /* Makes r->fx (without its kernel) when it is not there yet. */
 iacsg_status fx_of(iacsg_renderer *r, render_fx **out, iacsg_error *err);
 
