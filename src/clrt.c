@@ -182,7 +182,9 @@ iacsg_status clrt_ia_options(const clrt *rt, int fp64, int fast, char *buf, size
     if (fp64 && !rt->has_fp64)
         return iacsg_error_set(err, IACSG_ERR_ARG, 0, 0, "device '%s' has no double precision (cl_khr_fp64)",
                                rt->device_name);
-    snprintf(buf, size, "-cl-std=CL1.2%s%s%s%s", fp64 ? " -D IA_FP64" : "", fast ? " -D IA_FAST" : "",
+    const char *warnings = getenv("IACSG_KERNEL_WARNINGS");
+    snprintf(buf, size, "-cl-std=CL1.2%s%s%s%s%s", warnings && *warnings ? "" : " -w", fp64 ? " -D IA_FP64" : "",
+             fast ? " -D IA_FAST" : "",
              rt->keep_subnormals && rt->float_denorms ? "" : " -cl-denorms-are-zero -D IA_FTZ",
              rt->cr_divide_sqrt ? " -cl-fp32-correctly-rounded-divide-sqrt -D IA_CR_DIVSQRT" : "");
     return IACSG_OK;

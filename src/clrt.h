@@ -69,8 +69,11 @@ void clrt_close(clrt *rt);
  * for the fast mode, correctly rounded divide/sqrt when the device offers it, and subnormals flushed to zero
  * (-cl-denorms-are-zero -D IA_FTZ) unless rt->keep_subnormals asks to keep those the device has: a subnormal
  * operand or result costs a microcode assist on x86 CPUs (the sigmoid blend's exp rendered 15x slower with them)
- * and GPUs flush at full speed; the host hands the device no subnormal bound (ia/flush.h). Writes into buf (at
- * least 256 bytes). */
+ * and GPUs flush at full speed; the host hands the device no subnormal bound (ia/flush.h). And -w: the device
+ * compiler's warnings are not the user's (PoCL prints their count on stderr: "664 warnings generated." at each
+ * first build on a CPU without AVX-512, clang's -Wpsabi note at every function that passes the 16 lanes' vectors,
+ * which PoCL accepts no option to turn off), unless IACSG_KERNEL_WARNINGS is set (non-empty): then they are kept,
+ * for the tests that read them (tests/t_expr_cli.c). Writes into buf (at least 256 bytes). */
 iacsg_status clrt_ia_options(const clrt *rt, int fp64, int fast, char *buf, size_t size, iacsg_error *err);
 
 /* Builds a program from the concatenation of `count` source strings. On a build failure the log is saved to a
