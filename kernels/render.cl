@@ -184,15 +184,19 @@ static void packet_gradients(PACKET_TAPE_PARAM const __global ulong *segment_gro
 
 /* The colours of a packet wholly in the image whose first pixel is `first`, row by row: a row's PACKET_W pixels
  * are 3 PACKET_W consecutive floats (or bytes), interleaved from the three colour vectors and stored as 8 + 4 (a
- * store per float, lane by lane, was a sixth of an empty frame's kernel time). The lanes are picked by constant
- * swizzles: shuffle2 with masks computed per row went through the stack element by element, 30 % of the sphere's
- * kernel. */
-#if PACKET_W != 4 || PACKET_LANES != 16
-#error "put_rgb_rows interleaves rows of 4 pixels of a 16-lane packet"
+ * store per float, lane by lane, was a sixth of an empty frame's kernel time), or for 2 pixels as 4 + 2. The lanes
+ * are picked by constant swizzles: shuffle2 with masks computed per row went through the stack element by element,
+ * 30 % of the sphere's kernel. */
+#if PACKET_H != 4 || (PACKET_W != 4 && PACKET_W != 2) || PACKET_LANES != IA_VW
+#error "put_rgb_rows interleaves 4 rows of 4 or 2 pixels, a packet's lanes"
 #endif
 static void put_rgb_row(float4 r, float4 g, float4 b, __global float *at) {
     vstore8((float8)(r.s0, g.s0, b.s0, r.s1, g.s1, b.s1, r.s2, g.s2), 0, at);
     vstore4((float4)(b.s2, r.s3, g.s3, b.s3), 0, at + 8);
+}
+static void put_rgb_row2(float2 r, float2 g, float2 b, __global float *at) {
+    vstore4((float4)(r.s0, g.s0, b.s0, r.s1), 0, at);
+    vstore2((float2)(g.s1, b.s1), 0, at + 4);
 }
 
 /* RENDER_BYTES' rounding of colours to bytes, exactly src/image_bytes.c's: NaN and below 0 give 0 (fmax passes
@@ -210,8 +214,13 @@ static void put_rgb_row_bytes(float4 r, float4 g, float4 b, __global uchar *at) 
     vstore8(color_bytes8((float8)(r.s0, g.s0, b.s0, r.s1, g.s1, b.s1, r.s2, g.s2)), 0, at);
     vstore4(color_bytes4((float4)(b.s2, r.s3, g.s3, b.s3)), 0, at + 8);
 }
+static void put_rgb_row2_bytes(float2 r, float2 g, float2 b, __global uchar *at) {
+    vstore4(color_bytes4((float4)(r.s0, g.s0, b.s0, r.s1)), 0, at);
+    vstore2(color_bytes4((float4)(g.s1, b.s1, 0.0f, 0.0f)).s01, 0, at + 4);
+}
 
 /* A whole packet's colours, as floats or with RENDER_BYTES as bytes (out then points to bytes), row by row. */
+#if PACKET_W == 4
 #define PUT_RGB_ROWS(put, at, row)                                                                              \
     do {                                                                                                        \
         put(rgb[0].s0123, rgb[1].s0123, rgb[2].s0123, (at));                                                   \
@@ -219,12 +228,23 @@ static void put_rgb_row_bytes(float4 r, float4 g, float4 b, __global uchar *at) 
         put(rgb[0].s89ab, rgb[1].s89ab, rgb[2].s89ab, (at) + 2 * (row));                                       \
         put(rgb[0].scdef, rgb[1].scdef, rgb[2].scdef, (at) + 3 * (row));                                       \
     } while (0)
+#define PUT_RGB_ROW put_rgb_row
+#else
+#define PUT_RGB_ROWS(put, at, row)                                                                              \
+    do {                                                                                                        \
+        put(rgb[0].s01, rgb[1].s01, rgb[2].s01, (at));                                                         \
+        put(rgb[0].s23, rgb[1].s23, rgb[2].s23, (at) + (row));                                                 \
+        put(rgb[0].s45, rgb[1].s45, rgb[2].s45, (at) + 2 * (row));                                             \
+        put(rgb[0].s67, rgb[1].s67, rgb[2].s67, (at) + 3 * (row));                                             \
+    } while (0)
+#define PUT_RGB_ROW put_rgb_row2
+#endif
 static void put_rgb_rows(const shade_colorv rgb[3], size_t first, int width, int bytes, __global float *out) {
     size_t row = 3 * (size_t)width;
     if (bytes)
-        PUT_RGB_ROWS(put_rgb_row_bytes, (__global uchar *)out + 3 * first, row);
+        PUT_RGB_ROWS(IAV_CAT(PUT_RGB_ROW, _bytes), (__global uchar *)out + 3 * first, row);
     else
-        PUT_RGB_ROWS(put_rgb_row, out + 3 * first, row);
+        PUT_RGB_ROWS(PUT_RGB_ROW, out + 3 * first, row);
 }
 
 /* Writes the outputs of the lanes' pixels (col, row) that are in the image (the packet's first is (i0, j0)): the
@@ -289,15 +309,23 @@ static void effects_centre(__constant ia_real *params, __constant ia_real *fx, _
 /* The sum and the maximum of a packet's lanes' counts, by halves in registers (stored whole and loaded back, the
  * load waited on the stores of its pieces). */
 static uint lanes_sum(packet_index v) {
+#if IA_VW == 16
     uint16 k = convert_uint16(v);
     uint8 k8 = k.lo + k.hi;
+#else
+    uint8 k8 = convert_uint8(v);
+#endif
     uint4 k4 = k8.lo + k8.hi;
     uint2 k2 = k4.lo + k4.hi;
     return k2.x + k2.y;
 }
 static uint lanes_max(packet_index v) {
+#if IA_VW == 16
     uint16 k = convert_uint16(v);
     uint8 k8 = max(k.lo, k.hi);
+#else
+    uint8 k8 = convert_uint8(v);
+#endif
     uint4 k4 = max(k8.lo, k8.hi);
     uint2 k2 = max(k4.lo, k4.hi);
     return max(k2.x, k2.y);

@@ -150,6 +150,10 @@ iacsg_status clrt_open(clrt *rt, int device_index, iacsg_error *err) {
     CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp, NULL));
     CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof rt->compute_units,
                                     &rt->compute_units, NULL));
+    CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_PREFERRED_VECTOR_WIDTH_FLOAT, sizeof rt->float_lanes,
+                                    &rt->float_lanes, NULL));
+    CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_PREFERRED_VECTOR_WIDTH_DOUBLE, sizeof rt->double_lanes,
+                                    &rt->double_lanes, NULL));
     CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof rt->global_mem_size,
                                     &rt->global_mem_size, NULL));
     CLRT_CHECK(err, clGetDeviceInfo(rt->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof rt->max_alloc_size,

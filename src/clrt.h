@@ -26,6 +26,7 @@ typedef struct {
                             * first launch and again for a binary): a built program's binary is then free to query,
                             * so the program cache saves it at its first build (src/clrt_cache.c) */
     cl_uint compute_units;
+    cl_uint float_lanes, double_lanes; /* CL_DEVICE_PREFERRED_VECTOR_WIDTH_FLOAT and _DOUBLE (a CPU's SIMD width) */
     cl_ulong global_mem_size; /* CL_DEVICE_GLOBAL_MEM_SIZE */
     cl_ulong max_alloc_size;  /* CL_DEVICE_MAX_MEM_ALLOC_SIZE: the largest single buffer */
 } clrt;

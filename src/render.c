@@ -37,6 +37,7 @@ iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out
     if (!r)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     r->config = *config;
+    r->packet_w = PACKET_W;
     iacsg_status st = clrt_open(&r->rt, config->device, err);
     if (st != IACSG_OK) {
         free(r);
@@ -49,13 +50,14 @@ iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out
 iacsg_status render_build(iacsg_renderer *r, const char *const *sources, size_t count, const char *kernel,
                           iacsg_error *err) {
     char options[512];
-    iacsg_status st = clrt_ia_options(&r->rt, r->config.fp64, r->config.fast, options, sizeof options - 64, err);
+    iacsg_status st = clrt_ia_options(&r->rt, r->config.fp64, r->config.fast, options, sizeof options - 96, err);
     if (st != IACSG_OK)
         return st;
     /* IACSG_SEGMENTS_LANES=0: the segment path's planar solids solved ray by ray, not in a packet's lanes
      * (kernels/segments_lanes.h; tests/t_brlcad_lanes.c compares the two, and A/B timings take it) */
     const char *lanes = getenv("IACSG_SEGMENTS_LANES");
-    snprintf(options + strlen(options), 64, " -D IA_VW=%d%s%s", PACKET_LANES, r->config.stats ? " -D KERNEL_STATS" : "",
+    snprintf(options + strlen(options), 96, " -D IA_VW=%d -D PACKET_W=%d%s%s", render_packet_lanes(r), r->packet_w,
+             r->config.stats ? " -D KERNEL_STATS" : "",
              lanes && strcmp(lanes, "0") == 0 ? " -D SEGMENTS_LANES_OFF" : "");
     double t0 = render_now_seconds();
     st = clrt_build(&r->rt, sources, count, options, &r->program, err);
@@ -70,12 +72,29 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
+int render_packet_lanes(const iacsg_renderer *r) { return r->packet_w * PACKET_H; }
+
+/* The first-root path's packets' width: 2 pixels (8 lanes) where the device's vectors of the working precision
+ * hold 2 to 8 lanes (a CPU without AVX-512: PoCL on AVX2 says 8 floats, 4 doubles), else 4 (16 lanes: AVX-512, and
+ * GPUs, which say 1). On a Zen 3 (AVX2), 16 -> 8 lanes, render medians in turn: gyroid in a ball 183 -> 152 ms,
+ * multiple unions 166 -> 151, reference view 39 -> 37; the gyroid's reflections 419 -> 309 (a packet waits for its
+ * slowest ray, and a 16-lane vector is two AVX2 registers, passed through memory to every function not inlined).
+ * IACSG_PACKET_LANES (8 or 16) sets it, for A/B timings and the tests that render both ways. */
+static int render_packet_w(const clrt *rt, int fp64) {
+    const char *set = getenv("IACSG_PACKET_LANES");
+    if (set && (strcmp(set, "8") == 0 || strcmp(set, "16") == 0))
+        return strcmp(set, "8") == 0 ? 2 : 4;
+    cl_uint lanes = fp64 ? rt->double_lanes : rt->float_lanes;
+    return lanes >= 2 && lanes <= 8 ? 2 : 4;
+}
+
 iacsg_status render_create_first_root(const char *expr_cl, const char *kernels, const iacsg_render_config *config,
                                       iacsg_renderer **out, iacsg_error *err) {
     iacsg_renderer *r;
     iacsg_status st = render_open(config, &r, err);
     if (st != IACSG_OK)
         return st;
+    r->packet_w = render_packet_w(&r->rt, config->fp64);
     const char *sources[] = {iacsg_cl_ia, expr_cl, kernels};
     st = render_build(r, sources, 3, "iacsg_render", err);
     return render_finish(r, st, compile_now, out, err);
@@ -415,7 +434,7 @@ fail:
 /* Each band of rows, one launch (each block's tiles, then its pixels). */
 static iacsg_status launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, iacsg_error *err) {
     size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
-    return render_launch_bands(r, k, view, (tiles_x + PACKET_W - 1) / PACKET_W, BLOCK_ROWS,
+    return render_launch_bands(r, k, view, (tiles_x + (size_t)r->packet_w - 1) / (size_t)r->packet_w, BLOCK_ROWS,
                                BAND_ROWS_PROGRESS / BLOCK_ROWS, BAND_ROWS / BLOCK_ROWS, err);
 }
 
@@ -486,7 +505,7 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     size_t n = (size_t)view->width * (size_t)view->height;
     size_t tiles_n = (((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE) *
                      (((size_t)view->height + TILE_SIZE - 1) / TILE_SIZE);
-    size_t packets_n = (((size_t)view->width + PACKET_W - 1) / PACKET_W) *
+    size_t packets_n = (((size_t)view->width + (size_t)r->packet_w - 1) / (size_t)r->packet_w) *
                        (((size_t)view->height + PACKET_H - 1) / PACKET_H);
     frame_buffers buffers = {0};
     cl_uint *evals = NULL, *tile_evals = NULL;
@@ -535,7 +554,7 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
         size_t first = (size_t)view->row_first, rows = view->row_count ? (size_t)view->row_count : (size_t)view->height;
         size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
         frame->rays = (long long)(rows * (size_t)view->width);
-        size_t packets_x = ((size_t)view->width + PACKET_W - 1) / PACKET_W;
+        size_t packets_x = ((size_t)view->width + (size_t)r->packet_w - 1) / (size_t)r->packet_w;
         if (evals)
             summarize_evals(evals + 2 * (first / PACKET_H * packets_x), (rows + PACKET_H - 1) / PACKET_H * packets_x,
                             rows * (size_t)view->width, tile_evals + first / TILE_SIZE * tiles_x,

@@ -175,7 +175,8 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
                 {sizeof(cl_mem), x->t->tiles.groups ? &x->t->tiles.groups : NULL}};
     for (cl_uint a = 0; a < sizeof args / sizeof args[0] && st == IACSG_OK; a++)
         st = set_arg(x->k, a, args[a].bytes, args[a].v, err);
-    size_t global = n > 0 ? (n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile_now */
+    size_t lanes = (size_t)render_packet_lanes(r), local = 1;
+    size_t global = n > 0 ? (n + lanes - 1) / lanes : 1; /* n = 0: compile_now */
     cl_int rc = CL_SUCCESS;
     for (cl_int round = 0; round < launches && st == IACSG_OK && rc == CL_SUCCESS; round++) {
         st = set_round_args(x, sizeof args / sizeof args[0], rounds_mem, round, err);

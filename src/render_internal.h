@@ -20,15 +20,20 @@ struct iacsg_renderer {
     render_scene *scene; /* NULL on the first-root path */
     render_fx *fx;       /* the effects' kernel and materials (src/render_effects.c), made at the first use */
     cl_mem tape;         /* an interpreted expression's tape (src/render_expr.c), else NULL */
+    int packet_w;        /* the program's packets are packet_w x PACKET_H pixels (kernels/params.h) */
     char program_note[160]; /* iacsg_renderer_program */
 };
 
 double render_now_seconds(void);
 
+/* The lanes of the renderer's packets: r->packet_w x PACKET_H. */
+int render_packet_lanes(const iacsg_renderer *r);
+
 /* A renderer on config's device, without a program yet (destroy with iacsg_renderer_destroy). */
 iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out, iacsg_error *err);
 
-/* Builds the program from the sources with the ia/ options of the config and creates its kernel. */
+/* Builds the program from the sources with the ia/ options of the config and its packets' width, r->packet_w,
+ * and creates its kernel. */
 iacsg_status render_build(iacsg_renderer *r, const char *const *sources, size_t count, const char *kernel,
                           iacsg_error *err);
 
