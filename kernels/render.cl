@@ -219,32 +219,30 @@ static void put_rgb_row2_bytes(float2 r, float2 g, float2 b, __global uchar *at)
     vstore2(color_bytes4((float4)(g.s1, b.s1, 0.0f, 0.0f)).s01, 0, at + 4);
 }
 
-/* A whole packet's colours, as floats or with RENDER_BYTES as bytes (out then points to bytes), row by row. */
+/* A whole packet's colours, as floats or with RENDER_BYTES as bytes (out then points to bytes), row by row: the
+ * rows' lanes picked by the swizzles a, b, c, d. */
+#define PUT_RGB_ROWS(put, at, row, a, b, c, d)                                                                  \
+    do {                                                                                                        \
+        put(rgb[0].a, rgb[1].a, rgb[2].a, (at));                                                               \
+        put(rgb[0].b, rgb[1].b, rgb[2].b, (at) + (row));                                                       \
+        put(rgb[0].c, rgb[1].c, rgb[2].c, (at) + 2 * (row));                                                   \
+        put(rgb[0].d, rgb[1].d, rgb[2].d, (at) + 3 * (row));                                                   \
+    } while (0)
 #if PACKET_W == 4
-#define PUT_RGB_ROWS(put, at, row)                                                                              \
-    do {                                                                                                        \
-        put(rgb[0].s0123, rgb[1].s0123, rgb[2].s0123, (at));                                                   \
-        put(rgb[0].s4567, rgb[1].s4567, rgb[2].s4567, (at) + (row));                                           \
-        put(rgb[0].s89ab, rgb[1].s89ab, rgb[2].s89ab, (at) + 2 * (row));                                       \
-        put(rgb[0].scdef, rgb[1].scdef, rgb[2].scdef, (at) + 3 * (row));                                       \
-    } while (0)
 #define PUT_RGB_ROW put_rgb_row
+#define PUT_RGB_LANES s0123, s4567, s89ab, scdef
 #else
-#define PUT_RGB_ROWS(put, at, row)                                                                              \
-    do {                                                                                                        \
-        put(rgb[0].s01, rgb[1].s01, rgb[2].s01, (at));                                                         \
-        put(rgb[0].s23, rgb[1].s23, rgb[2].s23, (at) + (row));                                                 \
-        put(rgb[0].s45, rgb[1].s45, rgb[2].s45, (at) + 2 * (row));                                             \
-        put(rgb[0].s67, rgb[1].s67, rgb[2].s67, (at) + 3 * (row));                                             \
-    } while (0)
 #define PUT_RGB_ROW put_rgb_row2
+#define PUT_RGB_LANES s01, s23, s45, s67
 #endif
+/* (one more level, so that PUT_RGB_LANES is spread into PUT_RGB_ROWS' four arguments) */
+#define PUT_RGB_ROWS_OF(put, at, row, lanes) PUT_RGB_ROWS(put, at, row, lanes)
 static void put_rgb_rows(const shade_colorv rgb[3], size_t first, int width, int bytes, __global float *out) {
     size_t row = 3 * (size_t)width;
     if (bytes)
-        PUT_RGB_ROWS(IAV_CAT(PUT_RGB_ROW, _bytes), (__global uchar *)out + 3 * first, row);
+        PUT_RGB_ROWS_OF(IAV_CAT(PUT_RGB_ROW, _bytes), (__global uchar *)out + 3 * first, row, PUT_RGB_LANES);
     else
-        PUT_RGB_ROWS(PUT_RGB_ROW, out + 3 * first, row);
+        PUT_RGB_ROWS_OF(PUT_RGB_ROW, out + 3 * first, row, PUT_RGB_LANES);
 }
 
 /* Writes the outputs of the lanes' pixels (col, row) that are in the image (the packet's first is (i0, j0)): the

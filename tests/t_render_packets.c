@@ -4,8 +4,8 @@
  * frame's tree, each lane's own steps), so the camera frames are the same bits: colours (as floats and as bytes,
  * whole packets and the image's cut ones), depths, normals and the evaluation counts; compiled, on the tape and in
  * double. A secondary ray's tree is as long as its packet's farthest ray, so the effects may move a hit within a
- * leaf: their AOVs (the centre rays') are the same bits, their colours within 2/255 (the gyroid's: 306 of 22,500
- * values moved, by at most 0.0031). */
+ * leaf: their AOVs (the centre rays') are the same bits, their colours within 2/255 (a gyroid in a ball's with the
+ * same effects: 306 of 22,500 values moved, by at most 0.0031; the sphere and torus's 128, by less than 1e-4). */
 #include "iacsg.h"
 #include "render_internal.h"
 #include "test.h"
@@ -49,11 +49,12 @@ TEST(render_packet_widths_agree) {
                        .camera = {.eye = {3, -4, 2}, .up = {0, 0, 1}, .fov = 40}};
     iacsg_effects fx = {.lights = {{IACSG_LIGHT_POINT, {2, -3, 4}, 0.9}}, .nlights = 1, .shadows = 1, .bounces = 1,
                         .reflect = 0.4, .transparency = 0.3, .aa = 4};
+    /* (the sphere and torus in the default config is other tests' program too: one of its two builds is cached) */
     const packets_case cases[] = {
-        {"min(sphere, torus)", {.stats = 1}, 0, 1},
+        {"min(sphere, torus)", {0}, 0, 1},
+        {"min(sphere, torus)", {0}, 1, 0},
         {"min(sphere, torus)", {.fp64 = 1, .stats = 1}, 0, 0},
         {"sin(4*x)*cos(4*y)+sin(4*y)*cos(4*z)+sin(4*z)*cos(4*x)", {.tape = IACSG_TAPE_ALWAYS, .stats = 1}, 0, 0},
-        {"max(sin(4*x)*cos(4*y)+sin(4*y)*cos(4*z)+sin(4*z)*cos(4*x), x^2+y^2+z^2-1.8)", {.stats = 1}, 1, 0},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         const packets_case *c = &cases[k];
