@@ -505,8 +505,8 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
     size_t n = (size_t)view->width * (size_t)view->height;
     size_t tiles_n = (((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE) *
                      (((size_t)view->height + TILE_SIZE - 1) / TILE_SIZE);
-    size_t packets_n = (((size_t)view->width + (size_t)r->packet_w - 1) / (size_t)r->packet_w) *
-                       (((size_t)view->height + PACKET_H - 1) / PACKET_H);
+    size_t packets_x = ((size_t)view->width + (size_t)r->packet_w - 1) / (size_t)r->packet_w;
+    size_t packets_n = packets_x * (((size_t)view->height + PACKET_H - 1) / PACKET_H);
     frame_buffers buffers = {0};
     cl_uint *evals = NULL, *tile_evals = NULL;
     frame->width = view->width;
@@ -554,7 +554,6 @@ iacsg_status iacsg_render(iacsg_renderer *r, const iacsg_view *view, iacsg_frame
         size_t first = (size_t)view->row_first, rows = view->row_count ? (size_t)view->row_count : (size_t)view->height;
         size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
         frame->rays = (long long)(rows * (size_t)view->width);
-        size_t packets_x = ((size_t)view->width + (size_t)r->packet_w - 1) / (size_t)r->packet_w;
         if (evals)
             summarize_evals(evals + 2 * (first / PACKET_H * packets_x), (rows + PACKET_H - 1) / PACKET_H * packets_x,
                             rows * (size_t)view->width, tile_evals + first / TILE_SIZE * tiles_x,
