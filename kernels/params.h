@@ -40,8 +40,8 @@ enum {
 /* A work-item of the render kernel traces PACKET_W x PACKET_H pixels of one tile in as many SIMD lanes
  * (kernels/packet.h); the host builds the program with -D IA_VW=PACKET_LANES. The first-root path's packets are
  * 2 pixels wide on a device whose vectors hold 8 lanes or fewer (src/render.c: render_packet_w, which passes
- * -D PACKET_W): a 16-lane vector is two AVX2 registers, and a packet waits for its slowest ray. The host's own
- * layout of the segment path, and its lists, take the 4 x 4 packet. */
+ * -D PACKET_W): a 16-lane vector is two AVX2 registers, and a packet waits for its slowest ray. The host reads
+ * the width its renderer chose (render_packet_lanes, render_block_w); its own PACKET_LANES (16) only pads. */
 #ifndef PACKET_W
 #define PACKET_W 4
 #endif

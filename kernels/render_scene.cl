@@ -1,9 +1,10 @@
 /* kernels/render_scene.cl -- the entry point of the segment path, iacsg_render_scene: one work-item per block of
- * PACKET_W x PACKET_H tiles (SCENE_BLOCK pixels square) of the band of block rows from block_row0 or, when
- * `pixels` is not NULL, per 16 listed pixels 16 (block_row0 + g) + 0..15 (rays traced again with larger buffers).
+ * PACKET_W x PACKET_H tiles (SCENE_BLOCK_W x SCENE_BLOCK_H pixels) of the band of block rows from block_row0 or,
+ * when `pixels` is not NULL, per PACKET_LANES (L) listed pixels L (block_row0 + g) + 0..L-1 (rays traced again with
+ * larger buffers).
  * Rows from row_end on (past the view's band of rows, iacsg_view.row_count) are neither traced nor written.
  *
- * Per block: the union's tile pass over its 16 tiles in SIMD lanes (scene_union.h, where the program has the
+ * Per block: the union's tile pass over its PACKET_LANES tiles in SIMD lanes (scene_union.h, where the program has the
  * union), then its packets of PACKET_W x PACKET_H pixels. Per packet: the surfaces' block passes (scene_block),
  * which prove where no ray of the packet can meet a surface; the camera rays clipped to the bounds (camera.h, in
  * lanes where the program has packet.h); with the union, its first root in lanes from the tile's leaf, and where
@@ -383,9 +384,9 @@ static scene_ray scene_slot_ray(__global const uint *nodes, __global const int *
     return ray;
 }
 
-/* One work-item per block of PACKET_W x PACKET_H tiles (SCENE_BLOCK pixels square) from block row block_row0 on,
- * or, when `pixels` is not NULL, per 16 listed pixels (block_row0 + g) 16 + 0..15, each traced again with its
- * own packet, its block's tile pass included. */
+/* One work-item per block of PACKET_W x PACKET_H tiles (SCENE_BLOCK_W x SCENE_BLOCK_H pixels) from block row
+ * block_row0 on, or, when `pixels` is not NULL, per PACKET_LANES (L) listed pixels (block_row0 + g) L + 0..L-1, each
+ * traced again with its own packet, its block's tile pass included. */
 __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int width, int height, int block_row0,
                                  __global const int *pixels, int npixels, __global const ia_real *bvh_box,
                                  __global const int *bvh_link, int nbvh, __global const uint *nodes,
@@ -400,7 +401,7 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
                                  __global int *overflow, __global int *noverflow, int row_end,
                                  __global const ia_real *prims, __constant ia_real *fx, __global uint *fx_counts) {
     size_t slot = get_global_id(1) * get_global_size(0) + get_global_id(0);
-    int bx = (int)get_global_id(0) * SCENE_BLOCK, by = (block_row0 + (int)get_global_id(1)) * SCENE_BLOCK;
+    int bx = (int)get_global_id(0) * SCENE_BLOCK_W, by = (block_row0 + (int)get_global_id(1)) * SCENE_BLOCK_H;
     if (!pixels && (bx >= width || by >= height))
         return;
     ia_interval time = ia_make(params[PARAM_TIME_LO], params[PARAM_TIME_HI]);
@@ -442,9 +443,9 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
  * is the sample's point. One work-item per listed block (SCENE_SAMPLES_INTS ints each, kernels/scene_data.h) from
  * first_block on: the block's tile pass, then each listed packet traced as the camera rays are, its lanes written
  * to slot s, outputs PACKET_LANES s + lane (rgb, depth, normal, ids, overlap, counts as iacsg_render_scene's). A
- * sample's pixel of 4x4 samples is one packet, a coherent beam: the BVH cut, the union's leaf and the claim at it
- * serve all 16 rays. The per-ray buffers hold every solid (src/render_scene.c: render_scene_trace_args), so no ray
- * overflows; `overflow` lists any that would. With the effects' block fx, each sample's colour is lit by it
+ * sample's pixel of 4x4 samples is one packet (two of 8 lanes), a coherent beam: the BVH cut, the union's leaf and
+ * the claim at it serve all its rays. The per-ray buffers hold every solid (src/render_scene.c:
+ * render_scene_trace_args), so no ray overflows; `overflow` lists any that would. With the effects' block fx, each sample's colour is lit by it
  * (scene_packet_lit, shadow and reflected rays and all, with leaves of fx_eps, the view's, as the host's paths;
  * the background of its pixel's row) in linear light, with KERNEL_STATS its secondary rays and their evaluations
  * to fx_counts (2 a slot's lane). */
@@ -477,7 +478,7 @@ __kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, 
                                    flags, &dirs, SCENE_LANES_OF(lanes), prims);
     scene_frame f = {flags, width, height, height, items, nodes, albedo, rgb, depth, normal, ids,
                      overlap, counts, overflow, noverflow, 0, fx, fx_counts, fx != 0, aa, fx_eps};
-    int bx = block[SCENE_SAMPLES_BX] * SCENE_BLOCK, by = block[SCENE_SAMPLES_BY] * SCENE_BLOCK;
+    int bx = block[SCENE_SAMPLES_BX] * SCENE_BLOCK_W, by = block[SCENE_SAMPLES_BY] * SCENE_BLOCK_H;
     int out = block[SCENE_SAMPLES_SLOT];
     scene_tile tiles[PACKET_LANES];
     scene_tiles(params, &f, bx / TILE_SIZE, by / TILE_SIZE, tiles);

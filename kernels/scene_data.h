@@ -17,14 +17,18 @@
 
 #define SCENE_RAY_CANDIDATES 32
 
-/* A work-item of the first pass renders a block of PACKET_W x PACKET_H tiles, SCENE_BLOCK pixels square: the
- * union's tile pass (kernels/scene_union.h) searches its 16 tiles in SIMD lanes, then its packets are traced. */
-#define SCENE_BLOCK (PACKET_W * TILE_SIZE)
-/* Its packets: SCENE_TILE_PACKETS a tile, SCENE_BLOCK_PACKETS in all, numbered tile by tile (the tiles in rows of
- * PACKET_W), each tile's in rows of SCENE_TILE_PACKETS_W. */
+/* A work-item of the first pass renders a block of PACKET_W x PACKET_H tiles, SCENE_BLOCK_W x SCENE_BLOCK_H pixels:
+ * the union's tile pass (kernels/scene_union.h) searches its PACKET_LANES tiles in SIMD lanes, then its packets are
+ * traced. Its packets: SCENE_TILE_PACKETS a tile, SCENE_BLOCK_PACKETS in all (64 whatever the packets' width),
+ * numbered tile by tile (the tiles in rows of PACKET_W), each tile's in rows of SCENE_TILE_PACKETS_W. The widths
+ * are the device's only: the host's layout reads the renderer's (src/render.c: render_block_w). */
+#define SCENE_BLOCK_H (PACKET_H * TILE_SIZE)
+#define SCENE_BLOCK_PACKETS (TILE_SIZE * TILE_SIZE)
+#if IA_DEVICE
+#define SCENE_BLOCK_W (PACKET_W * TILE_SIZE)
 #define SCENE_TILE_PACKETS_W (TILE_SIZE / PACKET_W)
 #define SCENE_TILE_PACKETS (SCENE_TILE_PACKETS_W * (TILE_SIZE / PACKET_H))
-#define SCENE_BLOCK_PACKETS (PACKET_LANES * SCENE_TILE_PACKETS)
+#endif
 
 /* -aa's samples on the segment path (iacsg_render_scene_samples, src/render_effects_samples.c) are the pixels of an
  * image aa times as wide and high, of which a work-item traces the packets listed in one block: SCENE_SAMPLES_INTS

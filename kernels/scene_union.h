@@ -1,8 +1,8 @@
 /* kernels/scene_union.h -- the segment path's pre-pass over the union of its regions, where the program has it
  * (SCENE_REGIONS_UNION: implicits/scene_emit.c emits g, the regions as one expression, in lanes, for scenes of at
  * most 8 solids and regions whose solids are defined everywhere). As in the first-root path (render.cl): the
- * tile pass over a block's 16 tiles of 8x8 pixels in SIMD lanes (tile.h, scene_union_tiles), then each packet's
- * rays search g's first root in lanes from their tile's leaf (packet.h's bisection and Newton,
+ * tile pass over a block's PACKET_LANES tiles of 8x8 pixels in SIMD lanes (tile.h, scene_union_tiles), then each
+ * packet's rays search g's first root in lanes from their tile's leaf (packet.h's bisection and Newton,
  * scene_union_packet), and each ray's weave (scene_trace.h) starts at its leaf instead of where it enters the
  * bounds. Where no two regions can be in at one point (SCENE_REGIONS_DISJOINT), the leaf's partition is claimed
  * without weaving (scene_union_claim): each solid's state over the leaf, and the regions' classification there.

@@ -1,6 +1,6 @@
 /* kernels/tile.h -- coarse to fine: before the rays of a TILE_SIZE x TILE_SIZE tile are traced, the tile's
- * lane (16 tiles are searched at once) bisects the t range [TMIN, TMAX] with the box that holds every ray of the
- * tile at once. Where 0 is not in F over that box, no ray of the tile meets the surface, so the tile's rays skip
+ * lane (PACKET_LANES tiles are searched at once) bisects the t range [TMIN, TMAX] with the box that holds every ray
+ * of the tile at once. Where 0 is not in F over that box, no ray of the tile meets the surface, so the tile's rays skip
  * it; a tile with no candidate at all is background without tracing a single ray. The rays start their walks of
  * the same tree at the first surviving coarse leaf (kernels/packet.h, render.cl). For a union emitted in groups,
  * the pass also finds which groups can matter in the tile, per segment of the tree (tile_groups).

@@ -31,18 +31,35 @@ double render_now_seconds(void) {
 
 static iacsg_status compile_now(iacsg_renderer *r, iacsg_error *err);
 
-iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out, iacsg_error *err) {
+/* The packets' width: 2 pixels (8 lanes) where `narrow` (the first-root path) and the device's vectors of the
+ * working precision hold 2 to 8 lanes (a CPU without AVX-512: PoCL on AVX2 says 8 floats, 4 doubles), else 4 (16
+ * lanes: AVX-512, GPUs, which say 1, and the segment path). On a Zen 3 (AVX2), 16 -> 8 lanes, render medians in
+ * turn: gyroid in a ball 183 -> 152 ms, multiple unions 166 -> 151, reference view 39 -> 37; the gyroid's
+ * reflections 419 -> 309 (a packet waits for its slowest ray, and a 16-lane vector is two AVX2 registers, passed
+ * through memory to every function not inlined). The segment path traces a packet's rays one at a time after its
+ * passes in lanes, which 8 lanes make twice as many: sesc.csg 0.57 -> 0.72 s, icos.csg 1.09 -> 1.14, the BRL-CAD
+ * models and Fig. 2's regions within the noise (medians of 7 in turn). IACSG_PACKET_LANES (8 or 16) sets it on
+ * both paths, for A/B timings and the tests that render both ways. */
+static int render_packet_w(const clrt *rt, int fp64, int narrow) {
+    const char *set = getenv("IACSG_PACKET_LANES");
+    if (set && (strcmp(set, "8") == 0 || strcmp(set, "16") == 0))
+        return strcmp(set, "8") == 0 ? 2 : 4;
+    cl_uint lanes = fp64 ? rt->double_lanes : rt->float_lanes;
+    return narrow && lanes >= 2 && lanes <= 8 ? 2 : 4;
+}
+
+iacsg_status render_open(const iacsg_render_config *config, int narrow, iacsg_renderer **out, iacsg_error *err) {
     iacsg_renderer *r = calloc(1, sizeof *r);
     *out = NULL;
     if (!r)
         return iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory");
     r->config = *config;
-    r->packet_w = PACKET_W;
     iacsg_status st = clrt_open(&r->rt, config->device, err);
     if (st != IACSG_OK) {
         free(r);
         return st;
     }
+    r->packet_w = render_packet_w(&r->rt, config->fp64, narrow);
     *out = r;
     return IACSG_OK;
 }
@@ -74,27 +91,14 @@ fail:
 
 int render_packet_lanes(const iacsg_renderer *r) { return r->packet_w * PACKET_H; }
 
-/* The first-root path's packets' width: 2 pixels (8 lanes) where the device's vectors of the working precision
- * hold 2 to 8 lanes (a CPU without AVX-512: PoCL on AVX2 says 8 floats, 4 doubles), else 4 (16 lanes: AVX-512, and
- * GPUs, which say 1). On a Zen 3 (AVX2), 16 -> 8 lanes, render medians in turn: gyroid in a ball 183 -> 152 ms,
- * multiple unions 166 -> 151, reference view 39 -> 37; the gyroid's reflections 419 -> 309 (a packet waits for its
- * slowest ray, and a 16-lane vector is two AVX2 registers, passed through memory to every function not inlined).
- * IACSG_PACKET_LANES (8 or 16) sets it, for A/B timings and the tests that render both ways. */
-static int render_packet_w(const clrt *rt, int fp64) {
-    const char *set = getenv("IACSG_PACKET_LANES");
-    if (set && (strcmp(set, "8") == 0 || strcmp(set, "16") == 0))
-        return strcmp(set, "8") == 0 ? 2 : 4;
-    cl_uint lanes = fp64 ? rt->double_lanes : rt->float_lanes;
-    return lanes >= 2 && lanes <= 8 ? 2 : 4;
-}
+int render_block_w(const iacsg_renderer *r) { return r->packet_w * TILE_SIZE; }
 
 iacsg_status render_create_first_root(const char *expr_cl, const char *kernels, const iacsg_render_config *config,
                                       iacsg_renderer **out, iacsg_error *err) {
     iacsg_renderer *r;
-    iacsg_status st = render_open(config, &r, err);
+    iacsg_status st = render_open(config, 1, &r, err);
     if (st != IACSG_OK)
         return st;
-    r->packet_w = render_packet_w(&r->rt, config->fp64);
     const char *sources[] = {iacsg_cl_ia, expr_cl, kernels};
     st = render_build(r, sources, 3, "iacsg_render", err);
     return render_finish(r, st, compile_now, out, err);

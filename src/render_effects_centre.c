@@ -180,7 +180,8 @@ iacsg_status fx_scene_centre(fx_tracer *t, const double *block, const int *pixel
                              int children, float *out, fx_path *rest, size_t *nrest, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     const iacsg_view *v = t->view;
-    size_t rb = fx_real_bytes(r), area = (size_t)v->width * v->height, groups = (n + PACKET_LANES - 1) / PACKET_LANES;
+    size_t rb = fx_real_bytes(r), area = (size_t)v->width * v->height, lanes = (size_t)render_packet_lanes(r);
+    size_t groups = (n + lanes - 1) / lanes;
     size_t nl = shadows ? (size_t)block[EFFECTS_NLIGHTS] : 0, bytes[6];
     fx_shade_parts(r, n, bytes);
     /* in: the pixels, the frame's depth, normals, ids; the hits' arrays (fx_shade_parts); the shadow rays staged, the

@@ -59,18 +59,20 @@ static sample_place *sort_by_packet(sample_place *places, sample_place *tmp, siz
     return places;
 }
 
-/* The place of pixel (vi, vj) of the samples' image, blocks_x blocks wide (kernels/scene_data.h's numbering). */
-static void place_of(int vi, int vj, long long blocks_x, sample_place *p) {
-    int x = vi % SCENE_BLOCK, y = vj % SCENE_BLOCK;
-    int tile = y / TILE_SIZE * PACKET_W + x / TILE_SIZE;
-    int in_tile = y % TILE_SIZE / PACKET_H * SCENE_TILE_PACKETS_W + x % TILE_SIZE / PACKET_W;
-    p->block = (long long)(vj / SCENE_BLOCK) * blocks_x + vi / SCENE_BLOCK;
-    p->packet = tile * SCENE_TILE_PACKETS + in_tile;
-    p->lane = y % PACKET_H * PACKET_W + x % PACKET_W;
+/* The place of pixel (vi, vj) of the samples' image, blocks_x blocks wide, with packets pw pixels wide
+ * (kernels/scene_data.h's numbering: a block of pw x PACKET_H tiles, each of its tiles' packets in rows). */
+static void place_of(int vi, int vj, long long blocks_x, int pw, sample_place *p) {
+    int block_w = pw * TILE_SIZE, tile_packets_w = TILE_SIZE / pw;
+    int x = vi % block_w, y = vj % SCENE_BLOCK_H;
+    int tile = y / TILE_SIZE * pw + x / TILE_SIZE;
+    int in_tile = y % TILE_SIZE / PACKET_H * tile_packets_w + x % TILE_SIZE / pw;
+    p->block = (long long)(vj / SCENE_BLOCK_H) * blocks_x + vi / block_w;
+    p->packet = tile * (tile_packets_w * (TILE_SIZE / PACKET_H)) + in_tile;
+    p->lane = y % PACKET_H * pw + x % pw;
 }
 
-/* The launch's list: blocks (SCENE_SAMPLES_INTS ints each) and each sample's output, out[sample] = PACKET_LANES
- * slot + lane. */
+/* The launch's list: blocks (SCENE_SAMPLES_INTS ints each) and each sample's output, out[sample] = lanes slot +
+ * lane (the renderer's packets' lanes). */
 typedef struct {
     int *blocks;
     int nblocks;
@@ -78,10 +80,10 @@ typedef struct {
     size_t *out;
 } sample_list;
 
-static iacsg_status list_samples(int width, int aa, const int *pixels, size_t npixels, sample_list *l,
-                                 iacsg_error *err) {
-    size_t per = (size_t)aa * (size_t)aa, n = npixels * per;
-    long long blocks_x = ((long long)width * aa + SCENE_BLOCK - 1) / SCENE_BLOCK;
+static iacsg_status list_samples(const iacsg_renderer *r, int width, int aa, const int *pixels, size_t npixels,
+                                 sample_list *l, iacsg_error *err) {
+    size_t per = (size_t)aa * (size_t)aa, n = npixels * per, lanes = (size_t)render_packet_lanes(r);
+    long long blocks_x = ((long long)width * aa + render_block_w(r) - 1) / render_block_w(r);
     sample_place *places = malloc((n + 1) * sizeof *places), *tmp = malloc((n + 1) * sizeof *tmp);
     l->blocks = malloc((n + 1) * SCENE_SAMPLES_INTS * sizeof *l->blocks);
     l->out = malloc((n + 1) * sizeof *l->out);
@@ -96,7 +98,7 @@ static iacsg_status list_samples(int width, int aa, const int *pixels, size_t np
         for (int b = 0; b < aa; b++)
             for (int a = 0; a < aa; a++) {
                 size_t s = q * per + (size_t)(b * aa + a);
-                place_of(pixels[q] % width * aa + a, pixels[q] / width * aa + b, blocks_x, &places[s]);
+                place_of(pixels[q] % width * aa + a, pixels[q] / width * aa + b, blocks_x, r->packet_w, &places[s]);
                 places[s].sample = s;
             }
     const sample_place *sorted = sort_by_packet(places, tmp, n);
@@ -115,14 +117,14 @@ static iacsg_status list_samples(int width, int aa, const int *pixels, size_t np
             block[SCENE_SAMPLES_MASK + p->packet / 32] |= (int)(1u << (p->packet % 32));
             l->nslots++;
         }
-        l->out[p->sample] = PACKET_LANES * (l->nslots - 1) + (size_t)p->lane;
+        l->out[p->sample] = lanes * (l->nslots - 1) + (size_t)p->lane;
     }
     free(places);
     free(tmp);
     return IACSG_OK;
 }
 
-/* The kernel's outputs, PACKET_LANES a slot, in host arrays the device writes in place; arguments 8 on in this
+/* The kernel's outputs, the packets' lanes a slot, in host arrays the device writes in place; arguments 8 on in this
  * order. */
 enum {
     OUT_RGB,
@@ -289,11 +291,11 @@ iacsg_status fx_scene_samples(fx_tracer *t, int aa, double eps, const int *pixel
     if (st == IACSG_OK && block)
         st = fx_block_buffer(r, block, &fx, err);
     if (st == IACSG_OK)
-        st = list_samples(t->view->width, aa, pixels, npixels, &l, err);
+        st = list_samples(r, t->view->width, aa, pixels, npixels, &l, err);
     if (st == IACSG_OK)
         st = samples_params(t, aa, eps, &v, &params, err);
     if (st == IACSG_OK)
-        st = make_outputs(r, PACKET_LANES * l.nslots, block != NULL, &o, err);
+        st = make_outputs(r, (size_t)render_packet_lanes(r) * l.nslots, block != NULL, &o, err);
     if (st == IACSG_OK)
         st = launch_samples(t, &v, params, &l, fx, &o, err);
     if (st == IACSG_OK && *(const cl_int *)o.host[OUT_NOVERFLOW] != 0) /* the buffers hold every solid */

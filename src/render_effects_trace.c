@@ -1,7 +1,7 @@
 /* src/render_effects_trace.c -- see render_effects_trace.h. The device side of a frame's effects (parameters,
  * the kernels made at the renderer's first use), and the segment path's secondary rays and colours: the rays go
  * to the device in one buffer per call, in the working precision (kernels/effects.h), traced one per work-item
- * with per-ray buffers that every ray fits (render_scene.c); their hits are shaded 16 at a time in SIMD lanes
+ * with per-ray buffers that every ray fits (render_scene.c); their hits are shaded a packet's lanes at a time
  * (kernels/scene_effects.cl: iacsg_scene_shade, by light.h). Where no path can have a child, the centre paths
  * stay on the device (render_effects_centre.c, with the launches shared below). */
 #include "render_effects_centre.h"
@@ -154,13 +154,13 @@ iacsg_status fx_launch_slices(cl_command_queue q, cl_kernel k, cl_uint first_arg
     return IACSG_OK;
 }
 
-/* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items (PACKET_LANES rays
+/* The segment path: arguments of kernels/scene_effects.cl, launches of as many work-items (a packet's lanes of rays
  * each) as the per-ray buffers have room for (one after the other on the in-order queue, which they share). */
 iacsg_status fx_launch_scene(fx_tracer *t, cl_kernel k, const fx_trace_buffers *b, cl_int n, void *eps_real,
                              cl_int whether, iacsg_error *err) {
     iacsg_renderer *r = t->r;
     void *held = NULL;
-    cl_int packets = (n + PACKET_LANES - 1) / PACKET_LANES;
+    cl_int lanes = render_packet_lanes(r), packets = (n + lanes - 1) / lanes;
     size_t slots = packets > 0 ? (size_t)packets : 1; /* n = 0: one launch that traces nothing (compile_trace_now) */
     iacsg_status st = render_scene_trace_args(r, t->view, k, 10, &slots, &held, err);
     cl_mem args[] = {t->params, b->rays, b->t, b->normal, b->item, b->evals, b->passing};
@@ -173,7 +173,7 @@ iacsg_status fx_launch_scene(fx_tracer *t, cl_kernel k, const fx_trace_buffers *
                            clSetKernelArg(k, 30, sizeof whether, &whether) != CL_SUCCESS))
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clSetKernelArg(scene trace) failed");
     if (st == IACSG_OK) /* argument 3: the launch's first ray */
-        st = fx_launch_slices(r->rt.queue, k, 3, packets, slots, PACKET_LANES,
+        st = fx_launch_slices(r->rt.queue, k, 3, packets, slots, lanes,
                               "clEnqueueNDRangeKernel(iacsg_scene_trace_rays)", err);
     if (st == IACSG_OK && clFinish(r->rt.queue) != CL_SUCCESS)
         st = iacsg_error_set(err, IACSG_ERR_OPENCL, 0, 0, "clFinish after the scene's trace failed");
@@ -350,7 +350,8 @@ iacsg_status fx_shade_launch(fx_tracer *t, const double *block, const cl_mem hit
         if (rc != CL_SUCCESS)
             st = clrt_record(err, rc, "clSetKernelArg(iacsg_scene_shade)", __func__, __LINE__);
     }
-    size_t global = n > 0 ? (n + PACKET_LANES - 1) / PACKET_LANES : 1, local = 1; /* n = 0: compile it now */
+    size_t lanes = (size_t)render_packet_lanes(r), local = 1;
+    size_t global = n > 0 ? (n + lanes - 1) / lanes : 1; /* n = 0: compile it now */
     if (st == IACSG_OK) {
         rc = clEnqueueNDRangeKernel(r->rt.queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
         if (rc == CL_SUCCESS)

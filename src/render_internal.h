@@ -29,8 +29,13 @@ double render_now_seconds(void);
 /* The lanes of the renderer's packets: r->packet_w x PACKET_H. */
 int render_packet_lanes(const iacsg_renderer *r);
 
-/* A renderer on config's device, without a program yet (destroy with iacsg_renderer_destroy). */
-iacsg_status render_open(const iacsg_render_config *config, iacsg_renderer **out, iacsg_error *err);
+/* The width in pixels of the segment path's blocks of r->packet_w x PACKET_H tiles (kernels/scene_data.h: a block
+ * is SCENE_BLOCK_H pixels high). */
+int render_block_w(const iacsg_renderer *r);
+
+/* A renderer on config's device, without a program yet (destroy with iacsg_renderer_destroy); its packets 8 lanes
+ * wide where `narrow` and the device's vectors are (src/render.c: render_packet_w), else 16. */
+iacsg_status render_open(const iacsg_render_config *config, int narrow, iacsg_renderer **out, iacsg_error *err);
 
 /* Builds the program from the sources with the ia/ options of the config and its packets' width, r->packet_w,
  * and creates its kernel. */

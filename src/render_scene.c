@@ -31,7 +31,7 @@ extern const char iacsg_cl_prim[];          /* the primitives' inclusion functio
  * blocks (64 rows) before, 16 launches a 1024x1024 frame; in one: Fig. 2's regions 68 -> 63 ms, machined_part.csg
  * 112 -> 97, m35.asc 164 -> 150, havoc 274 -> 245 (medians of 9 in turn, images the same). */
 #define SCENE_BAND_BLOCKS 64
-_Static_assert(IACSG_ROW_ALIGN % SCENE_BLOCK == 0, "iacsg_view.row_first is aligned to whole blocks");
+_Static_assert(IACSG_ROW_ALIGN % SCENE_BLOCK_H == 0, "iacsg_view.row_first is aligned to whole blocks");
 
 struct render_scene {
     scene_tables t;
@@ -192,8 +192,8 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* Arguments 4-6 and 33-34: the band's first packet row (with a list: the first packet of 16 listed pixels),
- * the list of pixels to trace (NULL: the band's packets), and the list the overflowing rays go to. */
+/* Arguments 4-6 and 33-34: the band's first packet row (with a list: the first packet of listed pixels, a packet's
+ * lanes each), the list of pixels to trace (NULL: the band's packets), and the list the overflowing rays go to. */
 static iacsg_status set_launch_args(iacsg_renderer *r, cl_int block_row0, const cl_mem *pixels, cl_int npixels,
                                     const cl_mem *overflow, const cl_mem *noverflow, iacsg_error *err) {
     cl_kernel k = r->kernel;
@@ -239,7 +239,7 @@ iacsg_status iacsg_renderer_create_scene(const iacsg_scene *s, const iacsg_rende
         st = scene_emit_cl(s, &solids_cl, err);
     iacsg_renderer *r = NULL;
     if (st == IACSG_OK)
-        st = render_open(config, &r, err);
+        st = render_open(config, 0, &r, err);
     if (st != IACSG_OK) {
         render_scene_free(tables);
         free(solids_cl);
@@ -334,12 +334,12 @@ fail:
     return IACSG_ERR_OPENCL;
 }
 
-/* The first pass: the view's rows (render_launch_bands) in bands of blocks (SCENE_BLOCK rows), each cut so that
+/* The first pass: the view's rows (render_launch_bands) in bands of blocks (SCENE_BLOCK_H rows), each cut so that
  * its work-items' per-ray buffers fit the budget. Rays that overflow are listed in list[0]. */
 static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_buffers *b, iacsg_error *err) {
-    size_t groups_x = ((size_t)view->width + SCENE_BLOCK - 1) / SCENE_BLOCK;
+    size_t block_w = (size_t)render_block_w(r), groups_x = ((size_t)view->width + block_w - 1) / block_w;
     int rows = view->row_count ? view->row_count : view->height;
-    size_t block_rows = ((size_t)rows + SCENE_BLOCK - 1) / SCENE_BLOCK;
+    size_t block_rows = ((size_t)rows + SCENE_BLOCK_H - 1) / SCENE_BLOCK_H;
     double per_row = (double)groups_x * (double)slot_bytes(r, b->cand_cap);
     size_t most = (size_t)fmax(1, fmin(SCENE_BAND_BLOCKS, SCENE_SCRATCH_BUDGET / per_row));
     most = most < block_rows ? most : block_rows;
@@ -352,7 +352,7 @@ static iacsg_status first_pass(iacsg_renderer *r, const iacsg_view *view, scene_
     if (st == IACSG_OK)
         st = set_launch_args(r, 0, &none, 0, &b->list[0], &b->nlist[0], err);
     if (st == IACSG_OK)
-        st = render_launch_bands(r, r->kernel, view, groups_x, SCENE_BLOCK, 1, (int)most, err);
+        st = render_launch_bands(r, r->kernel, view, groups_x, SCENE_BLOCK_H, 1, (int)most, err);
     return st;
 }
 
@@ -370,7 +370,7 @@ static iacsg_status retrace(iacsg_renderer *r, const iacsg_view *view, scene_buf
         int cand_cap = 4 * b->cand_cap; /* a ray meets at most every solid: this ends */
         if (cand_cap > r->scene->t.nsolids)
             cand_cap = r->scene->t.nsolids;
-        size_t slots = ((size_t)listed + PACKET_LANES - 1) / PACKET_LANES;
+        size_t lanes = (size_t)render_packet_lanes(r), slots = ((size_t)listed + lanes - 1) / lanes;
         size_t fit = (size_t)fmax(1, SCENE_SCRATCH_BUDGET / (double)slot_bytes(r, cand_cap));
         iacsg_status st = scratch_buffers(r, b, slots < fit ? slots : fit, cand_cap, err);
         if (st == IACSG_OK)
