@@ -169,14 +169,17 @@ IA_FN iav iav_mul(iav a, iav b) {
  * node (implicits/emit_signs.c). A product of such is [a.lo b.lo, a.hi b.hi], not the min and max of four; a sum or
  * product of such is >= 0 too, so its lower bound, which the widening may take below 0, is clamped at 0 (tighter
  * than iav_add's and iav_mul's, never wider), and the next operation may rely on it; such a result needs no
- * |r| to widen its upper bound, nor a clamp. iav_mul_n takes one operand >= 0 and one of any sign: two products,
- * chosen by the other's signs, with iav_mul's bits; so has iav_sqr_nn iav_sqr's. */
+ * |r| to widen either bound (iav_lo's and iav_hi's values, one and two instructions fewer; iav_sqr's results are
+ * >= 0 too: the tangle's rigorous kernel 3 % fewer samples), nor a clamp above. iav_mul_n takes one operand >= 0 and
+ * one of any sign: two products, chosen by the other's signs, with iav_mul's bits; so has iav_sqr_nn iav_sqr's. */
 #ifdef IA_FAST
+#define iav__lo_nonneg(r) (r)
 #define iav__hi_nonneg(r) (r)
 #else
-#define iav__hi_nonneg(r) fma((r), IAV_R(IA_PAD_C(0)), (r) + IA_PAD_T(0)) /* iav_hi's value for r >= 0 */
+#define iav__lo_nonneg(r) fmin(fma((r), IAV_R(-IA_PAD_C(0)), (r) - IA_PAD_T(0)), IAV_R(IA_REAL_MAX)) /* for r >= 0 */
+#define iav__hi_nonneg(r) fma((r), IAV_R(IA_PAD_C(0)), (r) + IA_PAD_T(0))
 #endif
-IA_FN ia_realv iav__lo_clamped(ia_realv r) { return fmax(iav_lo(r), IAV_R(0)); }
+IA_FN ia_realv iav__lo_clamped(ia_realv r) { return fmax(iav__lo_nonneg(r), IAV_R(0)); }
 IA_FN iav iav_add_nn(iav a, iav b) { return iav_make(iav__lo_clamped(a.lo + b.lo), iav__hi_nonneg(a.hi + b.hi)); }
 IA_FN iav iav_add_r_nn(iav a, ia_real c) { return iav_make(iav__lo_clamped(a.lo + c), iav__hi_nonneg(a.hi + c)); }
 IA_FN iav iav_mul_r_nn(iav a, ia_real c) { return iav_make(iav__lo_clamped(a.lo * c), iav__hi_nonneg(a.hi * c)); }
@@ -207,7 +210,7 @@ IA_FN iav iav_twice(iav a) {
 /* mig = the smallest |x|, mag = the largest; [0, ...] when a straddles 0. */
 IA_FN iav iav_sqr(iav a) {
     ia_realv mig = fmax(fmax(a.lo, -a.hi), IAV_R(0)), mag = fmax(-a.lo, a.hi);
-    return iav_make(fmax(iav_lo(mig * mig), IAV_R(0)), select(iav_hi(mag * mag), IAV_R(0), mag == 0));
+    return iav_make(iav__lo_clamped(mig * mig), select(iav__hi_nonneg(mag * mag), IAV_R(0), mag == 0));
 }
 
 IA_FN iav iav_sqrt(iav a) {
