@@ -154,8 +154,8 @@ static int load_lib(lower_env *env, const lib_entry *e, lib_lowered *L) {
             const token *first = &sig.toks[g->keyword + 2];
             long end = g->keyword + 2;
             int depth = 0;
-            while (sig.toks[end].kind != TOK_END &&
-                   !(depth == 0 && sig.toks[end].kind == TOK_PUNCT && (sig.toks[end].ch == ',' || sig.toks[end].ch == ')'))) {
+            while (sig.toks[end].kind != TOK_END && !(depth == 0 && sig.toks[end].kind == TOK_PUNCT &&
+                                                      (sig.toks[end].ch == ',' || sig.toks[end].ch == ')'))) {
                 depth += sig.toks[end].ch == '(' ? 1 : sig.toks[end].ch == ')' ? -1 : 0;
                 end++;
             }

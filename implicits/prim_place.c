@@ -120,7 +120,8 @@ static int put(writer *w, iv x) {
     prim_placed *o = w->out;
     if (o->n == w->cap) {
         int cap = w->cap ? 2 * w->cap : 64;
-        double *lo = realloc(o->lo, sizeof(double) * (size_t)cap), *hi = lo ? realloc(o->hi, sizeof(double) * (size_t)cap) : NULL;
+        double *lo = realloc(o->lo, sizeof(double) * (size_t)cap),
+               *hi = lo ? realloc(o->hi, sizeof(double) * (size_t)cap) : NULL;
         if (lo)
             o->lo = lo;
         if (!hi)

@@ -37,11 +37,11 @@
  *         z occurs once; 15 intervals). Over -1 <= z <= 0 it is 0 only on the sheet.
  *   PIPE  librt's parts (pipe.c): straight frusta between the points and torus bends at them, each in its cell
  *         between two planes (PRIM_PIPE_PART_N intervals a part, the last three its box, which prim_pipe_F tests
- *         first: a pipe of many parts costs its walk little away from them). f is the tube of a part whose cell holds x (a
- *         frustum's max(rho - ro(w), ri(w) - rho), a bend's max(d - ro, ri - d), d the distance from its core
- *         circle), +inf where none does. A union of closed parts that abut would be 0 all over the faces where
- *         they meet, inside the wall; here a box across a plane two consecutive parts share is in their union and
- *         gets the hull of both tubes, negative there (prim_pipe_F).
+ *         first: a pipe of many parts costs its walk little away from them). f is the tube of a part whose
+ *         cell holds x (a frustum's max(rho - ro(w), ri(w) - rho), a bend's max(d - ro, ri - d), d the distance
+ *         from its core circle), +inf where none does. A union of closed parts that abut would be 0 all over the
+ *         faces where they meet, inside the wall; here a box across a plane two consecutive parts share is in
+ *         their union and gets the hull of both tubes, negative there (prim_pipe_F).
  *
  * Fd: the derivative along the ray from the same parts (a frame type's from s and G d; a max's by ia_dmax, Clarke's
  * derivative, for which the mean value theorem Newton relies on still holds); unbounded where a quotient's
@@ -103,7 +103,8 @@ IA_FN void prim_frame(const ia_real *p, int at, ia_interval x, ia_interval y, ia
 IA_FN void prim_frame_point(const ia_real *p, int at, ia_real x, ia_real y, ia_real z, ia_real s[3]) {
     ia_real q[3] = {x - prim_mid(p, at), y - prim_mid(p, at + 1), z - prim_mid(p, at + 2)};
     for (int r = 0; r < 3; r++)
-        s[r] = prim_mid(p, at + 3 + 3 * r) * q[0] + prim_mid(p, at + 4 + 3 * r) * q[1] + prim_mid(p, at + 5 + 3 * r) * q[2];
+        s[r] = prim_mid(p, at + 3 + 3 * r) * q[0] + prim_mid(p, at + 4 + 3 * r) * q[1] +
+               prim_mid(p, at + 5 + 3 * r) * q[2];
 }
 IA_FN void prim_frame_back(const ia_real *p, int at, const ia_real g[3], ia_real *gx, ia_real *gy, ia_real *gz) {
     ia_real out[3];
@@ -161,10 +162,10 @@ IA_FN ia_interval prim_frame_value(int type, const ia_real *p, const ia_interval
         ia_interval below = ia_neg(s[2]), above = ia_add_r(s[2], -1), cap = ia_max(below, above);
         f = ia_max(cap, side);
         if (dt) { /* (u^2 / ra^2)' = 2 (u u' ra - u^2 alpha w') / ra^3 */
-            ia_interval du = ia_div(ia_mul_r(ia_sub(ia_mul(ia_mul(s[0], ds[0]), ra), ia_mul(ia_mul(u2, alpha), ds[2])), 2),
-                                    ia_pown(ra, 3));
-            ia_interval dv = ia_div(ia_mul_r(ia_sub(ia_mul(ia_mul(s[1], ds[1]), rb), ia_mul(ia_mul(v2, beta), ds[2])), 2),
-                                    ia_pown(rb, 3));
+            ia_interval du = ia_div(
+                ia_mul_r(ia_sub(ia_mul(ia_mul(s[0], ds[0]), ra), ia_mul(ia_mul(u2, alpha), ds[2])), 2), ia_pown(ra, 3));
+            ia_interval dv = ia_div(
+                ia_mul_r(ia_sub(ia_mul(ia_mul(s[1], ds[1]), rb), ia_mul(ia_mul(v2, beta), ds[2])), 2), ia_pown(rb, 3));
             d = ia_dmax(cap, side, ia_dmax(below, above, ia_neg(ds[2]), ds[2]), ia_add(du, dv));
         }
     } else if (type == PRIM_TOR) {
@@ -190,7 +191,8 @@ IA_FN ia_interval prim_frame_value(int type, const ia_real *p, const ia_interval
  * a frustum's max(rho - ro(w), ri(w) - rho) (rho the distance from the axis, w the length along it), a bend's
  * max(d - ro, ri - d) (d the distance from the bend's core circle, rho as a torus's). */
 IA_FN ia_interval prim_pipe_plane(const ia_real *q, int at, ia_interval x, ia_interval y, ia_interval z) {
-    return prim_dot3(q, at + 3, ia_sub(x, prim_iv(q, at)), ia_sub(y, prim_iv(q, at + 1)), ia_sub(z, prim_iv(q, at + 2)));
+    return prim_dot3(q, at + 3, ia_sub(x, prim_iv(q, at)), ia_sub(y, prim_iv(q, at + 1)),
+                     ia_sub(z, prim_iv(q, at + 2)));
 }
 
 IA_FN ia_interval prim_pipe_tube(const ia_real *q, int flags, ia_interval x, ia_interval y, ia_interval z) {

@@ -445,10 +445,10 @@ __kernel void iacsg_render_scene(__constant ia_real *params, int flags, int widt
  * to slot s, outputs PACKET_LANES s + lane (rgb, depth, normal, ids, overlap, counts as iacsg_render_scene's). A
  * sample's pixel of 4x4 samples is one packet (two of 8 lanes), a coherent beam: the BVH cut, the union's leaf and
  * the claim at it serve all its rays. The per-ray buffers hold every solid (src/render_scene.c:
- * render_scene_trace_args), so no ray overflows; `overflow` lists any that would. With the effects' block fx, each sample's colour is lit by it
- * (scene_packet_lit, shadow and reflected rays and all, with leaves of fx_eps, the view's, as the host's paths;
- * the background of its pixel's row) in linear light, with KERNEL_STATS its secondary rays and their evaluations
- * to fx_counts (2 a slot's lane). */
+ * render_scene_trace_args), so no ray overflows; `overflow` lists any that would. With the effects' block fx, each
+ * sample's colour is lit by it (scene_packet_lit, shadow and reflected rays and all, with leaves of fx_eps, the
+ * view's, as the host's paths; the background of its pixel's row) in linear light, with KERNEL_STATS its secondary
+ * rays and their evaluations to fx_counts (2 a slot's lane). */
 __kernel void iacsg_render_scene_samples(__constant ia_real *params, int flags, int width, int height,
                                          __global const int *blocks, int nblocks, int first_block,
                                          __global const float *albedo, __global float *rgb, __global float *depth,

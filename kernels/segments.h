@@ -260,8 +260,8 @@ IA_FN int segments_step(const segments_walks *w, int c, const ia_real o[3], cons
         return SCENE_OUT;
     }
 #ifdef SCENE_SOLID_PRIMS
-    if (level == SEGMENTS_CLOSED ||
-        (level == 0 && w->index[c] == 0 && segments_closed_solve(w, c, o, d, ta, node_bound(ta, width, 0, 1), eps, evals)))
+    if (level == SEGMENTS_CLOSED || (level == 0 && w->index[c] == 0 &&
+                                     segments_closed_solve(w, c, o, d, ta, node_bound(ta, width, 0, 1), eps, evals)))
         return segments_closed_step(w, c, o, d, eps, evals);
 #endif
     bisect_index i = w->index[c];

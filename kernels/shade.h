@@ -10,11 +10,11 @@
 #include "light.h"
 
 /* The gradient at points p of the lanes of a union in groups, by central differences of its enclosures'
- * midpoints at points (over the groups set in `groups`, or a tape's lists of the tile's parts: the others are certainly positive around p, so the part
- * that is 0 there is among these). The compiler gives such unions no gradient code for the kernels: for 1024
- * spheres it was a quarter of the 7 s build. The step, 2^-10 of the coordinate's scale, keeps float rounding and
- * the curvature of the parts far below what shading shows; only within a step of the edge between two parts
- * does the normal blend theirs. */
+ * midpoints at points (over the groups set in `groups`, or a tape's lists of the tile's parts: the others are certainly
+ * positive around p, so the part that is 0 there is among these). The compiler gives such unions no gradient code for
+ * the kernels: for 1024 spheres it was a quarter of the 7 s build. The step, 2^-10 of the coordinate's scale, keeps
+ * float rounding and the curvature of the parts far below what shading shows; only within a step of the edge between
+ * two parts does the normal blend theirs. */
 #define SHADE_DIFFERENCE_STEP ((ia_real)0x1p-10)
 IA_FN void shade_gradients_by_differences(PACKET_TAPE_PARAM packet_parts groups, const ia_realv p[3], iav time,
                                           ia_realv g[3]) {

@@ -14,8 +14,8 @@
 /* The float rays of columns i0..i1 and rows j0..j1 as one box-valued ray: every point o + t*d of them, t in
  * T, lies in base + T * dir; so do those of the rays between their centres (camera_ray_at, doubled columns from
  * 2 i0 + 1 to 2 i1 + 1 and rows from 2 j0 + 1 to 2 j1 + 1: -aa's samples there). Perspective: base is the eye
- * and dir the box of the unit directions; orthographic: base is the box of the origins and dir the one direction. Computed once per tile; the search then costs one
- * multiplication and one addition per axis and node. */
+ * and dir the box of the unit directions; orthographic: base is the box of the origins and dir the one direction.
+ * Computed once per tile; the search then costs one multiplication and one addition per axis and node. */
 typedef struct {
     ia_interval base[3], dir[3];
 } tile_rays;

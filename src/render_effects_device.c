@@ -129,7 +129,8 @@ static iacsg_status launch(fx_device *x, int mode, const int *pixels, size_t npi
     void *host[6] = {(void *)pixels, (void *)recs, x->color, x->kids, x->nkids, x->stats};
     iacsg_status st = IACSG_OK;
     for (int b = 0; b < 6 && st == IACSG_OK; b++) {
-        if (!host[b] || bytes[b] == 0 || (b == 1 && mode != EFFECTS_MODE_PATHS) || ((b == 3 || b == 4) && !x->kid_slots))
+        if (!host[b] || bytes[b] == 0 || (b == 1 && mode != EFFECTS_MODE_PATHS) ||
+            ((b == 3 || b == 4) && !x->kid_slots))
             continue;
         cl_int rc = CL_SUCCESS;
         mem[b] = clCreateBuffer(r->rt.context, (b < 2 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR,

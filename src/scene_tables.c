@@ -184,7 +184,8 @@ static int bvh_split(bvh_builder *b, const int *solids, int n) {
 static void bvh_build(bvh_builder *b, int *solids, int n) {
     scene_tables *t = b->t;
     int node = t->nbvh++;
-    double *box = t->bvh_box + 6 * node, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    double *box = t->bvh_box + 6 * node, lo[3] = {INFINITY, INFINITY, INFINITY},
+           hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int k = 0; k < 6; k++)
         box[k] = k < 3 ? INFINITY : -INFINITY;
     for (int i = 0; i < n; i++) {

@@ -277,7 +277,8 @@ iacsg_status scene_terms_build(const iacsg_scene *s, scene_tables *t, int *cap, 
                                iacsg_error *err) {
     builder b = {.nodes = s->nodes};
     b.stamp = calloc((size_t)s->nsolids + 1, sizeof *b.stamp);
-    iacsg_status st = b.stamp ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
+    iacsg_status st =
+        b.stamp ? IACSG_OK : iacsg_error_set(err, IACSG_ERR_NOMEM, 0, 0, "out of memory preparing the scene");
     for (int item = 0; st == IACSG_OK && item < s->nitems; item++) {
         if (s->items[item].kind != SCENE_REGION)
             continue;

@@ -60,7 +60,7 @@ static int render_with(const packets_case *c, const char *lanes, const iacsg_vie
 /* The segment path: two regions of the union's pre-pass with a material that reflects and lets light through, and
  * a level set cut by two spheres (a surface: no union pre-pass). */
 #define REGIONS                                                                                                        \
-    "material glass = rgb(0.3, 0.5, 0.9) opacity 0.6 reflect 0.3\n"                                                     \
+    "material glass = rgb(0.3, 0.5, 0.9) opacity 0.6 reflect 0.3\n"                                                    \
     "region cube = box(0.8, 0.8, 0.8) \\ sphere(1) : glass\nregion ball = move(sphere(0.6), 0.5, 0.5, 0.5)\n"
 #define SURFACES                                                                                                       \
     "solid g = sin(4*x)*cos(4*y)+sin(4*y)*cos(4*z)+sin(4*z)*cos(4*x)\nsolid inner = sphere(0.5)\n"                  \
