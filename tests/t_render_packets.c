@@ -17,26 +17,19 @@
 #include <string.h>
 
 typedef struct {
-    const char *expr; /* an expression, or with `scene` a scene's text */
+    const char *expr; /* an expression, or with `scene` a scene's text (its frames compared as a scene's) */
     iacsg_render_config config;
     int effects, bytes, scene;
 } packets_case;
 
-/* The renderer of a case's expression or scene. */
+/* The renderer of a case's text: a scene, or one expression (a scene without items, rendered as
+ * iacsg_renderer_create_expr renders it). */
 static iacsg_status create_case(const packets_case *c, iacsg_renderer **r, iacsg_error *err) {
-    if (c->scene) {
-        iacsg_scene *s = NULL;
-        iacsg_status st = iacsg_scene_parse(c->expr, "<test>", &s, err);
-        if (st == IACSG_OK)
-            st = iacsg_renderer_create_scene(s, &c->config, r, err);
-        iacsg_scene_destroy(s);
-        return st;
-    }
-    iacsg_expr *e = NULL;
-    iacsg_status st = iacsg_expr_parse(c->expr, "<test>", &e, err);
+    iacsg_scene *s = NULL;
+    iacsg_status st = iacsg_scene_parse(c->expr, "<test>", &s, err);
     if (st == IACSG_OK)
-        st = iacsg_renderer_create_expr(e, &c->config, r, err);
-    iacsg_expr_destroy(e);
+        st = iacsg_renderer_create_scene(s, &c->config, r, err);
+    iacsg_scene_destroy(s);
     return st;
 }
 
