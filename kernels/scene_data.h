@@ -24,10 +24,14 @@
  * are the device's only: the host's layout reads the renderer's (src/render.c: render_block_w). */
 #define SCENE_BLOCK_H (PACKET_H * TILE_SIZE)
 #define SCENE_BLOCK_PACKETS (TILE_SIZE * TILE_SIZE)
+/* The same for packets pw pixels wide, as the host lays them out (src/render_effects_samples.c). */
+#define SCENE_BLOCK_W_OF(pw) ((pw) * TILE_SIZE)
+#define SCENE_TILE_PACKETS_W_OF(pw) (TILE_SIZE / (pw))
+#define SCENE_TILE_PACKETS_OF(pw) (SCENE_TILE_PACKETS_W_OF(pw) * (TILE_SIZE / PACKET_H))
 #if IA_DEVICE
-#define SCENE_BLOCK_W (PACKET_W * TILE_SIZE)
-#define SCENE_TILE_PACKETS_W (TILE_SIZE / PACKET_W)
-#define SCENE_TILE_PACKETS (SCENE_TILE_PACKETS_W * (TILE_SIZE / PACKET_H))
+#define SCENE_BLOCK_W SCENE_BLOCK_W_OF(PACKET_W)
+#define SCENE_TILE_PACKETS_W SCENE_TILE_PACKETS_W_OF(PACKET_W)
+#define SCENE_TILE_PACKETS SCENE_TILE_PACKETS_OF(PACKET_W)
 #endif
 
 /* -aa's samples on the segment path (iacsg_render_scene_samples, src/render_effects_samples.c) are the pixels of an

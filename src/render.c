@@ -437,8 +437,8 @@ fail:
 
 /* Each band of rows, one launch (each block's tiles, then its pixels). */
 static iacsg_status launch_bands(iacsg_renderer *r, cl_kernel k, const iacsg_view *view, iacsg_error *err) {
-    size_t tiles_x = ((size_t)view->width + TILE_SIZE - 1) / TILE_SIZE;
-    return render_launch_bands(r, k, view, (tiles_x + (size_t)r->packet_w - 1) / (size_t)r->packet_w, BLOCK_ROWS,
+    size_t block_w = (size_t)render_block_w(r);
+    return render_launch_bands(r, k, view, ((size_t)view->width + block_w - 1) / block_w, BLOCK_ROWS,
                                BAND_ROWS_PROGRESS / BLOCK_ROWS, BAND_ROWS / BLOCK_ROWS, err);
 }
 

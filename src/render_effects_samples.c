@@ -62,12 +62,12 @@ static sample_place *sort_by_packet(sample_place *places, sample_place *tmp, siz
 /* The place of pixel (vi, vj) of the samples' image, blocks_x blocks wide, with packets pw pixels wide
  * (kernels/scene_data.h's numbering: a block of pw x PACKET_H tiles, each of its tiles' packets in rows). */
 static void place_of(int vi, int vj, long long blocks_x, int pw, sample_place *p) {
-    int block_w = pw * TILE_SIZE, tile_packets_w = TILE_SIZE / pw;
+    int block_w = SCENE_BLOCK_W_OF(pw);
     int x = vi % block_w, y = vj % SCENE_BLOCK_H;
     int tile = y / TILE_SIZE * pw + x / TILE_SIZE;
-    int in_tile = y % TILE_SIZE / PACKET_H * tile_packets_w + x % TILE_SIZE / pw;
+    int in_tile = y % TILE_SIZE / PACKET_H * SCENE_TILE_PACKETS_W_OF(pw) + x % TILE_SIZE / pw;
     p->block = (long long)(vj / SCENE_BLOCK_H) * blocks_x + vi / block_w;
-    p->packet = tile * (tile_packets_w * (TILE_SIZE / PACKET_H)) + in_tile;
+    p->packet = tile * SCENE_TILE_PACKETS_OF(pw) + in_tile;
     p->lane = y % PACKET_H * pw + x % pw;
 }
 

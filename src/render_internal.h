@@ -29,8 +29,8 @@ double render_now_seconds(void);
 /* The lanes of the renderer's packets: r->packet_w x PACKET_H. */
 int render_packet_lanes(const iacsg_renderer *r);
 
-/* The width in pixels of the segment path's blocks of r->packet_w x PACKET_H tiles (kernels/scene_data.h: a block
- * is SCENE_BLOCK_H pixels high). */
+/* The width in pixels of a work-item's block of r->packet_w x PACKET_H tiles, on both paths (render.c's BLOCK_ROWS
+ * and kernels/scene_data.h's SCENE_BLOCK_H high). */
 int render_block_w(const iacsg_renderer *r);
 
 /* A renderer on config's device, without a program yet (destroy with iacsg_renderer_destroy); its packets 8 lanes
