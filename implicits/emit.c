@@ -705,32 +705,49 @@ static int group_nodes(const emitter *em, const int *parts, int first, int last,
 }
 
 /* One group of a union as a function (not inlined) of its own: the nodes its parts need, shared ones computed
- * once, and their min; for the interval code over lanes (r = AS_VECTOR) or the point value and gradient
- * (AS_DERIV). Returns 0 on out of memory. */
+ * once, and their min; for the interval code over lanes (r = AS_VECTOR), with the enclosure of the min's derivative
+ * along the rays (AS_VECTOR_DT: iav_dmin over the parts, as emit_tderiv_function's whole expression), or the point
+ * value and gradient (AS_DERIV). Returns 0 on out of memory. */
 static int emit_group(strbuf *b, const emitter *em, int root, const int *parts, int first, int last, int g,
                       const char *prefix, role r, unsigned char *needed, int *order) {
     int count = group_nodes(em, parts, first, last, needed, root, order);
     if (count < 0)
         return 0;
-    int vector = r == AS_VECTOR;
-    if (vector)
+    int vector = is_vector(r), along = r == AS_VECTOR_DT, partial = along && any_partial(em, order, count);
+    if (along)
+        strbuf_printf(b, "__attribute__((noinline)) iav %s_Fdv_g%d(iav x, iav y, iav z, iav t, iav dx, iav dy, "
+                         "iav dz, iav *dt) {\n",
+                      prefix, g);
+    else if (vector)
         strbuf_printf(b, "__attribute__((noinline)) iav %s_Fv_g%d(iav x, iav y, iav z, iav t) {\n", prefix, g);
     else
         strbuf_printf(b, "__attribute__((noinline)) ia_real %s_f_grad_g%d(ia_real x, ia_real y, ia_real z, "
                          "ia_real t, iacsg_grad *g) {\n",
                       prefix, g);
+    if (partial)
+        strbuf_printf(b, "    ia_maskv undefined = 0;\n");
     body(b, em, order, count, r);
     strbuf_printf(b, vector ? "    iav r = " : "    ia_real r = ");
     if (vector)
         put_solid_value(b, em, parts[first], AS_VECTOR);
     else
         put_operand(b, em, parts[first], AS_POINT);
-    if (!vector) {
+    if (along) {
+        strbuf_printf(b, ", r_t = ");
+        put_operand(b, em, parts[first], AS_VTDERIV);
+    } else if (!vector) {
         strbuf_printf(b, ";\n    iacsg_grad rg = ");
         put_operand(b, em, parts[first], AS_DERIV);
     }
     strbuf_printf(b, ";\n");
     for (int c = first + 1; c < last; c++) {
+        if (along) {
+            strbuf_printf(b, "    r_t = iav_dmin(r, ");
+            put_solid_value(b, em, parts[c], AS_VECTOR);
+            strbuf_printf(b, ", r_t, ");
+            put_operand(b, em, parts[c], AS_VTDERIV);
+            strbuf_printf(b, ");\n");
+        }
         if (vector) {
             strbuf_printf(b, "    r = iav_min(r, ");
             put_solid_value(b, em, parts[c], AS_VECTOR);
@@ -749,12 +766,15 @@ static int emit_group(strbuf *b, const emitter *em, int root, const int *parts, 
         put_operand(b, em, parts[c], AS_POINT);
         strbuf_printf(b, ");\n");
     }
+    if (along)
+        strbuf_printf(b, partial ? "    *dt = iav_entire_where(r_t, undefined);\n" : "    *dt = r_t;\n");
     strbuf_printf(b, vector ? "    return r;\n}\n" : "    *g = rg;\n    return r;\n}\n");
     return 1;
 }
 
 /* A union in groups (see emit_group), and the function of a group's number that calls them. The kernels take
- * the min over the groups that can matter in a tile (kernels/packet.h, shade.h), so there is no whole iacsg_Fv;
+ * the min over the groups that can matter in a tile (kernels/packet.h, shade.h), so there is no whole iacsg_Fv (nor
+ * iacsg_Fdv: with AS_VECTOR_DT, iacsg_Fdv_group, whose min packet_Fdv takes with its derivative);
  * the whole gradient, the min over all groups, is for the other programs (device evaluation). A function per
  * group keeps LLVM's compile time down, which grows faster than linearly in a function's length: 1024 spheres
  * built in 5.5-5.7 s instead of 7-8 s with one function holding every group (and 18 s as one block). Returns 0
@@ -773,6 +793,15 @@ static int emit_union_groups(strbuf *b, const emitter *em, int root, const int *
     free(order);
     if (!ok)
         return 0;
+    if (r == AS_VECTOR_DT) { /* kernels/packet.h: packet_Fdv takes the min over the groups it is given */
+        strbuf_printf(b, "#define IACSG_FDV 1\nIA_FN iav %s_Fdv_group(int group, iav x, iav y, iav z, iav t, iav dx, "
+                         "iav dy, iav dz, iav *dt) {\n    switch (group) {\n",
+                      prefix);
+        for (int g = 0; g < gr.count; g++)
+            strbuf_printf(b, "    case %d: return %s_Fdv_g%d(x, y, z, t, dx, dy, dz, dt);\n", g, prefix, g);
+        strbuf_printf(b, "    }\n    *dt = iav_point(0);\n    return iav_point(IA_INF);\n}\n");
+        return 1;
+    }
     int vector = r == AS_VECTOR;
     if (vector)
         strbuf_printf(b, "#define IACSG_GROUPS %d\nIA_FN iav %s_Fv_group(int group, iav x, iav y, iav z, iav t) {\n"
@@ -891,6 +920,10 @@ iacsg_status emit_cl(const dag *d, int root, const char *prefix, int march, char
     int ok = nparts >= 0;
     if (nparts >= EMIT_GROUP_MIN_PARTS) {
         ok = emit_union_groups(&b, &em, root, parts, nparts, prefix, AS_VECTOR);
+        /* each group's derivative too, for the packets' Newton and the effects' march (a regions' union in groups
+         * has no use for it: the segment path marches only a union it pre-passes, kernels/scene_union.h) */
+        if (ok && !march && newton_pays(d, order, count, EMIT_NEWTON_MAX_POWER))
+            ok = emit_union_groups(&b, &em, root, parts, nparts, prefix, AS_VECTOR_DT);
     } else if (ok) {
         strbuf_printf(&b, "IA_FN iav %s_Fv(iav x, iav y, iav z, iav t) {\n", prefix);
         body(&b, &em, order, count, AS_VECTOR);

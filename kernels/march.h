@@ -1,7 +1,7 @@
 /* kernels/march.h -- a secondary ray's first root of F from off the surface it leaves, by marching
  * (effects_march), in SIMD lanes: the first-root path's effects (kernels/effects.cl, F the expression) and the
  * segment path's secondary rays (kernels/scene_rays.h, F the union of its regions, kernels/scene_union.h).
- * Needs packet.h and the emitted iacsg_Fdv (PACKET_FDV).
+ * Needs packet.h and the emitted derivative code (PACKET_FDV: packet_Fdv over all of a union's groups).
  */
 #ifndef KERNELS_MARCH_H
 #define KERNELS_MARCH_H
@@ -74,7 +74,7 @@ typedef struct {
 #ifdef PACKET_FDV
 /* A secondary ray starts next to a surface it leaves (or crosses): bisection must halve its first nodes down to its
  * distance from that surface before one excludes it, some 2 log2(length / distance) evaluations, and then halve its way
- * down again to the next root. Instead the ray marches: from a (t_near on), one evaluation of iacsg_Fdv over [a, b]
+ * down again to the next root. Instead the ray marches: from a (t_near on), one evaluation of packet_Fdv over [a, b]
  * gives F's enclosure there and the derivative F' along the ray, bounded (packet.h's theorem), so F over [a, b] lies in
  * the mean value form anchored at the start, F(a) + F' [0, b - a]. Where that (or F's enclosure) excludes 0, a moves to
  * b and the next step is 8 times as long; else a moves as far as the form excludes 0 (F(a) / |F'|: a step of Newton's
@@ -106,7 +106,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
                               packet_index *evals) {
     ia_realv a = *t_near, t_far = *t_far_io, w = EFFECTS_MARCH_FIRST * leaving;
     ia_maskv going = *going_io & (a < t_far), hit = (ia_maskv)0, short_before = (ia_maskv)0;
-    iav fa = iav_point(0);
+    iav fa = iav_point(0), rates[3] = {iav_make(d[0], d[0]), iav_make(d[1], d[1]), iav_make(d[2], d[2])};
     ia_maskv known = (ia_maskv)0; /* the lanes whose F at a is known: past a proven crossing */
     ia_realv cross_b = a; /* the end of the step of each lane's crossing, and F there */
     iav cross_fb = fa;
@@ -149,7 +149,7 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         ia_maskv rest = step > 0 ? going & (b >= t_far) : (ia_maskv)0;
         if (iav_any(rest)) {
             /* a step that is the rest of the ray: F's enclosure alone may prove it (no F at b is needed after
-             * it), at about half the cost of iacsg_Fdv's; the lanes it fails take the step by Fdv. Tried lane by
+             * it), at about half the cost of packet_Fdv's; the lanes it fails take the step by Fdv. Tried lane by
              * lane, so that a ray takes the same steps alone as in a packet (test effects_march_lanes_alone) */
             iav fr = packet_F(~(ulong)0, packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
                               packet_extent(o[2], d[2], seg), time);
@@ -160,9 +160,8 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
             if (!iav_any(going))
                 break;
         }
-        iav f = iacsg_Fdv(packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
-                          packet_extent(o[2], d[2], seg), time, iav_make(d[0], d[0]), iav_make(d[1], d[1]),
-                          iav_make(d[2], d[2]), &slope);
+        iav f = packet_Fdv(~(ulong)0, packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
+                           packet_extent(o[2], d[2], seg), time, rates, &slope);
         PACKET_COUNT(*evals, going);
         ia_maskv use = going & isfinite(slope.lo) & isfinite(slope.hi); /* NaN is not finite */
         /* lanes not using it multiply by 0: an infinite slope there would send every lane down iav_mul's slow path */
@@ -296,9 +295,8 @@ static ia_maskv effects_march(const ia_realv o[3], const ia_realv d[3], ia_realv
         stale &= handed;
         if (iav_any(stale)) {
             iav seg = iav_make(a, t_far), slope;
-            (void)iacsg_Fdv(packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
-                            packet_extent(o[2], d[2], seg), time, iav_make(d[0], d[0]), iav_make(d[1], d[1]),
-                            iav_make(d[2], d[2]), &slope);
+            (void)packet_Fdv(~(ulong)0, packet_extent(o[0], d[0], seg), packet_extent(o[1], d[1], seg),
+                             packet_extent(o[2], d[2], seg), time, rates, &slope);
             PACKET_COUNT(*evals, stale);
             ia_maskv use = stale & (fmax(hs.lo, slope.lo) <= fmin(hs.hi, slope.hi)); /* false for NaN */
             hs = iav_make(select(hs.lo, fmax(hs.lo, slope.lo), use), select(hs.hi, fmin(hs.hi, slope.hi), use));

@@ -309,12 +309,38 @@ IA_FN void packet_resume_at(ia_real t0, ia_real w, ia_maskv moving, ia_realv t, 
 #endif
 #define NEWTON_MIN_LEAVES 64
 
+#ifdef PACKET_FDV
+/* F over the boxes (x, y, z, t) and in *slope the enclosure of its derivative along the rays, the boxes moving at
+ * the rates `rates`: the compiled iacsg_Fdv, or for a union in groups (implicits/emit.c) the min over the groups set
+ * in `groups` of iacsg_Fdv_group, with the min's derivative by iav_dmin (Clarke's generalized one at its kinks), as
+ * tape_lists_dt's over its parts. Those groups are one function, continuous with its derivative in *slope, with the
+ * union's roots wherever the groups left out are > 0: the mean value theorem's, so a caller takes F at its points
+ * over the same groups. */
+IAV_INLINE iav packet_Fdv(ulong groups, iav x, iav y, iav z, iav t, const iav rates[3], iav *slope) {
+#ifdef IACSG_GROUPS
+    iav r = iav_point(IA_INF);
+    *slope = iav_point(0); /* the identity's: read by iav_dmin only where a group may be +inf */
+    for (int g = 0; g < IACSG_GROUPS; g++)
+        if (groups >> g & 1) {
+            iav s, v = iacsg_Fdv_group(g, x, y, z, t, rates[0], rates[1], rates[2], &s);
+            *slope = iav_dmin(r, v, *slope, s);
+            r = iav_min(r, v);
+        }
+    return r;
+#else
+    (void)groups;
+    return iacsg_Fdv(x, y, z, t, rates[0], rates[1], rates[2], slope);
+#endif
+}
+#endif
+
 #ifdef PACKET_NEWTON
 /* F over the boxes of the segments [t.lo, t.hi] of the rays of the lanes of `live`, on their nodes (level, i), and
  * in *slope the enclosure of its derivative along the rays there, for Newton and the mean value form: the
  * compiled iacsg_Fdv; for a tape tape_lists_dt over the tile's lists, which also gives *at_m, F at the segments'
  * midpoints over the same parts (the proofs need one function: kernels/tape_eval.h); where a list is full, the
- * walk's F and the slope [-inf, +inf] (those lanes bisect). The compiled code's *at_m is the caller's. */
+ * walk's F and the slope [-inf, +inf] (those lanes bisect). The compiled code's *at_m is the caller's, over the
+ * groups of the same lanes (packet_groups of `live`: packet_Fdv's). */
 IA_FN iav packet_Fd(PACKET_TAPE_PARAM const __global ulong *segment_groups, const ia_realv o[3], const ia_realv d[3],
                     iav t, ia_maskv live, packet_int level, packet_index i, iav time, iav *slope, iav *at_m) {
     iav x = packet_extent(o[0], d[0], t), y = packet_extent(o[1], d[1], t), z = packet_extent(o[2], d[2], t);
@@ -332,8 +358,8 @@ IA_FN iav packet_Fd(PACKET_TAPE_PARAM const __global ulong *segment_groups, cons
     *at_m = f = packet_F_nodes(tape, segment_groups, live, level, i, x, y, z, time);
     return f;
 #else
-    (void)segment_groups, (void)live, (void)level, (void)i, (void)at_m;
-    return iacsg_Fdv(x, y, z, time, rates[0], rates[1], rates[2], slope);
+    (void)at_m;
+    return packet_Fdv(packet_groups(segment_groups, live, level, i), x, y, z, time, rates, slope);
 #endif
 }
 
@@ -371,8 +397,8 @@ IA_FN iav packet_mean_value(PACKET_TAPE_PARAM const __global ulong *segment_grou
     m = select(m, fmin(fmax(c, t.lo), t.hi), use & (span > 0)); /* in the segment, whatever the rounding */
 #endif
     iav at_m = iav_make(m, m);
-#ifndef IACSG_TAPE
-    fm = packet_F(packet_groups(segment_groups, use, level, i), packet_extent(o[0], d[0], at_m),
+#ifndef IACSG_TAPE /* over packet_Fd's groups: one function */
+    fm = packet_F(packet_groups(segment_groups, live, level, i), packet_extent(o[0], d[0], at_m),
                   packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
 #endif
     PACKET_COUNT(*evals, use);
@@ -502,10 +528,11 @@ IA_FN ia_maskv packet_first_root_turns(PACKET_TAPE_PARAM const __global ulong *s
             ia_maskv empty = stepping & ~zero;
             if (iav_any(step)) {
                 ia_realv m = na * (ia_real)0.5 + nb * (ia_real)0.5;
-#ifndef IACSG_TAPE /* a tape's came with f, over the same parts */
+#ifndef IACSG_TAPE /* a tape's came with f, over the same parts; over packet_Fd's groups here */
                 iav at_m = iav_make(m, m);
-                fm = packet_F_live(packet_groups(segment_groups, step, level, i), step, packet_extent(o[0], d[0], at_m),
-                                   packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
+                ulong groups = packet_groups(segment_groups, stepping, level, i);
+                fm = packet_F_live(groups, step, packet_extent(o[0], d[0], at_m), packet_extent(o[1], d[1], at_m),
+                                   packet_extent(o[2], d[2], at_m), time);
 #endif
                 PACKET_COUNT(*evals, step);
                 ia_realv a, b;

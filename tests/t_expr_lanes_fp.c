@@ -3,6 +3,7 @@
  *   expr_lanes_slope: iacsg_Fdv's enclosure of the derivative along a direction (interval Newton's F',
  *     kernels/packet.h) contains the MPFR central difference at points of random boxes, for random expressions,
  *     every primitive and every op; and its value part contains the MPFR value.
+ *   expr_lanes_slope_groups: the same for unions in groups, through the kernels' packet_Fdv over their groups.
  *   expr_undefined_agree: the rule for undefined operands (ia/ia.h) in every code path on the same inputs:
  *     unions and an intersection with an operand outside its domain, of two parts and of 17 (the union in groups).
  *     The host evaluator, the scalar F and the point f (implicits/device_eval.c) and the kernels' own packet_F
@@ -78,6 +79,41 @@ static char *emit(const iacsg_expr *e, const char *prefix) {
 
 /* ---- Fdv */
 
+/* One query's value and derivative (out: o) over the box and direction v against MPFR at 6 random points of the
+ * box (the derivative only where `with_fdv`); counts the checks made. */
+static void check_query(const iacsg_expr *e, const char *text, int with_fdv, const double *v, const double *o,
+                        mpfr_ptr y, long *values, long *slopes) {
+    for (int s = 0; s < 6; s++) {
+        double p[4];
+        expr_random_point(test_rng(), v, p);
+        if (!expr_oracle(e, p, y))
+            continue;
+        (*values)++;
+        CHECK(mpfr_cmp_d(y, o[0]) >= 0 && mpfr_cmp_d(y, o[1]) <= 0,
+              "lanes: '%s' over x [%a, %a] y [%a, %a] z [%a, %a] t [%a, %a] gave [%a, %a], but at (%a, %a, %a, %a) "
+              "the value is %.20g",
+              text, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], o[0], o[1], p[0], p[1], p[2], p[3],
+              mpfr_get_d(y, MPFR_RNDN));
+        if (!with_fdv || !expr_oracle_slope(e, p, v + 8, y))
+            continue;
+        (*slopes)++;
+        CHECK(mpfr_cmp_d(y, o[2]) >= 0 && mpfr_cmp_d(y, o[3]) <= 0,
+              "lanes: '%s' over x [%a, %a] y [%a, %a] z [%a, %a] t [%a, %a] gave the derivative along (%a, %a, %a) "
+              "in [%a, %a], but at (%a, %a, %a, %a) it is %.20g",
+              text, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], o[2], o[3], p[0], p[1], p[2],
+              p[3], mpfr_get_d(y, MPFR_RNDN));
+    }
+}
+
+/* Random boxes, and directions the device holds exactly, for q queries. */
+static void slope_queries(size_t q, double *in) {
+    for (size_t k = 0; k < q; k++) {
+        expr_random_box(test_rng(), in + LANES_IN * k);
+        for (int c = 0; c < 3; c++)
+            in[LANES_IN * k + 8 + c] = (float)(2 * test_rand_unit(test_rng()) - 1);
+    }
+}
+
 #define MAX_EXPRS 72
 #define SLOPE_ITEMS 6 /* work-items per expression: 6 x 16 boxes */
 
@@ -112,11 +148,7 @@ TEST_FP(expr_lanes_slope) {
     CHECK(which && in && out, "out of memory");
     for (size_t g = 0; g < items; g++)
         which[g] = (int)(g / SLOPE_ITEMS);
-    for (size_t k = 0; k < q; k++) {
-        expr_random_box(test_rng(), in + LANES_IN * k);
-        for (int c = 0; c < 3; c++) /* a direction the device holds exactly */
-            in[LANES_IN * k + 8 + c] = (float)(2 * test_rand_unit(test_rng()) - 1);
-    }
+    slope_queries(q, in);
     lanes_eval_run(sources, n + 1, cases, items, which, in, out);
     for (int i = 0; i < n; i++)
         free((char *)sources[1 + i]);
@@ -126,27 +158,7 @@ TEST_FP(expr_lanes_slope) {
     long values = 0, slopes = 0;
     for (size_t k = 0; k < q; k++) {
         int x = which[k / PACKET_LANES];
-        const double *v = in + LANES_IN * k, *o = out + LANES_OUT * k;
-        for (int s = 0; s < 6; s++) {
-            double p[4];
-            expr_random_point(test_rng(), v, p);
-            if (!expr_oracle(exprs[x], p, y))
-                continue;
-            values++;
-            CHECK(mpfr_cmp_d(y, o[0]) >= 0 && mpfr_cmp_d(y, o[1]) <= 0,
-                  "lanes: '%s' over x [%a, %a] y [%a, %a] z [%a, %a] t [%a, %a] gave [%a, %a], but at (%a, %a, %a, %a) "
-                  "the value is %.20g",
-                  texts[x], v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], o[0], o[1], p[0], p[1], p[2], p[3],
-                  mpfr_get_d(y, MPFR_RNDN));
-            if (!with_fdv[x] || !expr_oracle_slope(exprs[x], p, v + 8, y))
-                continue;
-            slopes++;
-            CHECK(mpfr_cmp_d(y, o[2]) >= 0 && mpfr_cmp_d(y, o[3]) <= 0,
-                  "lanes: '%s' over x [%a, %a] y [%a, %a] z [%a, %a] t [%a, %a] gave the derivative along (%a, %a, %a) "
-                  "in [%a, %a], but at (%a, %a, %a, %a) it is %.20g",
-                  texts[x], v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], o[2], o[3], p[0], p[1],
-                  p[2], p[3], mpfr_get_d(y, MPFR_RNDN));
-        }
+        check_query(exprs[x], texts[x], with_fdv[x], in + LANES_IN * k, out + LANES_OUT * k, y, &values, &slopes);
     }
     mpfr_clear(y);
     for (int i = 0; i < n; i++)
@@ -157,6 +169,67 @@ TEST_FP(expr_lanes_slope) {
     test_note("%d expressions (%d with derivative code), %zu boxes: %ld values and %ld derivatives checked", n, nfdv,
               q, values, slopes);
     CHECK(nfdv >= 24 && slopes >= 20000, "too little checked to mean anything");
+}
+
+/* Whether `text` compiles with derivative code (where it has no union in groups). */
+static int has_fdv(const char *text) {
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse(text, "<test>", &e, NULL) == IACSG_OK, "'%s' does not compile", text);
+    char *src = emit(e, "h");
+    int with = strstr(src, "h_Fdv(") != NULL;
+    free(src);
+    iacsg_expr_destroy(e);
+    return with;
+}
+
+#define GROUP_UNIONS 1
+#define GROUP_PARTS 20 /* at least EMIT_GROUP_MIN_PARTS (implicits/emit.c): 5 groups of 4 */
+#define GROUP_ITEMS 120
+
+/* Unions in groups of parts with derivative code, whose groups' derivative code is a function each
+ * (implicits/emit.c), through the kernels' packet_Fdv over all the groups (kernels/packet.h: the min of their values
+ * and the min's derivative by iav_dmin), as the effects' march takes it: the value and the derivative enclose
+ * MPFR's at points of random boxes. */
+TEST_FP(expr_lanes_slope_groups) {
+    static char texts[2 * MAX_EXPRS][EXPR_TEXT_SIZE];
+    int n = expr_test_texts(test_rng(), texts, 2 * MAX_EXPRS), next = 0;
+    size_t size = GROUP_PARTS * EXPR_TEXT_SIZE + 8, q = GROUP_ITEMS * PACKET_LANES;
+    char *text = malloc(size);
+    int *which = calloc(GROUP_ITEMS, sizeof *which);
+    double *in = malloc(LANES_IN * q * sizeof *in), *out = malloc(LANES_OUT * q * sizeof *out);
+    CHECK(text && which && in && out, "out of memory");
+    mpfr_t y;
+    mpfr_init2(y, EXPR_ORACLE_PREC);
+    long values = 0, slopes = 0;
+    for (int u = 0; u < GROUP_UNIONS; u++) {
+        size_t used = (size_t)snprintf(text, size, "min(");
+        for (int parts = 0; parts < GROUP_PARTS; next++) {
+            CHECK(next < n, "too few expressions with derivative code for %d unions", GROUP_UNIONS);
+            if (has_fdv(texts[next]))
+                used += (size_t)snprintf(text + used, size - used, "%s%s", parts++ ? ", " : "", texts[next]);
+        }
+        snprintf(text + used, size - used, ")");
+        iacsg_expr *e = NULL;
+        CHECK(iacsg_expr_parse(text, "<test>", &e, NULL) == IACSG_OK, "'%.80s...' does not compile", text);
+        char *src = emit(e, "iacsg");
+        CHECK(strstr(src, "iacsg_Fdv_group("), "'%.80s...': no derivative code for its groups", text);
+        const char *sources[4] = {iacsg_cl_ia, src, iacsg_cl_kernels};
+        slope_queries(q, in);
+        lanes_eval_run(sources, 3, "    case 0: r = packet_Fdv(~(ulong)0, b[0], b[1], b[2], b[3], d, &s); break;\n",
+                       GROUP_ITEMS, which, in, out);
+        free(src);
+        for (size_t k = 0; k < q; k++)
+            check_query(e, text, 1, in + LANES_IN * k, out + LANES_OUT * k, y, &values, &slopes);
+        iacsg_expr_destroy(e);
+    }
+    mpfr_clear(y);
+    free(text);
+    free(which);
+    free(in);
+    free(out);
+    test_note("%d unions of %d parts in groups, %zu boxes each: %ld values and %ld derivatives checked", GROUP_UNIONS,
+              GROUP_PARTS, q, values, slopes);
+    CHECK(slopes >= 5000, "too little checked to mean anything");
 }
 
 /* ---- undefined operands */
@@ -216,8 +289,8 @@ static void check_agreement(const char *text, int is_union) {
         memcpy(dev_in + DEVICE_EVAL_IN * k, in + LANES_IN * k, DEVICE_EVAL_IN * sizeof *dev_in);
     }
     /* the kernels' union of the groups (packet_F), as the renderer evaluates it */
-    lanes_eval_run(sources, 3, "    case 0: r = packet_F(~(ulong)0, b[0], b[1], b[2], b[3]); break;\n", AGREE_ITEMS, which,
-              in, lanes);
+    lanes_eval_run(sources, 3, "    case 0: r = packet_F(~(ulong)0, b[0], b[1], b[2], b[3]); break;\n", AGREE_ITEMS,
+                   which, in, lanes);
     free(src);
     clrt rt;
     CHECK(clrt_open(&rt, 0, &err) == IACSG_OK, "%s", err.message);
