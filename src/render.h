@@ -29,7 +29,8 @@ typedef struct {
     /* The first-root path's program for an expression (src/render_expr.c): compiled (its own OpenCL C), or
      * interpreted (a fixed program that runs the expression's tape, built once for all expressions: for large
      * ones the compile is seconds). IACSG_TAPE_AUTO interprets expressions of at least IACSG_TAPE_MIN_NODES
-     * operations, compiling those the interpreter cannot hold (a part needing more registers than it has). */
+     * operations or unions of at least IACSG_TAPE_MIN_PARTS parts, compiling those the interpreter cannot hold (a
+     * part needing more registers than it has). */
     int tape;
     int tape_min_nodes; /* IACSG_TAPE_AUTO's threshold; 0: IACSG_TAPE_MIN_NODES (tests set it low) */
     /* The first-root path's -aa: the turns of a sample's walk in a round before it goes on in the next, among the
@@ -39,6 +40,7 @@ typedef struct {
 
 enum { IACSG_TAPE_AUTO = 0, IACSG_TAPE_NEVER, IACSG_TAPE_ALWAYS };
 #define IACSG_TAPE_MIN_NODES 1024
+#define IACSG_TAPE_MIN_PARTS 128
 
 /* Builds the render program for `expr_cl`, the OpenCL C source of iacsg_Fv, iacsg_f_grad and so on (as
  * iacsg_expr_emit_cl writes it with the prefix "iacsg"). The source is copied. Destroy with

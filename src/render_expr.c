@@ -5,8 +5,13 @@
  *                (implicits/tape.h) in a buffer, the kernel's last argument.
  * Which: config->tape; by default the interpreter from IACSG_TAPE_MIN_NODES operations on, where the compile
  * of the expression's own code costs seconds (a union of 1024 spheres, 3419 operations: 4.6 s) and the
- * interpreter's per-part boxes also skip most of a large union's parts per evaluation. */
+ * interpreter's per-part boxes also skip most of a large union's parts per evaluation; and for unions of
+ * IACSG_TAPE_MIN_PARTS parts or more, whose parts may share most of their operations (spheres on a grid share their
+ * (x - c)^2): a grid of 128 spheres, 461 operations, builds in 6.0 s compiled against 0.01 s as a tape, and the
+ * tape renders it as fast (reference camera, 1024x1024, eps 1e-5: 261 against 248 ms; 256 spheres, 9.0 s of
+ * build, 464 against 357 ms; 64, 244 against 298 ms, stay compiled). */
 #include "render_internal.h"
+#include "implicits/emit.h"
 #include "implicits/expr_internal.h"
 #include "implicits/tape.h"
 #include <stdio.h>
@@ -48,12 +53,20 @@ static iacsg_status create_interpreted(const iacsg_expr *e, const iacsg_render_c
     return st;
 }
 
+/* The number of parts of the expression's union (0 where its root is no union). */
+static int union_parts(const iacsg_expr *e) {
+    int *parts, n = emit_union_parts(&e->simple, e->root, &parts);
+    free(parts);
+    return n;
+}
+
 iacsg_status iacsg_renderer_create_expr(const iacsg_expr *e, const iacsg_render_config *config,
                                         iacsg_renderer **out, iacsg_error *err) {
     char *source = NULL, why[120] = "";
     *out = NULL;
     int min_nodes = config->tape_min_nodes > 0 ? config->tape_min_nodes : IACSG_TAPE_MIN_NODES;
-    if (config->tape == IACSG_TAPE_ALWAYS || (config->tape == IACSG_TAPE_AUTO && e->count >= min_nodes)) {
+    if (config->tape == IACSG_TAPE_ALWAYS ||
+        (config->tape == IACSG_TAPE_AUTO && (e->count >= min_nodes || union_parts(e) >= IACSG_TAPE_MIN_PARTS))) {
         iacsg_status st = create_interpreted(e, config, out, err);
         if (st != IACSG_ERR_LIMIT || config->tape == IACSG_TAPE_ALWAYS)
             return st;

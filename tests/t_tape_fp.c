@@ -9,7 +9,9 @@
  *     each box's list of parts (tape_tile_parts, the tile pass's) gives the union's lower bound bit for bit on
  *     the box, and on a sub-box, skipping by boxes too, the same guarantee against MPFR.
  *   tape_fallback: a part that needs more registers than the interpreter has is refused with a message, and the
- *     renderer compiles it instead, saying so. */
+ *     renderer compiles it instead, saying so.
+ *   tape_auto_takes_large_unions: -tape auto interprets a union of 128 parts that need fewer operations than its
+ *     threshold of operations. */
 #include "clrt.h"
 #include "implicits/tape.h"
 #include "kernels/params.h"
@@ -333,4 +335,30 @@ TEST_FP(tape_fallback) {
     iacsg_renderer_destroy(r);
     test_note("%s", note);
     CHECK(strncmp(note, "compiled (", 10) == 0 && strstr(note, "registers"), "the renderer says: %s", note);
+}
+
+/* IACSG_TAPE_AUTO interprets a union of IACSG_TAPE_MIN_PARTS parts however few operations its parts need: a grid
+ * of 128 spheres shares their (x - c)^2 among the spheres of a plane, 461 operations, under IACSG_TAPE_MIN_NODES. */
+TEST_FP(tape_auto_takes_large_unions) {
+    static char text[16384];
+    size_t used = (size_t)snprintf(text, sizeof text, "min(");
+    for (int k = 0; k < IACSG_TAPE_MIN_PARTS; k++)
+        used += (size_t)snprintf(text + used, sizeof text - used, "%s(x-%g)^2+(y-%g)^2+(z-%g)^2-0.01", k ? ", " : "",
+                                 -1.5 + 0.2 * (k % 16), -1.5 + 0.4 * (k / 16 % 4), -1.5 + 1.0 * (k / 64));
+    snprintf(text + used, sizeof text - used, ")");
+    CHECK(used < sizeof text - 1, "text too long");
+    iacsg_error err = {0};
+    iacsg_expr *e = NULL;
+    CHECK(iacsg_expr_parse(text, "<test>", &e, &err) == IACSG_OK, "%s", err.message);
+    CHECK(e->count < IACSG_TAPE_MIN_NODES, "%d operations: the parts' rule is not what is tested", e->count);
+    iacsg_render_config config = {.fp64 = FP64, .tape = IACSG_TAPE_AUTO};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    char note[200];
+    snprintf(note, sizeof note, "%s", iacsg_renderer_program(r));
+    iacsg_renderer_destroy(r);
+    test_note("%s", note);
+    CHECK(strncmp(note, "interpreted (tape: 128 parts", 28) == 0, "the renderer says: %s", note);
 }
