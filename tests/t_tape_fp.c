@@ -299,6 +299,18 @@ TEST_FP(tape_matches_compiled) {
           "too little checked to mean anything");
 }
 
+/* The program the renderer takes for `e` under `config` (iacsg_renderer_program's note, also noted); destroys e. */
+static void program_of(iacsg_expr *e, const iacsg_render_config *config, char *note, size_t size) {
+    iacsg_error err = {0};
+    iacsg_renderer *r = NULL;
+    iacsg_status st = iacsg_renderer_create_expr(e, config, &r, &err);
+    iacsg_expr_destroy(e);
+    CHECK(st == IACSG_OK, "%s", err.message);
+    snprintf(note, size, "%s", iacsg_renderer_program(r));
+    iacsg_renderer_destroy(r);
+    test_note("%s", note);
+}
+
 TEST_FP(tape_fallback) {
     /* (s1 + ... + s40) * (s1 * ... * s40): every s_k is live from its sum to its product, 40 values at once
      * where the interpreter has TAPE_SLOTS registers */
@@ -327,13 +339,8 @@ TEST_FP(tape_fallback) {
     CHECK(st == IACSG_ERR_LIMIT && r == NULL, "with the tape required: %s", st == IACSG_OK ? "built" : err.message);
     config.tape = IACSG_TAPE_AUTO;
     config.tape_min_nodes = e->count; /* this one is over the threshold */
-    st = iacsg_renderer_create_expr(e, &config, &r, &err);
-    iacsg_expr_destroy(e);
-    CHECK(st == IACSG_OK, "%s", err.message);
     char note[200];
-    snprintf(note, sizeof note, "%s", iacsg_renderer_program(r));
-    iacsg_renderer_destroy(r);
-    test_note("%s", note);
+    program_of(e, &config, note, sizeof note);
     CHECK(strncmp(note, "compiled (", 10) == 0 && strstr(note, "registers"), "the renderer says: %s", note);
 }
 
@@ -352,13 +359,7 @@ TEST_FP(tape_auto_takes_large_unions) {
     CHECK(iacsg_expr_parse(text, "<test>", &e, &err) == IACSG_OK, "%s", err.message);
     CHECK(e->count < IACSG_TAPE_MIN_NODES, "%d operations: the parts' rule is not what is tested", e->count);
     iacsg_render_config config = {.fp64 = FP64, .tape = IACSG_TAPE_AUTO};
-    iacsg_renderer *r = NULL;
-    iacsg_status st = iacsg_renderer_create_expr(e, &config, &r, &err);
-    iacsg_expr_destroy(e);
-    CHECK(st == IACSG_OK, "%s", err.message);
     char note[200];
-    snprintf(note, sizeof note, "%s", iacsg_renderer_program(r));
-    iacsg_renderer_destroy(r);
-    test_note("%s", note);
+    program_of(e, &config, note, sizeof note);
     CHECK(strncmp(note, "interpreted (tape: 128 parts", 28) == 0, "the renderer says: %s", note);
 }
