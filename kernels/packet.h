@@ -340,14 +340,16 @@ IAV_INLINE iav packet_Fdv(ulong groups, iav x, iav y, iav z, iav t, const iav ra
  * compiled iacsg_Fdv; for a tape tape_lists_dt over the tile's lists, which also gives *at_m, F at the segments'
  * midpoints over the same parts (the proofs need one function: kernels/tape_eval.h); where a list is full, the
  * walk's F and the slope [-inf, +inf] (those lanes bisect). The compiled code's *at_m is the caller's, over the
- * groups of the same lanes (packet_groups of `live`: packet_Fdv's). */
+ * groups its function was taken over, *groups (packet_groups of `live`: packet_Fdv's; a tape leaves it alone). */
 IA_FN iav packet_Fd(PACKET_TAPE_PARAM const __global ulong *segment_groups, const ia_realv o[3], const ia_realv d[3],
-                    iav t, ia_maskv live, packet_int level, packet_index i, iav time, iav *slope, iav *at_m) {
+                    iav t, ia_maskv live, packet_int level, packet_index i, iav time, iav *slope, iav *at_m,
+                    ulong *groups) {
     iav x = packet_extent(o[0], d[0], t), y = packet_extent(o[1], d[1], t), z = packet_extent(o[2], d[2], t);
     iav rates[3] = {iav_make(d[0], d[0]), iav_make(d[1], d[1]), iav_make(d[2], d[2])};
 #ifdef IACSG_TAPE
     ia_realv m = t.lo * (ia_real)0.5 + t.hi * (ia_real)0.5; /* as the callers' midpoint */
     iav tm = iav_make(m, m), f;
+    (void)groups;
     int first, last;
     packet_segments(live, level, i, &first, &last);
     if (tape_lists_dt(tape, (const __global ushort *)(segment_groups + SEGMENTS), first, last, live, x, y, z, time,
@@ -359,7 +361,8 @@ IA_FN iav packet_Fd(PACKET_TAPE_PARAM const __global ulong *segment_groups, cons
     return f;
 #else
     (void)at_m;
-    return packet_Fdv(packet_groups(segment_groups, live, level, i), x, y, z, time, rates, slope);
+    *groups = packet_groups(segment_groups, live, level, i);
+    return packet_Fdv(*groups, x, y, z, time, rates, slope);
 #endif
 }
 
@@ -387,7 +390,8 @@ IA_FN iav packet_mean_value(PACKET_TAPE_PARAM const __global ulong *segment_grou
                             const ia_realv d[3], iav t, ia_maskv live, packet_int level, packet_index i,
                             ia_maskv tangent, iav time, packet_form *out, packet_index *evals) {
     iav slope, fm;
-    iav f = packet_Fd(PACKET_TAPE_ARG segment_groups, o, d, t, live, level, i, time, &slope, &fm);
+    ulong groups;
+    iav f = packet_Fd(PACKET_TAPE_ARG segment_groups, o, d, t, live, level, i, time, &slope, &fm, &groups);
     ia_maskv use = tangent & isfinite(slope.lo) & isfinite(slope.hi); /* NaN is not finite: garbage lanes too */
     ia_realv m = t.lo * (ia_real)0.5 + t.hi * (ia_real)0.5;
 #ifndef IACSG_TAPE
@@ -398,8 +402,8 @@ IA_FN iav packet_mean_value(PACKET_TAPE_PARAM const __global ulong *segment_grou
 #endif
     iav at_m = iav_make(m, m);
 #ifndef IACSG_TAPE /* over packet_Fd's groups: one function */
-    fm = packet_F(packet_groups(segment_groups, live, level, i), packet_extent(o[0], d[0], at_m),
-                  packet_extent(o[1], d[1], at_m), packet_extent(o[2], d[2], at_m), time);
+    fm = packet_F(groups, packet_extent(o[0], d[0], at_m), packet_extent(o[1], d[1], at_m),
+                  packet_extent(o[2], d[2], at_m), time);
 #endif
     PACKET_COUNT(*evals, use);
     /* lanes not using it multiply by 0: an infinite slope there would send every lane down iav_mul's slow path */
@@ -514,8 +518,9 @@ IA_FN ia_maskv packet_first_root_turns(PACKET_TAPE_PARAM const __global ulong *s
         ia_maskv stepping = searching & newton;
         if (newton_turn) {
             iav t = iav_make(na, nb), slope = iav_point(0), fm, f;
+            ulong groups; /* as fm: set by packet_Fd, read only after it (without it no lane steps) */
             if (iav_any(stepping & (nb - na > eps)))
-                f = packet_Fd(PACKET_TAPE_ARG segment_groups, o, d, t, stepping, level, i, time, &slope, &fm);
+                f = packet_Fd(PACKET_TAPE_ARG segment_groups, o, d, t, stepping, level, i, time, &slope, &fm, &groups);
             else
                 f = packet_F_nodes(PACKET_TAPE_ARG segment_groups, stepping, level, i, packet_extent(o[0], d[0], t),
                                    packet_extent(o[1], d[1], t), packet_extent(o[2], d[2], t), time);
@@ -530,7 +535,6 @@ IA_FN ia_maskv packet_first_root_turns(PACKET_TAPE_PARAM const __global ulong *s
                 ia_realv m = na * (ia_real)0.5 + nb * (ia_real)0.5;
 #ifndef IACSG_TAPE /* a tape's came with f, over the same parts; over packet_Fd's groups here */
                 iav at_m = iav_make(m, m);
-                ulong groups = packet_groups(segment_groups, stepping, level, i);
                 fm = packet_F_live(groups, step, packet_extent(o[0], d[0], at_m), packet_extent(o[1], d[1], at_m),
                                    packet_extent(o[2], d[2], at_m), time);
 #endif
